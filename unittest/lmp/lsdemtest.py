@@ -36,7 +36,7 @@ def run_lmp(deck, np=1, vars=None, cwd=None, expect_fail=False, log="log.lammps"
 
     Returns (returncode, log_text). The log is also left in cwd/log. When expect_fail is
     False a non-zero exit is recorded as a failed check (with the tail of the output)."""
-    cwd = cwd or os.getcwd()
+    cwd = os.path.abspath(cwd or os.getcwd())
     os.makedirs(cwd, exist_ok=True)
     if "\n" not in deck and os.path.exists(deck):
         infile = os.path.abspath(deck)

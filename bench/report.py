@@ -1,0 +1,69 @@
+#!/usr/bin/env python3
+"""Summarise an LSDEM benchmark log: time split, workload per grain-step, headline figures.
+
+The deck's thermo output has `c_work[1..4]` from `compute pair lsdem` (per-step counters of
+pair_style lsdem): pairs within bounding spheres, contacting pairs, node lookups (nodes that
+reached the trilinear level-set lookup) and penetrating nodes. Their mean over the thermo rows
+is divided by the grain count."""
+import argparse
+import re
+import sys
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("log")
+    ap.add_argument("--np", type=int, default=1)
+    ap.add_argument("--mode", default="oneway")
+    a = ap.parse_args()
+    text = open(a.log).read()
+    loops = re.findall(r"Loop time of ([\d.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms", text)
+    if not loops:
+        sys.exit("no 'Loop time' line in %s: the run did not finish" % a.log)
+    loop, procs, steps, atoms = float(loops[-1][0]), int(loops[-1][1]), int(loops[-1][2]), int(loops[-1][3])
+    # the last run's timing table
+    tail = text[text.rfind("Loop time of"):]
+    print("LSDEM benchmark: %d grains, %d steps, %d rank(s), mode %s" % (atoms, steps, procs, a.mode))
+    print("time split (avg seconds over ranks, % of total):")
+    for name in ("Pair", "Neigh", "Comm", "Modify", "Output", "Other"):
+        m = re.search(r"^%s\s+\|\s*([\d.eE+-]+)\s*\|\s*([\d.eE+-]+)\s*\|\s*([\d.eE+-]+)\s*\|\s*([\d.]+|)\s*\|\s*([\d.]+)" % name, tail, re.M)
+        if m:
+            print("  %-7s %10.3f s  %6.2f %%" % (name, float(m.group(2)), float(m.group(5))))
+    # workload from the thermo rows of the last run
+    rows = []
+    header = None
+    for line in tail_before(text).splitlines():
+        parts = line.split()
+        if parts[:1] == ["Step"]:
+            header, rows = parts, []
+        elif header and len(parts) == len(header):
+            try:
+                rows.append(dict(zip(header, map(float, parts))))
+            except ValueError:
+                header = None
+    per = {}
+    labels = ["pairs within bounding spheres", "contacting pairs", "node lookups", "penetrating nodes"]
+    for k, label in enumerate(labels, start=1):
+        key = "c_work[%d]" % k
+        vals = [r[key] for r in rows if key in r]
+        if vals:
+            per[label] = sum(vals) / len(vals) / atoms
+    if per:
+        print("workload per grain-step (mean of thermo rows):")
+        for label in labels:
+            if label in per:
+                print("  %-30s %8.2f" % (label, per[label]))
+    print("wall time per grain-step: %.3f us (loop %.2f s; core-us per grain-step %.3f)"
+          % (loop / (atoms * steps) * 1e6, loop, loop * procs / (atoms * steps) * 1e6))
+    lookups = per.get("node lookups", float("nan")) * atoms * steps
+    print("us_per_grain_step=%.3f node_tests_per_s=%.4g" % (loop / (atoms * steps) * 1e6, lookups / loop))
+
+
+def tail_before(text):
+    """The log text up to the last 'Loop time' line (the last run's thermo rows)."""
+    i = text.rfind("Loop time of")
+    return text[:i]
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Benchmark LSDEM on a scene in the Kawamoto/Tan layout (the report code's input format).
+#
+#   bench/run.sh [SCENE_DIR] [--steps N] [--np N] [--mode oneway|twoway]
+#
+# Without SCENE_DIR it generates the reference scene of ../shared/bench (2,197 ellipsoids,
+# 250 nodes each) into a temporary folder. Prints the LAMMPS time split (pair, neighbour,
+# comm, modify), the workload per grain-step, and as its last line
+#   us_per_grain_step=<x> node_tests_per_s=<y>
+# Environment: LSDEM_LMP (lmp binary), LSDEM_BUILD_DIR (for lsdem-import-tan).
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+build=${LSDEM_BUILD_DIR:-$here/../build}
+lmp=${LSDEM_LMP:-$build/lmp}
+scene="" steps=500 np=1 mode=oneway
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --steps) steps=$2; shift 2 ;;
+    --np) np=$2; shift 2 ;;
+    --mode) mode=$2; shift 2 ;;
+    -*) echo "unknown option $1" >&2; exit 2 ;;
+    *) scene=$1; shift ;;
+  esac
+done
+
+work=$(mktemp -d /tmp/lsdem-bench.XXXXXX)
+if [ -z "$scene" ]; then
+  gen=$here/../../shared/bench/gen_morph.py
+  [ -f "$gen" ] || { echo "no SCENE_DIR given and no $gen to make the reference scene" >&2; exit 2; }
+  echo "generating the reference scene (2197 grains) in $work/ref ..."
+  /usr/bin/python3 "$gen" --n 2197 --test sc2197 --spacing 19 --seed 2197 --root "$work/ref" >/dev/null
+  scene=$work/ref/sc2197
+fi
+# density 2650 kg/m^3 at 0.1 um per voxel: rho k^3 (report Table 3.1)
+"$build/lsdem-import-tan" "$scene" "$work/scene" --density 2.65e-18
+mpi=()
+[ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
+cd "$work"
+"${mpi[@]}" "$lmp" -in "$here/in.bench" -var steps "$steps" -var mode "$mode" -var seed 2197 \
+  -log log.bench -screen none
+/usr/bin/python3 "$here/report.py" log.bench --np "$np" --mode "$mode"

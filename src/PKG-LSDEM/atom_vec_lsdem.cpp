@@ -1,0 +1,349 @@
+// clang-format off
+/* ----------------------------------------------------------------------
+   LSDEM package: level-set discrete element method for LAMMPS.
+
+   atom_style lsdem library <file>: one atom per rigid grain (report §2.2: a grain is a
+   level-set grid plus surface nodes in its principal frame). Per grain we keep only
+   state: position, velocity, quaternion, angular velocity, shape index, mass and
+   principal moments, and the integrator's previous corrector increment. Grids and
+   nodes stay in the shape library, mapped read-only once per process.
+------------------------------------------------------------------------- */
+
+#include "atom_vec_lsdem.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+
+using namespace LAMMPS_NS;
+
+namespace {
+
+// One Storage per Atom object. It must outlive every AtomVecLsdem of that Atom: the
+// base AtomVec destructor (and, for atom_style hybrid, the hybrid style's destructor,
+// which runs after its sub-styles are deleted) frees the arrays through the addresses
+// registered in atom->peratom and resets the pointers to null. Entries are never
+// erased; a later Atom at the same address finds null pointers, as after a fresh start.
+// A separate entry per Atom keeps replicate correct: it packs atoms from the old Atom
+// into a new one while both exist.
+AtomVecLsdem::Storage &storage_for(const Atom *a)
+{
+  static std::map<const Atom *, AtomVecLsdem::Storage> registry;
+  return registry[a];  // value-initialised (all null) on first use
+}
+
+const char *sdf_kind_name(lsdem_sdf_kind k)
+{
+  switch (k) {
+    case LSDEM_SDF_GRID: return "grid";
+    case LSDEM_SDF_SPHERE: return "sphere";
+    case LSDEM_SDF_PLANE: return "plane";
+    case LSDEM_SDF_CYLINDER: return "cylinder";
+    case LSDEM_SDF_BOX: return "box";
+    case LSDEM_SDF_ELLIPSOID: return "ellipsoid";
+  }
+  return "unknown";
+}
+
+// radius of the sphere with the same volume
+double equivalent_radius(double volume)
+{
+  return std::cbrt(3.0 * volume / (4.0 * M_PI));
+}
+
+// names accepted by compute property/atom, in property index order
+const char *const property_names[] = {"qw", "qx", "qy", "qz", "shape",
+                                      "inertia1", "inertia2", "inertia3"};
+const int nproperty = sizeof(property_names) / sizeof(property_names[0]);
+
+}    // namespace
+
+/* ---------------------------------------------------------------------- */
+
+AtomVecLsdem::AtomVecLsdem(LAMMPS *lmp) : AtomVec(lmp)
+{
+  mass_type = PER_ATOM;
+  molecular = Atom::ATOMIC;
+
+  atom->radius_flag = atom->rmass_flag = atom->omega_flag = atom->torque_flag = 1;
+
+  shape = nullptr;
+  quat = inertia = dwprev = nullptr;
+  radius = rmass = nullptr;
+  omega = nullptr;
+  lib = nullptr;
+  maxradius = 0.0;
+  rmass_one = 0.0;
+
+  store = &storage_for(atom);
+  register_peratom("shape", &store->shape, Atom::INT, 0);
+  register_peratom("quat", &store->quat, Atom::DOUBLE, 4);
+  register_peratom("inertia", &store->inertia, Atom::DOUBLE, 3);
+  register_peratom("dwprev", &store->dwprev, Atom::DOUBLE, 3);
+
+  // radius = bounding radius of the shape; omega is world-frame; quat goes with every
+  // forward communication (grains rotate every step) and with borders (ghosts created
+  // at reneighbouring get no forward communication that step)
+
+  fields_grow = (char *) "radius rmass omega torque shape quat inertia dwprev";
+  fields_copy = (char *) "radius rmass omega shape quat inertia dwprev";
+  fields_comm = (char *) "quat";
+  fields_comm_vel = (char *) "omega quat";
+  fields_reverse = (char *) "torque";
+  fields_border = (char *) "radius rmass shape inertia quat";
+  fields_border_vel = (char *) "radius rmass shape inertia quat omega";
+  fields_exchange = (char *) "radius rmass omega shape quat inertia dwprev";
+  fields_restart = (char *) "radius rmass omega shape quat inertia dwprev";
+  fields_create = (char *) "radius rmass omega shape quat inertia dwprev";
+  fields_data_atom = (char *) "id type shape rmass x quat";
+  fields_data_vel = (char *) "id v omega";
+}
+
+/* ---------------------------------------------------------------------- */
+
+AtomVecLsdem::~AtomVecLsdem()
+{
+  lsdem_library_close(lib);
+}
+
+/* ----------------------------------------------------------------------
+   add a per-atom array to atom->peratom, or point an existing entry of the same name
+   (a second atom_style command, read_restart) at our storage
+------------------------------------------------------------------------- */
+
+void AtomVecLsdem::register_peratom(const char *name, void *address, int datatype, int cols)
+{
+  for (int i = 0; i < atom->nperatom; i++) {
+    if (strcmp(atom->peratom[i].name, name) == 0) {
+      if (atom->peratom[i].datatype != datatype || atom->peratom[i].cols != cols)
+        error->all(FLERR, "atom_style lsdem: per-atom array '{}' already exists "
+                   "with a different layout", name);
+      atom->peratom[i].address = address;
+      return;
+    }
+  }
+  atom->add_peratom(name, address, datatype, cols);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void AtomVecLsdem::error_one_flushed(Error *error, const std::string &file, int line,
+                                     const std::string &mesg)
+{
+  fflush(nullptr);
+  try {
+    error->one(file, line, mesg);
+  } catch (...) {
+    fflush(nullptr);
+    throw;
+  }
+}
+
+/* ----------------------------------------------------------------------
+   atom_style lsdem library <file>
+------------------------------------------------------------------------- */
+
+void AtomVecLsdem::process_args(int narg, char **arg)
+{
+  if (narg != 2 || strcmp(arg[0], "library") != 0)
+    error->all(FLERR, "Illegal atom_style lsdem command: expected 'atom_style lsdem "
+               "library <file.lslib>'");
+  open_library(arg[1]);
+  if (comm->me == 0) report_library();
+  setup_fields();
+}
+
+/* ---------------------------------------------------------------------- */
+
+void AtomVecLsdem::open_library(const char *path)
+{
+  lsdem_error err;
+  err.msg[0] = '\0';
+  lsdem_library_close(lib);
+  lib = nullptr;
+  if (lsdem_library_open(path, &lib, &err) != LSDEM_OK)
+    error->all(FLERR, "atom_style lsdem: cannot open shape library {}: {}", path, err.msg);
+  if (lsdem_library_count(lib) <= 0)
+    error->all(FLERR, "atom_style lsdem: shape library {} holds no shapes", path);
+
+  maxradius = 0.0;
+  for (int s = 0; s < lsdem_library_count(lib); s++)
+    maxradius = std::max(maxradius, lsdem_library_shape(lib, s)->radius);
+}
+
+/* ----------------------------------------------------------------------
+   print the shapes (or a summary) and warn about coarse grids: an LS sphere needs a
+   grid spacing finer than about R/10 to behave like a DEM sphere (Duriez & Bonelli 2021)
+------------------------------------------------------------------------- */
+
+void AtomVecLsdem::report_library()
+{
+  const int n = lsdem_library_count(lib);
+  std::string mesg = fmt::format("LSDEM shape library: {} shape{}, max bounding radius {:.6g}\n",
+                                 n, n == 1 ? "" : "s", maxradius);
+  if (n <= 20) {
+    mesg += fmt::format("  {:>5} {:<16} {:<9} {:>7} {:>13} {:>13}\n", "shape", "name", "kind",
+                        "nodes", "radius", "volume");
+    for (int s = 0; s < n; s++) {
+      const lsdem_shape *sh = lsdem_library_shape(lib, s);
+      const char *name = lsdem_library_name(lib, s);
+      mesg += fmt::format("  {:>5} {:<16} {:<9} {:>7} {:>13.6g} {:>13.6g}\n", s + 1,
+                          (name && name[0]) ? name : "-", sdf_kind_name(sh->sdf.kind),
+                          sh->nnodes, sh->radius, sh->volume);
+    }
+  } else {
+    double rmin = maxradius, vmin = HUGE_VAL, vmax = 0.0;
+    long nodes = 0;
+    for (int s = 0; s < n; s++) {
+      const lsdem_shape *sh = lsdem_library_shape(lib, s);
+      rmin = std::min(rmin, sh->radius);
+      vmin = std::min(vmin, sh->volume);
+      vmax = std::max(vmax, sh->volume);
+      nodes += sh->nnodes;
+    }
+    mesg += fmt::format("  bounding radius {:.6g} to {:.6g}, volume {:.6g} to {:.6g}, "
+                        "{:.1f} nodes per shape on average\n", rmin, maxradius, vmin, vmax,
+                        (double) nodes / n);
+  }
+  utils::logmesg(lmp, mesg);
+
+  // name the first few coarse shapes, count the rest (CT libraries hold thousands)
+  const int max_named = 10;
+  int ncoarse = 0;
+  for (int s = 0; s < n; s++) {
+    const lsdem_shape *sh = lsdem_library_shape(lib, s);
+    if (sh->sdf.kind != LSDEM_SDF_GRID) continue;
+    const double req = equivalent_radius(sh->volume);
+    if (sh->sdf.grid.h <= 0.1 * req * (1.0 + 1e-9)) continue;  // a tie is not coarse
+    if (++ncoarse > max_named) continue;
+    const char *name = lsdem_library_name(lib, s);
+    error->warning(FLERR, "atom_style lsdem: shape {} ({}) has grid spacing {:.6g}, "
+                   "coarser than R/10 = {:.6g} (R = equivalent-volume radius {:.6g}); "
+                   "contacts will be rough", s + 1, (name && name[0]) ? name : "unnamed",
+                   sh->sdf.grid.h, 0.1 * req, req);
+  }
+  if (ncoarse > max_named)
+    error->warning(FLERR, "atom_style lsdem: {} more shapes have grid spacings coarser than "
+                   "R/10", ncoarse - max_named);
+}
+
+/* ----------------------------------------------------------------------
+   local copies of the per-atom arrays (also for replicate, where two styles coexist)
+------------------------------------------------------------------------- */
+
+void AtomVecLsdem::grow_pointers()
+{
+  radius = atom->radius;
+  rmass = atom->rmass;
+  omega = atom->omega;
+  shape = store->shape;
+  quat = store->quat;
+  inertia = store->inertia;
+  dwprev = store->dwprev;
+}
+
+/* ----------------------------------------------------------------------
+   create_atoms: shape 1 of the library at density 1, identity orientation
+------------------------------------------------------------------------- */
+
+void AtomVecLsdem::create_atom_post(int ilocal)
+{
+  const lsdem_shape *sh = lsdem_library_shape(lib, 0);
+  shape[ilocal] = 0;
+  quat[ilocal][0] = 1.0;
+  radius[ilocal] = sh->radius;
+  rmass[ilocal] = sh->volume;
+  for (int k = 0; k < 3; k++) inertia[ilocal][k] = sh->inertia[k];
+}
+
+/* ----------------------------------------------------------------------
+   Atoms line: id type shape-ID density x y z qw qx qy qz (shape-ID 1-based)
+   AtomVec::data_atom() has stored shape-ID in shape[] and density in rmass[]
+------------------------------------------------------------------------- */
+
+void AtomVecLsdem::data_atom_post(int ilocal)
+{
+  const tagint id = atom->tag[ilocal];
+  const int n = lsdem_library_count(lib);
+  const int s = shape[ilocal] - 1;
+  if (s < 0 || s >= n)
+    error_one_flushed(error, FLERR, fmt::format("Atom {} in Atoms section has shape-ID {}; "
+                      "the shape library has shapes 1 to {}", id, shape[ilocal], n));
+  shape[ilocal] = s;
+
+  const double density = rmass[ilocal];
+  if (!(density > 0.0) || !std::isfinite(density))
+    error_one_flushed(error, FLERR, fmt::format("Atom {} in Atoms section has invalid "
+                      "density {}", id, density));
+
+  double *q = quat[ilocal];
+  const double qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
+  if (!(qq > 0.0) || !std::isfinite(qq))
+    error_one_flushed(error, FLERR, fmt::format("Atom {} in Atoms section has invalid "
+                      "quaternion {} {} {} {}", id, q[0], q[1], q[2], q[3]));
+  // a quaternion already unit to round-off is kept bit for bit, so that a data file
+  // written by write_data reads back identically
+  if (std::fabs(qq - 1.0) > 4.0 * DBL_EPSILON) lsdem_quat_normalize(q);
+
+  const lsdem_shape *sh = lsdem_library_shape(lib, s);
+  rmass[ilocal] = density * sh->volume;
+  radius[ilocal] = sh->radius;
+  for (int k = 0; k < 3; k++) {
+    inertia[ilocal][k] = density * sh->inertia[k];
+    omega[ilocal][k] = 0.0;
+    dwprev[ilocal][k] = 0.0;
+  }
+}
+
+/* ----------------------------------------------------------------------
+   write_data: the same layout read_data reads (density, 1-based shape-ID)
+------------------------------------------------------------------------- */
+
+void AtomVecLsdem::pack_data_pre(int ilocal)
+{
+  rmass_one = rmass[ilocal];
+  rmass[ilocal] = rmass_one / lsdem_library_shape(lib, shape[ilocal])->volume;
+  shape[ilocal] += 1;
+}
+
+void AtomVecLsdem::pack_data_post(int ilocal)
+{
+  rmass[ilocal] = rmass_one;
+  shape[ilocal] -= 1;
+}
+
+/* ----------------------------------------------------------------------
+   compute property/atom names (quatw/quati.. are taken by the ellipsoid style there)
+------------------------------------------------------------------------- */
+
+int AtomVecLsdem::property_atom(char *name)
+{
+  for (int k = 0; k < nproperty; k++)
+    if (strcmp(name, property_names[k]) == 0) return k;
+  return -1;
+}
+
+void AtomVecLsdem::pack_property_atom(int index, double *buf, int nvalues, int groupbit)
+{
+  const int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  int n = 0;
+  for (int i = 0; i < nlocal; i++, n += nvalues) {
+    if (!(mask[i] & groupbit)) {
+      buf[n] = 0.0;
+    } else if (index < 4) {
+      buf[n] = quat[i][index];
+    } else if (index == 4) {
+      buf[n] = shape[i] + 1;
+    } else {
+      buf[n] = inertia[i][index - 5];
+    }
+  }
+}

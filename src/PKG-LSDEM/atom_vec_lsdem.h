@@ -1,0 +1,80 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   LSDEM package: level-set discrete element method for LAMMPS.
+
+   atom_style lsdem: one atom per rigid grain. The grain's shape is an index into a
+   memory-mapped shape library (core/lsdem.h); only state travels between ranks.
+------------------------------------------------------------------------- */
+
+#ifdef ATOM_CLASS
+// clang-format off
+AtomStyle(lsdem,AtomVecLsdem);
+// clang-format on
+#else
+
+#ifndef LMP_ATOM_VEC_LSDEM_H
+#define LMP_ATOM_VEC_LSDEM_H
+
+#include "atom_vec.h"
+#include "lsdem.h"
+
+namespace LAMMPS_NS {
+
+class AtomVecLsdem : public AtomVec {
+ public:
+  // Addresses of the custom per-atom arrays. One instance per Atom object, kept outside
+  // the AtomVec (see atom_vec_lsdem.cpp) because AtomVec destructors free the arrays
+  // through these addresses after the style object itself is gone (atom_style hybrid).
+  struct Storage {
+    int *shape;
+    double **quat;
+    double **inertia;
+    double **dwprev;
+  };
+
+  AtomVecLsdem(class LAMMPS *);
+  ~AtomVecLsdem() override;
+  void process_args(int, char **) override;
+
+  void grow_pointers() override;
+  void create_atom_post(int) override;
+  void data_atom_post(int) override;
+  void pack_data_pre(int) override;
+  void pack_data_post(int) override;
+
+  int property_atom(char *) override;
+  void pack_property_atom(int, double *, int, int) override;
+
+  // the interface the LSDEM styles use (refreshed by grow_pointers)
+  int *shape;        // 0-based library index
+  double **quat;     // (w,x,y,z): principal frame -> world
+  double **inertia;  // principal moments, mass*length^2
+  double **dwprev;   // previous corrector increment Delta omega^{n-1}, body frame
+
+  const lsdem_library *library() const { return lib; }
+  const lsdem_shape *shape_of(int i) const { return lsdem_library_shape(lib, shape[i]); }
+  int nshapes() const { return lsdem_library_count(lib); }
+  double max_shape_radius() const { return maxradius; }
+
+  // error->one that first flushes every open output stream and flushes again after the
+  // message is logged: with LAMMPS_EXCEPTIONS the stand-alone lmp ends an error->one in
+  // MPI_Abort, which discards buffered output (log lines, dump frames, the message itself)
+  [[noreturn]] static void error_one_flushed(class Error *, const std::string &, int,
+                                             const std::string &);
+
+ private:
+  Storage *store;
+  lsdem_library *lib;
+  double maxradius;
+  double *radius, *rmass;
+  double **omega;
+  double rmass_one;  // saved by pack_data_pre for pack_data_post
+
+  void register_peratom(const char *, void *, int, int);
+  void open_library(const char *);
+  void report_library();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,164 @@
+// clang-format off
+/* ----------------------------------------------------------------------
+   LSDEM package: level-set discrete element method for LAMMPS.
+
+   compute stress/lsdem (doc/compute_stress_lsdem.rst). Sums, over every contact of every
+   grain of the group, the moment f (x) (x_c - x_grain) of the contact force on that grain
+   (core lsdem_love_weber_add): grain-grain contacts from pair_style lsdem's contact list
+   of its last force call (each test is listed once, on the rank owning its master), wall
+   and platen contacts from the listed fix wall/lsdem. A membrane sphere is an atom that
+   pair_style lsdem touches like any other, so grain-membrane contacts are in the pair list
+   and count for the grain side only (membrane spheres are not in the group).
+------------------------------------------------------------------------- */
+
+#include "compute_stress_lsdem.h"
+
+#include "atom.h"
+#include "error.h"
+#include "fix_wall_lsdem.h"
+#include "force.h"
+#include "input.h"
+#include "math_const.h"
+#include "modify.h"
+#include "pair_lsdem.h"
+#include "update.h"
+#include "variable.h"
+
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using MathConst::RAD2DEG;
+
+// vector: sxx syy szz sxy sxz syz p q phi_mob(deg) sigma1 sigma3
+static constexpr int NVALUES = 11;
+
+/* ---------------------------------------------------------------------- */
+
+ComputeStressLsdem::ComputeStressLsdem(LAMMPS *lmp, int narg, char **arg) :
+  Compute(lmp, narg, arg), volume_value(0.0), ivar(-1), pair(nullptr)
+{
+  const char *usage = "compute ID group stress/lsdem volume V|v_name [wall fixID ...]";
+  if (narg < 5 || strcmp(arg[3], "volume") != 0)
+    error->all(FLERR, "Illegal compute stress/lsdem command: {}", usage);
+  if (utils::strmatch(arg[4], "^v_")) volume_var = arg[4] + 2;
+  else {
+    volume_value = utils::numeric(FLERR, arg[4], false, lmp);
+    if (volume_value <= 0.0) error->all(FLERR, "compute stress/lsdem: volume must be > 0");
+  }
+  int iarg = 5;
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "wall") != 0 || iarg + 1 >= narg)
+      error->all(FLERR, "Illegal compute stress/lsdem command: {}", usage);
+    iarg++;
+    while (iarg < narg && strcmp(arg[iarg], "wall") != 0) wall_ids.emplace_back(arg[iarg++]);
+  }
+
+  vector_flag = 1;
+  size_vector = NVALUES;
+  extvector = 0;
+  vector = new double[NVALUES];
+}
+
+/* ---------------------------------------------------------------------- */
+
+ComputeStressLsdem::~ComputeStressLsdem()
+{
+  delete[] vector;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void ComputeStressLsdem::init()
+{
+  pair = dynamic_cast<PairLsdem *>(force->pair_match("lsdem", 1));
+  walls.clear();
+  for (const auto &wid : wall_ids) {
+    int ifix = modify->find_fix(wid);
+    FixWallLsdem *w = ifix < 0 ? nullptr : dynamic_cast<FixWallLsdem *>(modify->fix[ifix]);
+    if (!w) error->all(FLERR, "compute stress/lsdem: {} is not a fix wall/lsdem", wid);
+    walls.push_back(w);
+  }
+  if (!pair && walls.empty())
+    error->all(FLERR, "compute stress/lsdem needs pair_style lsdem or a wall/lsdem fix");
+  if (!volume_var.empty()) {
+    ivar = input->variable->find(volume_var.c_str());
+    if (ivar < 0) error->all(FLERR, "compute stress/lsdem: variable {} does not exist", volume_var);
+    if (!input->variable->equalstyle(ivar))
+      error->all(FLERR, "compute stress/lsdem: variable {} is not equal-style", volume_var);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+double ComputeStressLsdem::specimen_volume()
+{
+  if (ivar < 0) return volume_value;
+  double v = input->variable->compute_equal(ivar);
+  if (!(v > 0.0))
+    error->all(FLERR, "compute stress/lsdem: volume variable {} = {} (must be > 0)", volume_var, v);
+  return v;
+}
+
+/* ----------------------------------------------------------------------
+   pair contacts: the force scale * res.force acts on master i at the contact point,
+   its reaction on slave j (a ghost keeps the image coordinates the pair used)
+------------------------------------------------------------------------- */
+
+void ComputeStressLsdem::add_pair_contacts(double M[9]) const
+{
+  if (pair->contacts_step() != update->ntimestep)
+    error->all(FLERR, "compute stress/lsdem needs pair lsdem forces of step {} (it has {})",
+               update->ntimestep, pair->contacts_step());
+  const int *mask = atom->mask;
+  double **x = atom->x;
+  const PairLsdem::Contact *c = pair->contacts();
+  for (int k = 0; k < pair->ncontacts(); k++) {
+    const double s = c[k].scale;
+    const double fi[3] = {s * c[k].res.force[0], s * c[k].res.force[1], s * c[k].res.force[2]};
+    const double fj[3] = {-fi[0], -fi[1], -fi[2]};
+    if (mask[c[k].i] & groupbit) lsdem_love_weber_add(M, fi, c[k].res.point, x[c[k].i]);
+    if (mask[c[k].j] & groupbit) lsdem_love_weber_add(M, fj, c[k].res.point, x[c[k].j]);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void ComputeStressLsdem::add_wall_contacts(double M[9]) const
+{
+  const int *mask = atom->mask;
+  double **x = atom->x;
+  for (const FixWallLsdem *w : walls) {
+    if (w->contacts_step() != update->ntimestep)
+      error->all(FLERR, "compute stress/lsdem needs wall forces of step {} from fix {}",
+                 update->ntimestep, w->id);
+    const FixWallLsdem::Contact *c = w->contacts();
+    for (int k = 0; k < w->ncontacts(); k++)
+      if (mask[c[k].i] & groupbit) lsdem_love_weber_add(M, c[k].force, c[k].point, x[c[k].i]);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void ComputeStressLsdem::compute_vector()
+{
+  invoked_vector = update->ntimestep;
+
+  double Mlocal[9] = {0.0}, M[9], sigma[9], s[3];
+  if (pair) add_pair_contacts(Mlocal);
+  add_wall_contacts(Mlocal);
+  MPI_Allreduce(Mlocal, M, 9, MPI_DOUBLE, MPI_SUM, world);
+
+  lsdem_love_weber_stress(M, specimen_volume(), sigma);
+  lsdem_stress_principal(sigma, s);
+  vector[0] = sigma[0];
+  vector[1] = sigma[4];
+  vector[2] = sigma[8];
+  vector[3] = sigma[1];
+  vector[4] = sigma[2];
+  vector[5] = sigma[5];
+  vector[6] = lsdem_stress_mean(sigma);
+  vector[7] = lsdem_stress_deviatoric(sigma);
+  vector[8] = RAD2DEG * lsdem_friction_angle(s[0], s[2]);
+  vector[9] = s[0];
+  vector[10] = s[2];
+}

@@ -1,0 +1,385 @@
+/* contact.c -- node-to-surface contact of level-set grains (report Algorithm 2,
+ * eqs 2.2-2.16) and the analytic sphere fast paths (report §2.3.5).
+ *
+ * Frames and signs: vectors are world-frame except node coordinates (A's principal
+ * frame), cb (B's centre in A's frame) and q, g (a node and B's level-set gradient in
+ * B's principal frame). The contact normal n is B's outward unit normal at the
+ * contact, so it points from B towards A; the force f computed for a contact acts on
+ * the master A (a repulsive normal force is +|f_n| n) and the slave B receives -f.
+ * Torques are taken about each grain's centroid.
+ *
+ * The per-contact physics (normal spring and damping, the shear spring with its
+ * history, the Coulomb cap, the accumulation into a result) lives in one function,
+ * apply_contact(), shared by the node loop and by the sphere paths. */
+#include "lsdem.h"
+
+#include <math.h>
+#include <string.h>
+
+/* --------------------------------------------------------- small vector ops ---- */
+
+static inline double dot3(const double a[3], const double b[3])
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static inline void cross3(const double a[3], const double b[3], double out[3])
+{
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* out = M v + t */
+static inline void affine3(const double M[9], const double t[3], const double v[3],
+                           double out[3])
+{
+  out[0] = M[0] * v[0] + M[1] * v[1] + M[2] * v[2] + t[0];
+  out[1] = M[3] * v[0] + M[4] * v[1] + M[5] * v[2] + t[1];
+  out[2] = M[6] * v[0] + M[7] * v[1] + M[8] * v[2] + t[2];
+}
+
+/* C = A^T B for row-major 3x3 matrices. */
+static void mat_transpose_mul(const double A[9], const double B[9], double C[9])
+{
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      C[3 * i + j] = A[i] * B[j] + A[3 + i] * B[3 + j] + A[6 + i] * B[6 + j];
+}
+
+/* ------------------------------------------------------------ pair context ---- */
+
+/* The part of a pose the contact forces need: centroid and velocities (world). */
+typedef struct {
+  double x[3], v[3], omega[3];
+} motion;
+
+/* What one pair evaluation shares between its contacts. Motions, parameters and the
+ * running sums are held by value, so the contact code reads and accumulates in memory
+ * that nothing else aliases (passed as restrict); pair_end() publishes the result. */
+typedef struct {
+  motion a, b;
+  lsdem_contact_params prm;
+  int64_t step;
+  const lsdem_node_hist *hist_in; /* sorted by node; walked forward once (merge) */
+  int n_in, cursor;
+  lsdem_node_hist *hist_out;
+  int n_out;
+  double weight; /* sum of normal-force magnitudes, for the mean contact point */
+  lsdem_contact_result sum;
+} pair_ctx;
+
+static void pair_begin(pair_ctx *c, const lsdem_pose *pa, const lsdem_pose *pb,
+                       const lsdem_contact_params *prm, int64_t step,
+                       const lsdem_node_hist *hist_in, int n_in, lsdem_node_hist *hist_out)
+{
+  memset(&c->sum, 0, sizeof c->sum);
+  memcpy(c->a.x, pa->x, sizeof c->a.x);
+  memcpy(c->a.v, pa->v, sizeof c->a.v);
+  memcpy(c->a.omega, pa->omega, sizeof c->a.omega);
+  memcpy(c->b.x, pb->x, sizeof c->b.x);
+  memcpy(c->b.v, pb->v, sizeof c->b.v);
+  memcpy(c->b.omega, pb->omega, sizeof c->b.omega);
+  c->prm = *prm;
+  c->step = step;
+  c->hist_in = hist_in;
+  c->n_in = hist_in ? n_in : 0;
+  c->cursor = 0;
+  c->hist_out = hist_out;
+  c->n_out = 0;
+  c->weight = 0.0;
+}
+
+static int pair_end(const pair_ctx *c, int *n_out, lsdem_contact_result *res)
+{
+  *res = c->sum;
+  if (c->weight > 0.0)
+    for (int i = 0; i < 3; i++) res->point[i] /= c->weight;
+  if (n_out) *n_out = c->n_out;
+  return res->npen;
+}
+
+/* An empty result: no contact, no history. */
+static int no_contact(int *n_out, lsdem_contact_result *res)
+{
+  memset(res, 0, sizeof *res);
+  if (n_out) *n_out = 0;
+  return 0;
+}
+
+/* History entry of `node` in hist_in, or NULL. Nodes are visited in increasing order,
+ * so the cursor only moves forward: O(1) amortised per call. */
+static const lsdem_node_hist *find_history(pair_ctx *restrict c, int node)
+{
+  while (c->cursor < c->n_in && c->hist_in[c->cursor].node < node) c->cursor++;
+  if (c->cursor < c->n_in && c->hist_in[c->cursor].node == node)
+    return &c->hist_in[c->cursor];
+  return NULL;
+}
+
+/* Velocity of the material point p of A relative to that of B (report eq 2.6). */
+static void relative_velocity(const motion *pa, const motion *pb, const double p[3],
+                              double vrel[3])
+{
+  double ra[3], rb[3], wa[3], wb[3];
+  for (int i = 0; i < 3; i++) {
+    ra[i] = p[i] - pa->x[i];
+    rb[i] = p[i] - pb->x[i];
+  }
+  cross3(pa->omega, ra, wa);
+  cross3(pb->omega, rb, wb);
+  for (int i = 0; i < 3; i++) vrel[i] = pa->v[i] + wa[i] - pb->v[i] - wb[i];
+}
+
+/* Tangential force of one contact (report eqs 2.7, 2.8, 2.10) and its history entry.
+ * shear spring: Z s_old - ks dt v_t (new contact: s_old = 0; an entry stamped with
+ * this step is reused without advancing); applied force ft = s - ct v_t, capped at
+ * mu fn, with the spring reset so that spring + damping equals the capped force. */
+static void tangential_force(pair_ctx *restrict c, int node, const double n[3],
+                             const double vt[3], double fn, double ks, double ct,
+                             double ft[3])
+{
+  const lsdem_node_hist *h = find_history(c, node);
+  double s[3];
+  if (h && h->stamp == c->step) {
+    for (int i = 0; i < 3; i++) s[i] = h->shear[i];
+  } else {
+    double s_old[3] = {0.0, 0.0, 0.0};
+    if (h) lsdem_rotate_between(h->shear, h->normal, n, s_old); /* eq 2.8: Z */
+    for (int i = 0; i < 3; i++) s[i] = s_old[i] - ks * c->prm.dt * vt[i]; /* eqs 2.7-2.8 */
+  }
+  for (int i = 0; i < 3; i++) ft[i] = s[i] - ct * vt[i];
+
+  const double cap = c->prm.mu * fn; /* eq 2.10 */
+  const double ft2 = dot3(ft, ft);
+  if (ft2 > cap * cap) {
+    const double scale = cap / sqrt(ft2);
+    for (int i = 0; i < 3; i++) {
+      ft[i] *= scale;
+      s[i] = ft[i] + ct * vt[i];
+    }
+  }
+
+  if (!c->hist_out) return;
+  lsdem_node_hist *out = &c->hist_out[c->n_out++];
+  out->node = node;
+  out->pad_ = 0;
+  out->stamp = c->step;
+  for (int i = 0; i < 3; i++) {
+    out->shear[i] = s[i];
+    out->normal[i] = n[i];
+  }
+}
+
+/* One penetrating contact: world point p, B's outward unit normal n, depth d > 0.
+ * kscale multiplies kn and ks (node stride, times the node area under the traction
+ * law), cscale multiplies cn and ct (node stride). Accumulates into the pair sums. */
+static void apply_contact(pair_ctx *restrict c, int node, const double p[3],
+                          const double n[3], double d, double kscale, double cscale)
+{
+  const lsdem_contact_params *prm = &c->prm;
+  double fn = prm->kn * kscale * d; /* eq 2.2: repulsive, along +n on A */
+  double f[3], vrel[3], vn = 0.0;
+  if (prm->cn > 0.0 || prm->mu > 0.0) {
+    relative_velocity(&c->a, &c->b, p, vrel);
+    vn = dot3(vrel, n);
+  }
+  if (prm->cn > 0.0) {
+    fn -= prm->cn * cscale * vn;
+    if (fn < 0.0) fn = 0.0; /* a penalty contact pushes, never pulls */
+  }
+  for (int i = 0; i < 3; i++) f[i] = fn * n[i];
+  if (prm->mu > 0.0) {
+    double vt[3], ft[3];
+    for (int i = 0; i < 3; i++) vt[i] = vrel[i] - vn * n[i];
+    tangential_force(c, node, n, vt, fn, prm->ks * kscale, prm->ct * cscale, ft);
+    for (int i = 0; i < 3; i++) f[i] += ft[i];
+  }
+
+  /* eqs 2.14-2.16: force on A; torques on A and (of the reaction -f) on B */
+  double ra[3], rb[3], ta[3], tb[3];
+  for (int i = 0; i < 3; i++) {
+    ra[i] = p[i] - c->a.x[i];
+    rb[i] = p[i] - c->b.x[i];
+  }
+  cross3(ra, f, ta);
+  cross3(f, rb, tb); /* (p - xB) x (-f) */
+  lsdem_contact_result *sum = &c->sum;
+  for (int i = 0; i < 3; i++) {
+    sum->force[i] += f[i];
+    sum->torque_a[i] += ta[i];
+    sum->torque_b[i] += tb[i];
+    sum->point[i] += fn * p[i];
+  }
+  c->weight += fn;
+  if (d > sum->max_depth) sum->max_depth = d;
+  sum->npen++;
+}
+
+/* ------------------------------------------------------------ node contact ---- */
+
+/* Nodes are screened in A's own frame, where B's centre sits at cb = RA^T (xB - xA):
+ * |p - xB| = |node - cb|, so rejecting a node costs 8 flops and no transform. The
+ * screening pass is branch-free (no mispredicted branch per rejected node): it keeps
+ * the indices of nodes inside B's bounding sphere, a batch at a time, and only those
+ * are mapped to B's frame and looked up. */
+enum { NODE_BATCH = 64 };
+
+typedef struct {
+  int n;
+  int node[NODE_BATCH];
+} node_batch;
+
+/* Screen `count` (<= NODE_BATCH) nodes first, first + stride, ...: kept when
+ * |node - cb|^2 <= rb2. */
+static void screen_nodes(const double *nodes, int first, int count, int stride,
+                         const double cb[3], double rb2, node_batch *b)
+{
+  int n = 0;
+  for (int i = 0; i < count; i++) {
+    const int k = first + i * stride;
+    const double *x = &nodes[3 * k];
+    const double d0 = x[0] - cb[0], d1 = x[1] - cb[1], d2 = x[2] - cb[2];
+    b->node[n] = k;
+    n += d0 * d0 + d1 * d1 + d2 * d2 <= rb2;
+  }
+  b->n = n;
+}
+
+/* Level-set lookups of a screened batch (Algorithm 1) at q = M node + t (B's frame) and
+ * the contacts of the penetrating nodes. A grid is interpolated directly, without the
+ * lsdem_sdf_eval dispatch. */
+static void contact_batch(pair_ctx *restrict c, const lsdem_shape *A, const lsdem_shape *B,
+                          const lsdem_pose *pb, const double M[9], const double t[3],
+                          const node_batch *b, double kstride)
+{
+  const int grid = B->sdf.kind == LSDEM_SDF_GRID && !B->sdf.inverted;
+  const int traction = c->prm.law == LSDEM_NORMAL_TRACTION && A->node_area;
+  c->sum.ntested += b->n;
+  for (int i = 0; i < b->n; i++) {
+    const int k = b->node[i];
+    double q[3], g[3];
+    affine3(M, t, &A->nodes[3 * k], q);
+    const double phi = grid ? lsdem_grid_eval(&B->sdf.grid, q, g)
+                            : lsdem_sdf_eval(&B->sdf, q, g);
+    if (!(phi < 0.0)) continue;
+
+    double p[3], n[3];
+    affine3(pb->R, pb->x, q, p); /* world position of the node */
+    lsdem_mat_vec(pb->R, g, n);  /* world normal, outward from B */
+    const double kscale = traction ? kstride * A->node_area[k] : kstride;
+    apply_contact(c, k, p, n, -phi, kscale, kstride);
+  }
+}
+
+int lsdem_contact_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
+                        const lsdem_pose *pb, const lsdem_contact_params *prm, int64_t step,
+                        const lsdem_node_hist *hist_in, int n_in, lsdem_node_hist *hist_out,
+                        int *n_out, lsdem_contact_result *res)
+{
+  /* eq 2.1: bounding spheres of the pair */
+  double dx[3];
+  for (int i = 0; i < 3; i++) dx[i] = pb->x[i] - pa->x[i];
+  const double rb = B->radius, rab = A->radius + rb;
+  if (dot3(dx, dx) > rab * rab) return no_contact(n_out, res);
+
+  pair_ctx c;
+  pair_begin(&c, pa, pb, prm, step, hist_in, n_in, hist_out);
+
+  /* cb: B's centre in A's frame (for screening). A's frame -> B's frame:
+   * q = M node + t with M = RB^T RA, t = RB^T (xA - xB). */
+  double cb[3], M[9], t[3], mdx[3] = {-dx[0], -dx[1], -dx[2]};
+  lsdem_matT_vec(pa->R, dx, cb);
+  mat_transpose_mul(pb->R, pa->R, M);
+  lsdem_matT_vec(pb->R, mdx, t);
+
+  const int stride = prm->node_stride > 1 ? prm->node_stride : 1;
+  const double rb2 = rb * rb;
+  const int has_clusters = A->nclusters > 0 && A->cluster_start && A->cluster_sphere;
+  const int nclusters = has_clusters ? A->nclusters : 1;
+  node_batch batch;
+
+  for (int cl = 0; cl < nclusters; cl++) {
+    int start = 0, end = A->nnodes;
+    if (has_clusters) {
+      const double *sph = &A->cluster_sphere[4 * cl];
+      const double d[3] = {sph[0] - cb[0], sph[1] - cb[1], sph[2] - cb[2]};
+      const double reach = rb + sph[3];
+      if (dot3(d, d) > reach * reach) continue;
+      start = A->cluster_start[cl];
+      end = A->cluster_start[cl + 1];
+    }
+    for (int k = (start + stride - 1) / stride * stride; k < end; k += NODE_BATCH * stride) {
+      const int left = (end - k + stride - 1) / stride;
+      screen_nodes(A->nodes, k, left < NODE_BATCH ? left : NODE_BATCH, stride, cb, rb2, &batch);
+      contact_batch(&c, A, B, pb, M, t, &batch, (double)stride);
+    }
+  }
+  return pair_end(&c, n_out, res);
+}
+
+/* ----------------------------------------------------------- sphere paths ---- */
+
+/* One sphere contact (sphere A against B) given B's outward normal n and the depth d:
+ * the contact point is the middle of the overlap along the normal,
+ * p = xA - (radius - d/2) n. */
+static int sphere_contact(double radius, double area, const double n[3], double d,
+                          const lsdem_pose *pa, const lsdem_pose *pb,
+                          const lsdem_contact_params *prm, int64_t step,
+                          const lsdem_node_hist *hist_in, int n_in, lsdem_node_hist *hist_out,
+                          int *n_out, lsdem_contact_result *res)
+{
+  pair_ctx c;
+  pair_begin(&c, pa, pb, prm, step, hist_in, n_in, hist_out);
+  c.sum.ntested = 1;
+  double p[3];
+  for (int i = 0; i < 3; i++) p[i] = pa->x[i] - (radius - 0.5 * d) * n[i];
+  const double kscale = prm->law == LSDEM_NORMAL_TRACTION ? area : 1.0;
+  apply_contact(&c, 0, p, n, d, kscale, 1.0);
+  return pair_end(&c, n_out, res);
+}
+
+int lsdem_contact_sphere_shape(double radius, double area, const lsdem_pose *pa,
+                               const lsdem_shape *B, const lsdem_pose *pb,
+                               const lsdem_contact_params *prm, int64_t step,
+                               const lsdem_node_hist *hist_in, int n_in,
+                               lsdem_node_hist *hist_out, int *n_out,
+                               lsdem_contact_result *res)
+{
+  double dx[3];
+  for (int i = 0; i < 3; i++) dx[i] = pa->x[i] - pb->x[i];
+  const double reach = radius + B->radius;
+  if (dot3(dx, dx) > reach * reach) return no_contact(n_out, res);
+
+  /* report §2.3.5: one level-set lookup of the sphere centre in B's frame */
+  double q[3], g[3], n[3];
+  lsdem_matT_vec(pb->R, dx, q);
+  const double d = radius - lsdem_sdf_eval(&B->sdf, q, g);
+  if (!(d > 0.0)) {
+    no_contact(n_out, res);
+    res->ntested = 1;
+    return 0;
+  }
+  lsdem_mat_vec(pb->R, g, n);
+  return sphere_contact(radius, area, n, d, pa, pb, prm, step, hist_in, n_in, hist_out,
+                        n_out, res);
+}
+
+int lsdem_contact_sphere_sphere(double ra, double area, const lsdem_pose *pa, double rb,
+                                const lsdem_pose *pb, const lsdem_contact_params *prm,
+                                int64_t step, const lsdem_node_hist *hist_in, int n_in,
+                                lsdem_node_hist *hist_out, int *n_out,
+                                lsdem_contact_result *res)
+{
+  double dx[3];
+  for (int i = 0; i < 3; i++) dx[i] = pa->x[i] - pb->x[i];
+  const double reach = ra + rb, dist2 = dot3(dx, dx);
+  if (!(dist2 < reach * reach)) return no_contact(n_out, res);
+
+  const double dist = sqrt(dist2);
+  double n[3] = {1.0, 0.0, 0.0}; /* coincident centres: any direction will do */
+  if (dist > 0.0)
+    for (int i = 0; i < 3; i++) n[i] = dx[i] / dist;
+  return sphere_contact(ra, area, n, reach - dist, pa, pb, prm, step, hist_in, n_in,
+                        hist_out, n_out, res);
+}

@@ -1,0 +1,217 @@
+/* levelset.c -- signed-distance grids: trilinear value and gradient (report Algorithm 1),
+ * validation, sampling an SDF onto a grid.
+ *
+ * Grid coordinates: u = (p - origin) / h, sample (i,j,k) at u = (i,j,k), index
+ * i + n0*(j + n1*k) (x fastest). The interpolation box is [0, n-1] on each axis. */
+#include "lsdem.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+/* Trilinear interpolation at grid coordinates u inside [0, n-1]^3 (report Algorithm 1,
+ * written as nested lerps). The cell index is clamped to n-2 so points on the upper
+ * face use the last cell with fraction 1. When du is not NULL it receives the
+ * derivative with respect to u (per grid spacing, not per length). Inlined into each
+ * caller, so the value-only path carries no gradient code. */
+static inline double trilinear(const lsdem_grid *g, const double u[3], double du[3])
+{
+  const int n0 = g->n[0], n1 = g->n[1];
+  int i = (int)u[0], j = (int)u[1], k = (int)u[2];
+  i = i > n0 - 2 ? n0 - 2 : i;
+  j = j > n1 - 2 ? n1 - 2 : j;
+  k = k > g->n[2] - 2 ? g->n[2] - 2 : k;
+  const double fx = u[0] - i, fy = u[1] - j, fz = u[2] - k;
+  const size_t sy = (size_t)n0, sz = (size_t)n0 * (size_t)n1;
+  const float *c = g->phi + (size_t)i + sy * (size_t)j + sz * (size_t)k;
+  const double v000 = c[0], v100 = c[1], v010 = c[sy], v110 = c[sy + 1];
+  const double v001 = c[sz], v101 = c[sz + 1], v011 = c[sz + sy], v111 = c[sz + sy + 1];
+  /* lerp along x on the four cell edges */
+  const double e00 = v000 + fx * (v100 - v000), e10 = v010 + fx * (v110 - v010);
+  const double e01 = v001 + fx * (v101 - v001), e11 = v011 + fx * (v111 - v011);
+  /* then along y on the two faces, then along z */
+  const double f0 = e00 + fy * (e10 - e00), f1 = e01 + fy * (e11 - e01);
+  if (du) {
+    const double gx0 = (v100 - v000) + fy * ((v110 - v010) - (v100 - v000));
+    const double gx1 = (v101 - v001) + fy * ((v111 - v011) - (v101 - v001));
+    du[0] = gx0 + fz * (gx1 - gx0);
+    du[1] = (e10 - e00) + fz * ((e11 - e01) - (e10 - e00));
+    du[2] = f1 - f0;
+  }
+  return f0 + fz * (f1 - f0);
+}
+
+/* Grid coordinates of p; returns nonzero when p lies in the interpolation box. A NaN
+ * coordinate fails every comparison and so counts as outside. */
+static inline int grid_coords(const lsdem_grid *g, const double p[3], double u[3])
+{
+  const double inv_h = 1.0 / g->h; /* the one division per lookup */
+  u[0] = (p[0] - g->origin[0]) * inv_h;
+  u[1] = (p[1] - g->origin[1]) * inv_h;
+  u[2] = (p[2] - g->origin[2]) * inv_h;
+  return u[0] >= 0.0 && u[0] <= g->n[0] - 1 && u[1] >= 0.0 && u[1] <= g->n[1] - 1 &&
+         u[2] >= 0.0 && u[2] <= g->n[2] - 1;
+}
+
+/* Outside rule: phi(clamp(p)) + |p - clamp(p)|; grad is the unit vector from clamp(p)
+ * towards p. Correct for a grid with positive values on its boundary: it is a lower
+ * bound of the distance and never negative there. */
+static double outside_value(const lsdem_grid *g, const double u[3], double grad[3])
+{
+  double uc[3], d[3];
+  for (int a = 0; a < 3; a++) {
+    uc[a] = fmin(fmax(u[a], 0.0), (double)(g->n[a] - 1));
+    d[a] = (u[a] - uc[a]) * g->h;
+  }
+  const double dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (grad) {
+    for (int a = 0; a < 3; a++) grad[a] = d[a] / dist;
+  }
+  return trilinear(g, uc, NULL) + dist;
+}
+
+double lsdem_grid_eval(const lsdem_grid *g, const double p[3], double grad[3])
+{
+  double u[3];
+  if (!grid_coords(g, p, u)) return outside_value(g, u, grad);
+  double du[3];
+  const double phi = trilinear(g, u, du);
+  const double n2 = du[0] * du[0] + du[1] * du[1] + du[2] * du[2];
+  if (n2 > 0.0) {
+    const double s = 1.0 / sqrt(n2); /* normalisation; h cancels */
+    grad[0] = du[0] * s;
+    grad[1] = du[1] * s;
+    grad[2] = du[2] * s;
+  } else {
+    grad[0] = 1.0;
+    grad[1] = grad[2] = 0.0;
+  }
+  return phi;
+}
+
+double lsdem_grid_value(const lsdem_grid *g, const double p[3])
+{
+  double u[3];
+  if (!grid_coords(g, p, u)) return outside_value(g, u, NULL);
+  return trilinear(g, u, NULL);
+}
+
+void lsdem_grid_gradient_raw(const lsdem_grid *g, const double p[3], double grad[3])
+{
+  double u[3];
+  if (!grid_coords(g, p, u)) {
+    grad[0] = grad[1] = grad[2] = 0.0;
+    return;
+  }
+  double du[3];
+  trilinear(g, u, du);
+  const double inv_h = 1.0 / g->h;
+  for (int a = 0; a < 3; a++) grad[a] = du[a] * inv_h;
+}
+
+/* Validation: every condition the lookups rely on, each with its own message. */
+lsdem_status lsdem_grid_check(const lsdem_grid *g, lsdem_error *err)
+{
+  if (!g) return lsdem_fail(err, LSDEM_ERR_ARG, "grid is NULL");
+  for (int a = 0; a < 3; a++) {
+    if (g->n[a] < 2)
+      return lsdem_fail(err, LSDEM_ERR_ARG,
+                        "grid size n[%d] = %d: need at least 2 samples per axis", a, g->n[a]);
+  }
+  const size_t limit = SIZE_MAX / sizeof(float);
+  const size_t n01 = (size_t)g->n[0] * (size_t)g->n[1];
+  if (n01 > limit / (size_t)g->n[2])
+    return lsdem_fail(err, LSDEM_ERR_NOMEM, "grid size %d x %d x %d overflows", g->n[0],
+                      g->n[1], g->n[2]);
+  if (!(g->h > 0.0) || !isfinite(g->h))
+    return lsdem_fail(err, LSDEM_ERR_ARG, "grid spacing h = %g: must be positive and finite",
+                      g->h);
+  for (int a = 0; a < 3; a++) {
+    if (!isfinite(g->origin[a]))
+      return lsdem_fail(err, LSDEM_ERR_NUMERIC, "grid origin[%d] is not finite", a);
+  }
+  if (!g->phi) return lsdem_fail(err, LSDEM_ERR_ARG, "grid values are NULL");
+  const size_t count = n01 * (size_t)g->n[2];
+  for (size_t m = 0; m < count; m++) {
+    if (!isfinite(g->phi[m])) {
+      const size_t i = m % (size_t)g->n[0], j = (m / (size_t)g->n[0]) % (size_t)g->n[1];
+      const size_t k = m / n01;
+      return lsdem_fail(err, LSDEM_ERR_NUMERIC, "grid value at (%zu, %zu, %zu) is %g", i, j,
+                        k, (double)g->phi[m]);
+    }
+  }
+  return LSDEM_OK;
+}
+
+lsdem_status lsdem_grid_alloc(const double lo[3], const double hi[3], double h, int margin,
+                              lsdem_grid *g, float **values, lsdem_error *err)
+{
+  if (!lo || !hi || !g || !values) return lsdem_fail(err, LSDEM_ERR_ARG, "NULL argument");
+  if (!(h > 0.0) || !isfinite(h))
+    return lsdem_fail(err, LSDEM_ERR_ARG, "grid spacing h = %g: must be positive", h);
+  if (margin < 0) return lsdem_fail(err, LSDEM_ERR_ARG, "margin %d is negative", margin);
+  lsdem_grid out = {{0, 0, 0}, h, {0, 0, 0}, NULL};
+  for (int a = 0; a < 3; a++) {
+    const double span = hi[a] - lo[a];
+    if (!isfinite(lo[a]) || !isfinite(span) || span < 0.0)
+      return lsdem_fail(err, LSDEM_ERR_ARG, "grid box axis %d: [%g, %g] is not a range", a,
+                        lo[a], hi[a]);
+    /* enough cells to reach hi, tolerating round-off in span/h */
+    const double cells = ceil(span / h * (1.0 - 1e-12));
+    const double total = (cells < 1.0 ? 1.0 : cells) + 1.0 + 2.0 * margin;
+    if (total > (double)(INT32_MAX / 4))
+      return lsdem_fail(err, LSDEM_ERR_NOMEM, "grid axis %d needs %.0f samples", a, total);
+    out.n[a] = (int)total;
+    out.origin[a] = lo[a] - margin * h;
+  }
+  const size_t n01 = (size_t)out.n[0] * (size_t)out.n[1];
+  if (n01 > SIZE_MAX / sizeof(float) / (size_t)out.n[2])
+    return lsdem_fail(err, LSDEM_ERR_NOMEM, "grid size %d x %d x %d overflows", out.n[0],
+                      out.n[1], out.n[2]);
+  float *phi = malloc(n01 * (size_t)out.n[2] * sizeof(float));
+  if (!phi)
+    return lsdem_fail(err, LSDEM_ERR_NOMEM, "cannot allocate a %d x %d x %d grid", out.n[0],
+                      out.n[1], out.n[2]);
+  out.phi = phi;
+  *g = out;
+  *values = phi;
+  return LSDEM_OK;
+}
+
+lsdem_status lsdem_grid_sample(const lsdem_sdf *s, const double lo[3], const double hi[3],
+                               double h, int margin, lsdem_grid *g, lsdem_error *err)
+{
+  if (!s) return lsdem_fail(err, LSDEM_ERR_ARG, "NULL SDF");
+  if (s->kind == LSDEM_SDF_SUPERELLIPSOID && !s->inverted) /* no closed-form distance */
+    return lsdem_grid_from_star(lsdem_superellipsoid_radius, s, lo, hi, h, margin, g, err);
+  lsdem_grid out;
+  float *phi;
+  const lsdem_status st = lsdem_grid_alloc(lo, hi, h, margin, &out, &phi, err);
+  if (st != LSDEM_OK) return st;
+  double grad[3];
+  size_t m = 0;
+  for (int k = 0; k < out.n[2]; k++)
+    for (int j = 0; j < out.n[1]; j++)
+      for (int i = 0; i < out.n[0]; i++) {
+        const double p[3] = {out.origin[0] + h * i, out.origin[1] + h * j,
+                             out.origin[2] + h * k};
+        const double v = lsdem_sdf_eval(s, p, grad);
+        if (isnan(v)) {
+          lsdem_grid_free(&out);
+          return lsdem_fail(err, LSDEM_ERR_NUMERIC, "the SDF is NaN at (%g, %g, %g)", p[0],
+                            p[1], p[2]);
+        }
+        /* an unbounded SDF may exceed float range far away; keep values finite */
+        phi[m++] = (float)fmax(fmin(v, (double)FLT_MAX), -(double)FLT_MAX);
+      }
+  *g = out;
+  return LSDEM_OK;
+}
+
+void lsdem_grid_free(lsdem_grid *g)
+{
+  if (!g) return;
+  free((void *)g->phi);
+  g->phi = NULL;
+}

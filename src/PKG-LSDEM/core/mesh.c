@@ -1,0 +1,848 @@
+/* mesh.c -- triangle meshes (STL, OBJ) to signed-distance grids, with the checks a mesh
+ * must pass first: closed and consistently oriented (every edge shared by exactly two
+ * triangles traversing it in opposite directions) and free of self-intersections.
+ *
+ * Signed distance: the unsigned distance to the closest triangle (Ericson, Real-Time
+ * Collision Detection, 5.1.5, with the Voronoi region of the closest point), signed by
+ * the angle-weighted pseudonormal of that region (Baerentzen & Aanaes, IEEE TVCG 11(3),
+ * 2005): face normal, sum of the two face normals for an edge, angle-weighted sum for a
+ * vertex. The sign is exact for a closed, consistently oriented mesh. */
+#include "lsdem.h"
+
+#include <ctype.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MESH_MAX_FILE_BYTES (1L << 30)
+
+void lsdem_mesh_free(lsdem_mesh *m)
+{
+  if (!m) return;
+  free(m->verts);
+  free(m->tris);
+  memset(m, 0, sizeof *m);
+}
+
+/* ------------------------------------------------------------ small vectors ---- */
+
+static void sub3(const double *a, const double *b, double *o)
+{
+  o[0] = a[0] - b[0], o[1] = a[1] - b[1], o[2] = a[2] - b[2];
+}
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static void cross3(const double *a, const double *b, double *o)
+{
+  o[0] = a[1] * b[2] - a[2] * b[1];
+  o[1] = a[2] * b[0] - a[0] * b[2];
+  o[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static const double *vert(const lsdem_mesh *m, int t, int c) { return m->verts + 3 * m->tris[3 * t + c]; }
+
+/* Unnormalised normal (b - a) x (c - a) of triangle t: twice its area. */
+static void tri_normal(const lsdem_mesh *m, int t, double n[3])
+{
+  double e1[3], e2[3];
+  sub3(vert(m, t, 1), vert(m, t, 0), e1);
+  sub3(vert(m, t, 2), vert(m, t, 0), e2);
+  cross3(e1, e2, n);
+}
+
+double lsdem_mesh_volume(const lsdem_mesh *m)
+{
+  double v = 0.0;
+  for (int t = 0; t < m->ntris; t++) {
+    double bc[3];
+    cross3(vert(m, t, 1), vert(m, t, 2), bc);
+    v += dot3(vert(m, t, 0), bc) / 6.0;
+  }
+  return v;
+}
+
+/* ----------------------------------------------------------------- reading ---- */
+
+/* A growing triangle soup: 9 coordinates per triangle. */
+typedef struct {
+  double *xyz;
+  size_t n, cap;
+} soup;
+
+static int soup_push(soup *s, const double v[9])
+{
+  if (s->n == s->cap) {
+    const size_t cap = s->cap ? 2 * s->cap : 256;
+    double *p = realloc(s->xyz, cap * 9 * sizeof(double));
+    if (!p) return 0;
+    s->xyz = p, s->cap = cap;
+  }
+  memcpy(s->xyz + 9 * s->n++, v, 9 * sizeof(double));
+  return 1;
+}
+
+/* A corner of the soup with its position in the soup, sorted to find equal vertices. */
+typedef struct {
+  double p[3];
+  size_t at;
+} corner;
+
+static int cmp_corner(const void *a, const void *b)
+{
+  const corner *x = a, *y = b;
+  for (int k = 0; k < 3; k++)
+    if (x->p[k] != y->p[k]) return x->p[k] < y->p[k] ? -1 : 1;
+  return 0;
+}
+
+/* Shared vertices from a soup: corners with identical coordinates become one vertex. */
+static lsdem_status weld(const soup *s, lsdem_mesh *m, const char *path, lsdem_error *err)
+{
+  const size_t nc = 3 * s->n;
+  corner *c = malloc(nc * sizeof *c + 1);
+  m->verts = malloc(3 * nc * sizeof(double) + 1);
+  m->tris = malloc(nc * sizeof(int) + 1);
+  if (!c || !m->verts || !m->tris) {
+    free(c);
+    lsdem_mesh_free(m);
+    return lsdem_fail(err, LSDEM_ERR_NOMEM, "%s: out of memory for %zu triangles", path, s->n);
+  }
+  for (size_t i = 0; i < nc; i++) {
+    memcpy(c[i].p, s->xyz + 3 * i, sizeof c[i].p);
+    c[i].at = i;
+  }
+  qsort(c, nc, sizeof *c, cmp_corner);
+  int nv = -1;
+  for (size_t i = 0; i < nc; i++) {
+    if (i == 0 || cmp_corner(&c[i], &c[i - 1]) != 0) {
+      nv++;
+      memcpy(m->verts + 3 * nv, c[i].p, 3 * sizeof(double));
+    }
+    m->tris[c[i].at] = nv;
+  }
+  m->nverts = nv + 1;
+  m->ntris = (int)s->n;
+  free(c);
+  return LSDEM_OK;
+}
+
+static lsdem_status read_all(const char *path, char **data, size_t *size, lsdem_error *err)
+{
+  FILE *f = fopen(path, "rb");
+  if (!f) return lsdem_fail(err, LSDEM_ERR_IO, "%s: cannot open", path);
+  long n = -1;
+  if (fseek(f, 0, SEEK_END) == 0) n = ftell(f);
+  lsdem_status st = LSDEM_OK;
+  if (n < 0 || fseek(f, 0, SEEK_SET) != 0) st = lsdem_fail(err, LSDEM_ERR_IO, "%s: cannot seek", path);
+  else if (n > MESH_MAX_FILE_BYTES)
+    st = lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: %ld bytes: above the mesh file limit of %ld",
+                    path, n, MESH_MAX_FILE_BYTES);
+  *data = st == LSDEM_OK ? malloc((size_t)n + 1) : NULL;
+  if (st == LSDEM_OK && !*data) st = lsdem_fail(err, LSDEM_ERR_NOMEM, "%s: out of memory", path);
+  if (st == LSDEM_OK && fread(*data, 1, (size_t)n, f) != (size_t)n)
+    st = lsdem_fail(err, LSDEM_ERR_IO, "%s: read failed", path);
+  fclose(f);
+  if (st != LSDEM_OK) {
+    free(*data);
+    *data = NULL;
+    return st;
+  }
+  (*data)[n] = '\0';
+  *size = (size_t)n;
+  return LSDEM_OK;
+}
+
+static float load_f32le(const unsigned char *p)
+{
+  const uint32_t u = (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 |
+                     (uint32_t)p[3] << 24;
+  float f;
+  memcpy(&f, &u, sizeof f);
+  return f;
+}
+
+/* Binary STL: 80-byte header, uint32 count, then 50 bytes per triangle (normal, three
+ * vertices as little-endian float32, 2 attribute bytes). The caller checked the size. */
+static lsdem_status read_stl_binary(const unsigned char *b, size_t count, soup *s,
+                                    const char *path, lsdem_error *err)
+{
+  for (size_t t = 0; t < count; t++) {
+    double v[9];
+    for (int k = 0; k < 9; k++) {
+      v[k] = load_f32le(b + 84 + 50 * t + 12 + 4 * k);
+      if (!isfinite(v[k]))
+        return lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: triangle %zu has a non-finite coordinate",
+                          path, t);
+    }
+    if (!soup_push(s, v)) return lsdem_fail(err, LSDEM_ERR_NOMEM, "%s: out of memory", path);
+  }
+  return LSDEM_OK;
+}
+
+/* Whitespace-separated tokens of a NUL-terminated text, with line numbers. */
+typedef struct {
+  const char *p;
+  long line;
+} lexer;
+
+static int next_token(lexer *lx, const char **tok, size_t *len)
+{
+  while (*lx->p && isspace((unsigned char)*lx->p)) lx->line += *lx->p++ == '\n';
+  if (!*lx->p) return 0;
+  *tok = lx->p;
+  while (*lx->p && !isspace((unsigned char)*lx->p)) lx->p++;
+  *len = (size_t)(lx->p - *tok);
+  return 1;
+}
+
+static int token_is(const char *tok, size_t len, const char *word)
+{
+  return len == strlen(word) && strncmp(tok, word, len) == 0;
+}
+
+static int token_number(const char *tok, size_t len, double *v)
+{
+  char buf[64];
+  if (len == 0 || len >= sizeof buf) return 0;
+  memcpy(buf, tok, len);
+  buf[len] = '\0';
+  char *end;
+  *v = strtod(buf, &end);
+  return *end == '\0' && isfinite(*v);
+}
+
+/* ASCII STL: "vertex x y z" three times inside each "outer loop" ... "endloop". */
+static lsdem_status read_stl_ascii(const char *text, soup *s, const char *path, lsdem_error *err)
+{
+  lexer lx = {text, 1};
+  const char *tok;
+  size_t len;
+  double v[9];
+  int nv = -1; /* vertices in the current loop, -1 outside a loop */
+  while (next_token(&lx, &tok, &len)) {
+    if (token_is(tok, len, "outer")) nv = 0;
+    else if (token_is(tok, len, "vertex")) {
+      if (nv < 0 || nv >= 3)
+        return lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: line %ld: vertex %s", path, lx.line,
+                          nv < 0 ? "outside an 'outer loop'" : "beyond the third of a facet");
+      for (int k = 0; k < 3; k++)
+        if (!next_token(&lx, &tok, &len) || !token_number(tok, len, &v[3 * nv + k]))
+          return lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: line %ld: vertex needs three finite "
+                            "numbers", path, lx.line);
+      nv++;
+    } else if (token_is(tok, len, "endloop")) {
+      if (nv != 3)
+        return lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: line %ld: a facet with %d vertices "
+                          "(STL facets are triangles)", path, lx.line, nv < 0 ? 0 : nv);
+      if (s->n >= LSDEM_MESH_MAX_TRIS)
+        return lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: more than %d triangles", path,
+                          LSDEM_MESH_MAX_TRIS);
+      if (!soup_push(s, v)) return lsdem_fail(err, LSDEM_ERR_NOMEM, "%s: out of memory", path);
+      nv = -1;
+    }
+  }
+  if (nv >= 0)
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: line %ld: file ends inside a facet", path,
+                      lx.line);
+  return LSDEM_OK;
+}
+
+/* A vertex reference of an OBJ face ("i", "i/t", "i//n", "i/t/n"; negative = relative to
+ * the vertices read so far) as a 0-based index. */
+static int obj_index(const char *tok, size_t len, long nverts, long *idx)
+{
+  char buf[32];
+  size_t n = 0;
+  while (n < len && tok[n] != '/') n++;
+  if (n == 0 || n >= sizeof buf) return 0;
+  memcpy(buf, tok, n);
+  buf[n] = '\0';
+  char *end;
+  const long i = strtol(buf, &end, 10);
+  if (*end != '\0' || i == 0) return 0;
+  *idx = i > 0 ? i - 1 : nverts + i;
+  return *idx >= 0;
+}
+
+/* Append triangle (a, b, c) to a growing index array. */
+static int push_tri(int **t, long *nt, long *cap, long a, long b, long c)
+{
+  if (*nt == *cap) {
+    const long nc = *cap ? 2 * *cap : 256;
+    int *q = realloc(*t, 3 * (size_t)nc * sizeof(int));
+    if (!q) return 0;
+    *t = q, *cap = nc;
+  }
+  int *o = *t + 3 * (*nt)++;
+  o[0] = (int)a, o[1] = (int)b, o[2] = (int)c;
+  return 1;
+}
+
+/* One "f" line (after the keyword): fan triangles (v0, v[i-1], v[i]). */
+static lsdem_status obj_face(lexer *lx, long nv, int **t, long *nt, long *cap, const char *path,
+                             long line, lsdem_error *err)
+{
+  const char *tok;
+  size_t len;
+  long first = -1, prev = -1, idx, corners = 0;
+  while (next_token(lx, &tok, &len)) {
+    if (!obj_index(tok, len, nv, &idx) || idx >= nv)
+      return lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: line %ld: face vertex '%.*s' is not one of "
+                        "the %ld vertices defined so far", path, line, (int)(len < 40 ? len : 40),
+                        tok, nv);
+    if (corners >= 2) {
+      if (*nt >= LSDEM_MESH_MAX_TRIS)
+        return lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: more than %d triangles", path,
+                          LSDEM_MESH_MAX_TRIS);
+      if (!push_tri(t, nt, cap, first, prev, idx))
+        return lsdem_fail(err, LSDEM_ERR_NOMEM, "%s: out of memory", path);
+    }
+    if (corners == 0) first = idx;
+    prev = idx;
+    corners++;
+  }
+  if (corners < 3)
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: line %ld: a face needs at least 3 vertices, "
+                      "has %ld", path, line, corners);
+  return LSDEM_OK;
+}
+
+/* Wavefront OBJ: "v x y z" and "f a b c ..." (fan-triangulated); other lines ignored.
+ * The text is split into lines in place. */
+static lsdem_status read_obj(char *text, lsdem_mesh *m, const char *path, lsdem_error *err)
+{
+  double *v = NULL;
+  int *t = NULL;
+  long nv = 0, nt = 0, cap_v = 0, cap_t = 0, line = 0;
+  lsdem_status st = LSDEM_OK;
+  for (char *p = text; *p && st == LSDEM_OK;) {
+    char *eol = strchr(p, '\n');
+    if (eol) *eol = '\0';
+    line++;
+    lexer lx = {p, 0};
+    const char *tok = NULL;
+    size_t len = 0;
+    const int any = next_token(&lx, &tok, &len);
+    if (any && token_is(tok, len, "v")) {
+      if (nv >= 3L * LSDEM_MESH_MAX_TRIS)
+        st = lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: more than %ld vertices", path,
+                        3L * LSDEM_MESH_MAX_TRIS);
+      if (st == LSDEM_OK && nv == cap_v) {
+        cap_v = cap_v ? 2 * cap_v : 256;
+        double *q = realloc(v, 3 * (size_t)cap_v * sizeof(double));
+        if (!q) st = lsdem_fail(err, LSDEM_ERR_NOMEM, "%s: out of memory", path);
+        else v = q;
+      }
+      for (int k = 0; st == LSDEM_OK && k < 3; k++)
+        if (!next_token(&lx, &tok, &len) || !token_number(tok, len, &v[3 * nv + k]))
+          st = lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: line %ld: 'v' needs three finite numbers",
+                          path, line);
+      nv++;
+    } else if (any && token_is(tok, len, "f")) {
+      st = obj_face(&lx, nv, &t, &nt, &cap_t, path, line, err);
+    }
+    p = eol ? eol + 1 : p + strlen(p);
+  }
+  if (st == LSDEM_OK && nt == 0) st = lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: no faces", path);
+  if (st != LSDEM_OK) {
+    free(v);
+    free(t);
+    return st;
+  }
+  m->verts = v, m->nverts = (int)nv, m->tris = t, m->ntris = (int)nt;
+  return LSDEM_OK;
+}
+
+static int has_extension(const char *path, const char *ext)
+{
+  const size_t n = strlen(path), e = strlen(ext);
+  if (n < e) return 0;
+  for (size_t i = 0; i < e; i++)
+    if (tolower((unsigned char)path[n - e + i]) != ext[i]) return 0;
+  return 1;
+}
+
+/* Binary STL when the size is 84 + 50 * count and the file does not read as ASCII STL
+ * (text that starts with "solid" and has a "facet" in its first line or two). */
+static int looks_binary_stl(const char *b, size_t size)
+{
+  if (size < 84) return 0;
+  const unsigned char *u = (const unsigned char *)b;
+  const uint64_t count = (uint64_t)u[80] | (uint64_t)u[81] << 8 | (uint64_t)u[82] << 16 |
+                         (uint64_t)u[83] << 24;
+  if (84 + 50 * count != size) return 0;
+  if (strncmp(b, "solid", 5) != 0) return 1;
+  const size_t head = size < 512 ? size : 512;
+  for (size_t i = 0; i + 5 <= head; i++)
+    if (memcmp(b + i, "facet", 5) == 0 || memcmp(b + i, "endso", 5) == 0) return 0;
+  return 1;
+}
+
+static lsdem_status read_stl(char *data, size_t size, lsdem_mesh *m, const char *path,
+                             lsdem_error *err)
+{
+  soup s = {0};
+  lsdem_status st;
+  if (looks_binary_stl(data, size)) {
+    const size_t count = (size - 84) / 50;
+    if (count > LSDEM_MESH_MAX_TRIS)
+      return lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: %zu triangles: above the limit %d", path,
+                        count, LSDEM_MESH_MAX_TRIS);
+    st = read_stl_binary((const unsigned char *)data, count, &s, path, err);
+  } else if (size >= 5 && strncmp(data, "solid", 5) == 0) {
+    if (memchr(data, '\0', size))
+      st = lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: binary bytes in an ASCII STL, or a binary STL "
+                      "whose size does not match its triangle count (84 + 50 n bytes)", path);
+    else st = read_stl_ascii(data, &s, path, err);
+  } else
+    st = lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: not an STL file: no 'solid' header and the size "
+                    "%zu is not 84 + 50 n (binary STL)", path, size);
+  if (st == LSDEM_OK && s.n == 0) st = lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: no triangles", path);
+  if (st == LSDEM_OK) st = weld(&s, m, path, err);
+  free(s.xyz);
+  return st;
+}
+
+lsdem_status lsdem_mesh_read(const char *path, lsdem_mesh *m, lsdem_error *err)
+{
+  if (!path || !m) return lsdem_fail(err, LSDEM_ERR_ARG, "NULL argument");
+  memset(m, 0, sizeof *m);
+  char *data = NULL;
+  size_t size = 0;
+  lsdem_status st = read_all(path, &data, &size, err);
+  if (st != LSDEM_OK) return st;
+  const int obj = has_extension(path, ".obj") ||
+                  (!has_extension(path, ".stl") && !looks_binary_stl(data, size) &&
+                   strncmp(data, "solid", 5) != 0);
+  if (obj && memchr(data, '\0', size))
+    st = lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: binary bytes in an OBJ file", path);
+  else st = obj ? read_obj(data, m, path, err) : read_stl(data, size, m, path, err);
+  free(data);
+  if (st != LSDEM_OK) lsdem_mesh_free(m);
+  return st;
+}
+
+/* ---------------------------------------------------------------- topology ---- */
+
+/* A directed edge of triangle t (corner e to corner e+1), keyed by its sorted ends. */
+typedef struct {
+  int lo, hi, t, e, forward; /* forward: traversed lo -> hi */
+} edge_rec;
+
+static int cmp_edge(const void *a, const void *b)
+{
+  const edge_rec *x = a, *y = b;
+  if (x->lo != y->lo) return x->lo < y->lo ? -1 : 1;
+  if (x->hi != y->hi) return x->hi < y->hi ? -1 : 1;
+  return x->t < y->t ? -1 : x->t > y->t;
+}
+
+static void note_where(lsdem_mesh_topology *topo, int *first, const double *a, const double *b)
+{
+  if (*first) return;
+  *first = 1;
+  for (int k = 0; k < 3; k++) topo->where[k] = 0.5 * (a[k] + b[k]);
+}
+
+/* Edge analysis: counts into topo, and nbr[3t+e] = the triangle across edge e of t when
+ * the edge is shared by exactly two triangles (else -1). nbr may be NULL. */
+static lsdem_status analyse_edges(const lsdem_mesh *m, lsdem_mesh_topology *topo, int *nbr,
+                                  lsdem_error *err)
+{
+  memset(topo, 0, sizeof *topo);
+  const size_t ne = 3 * (size_t)m->ntris;
+  edge_rec *E = malloc(ne * sizeof *E + 1);
+  if (!E) return lsdem_fail(err, LSDEM_ERR_NOMEM, "cannot allocate %zu edges", ne);
+  int found = 0;
+  for (int t = 0; t < m->ntris; t++) {
+    const int *v = m->tris + 3 * t;
+    double n[3];
+    tri_normal(m, t, n);
+    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0] || dot3(n, n) == 0.0) {
+      topo->degenerate_tris++;
+      note_where(topo, &found, vert(m, t, 0), vert(m, t, 1));
+    }
+    for (int e = 0; e < 3; e++) {
+      const int a = v[e], b = v[(e + 1) % 3];
+      E[3 * t + e] = (edge_rec){a < b ? a : b, a < b ? b : a, t, e, a < b};
+    }
+  }
+  qsort(E, ne, sizeof *E, cmp_edge);
+  if (nbr)
+    for (size_t i = 0; i < ne; i++) nbr[i] = -1;
+  for (size_t i = 0; i < ne;) {
+    size_t j = i + 1;
+    while (j < ne && E[j].lo == E[i].lo && E[j].hi == E[i].hi) j++;
+    const double *a = m->verts + 3 * E[i].lo, *b = m->verts + 3 * E[i].hi;
+    if (j - i == 1) topo->boundary_edges++, note_where(topo, &found, a, b);
+    else if (j - i > 2) topo->nonmanifold_edges++, note_where(topo, &found, a, b);
+    else if (E[i].forward == E[i + 1].forward)
+      topo->misoriented_edges++, note_where(topo, &found, a, b);
+    if (nbr && j - i == 2) {
+      nbr[3 * E[i].t + E[i].e] = E[i + 1].t;
+      nbr[3 * E[i + 1].t + E[i + 1].e] = E[i].t;
+    }
+    i = j;
+  }
+  free(E);
+  return LSDEM_OK;
+}
+
+lsdem_status lsdem_mesh_check_closed(const lsdem_mesh *m, lsdem_mesh_topology *topo,
+                                     lsdem_error *err)
+{
+  if (!m || m->ntris < 1) return lsdem_fail(err, LSDEM_ERR_ARG, "empty mesh");
+  lsdem_mesh_topology local;
+  if (!topo) topo = &local;
+  lsdem_status st = analyse_edges(m, topo, NULL, err);
+  if (st != LSDEM_OK) return st;
+  if (topo->boundary_edges || topo->nonmanifold_edges || topo->misoriented_edges ||
+      topo->degenerate_tris)
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "mesh is not closed: %d boundary edges (holes), "
+                      "%d non-manifold edges, %d edges with inconsistent orientation, %d "
+                      "degenerate triangles; first near (%g, %g, %g)", topo->boundary_edges,
+                      topo->nonmanifold_edges, topo->misoriented_edges, topo->degenerate_tris,
+                      topo->where[0], topo->where[1], topo->where[2]);
+  return LSDEM_OK;
+}
+
+/* ------------------------------------------------------- uniform cell grid ---- */
+
+/* Triangles bucketed by the cells their bounding boxes overlap (CSR lists). */
+typedef struct {
+  int n[3];
+  double lo[3], cs;
+  int *start; /* ncells + 1 */
+  int *items;
+  double *box; /* 6 per triangle: min xyz, max xyz */
+} tri_grid;
+
+static void tri_grid_free(tri_grid *g)
+{
+  free(g->start), free(g->items), free(g->box);
+  memset(g, 0, sizeof *g);
+}
+
+static int cell_of(const tri_grid *g, double x, int a)
+{
+  const double c = floor((x - g->lo[a]) / g->cs);
+  return c < 0.0 ? 0 : c >= g->n[a] ? g->n[a] - 1 : (int)c;
+}
+
+static void cell_range(const tri_grid *g, const double *box, int c0[3], int c1[3])
+{
+  for (int a = 0; a < 3; a++) c0[a] = cell_of(g, box[a], a), c1[a] = cell_of(g, box[3 + a], a);
+}
+
+/* Cell size: the mean triangle extent, but no more than ~64 cells per triangle and at
+ * most 129 cells per axis (cs >= span / 128). */
+static lsdem_status tri_grid_build(const lsdem_mesh *m, tri_grid *g, lsdem_error *err)
+{
+  memset(g, 0, sizeof *g);
+  g->box = malloc(6 * (size_t)m->ntris * sizeof(double));
+  if (!g->box) return lsdem_fail(err, LSDEM_ERR_NOMEM, "cannot allocate the triangle grid");
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  double ext = 0.0;
+  for (int t = 0; t < m->ntris; t++) {
+    double *b = g->box + 6 * t;
+    for (int a = 0; a < 3; a++) {
+      b[a] = fmin(vert(m, t, 0)[a], fmin(vert(m, t, 1)[a], vert(m, t, 2)[a]));
+      b[3 + a] = fmax(vert(m, t, 0)[a], fmax(vert(m, t, 1)[a], vert(m, t, 2)[a]));
+      lo[a] = fmin(lo[a], b[a]), hi[a] = fmax(hi[a], b[3 + a]);
+      ext += (b[3 + a] - b[a]) / (3.0 * m->ntris);
+    }
+  }
+  const double span = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+  const double vol = fmax(hi[0] - lo[0], span * 1e-3) * fmax(hi[1] - lo[1], span * 1e-3) *
+                     fmax(hi[2] - lo[2], span * 1e-3);
+  g->cs = fmax(fmax(ext, cbrt(vol / (64.0 * m->ntris))), span / 128.0);
+  if (!(g->cs > 0.0) || !isfinite(g->cs)) g->cs = 1.0;
+  size_t ncells = 1;
+  for (int a = 0; a < 3; a++) {
+    g->lo[a] = lo[a];
+    g->n[a] = (int)floor((hi[a] - lo[a]) / g->cs) + 1; /* <= 129: cells cover [lo, hi] */
+    ncells *= (size_t)g->n[a];
+  }
+  g->start = calloc(ncells + 1, sizeof(int));
+  if (!g->start) return lsdem_fail(err, LSDEM_ERR_NOMEM, "cannot allocate the triangle grid");
+  for (int pass = 0; pass < 2; pass++) { /* count, then fill (counting sort) */
+    for (int t = 0; t < m->ntris; t++) {
+      int c0[3], c1[3];
+      cell_range(g, g->box + 6 * t, c0, c1);
+      for (int k = c0[2]; k <= c1[2]; k++)
+        for (int j = c0[1]; j <= c1[1]; j++)
+          for (int i = c0[0]; i <= c1[0]; i++) {
+            const size_t c = ((size_t)k * g->n[1] + j) * g->n[0] + i;
+            if (pass == 0) g->start[c + 1]++;
+            else g->items[g->start[c]++] = t;
+          }
+    }
+    if (pass == 0) {
+      for (size_t c = 0; c < ncells; c++) g->start[c + 1] += g->start[c];
+      g->items = malloc((size_t)g->start[ncells] * sizeof(int) + 1);
+      if (!g->items) return lsdem_fail(err, LSDEM_ERR_NOMEM, "cannot allocate the triangle grid");
+    }
+  }
+  for (size_t c = ncells; c > 0; c--) g->start[c] = g->start[c - 1]; /* undo the fill shift */
+  g->start[0] = 0;
+  return LSDEM_OK;
+}
+
+/* ------------------------------------------------------- self-intersection ---- */
+
+/* Does segment pq cross triangle abc (Moller-Trumbore, closed segment and triangle)? */
+static int segment_hits_triangle(const double *p, const double *q, const double *a,
+                                 const double *b, const double *c)
+{
+  double d[3], e1[3], e2[3], pv[3], tv[3], qv[3];
+  sub3(q, p, d), sub3(b, a, e1), sub3(c, a, e2);
+  cross3(d, e2, pv);
+  const double det = dot3(e1, pv);
+  const double scale = sqrt(dot3(e1, e1) * dot3(e2, e2) * dot3(d, d));
+  if (fabs(det) <= 1e-12 * scale) return 0; /* parallel: coplanar contacts are not tested */
+  const double inv = 1.0 / det;
+  sub3(p, a, tv);
+  const double u = dot3(tv, pv) * inv;
+  if (u < 0.0 || u > 1.0) return 0;
+  cross3(tv, e1, qv);
+  const double v = dot3(d, qv) * inv;
+  if (v < 0.0 || u + v > 1.0) return 0;
+  const double t = dot3(e2, qv) * inv;
+  return t >= 0.0 && t <= 1.0;
+}
+
+/* Two triangles without a shared vertex intersect iff an edge of one crosses the other
+ * (non-coplanar case). */
+static int triangles_intersect(const lsdem_mesh *m, int s, int t)
+{
+  for (int pass = 0; pass < 2; pass++) {
+    const int x = pass ? t : s, y = pass ? s : t;
+    for (int e = 0; e < 3; e++)
+      if (segment_hits_triangle(vert(m, x, e), vert(m, x, (e + 1) % 3), vert(m, y, 0),
+                                vert(m, y, 1), vert(m, y, 2)))
+        return 1;
+  }
+  return 0;
+}
+
+static int share_vertex(const lsdem_mesh *m, int s, int t)
+{
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      if (m->tris[3 * s + i] == m->tris[3 * t + j]) return 1;
+  return 0;
+}
+
+/* Test a pair once: in the cell holding the low corner of their boxes' overlap. */
+static int pair_owned_here(const tri_grid *g, const double *bs, const double *bt, const int c[3])
+{
+  for (int a = 0; a < 3; a++) {
+    if (bs[a] > bt[3 + a] || bt[a] > bs[3 + a]) return 0; /* boxes apart */
+    if (cell_of(g, fmax(bs[a], bt[a]), a) != c[a]) return 0;
+  }
+  return 1;
+}
+
+lsdem_status lsdem_mesh_check_self_intersection(const lsdem_mesh *m, int pair[2],
+                                                lsdem_error *err)
+{
+  if (pair) pair[0] = pair[1] = -1;
+  if (!m || m->ntris < 1) return lsdem_fail(err, LSDEM_ERR_ARG, "empty mesh");
+  tri_grid g;
+  lsdem_status st = tri_grid_build(m, &g, err);
+  int hit_s = -1, hit_t = -1;
+  for (int k = 0; st == LSDEM_OK && k < g.n[2] && hit_s < 0; k++)
+    for (int j = 0; j < g.n[1] && hit_s < 0; j++)
+      for (int i = 0; i < g.n[0] && hit_s < 0; i++) {
+        const size_t c = ((size_t)k * g.n[1] + j) * g.n[0] + i;
+        const int cc[3] = {i, j, k};
+        for (int x = g.start[c]; x < g.start[c + 1] && hit_s < 0; x++)
+          for (int y = x + 1; y < g.start[c + 1]; y++) {
+            const int s = g.items[x], t = g.items[y];
+            if (!pair_owned_here(&g, g.box + 6 * s, g.box + 6 * t, cc) || share_vertex(m, s, t))
+              continue;
+            if (triangles_intersect(m, s, t)) {
+              hit_s = s < t ? s : t, hit_t = s < t ? t : s;
+              break;
+            }
+          }
+      }
+  tri_grid_free(&g);
+  if (st != LSDEM_OK) return st;
+  if (hit_s < 0) return LSDEM_OK;
+  if (pair) pair[0] = hit_s, pair[1] = hit_t;
+  const double *a = vert(m, hit_s, 0);
+  return lsdem_fail(err, LSDEM_ERR_FORMAT, "mesh intersects itself: triangles %d and %d cross "
+                    "(near (%g, %g, %g))", hit_s, hit_t, a[0], a[1], a[2]);
+}
+
+/* ------------------------------------------------------------ signed distance ---- */
+
+enum { FEAT_FACE = 0, FEAT_EDGE = 1, FEAT_VERTEX = 4 }; /* + edge 0..2 / corner 0..2 */
+
+/* Closest point on triangle abc to p (Ericson 5.1.5); *feat = the Voronoi region. */
+static void closest_on_triangle(const double *p, const double *a, const double *b,
+                                const double *c, double *out, int *feat)
+{
+  double ab[3], ac[3], ap[3], bp[3], cp[3];
+  sub3(b, a, ab), sub3(c, a, ac), sub3(p, a, ap);
+  const double d1 = dot3(ab, ap), d2 = dot3(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) { memcpy(out, a, 3 * sizeof(double)); *feat = FEAT_VERTEX; return; }
+  sub3(p, b, bp);
+  const double d3 = dot3(ab, bp), d4 = dot3(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) { memcpy(out, b, 3 * sizeof(double)); *feat = FEAT_VERTEX + 1; return; }
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+    const double v = d1 / (d1 - d3);
+    for (int k = 0; k < 3; k++) out[k] = a[k] + v * ab[k];
+    *feat = FEAT_EDGE + 0;
+    return;
+  }
+  sub3(p, c, cp);
+  const double d5 = dot3(ab, cp), d6 = dot3(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) { memcpy(out, c, 3 * sizeof(double)); *feat = FEAT_VERTEX + 2; return; }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+    const double w = d2 / (d2 - d6);
+    for (int k = 0; k < 3; k++) out[k] = a[k] + w * ac[k];
+    *feat = FEAT_EDGE + 2;
+    return;
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    for (int k = 0; k < 3; k++) out[k] = b[k] + w * (c[k] - b[k]);
+    *feat = FEAT_EDGE + 1;
+    return;
+  }
+  const double den = 1.0 / (va + vb + vc), v = vb * den, w = vc * den;
+  for (int k = 0; k < 3; k++) out[k] = a[k] + ab[k] * v + ac[k] * w;
+  *feat = FEAT_FACE;
+}
+
+/* Pseudonormals: unit face normals, angle-weighted vertex normals, edge neighbours. */
+typedef struct {
+  double *face, *vertex;
+  int *nbr;
+} pseudonormals;
+
+static lsdem_status build_pseudonormals(const lsdem_mesh *m, pseudonormals *pn, lsdem_error *err)
+{
+  pn->face = malloc(3 * (size_t)m->ntris * sizeof(double));
+  pn->vertex = calloc(3 * (size_t)m->nverts, sizeof(double));
+  pn->nbr = malloc(3 * (size_t)m->ntris * sizeof(int));
+  if (!pn->face || !pn->vertex || !pn->nbr)
+    return lsdem_fail(err, LSDEM_ERR_NOMEM, "cannot allocate mesh normals");
+  lsdem_mesh_topology topo;
+  lsdem_status st = analyse_edges(m, &topo, pn->nbr, err);
+  if (st != LSDEM_OK) return st;
+  for (int t = 0; t < m->ntris; t++) {
+    double *n = pn->face + 3 * t;
+    tri_normal(m, t, n);
+    const double len = sqrt(dot3(n, n));
+    for (int k = 0; k < 3; k++) n[k] = len > 0.0 ? n[k] / len : 0.0;
+    for (int c = 0; c < 3; c++) { /* interior angle at corner c */
+      double u[3], w[3];
+      sub3(vert(m, t, (c + 1) % 3), vert(m, t, c), u);
+      sub3(vert(m, t, (c + 2) % 3), vert(m, t, c), w);
+      const double nu = sqrt(dot3(u, u)), nw = sqrt(dot3(w, w));
+      const double angle = nu > 0.0 && nw > 0.0 ? acos(fmax(-1.0, fmin(1.0, dot3(u, w) / (nu * nw)))) : 0.0;
+      double *vn = pn->vertex + 3 * m->tris[3 * t + c];
+      for (int k = 0; k < 3; k++) vn[k] += angle * n[k];
+    }
+  }
+  return LSDEM_OK;
+}
+
+static void pseudonormals_free(pseudonormals *pn) { free(pn->face), free(pn->vertex), free(pn->nbr); }
+
+static void feature_normal(const lsdem_mesh *m, const pseudonormals *pn, int t, int feat,
+                           double n[3])
+{
+  const double *f = pn->face + 3 * t;
+  if (feat >= FEAT_VERTEX) {
+    memcpy(n, pn->vertex + 3 * m->tris[3 * t + feat - FEAT_VERTEX], 3 * sizeof(double));
+  } else if (feat >= FEAT_EDGE) {
+    const int o = pn->nbr[3 * t + feat - FEAT_EDGE];
+    for (int k = 0; k < 3; k++) n[k] = f[k] + (o >= 0 ? pn->face[3 * o + k] : f[k]);
+  } else {
+    memcpy(n, f, 3 * sizeof(double));
+  }
+}
+
+/* Nearest triangle to p: cells in growing shells around p's cell; the search stops
+ * once the best distance is within the shells already searched. stamp[] (per triangle)
+ * skips triangles met in several cells; query is this query's stamp value. */
+static double nearest_signed(const lsdem_mesh *m, const tri_grid *g, const pseudonormals *pn,
+                             const double p[3], int *stamp, int query)
+{
+  int c[3];
+  for (int a = 0; a < 3; a++) c[a] = cell_of(g, p[a], a);
+  const int rmax = g->n[0] + g->n[1] + g->n[2];
+  double best2 = HUGE_VAL, bestq[3] = {0, 0, 0};
+  int best_t = -1, best_f = 0;
+  for (int r = 0; r <= rmax; r++) {
+    for (int dk = -r; dk <= r; dk++)
+      for (int dj = -r; dj <= r; dj++) {
+        const int edge = abs(dk) == r || abs(dj) == r;
+        for (int di = -r; di <= r; di += edge || r == 0 ? 1 : 2 * r) {
+          const int i = c[0] + di, j = c[1] + dj, k = c[2] + dk;
+          if (i < 0 || j < 0 || k < 0 || i >= g->n[0] || j >= g->n[1] || k >= g->n[2]) continue;
+          const size_t cell = ((size_t)k * g->n[1] + j) * g->n[0] + i;
+          for (int x = g->start[cell]; x < g->start[cell + 1]; x++) {
+            const int t = g->items[x];
+            if (stamp[t] == query) continue;
+            stamp[t] = query;
+            double q[3], d[3];
+            int feat;
+            closest_on_triangle(p, vert(m, t, 0), vert(m, t, 1), vert(m, t, 2), q, &feat);
+            sub3(p, q, d);
+            const double d2 = dot3(d, d);
+            if (d2 < best2) best2 = d2, best_t = t, best_f = feat, memcpy(bestq, q, sizeof q);
+          }
+        }
+      }
+    const double reach = r * g->cs; /* every unsearched cell is at least this far */
+    if (best_t >= 0 && best2 <= reach * reach) break;
+  }
+  double n[3], d[3];
+  feature_normal(m, pn, best_t, best_f, n);
+  sub3(p, bestq, d);
+  const double dist = sqrt(best2);
+  return dot3(d, n) < 0.0 ? -dist : dist;
+}
+
+lsdem_status lsdem_mesh_sdf_grid(const lsdem_mesh *m, double h, int margin, lsdem_grid *g,
+                                 lsdem_error *err)
+{
+  if (!m || !g || m->ntris < 1 || m->nverts < 3)
+    return lsdem_fail(err, LSDEM_ERR_ARG, "NULL or empty mesh");
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (int v = 0; v < m->nverts; v++)
+    for (int a = 0; a < 3; a++)
+      lo[a] = fmin(lo[a], m->verts[3 * v + a]), hi[a] = fmax(hi[a], m->verts[3 * v + a]);
+  float *phi;
+  lsdem_status st = lsdem_grid_alloc(lo, hi, h, margin, g, &phi, err);
+  if (st != LSDEM_OK) return st;
+  tri_grid tg = {{0, 0, 0}, {0, 0, 0}, 0.0, NULL, NULL, NULL};
+  pseudonormals pn = {0};
+  int *stamp = malloc((size_t)m->ntris * sizeof(int));
+  if (!stamp) st = lsdem_fail(err, LSDEM_ERR_NOMEM, "out of memory");
+  if (st == LSDEM_OK) st = tri_grid_build(m, &tg, err);
+  if (st == LSDEM_OK) st = build_pseudonormals(m, &pn, err);
+  if (st == LSDEM_OK) {
+    for (int t = 0; t < m->ntris; t++) stamp[t] = -1;
+    size_t q = 0;
+    for (int k = 0; k < g->n[2]; k++)
+      for (int j = 0; j < g->n[1]; j++)
+        for (int i = 0; i < g->n[0]; i++, q++) {
+          const double p[3] = {g->origin[0] + h * i, g->origin[1] + h * j, g->origin[2] + h * k};
+          phi[q] = (float)nearest_signed(m, &tg, &pn, p, stamp, (int)(q & 0x7fffffff));
+        }
+  }
+  tri_grid_free(&tg);
+  pseudonormals_free(&pn);
+  free(stamp);
+  if (st != LSDEM_OK) lsdem_grid_free(g);
+  return st;
+}

@@ -1,0 +1,309 @@
+// clang-format off
+/* ----------------------------------------------------------------------
+   LSDEM package for LAMMPS: per-node tangential contact history (internal fix).
+   See fix_lsdem_history.h for the usage pattern.
+------------------------------------------------------------------------- */
+
+#include "fix_lsdem_history.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "memory.h"
+
+#include <algorithm>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+
+// doubles per packed entry: partner, node, stamp, shear[3], normal[3]
+static constexpr int ENTRY_DOUBLES = 9;
+
+/* ---------------------------------------------------------------------- */
+
+FixLsdemHistory::FixLsdemHistory(LAMMPS *lmp, int narg, char **arg) :
+  Fix(lmp, narg, arg), nmax_atom(0), nhist(nullptr), maxhist(nullptr), partner(nullptr),
+  hist(nullptr), maxcount(0), scratch(nullptr), nscratch(0), maxscratch(0), slices(nullptr),
+  nslices(0), maxslices(0)
+{
+  if (narg != 3) error->all(FLERR, "Illegal fix LSDEM_HISTORY command (internal fix)");
+
+  restart_peratom = 1;
+  create_attribute = 1;
+  maxexchange_dynamic = 1;
+  maxexchange = 1;
+
+  FixLsdemHistory::grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+}
+
+/* ---------------------------------------------------------------------- */
+
+FixLsdemHistory::~FixLsdemHistory()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  for (int i = 0; i < nmax_atom; i++) {
+    memory->sfree(partner[i]);
+    memory->sfree(hist[i]);
+  }
+  memory->sfree(partner);
+  memory->sfree(hist);
+  memory->destroy(nhist);
+  memory->destroy(maxhist);
+  memory->sfree(scratch);
+  memory->sfree(slices);
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLsdemHistory::setmask()
+{
+  return 0;
+}
+
+/* ----------------------------------------------------------------------
+   slice of atom i's list against one partner (sorted by node), n entries
+------------------------------------------------------------------------- */
+
+const lsdem_node_hist *FixLsdemHistory::find(int i, tagint ptag, int &n) const
+{
+  const tagint *p = partner[i];
+  const tagint *first = std::lower_bound(p, p + nhist[i], ptag);
+  const tagint *last = std::upper_bound(first, p + nhist[i], ptag);
+  n = static_cast<int>(last - first);
+  return n ? hist[i] + (first - p) : nullptr;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLsdemHistory::begin_atom()
+{
+  nscratch = 0;
+  nslices = 0;
+}
+
+/* ----------------------------------------------------------------------
+   room for cap new entries after the committed ones
+------------------------------------------------------------------------- */
+
+lsdem_node_hist *FixLsdemHistory::reserve(int cap)
+{
+  if (nscratch + cap > maxscratch) {
+    maxscratch = std::max(2 * maxscratch, nscratch + cap);
+    scratch = (lsdem_node_hist *) memory->srealloc(scratch, sizeof(lsdem_node_hist) * maxscratch,
+                                                   "lsdem/history:scratch");
+  }
+  return scratch + nscratch;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLsdemHistory::commit(tagint ptag, int n)
+{
+  if (n <= 0) return;
+  if (nslices == maxslices) {
+    maxslices = std::max(16, 2 * maxslices);
+    slices = (Slice *) memory->srealloc(slices, sizeof(Slice) * maxslices, "lsdem/history:slices");
+  }
+  slices[nslices].partner = ptag;
+  slices[nslices].start = nscratch;
+  slices[nslices].n = n;
+  nslices++;
+  nscratch += n;
+}
+
+/* ----------------------------------------------------------------------
+   replace atom i's list by the committed slices, ordered by partner tag
+   (each slice is already sorted by node: the kernel writes it that way)
+------------------------------------------------------------------------- */
+
+void FixLsdemHistory::end_atom(int i)
+{
+  // few partners per grain: insertion sort of the slice headers
+  for (int a = 1; a < nslices; a++) {
+    Slice s = slices[a];
+    int b = a - 1;
+    while (b >= 0 && slices[b].partner > s.partner) {
+      slices[b + 1] = slices[b];
+      b--;
+    }
+    slices[b + 1] = s;
+  }
+  ensure_capacity(i, nscratch);
+  int m = 0;
+  for (int s = 0; s < nslices; s++) {
+    memcpy(hist[i] + m, scratch + slices[s].start, sizeof(lsdem_node_hist) * slices[s].n);
+    for (int k = 0; k < slices[s].n; k++) partner[i][m + k] = slices[s].partner;
+    m += slices[s].n;
+  }
+  nhist[i] = m;
+  note_count(m);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLsdemHistory::ensure_capacity(int i, int n)
+{
+  if (n <= maxhist[i]) return;
+  int cap = std::max(n, 2 * maxhist[i]);
+  partner[i] = (tagint *) memory->srealloc(partner[i], sizeof(tagint) * cap, "lsdem/history:partner");
+  hist[i] = (lsdem_node_hist *) memory->srealloc(hist[i], sizeof(lsdem_node_hist) * cap,
+                                                 "lsdem/history:hist");
+  maxhist[i] = cap;
+}
+
+/* ----------------------------------------------------------------------
+   the exchange buffer must hold the largest list; it only ever grows
+------------------------------------------------------------------------- */
+
+void FixLsdemHistory::note_count(int n)
+{
+  if (n <= maxcount) return;
+  maxcount = n;
+  maxexchange = 1 + ENTRY_DOUBLES * maxcount;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLsdemHistory::grow_arrays(int nmax)
+{
+  if (nmax <= nmax_atom) return;
+  memory->grow(nhist, nmax, "lsdem/history:nhist");
+  memory->grow(maxhist, nmax, "lsdem/history:maxhist");
+  partner = (tagint **) memory->srealloc(partner, sizeof(tagint *) * nmax, "lsdem/history:partner");
+  hist = (lsdem_node_hist **) memory->srealloc(hist, sizeof(lsdem_node_hist *) * nmax,
+                                               "lsdem/history:hist");
+  for (int i = nmax_atom; i < nmax; i++) {
+    nhist[i] = maxhist[i] = 0;
+    partner[i] = nullptr;
+    hist[i] = nullptr;
+  }
+  nmax_atom = nmax;
+}
+
+/* ----------------------------------------------------------------------
+   atom j takes over atom i's list. LAMMPS never reads atom i again after
+   copy(i,j) (deletion, sorting), so the two buffers are swapped rather than
+   copied: no allocation, and every buffer keeps exactly one owner.
+------------------------------------------------------------------------- */
+
+void FixLsdemHistory::copy_arrays(int i, int j, int /*delflag*/)
+{
+  if (i == j) return;
+  std::swap(nhist[i], nhist[j]);
+  std::swap(maxhist[i], maxhist[j]);
+  std::swap(partner[i], partner[j]);
+  std::swap(hist[i], hist[j]);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLsdemHistory::set_arrays(int i)
+{
+  nhist[i] = 0;
+}
+
+/* ----------------------------------------------------------------------
+   count, then per entry: partner, node, stamp, shear[3], normal[3]
+------------------------------------------------------------------------- */
+
+int FixLsdemHistory::pack_entries(int i, double *buf) const
+{
+  int m = 0;
+  buf[m++] = ubuf(nhist[i]).d;
+  for (int k = 0; k < nhist[i]; k++) {
+    const lsdem_node_hist &h = hist[i][k];
+    buf[m++] = ubuf(partner[i][k]).d;
+    buf[m++] = ubuf(h.node).d;
+    buf[m++] = ubuf((int64_t) h.stamp).d;
+    for (int d = 0; d < 3; d++) buf[m++] = h.shear[d];
+    for (int d = 0; d < 3; d++) buf[m++] = h.normal[d];
+  }
+  return m;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLsdemHistory::unpack_entries(int i, const double *buf)
+{
+  int m = 0;
+  int n = (int) ubuf(buf[m++]).i;
+  ensure_capacity(i, n);
+  for (int k = 0; k < n; k++) {
+    lsdem_node_hist &h = hist[i][k];
+    partner[i][k] = (tagint) ubuf(buf[m++]).i;
+    h.node = (int32_t) ubuf(buf[m++]).i;
+    h.pad_ = 0;
+    h.stamp = (int64_t) ubuf(buf[m++]).i;
+    for (int d = 0; d < 3; d++) h.shear[d] = buf[m++];
+    for (int d = 0; d < 3; d++) h.normal[d] = buf[m++];
+  }
+  nhist[i] = n;
+  note_count(n);
+  return m;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLsdemHistory::pack_exchange(int i, double *buf)
+{
+  return pack_entries(i, buf);
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLsdemHistory::unpack_exchange(int nlocal, double *buf)
+{
+  return unpack_entries(nlocal, buf);
+}
+
+/* ----------------------------------------------------------------------
+   restart: buf[0] = total size, as every per-atom restart fix packs it
+------------------------------------------------------------------------- */
+
+int FixLsdemHistory::pack_restart(int i, double *buf)
+{
+  int m = 1 + pack_entries(i, buf + 1);
+  buf[0] = m;
+  return m;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixLsdemHistory::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
+  unpack_entries(nlocal, &extra[nlocal][m + 1]);
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLsdemHistory::size_restart(int nlocal)
+{
+  return 2 + ENTRY_DOUBLES * nhist[nlocal];
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixLsdemHistory::maxsize_restart()
+{
+  int nlocal = atom->nlocal, mine = 0, all = 0;
+  for (int i = 0; i < nlocal; i++) mine = std::max(mine, nhist[i]);
+  MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MAX, world);
+  return 2 + ENTRY_DOUBLES * all;
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixLsdemHistory::memory_usage()
+{
+  double bytes = (double) nmax_atom * (2 * sizeof(int) + sizeof(tagint *) + sizeof(void *));
+  for (int i = 0; i < nmax_atom; i++)
+    bytes += (double) maxhist[i] * (sizeof(tagint) + sizeof(lsdem_node_hist));
+  bytes += (double) maxscratch * sizeof(lsdem_node_hist) + (double) maxslices * sizeof(Slice);
+  return bytes;
+}

@@ -1,0 +1,183 @@
+// clang-format off
+/* ----------------------------------------------------------------------
+   LSDEM package: level-set discrete element method for LAMMPS.
+
+   fix nve/lsdem [damping xi]: the report's leapfrog for rigid grains (§2.2.7).
+   Time levels: x and quat at whole steps, v and omega at half steps. The whole update
+   runs in initial_integrate, where f and torque still hold the forces of step n
+   (LAMMPS clears them after initial_integrate):
+     v^{n-1/2} -> v^{n+1/2}, x^n -> x^{n+1}             (eqs 2.18-2.19)
+     torque to the body frame with q^n, Euler equations by predictor-corrector
+     (eqs 2.21-2.25), q^n -> q^{n+1}, omega back to the world frame with q^{n+1}.
+   All formulas live in the core (lsdem_step_body, lsdem_step_translation).
+------------------------------------------------------------------------- */
+
+#include "fix_nve_lsdem.h"
+
+#include "atom.h"
+#include "atom_vec_lsdem.h"
+#include "comm.h"
+#include "error.h"
+#include "force.h"
+#include "pair.h"
+#include "update.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+/* ---------------------------------------------------------------------- */
+
+FixNVELsdem::FixNVELsdem(LAMMPS *lmp, int narg, char **arg) :
+  Fix(lmp, narg, arg), xi(0.0), avec(nullptr)
+{
+  time_integrate = 1;
+
+  int iarg = 3;
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "damping") == 0) {
+      if (iarg + 2 > narg)
+        error->all(FLERR, "Illegal fix nve/lsdem command: damping needs a value");
+      xi = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (xi < 0.0) error->all(FLERR, "Illegal fix nve/lsdem command: damping {} < 0", xi);
+      iarg += 2;
+    } else error->all(FLERR, "Illegal fix nve/lsdem command: unknown keyword {}", arg[iarg]);
+  }
+
+  if (!dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem")))
+    error->all(FLERR, "Fix nve/lsdem requires atom_style lsdem");
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixNVELsdem::setmask()
+{
+  return INITIAL_INTEGRATE;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNVELsdem::init()
+{
+  avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
+  if (!avec) error->all(FLERR, "Fix nve/lsdem requires atom_style lsdem");
+  if (utils::strmatch(update->integrate_style, "^respa"))
+    error->all(FLERR, "Fix nve/lsdem does not support run_style respa");
+  check_timestep();
+}
+
+/* ----------------------------------------------------------------------
+   warn when dt > 0.2 sqrt(m_min / kn): the lightest grain on the stiffest contact
+   spring then gets fewer than ~30 steps per oscillation period
+------------------------------------------------------------------------- */
+
+void FixNVELsdem::check_timestep()
+{
+  if (!force->pair) return;
+  int dim = -1;
+  const double *kn = (const double *) force->pair->extract("kn_max", dim);
+  if (!kn || dim != 0 || !(*kn > 0.0)) return;
+
+  double mmin = HUGE_VAL;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (atom->mask[i] & groupbit) mmin = std::min(mmin, atom->rmass[i]);
+  double mmin_all;
+  MPI_Allreduce(&mmin, &mmin_all, 1, MPI_DOUBLE, MPI_MIN, world);
+  if (mmin_all == HUGE_VAL) return;
+
+  const double dtmax = 0.2 * std::sqrt(mmin_all / (*kn * force->ftm2v));
+  // suggestion: dtmax rounded down to two significant digits
+  const double decade = std::pow(10.0, std::floor(std::log10(dtmax)) - 1.0);
+  const double suggest = std::floor(dtmax / decade) * decade;
+  if (update->dt > dtmax && comm->me == 0)
+    error->warning(FLERR, "Fix nve/lsdem: timestep {:.6g} > 0.2*sqrt(m_min/kn) = {:.6g} "
+                   "(lightest grain mass m_min = {:.6g}, contact stiffness kn = {:.6g} from "
+                   "the pair style); suggest timestep {:.2g}",
+                   update->dt, dtmax, mmin_all, *kn, suggest);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNVELsdem::initial_integrate(int /*vflag*/)
+{
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  double **omega = atom->omega;
+  double **torque = atom->torque;
+  double *rmass = atom->rmass;
+  int *mask = atom->mask;
+  int nlocal = atom->nlocal;
+  if (igroup == atom->firstgroup) nlocal = atom->nfirst;
+
+  const double dt = update->dt;
+  const double ftm2v = force->ftm2v;
+
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+
+    // force and torque in velocity units: f dt/m and M dt/I then come out as velocities
+    const double fs[3] = {ftm2v * f[i][0], ftm2v * f[i][1], ftm2v * f[i][2]};
+
+    if (avec->shape_of(i)->sdf.kind == LSDEM_SDF_SPHERE) {
+      // spheres (membrane balls, report §3.3.2) keep 3 degrees of freedom: their rotation
+      // is constrained, so torque is ignored, quat is unchanged and omega is held at zero
+      // (a spin left from a data file would otherwise feed the contacts' friction)
+      lsdem_step_translation(x[i], v[i], fs, rmass[i], xi, dt);
+      omega[i][0] = omega[i][1] = omega[i][2] = 0.0;
+    } else {
+      const double ts[3] = {ftm2v * torque[i][0], ftm2v * torque[i][1], ftm2v * torque[i][2]};
+      double *q = avec->quat[i];
+      double wbody[3];
+      lsdem_quat_rotate_inv(q, omega[i], wbody);  // omega^{n-1/2} to the body frame with q^n
+      lsdem_step_body(x[i], v[i], q, wbody, avec->dwprev[i], fs, ts, rmass[i],
+                      avec->inertia[i], xi, dt, omega[i]);
+    }
+    check_grain(i, dt);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   stop on a non-finite state or a grain that moves more than half its bounding
+   radius in one step: the run has gone unstable and every later step is garbage
+------------------------------------------------------------------------- */
+
+void FixNVELsdem::check_grain(int i, double dt)
+{
+  const double *x = atom->x[i], *v = atom->v[i], *w = atom->omega[i];
+  const double *q = avec->quat[i];
+  double sum = 0.0;
+  for (int k = 0; k < 3; k++) sum += x[k] + v[k] + w[k];
+  sum += q[0] + q[1] + q[2] + q[3];
+  if (!std::isfinite(sum)) fail_unstable(i, dt, "a non-finite (NaN/inf) state");
+
+  const double v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  const double rlim = 0.5 * atom->radius[i];
+  if (v2 * dt * dt > rlim * rlim) fail_unstable(i, dt, "a runaway speed");
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNVELsdem::fail_unstable(int i, double dt, const char *what)
+{
+  const double *x = atom->x[i], *v = atom->v[i], *w = atom->omega[i];
+  const double *q = avec->quat[i];
+  const double *fi = atom->f[i], *t = atom->torque[i];
+  const double speed = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  std::string mesg = fmt::format(
+      "Fix nve/lsdem: grain {} became unstable at step {} with {}: "
+      "x = ({:.6g} {:.6g} {:.6g}), v = ({:.6g} {:.6g} {:.6g}), "
+      "omega = ({:.6g} {:.6g} {:.6g}), quat = ({:.6g} {:.6g} {:.6g} {:.6g}), "
+      "force = ({:.6g} {:.6g} {:.6g}), torque = ({:.6g} {:.6g} {:.6g}); "
+      "|v|*dt = {:.6g} vs half the bounding radius {:.6g}. Likely causes: initial overlap "
+      "between grains, a time step too large for the contact stiffness kn (reduce the "
+      "timestep or kn), or a stiffness/force far too large",
+      atom->tag[i], update->ntimestep, what, x[0], x[1], x[2], v[0], v[1], v[2],
+      w[0], w[1], w[2], q[0], q[1], q[2], q[3], fi[0], fi[1], fi[2], t[0], t[1], t[2],
+      speed * dt, 0.5 * atom->radius[i]);
+
+  AtomVecLsdem::error_one_flushed(error, FLERR, mesg);
+}

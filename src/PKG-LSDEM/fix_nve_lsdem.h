@@ -1,0 +1,39 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   LSDEM package: level-set discrete element method for LAMMPS.
+
+   fix nve/lsdem: leapfrog rigid-body integrator of the report (§2.2.7, eqs 2.17-2.29).
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(nve/lsdem,FixNVELsdem);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_NVE_LSDEM_H
+#define LMP_FIX_NVE_LSDEM_H
+
+#include "fix.h"
+
+namespace LAMMPS_NS {
+
+class FixNVELsdem : public Fix {
+ public:
+  FixNVELsdem(class LAMMPS *, int, char **);
+  int setmask() override;
+  void init() override;
+  void initial_integrate(int) override;
+
+ private:
+  double xi;  // global damping, 1/time (eqs 2.18, 2.20)
+  class AtomVecLsdem *avec;
+
+  void check_timestep();
+  void check_grain(int, double);
+  [[noreturn]] void fail_unstable(int, double, const char *);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

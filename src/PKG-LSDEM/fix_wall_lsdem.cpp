@@ -1,0 +1,379 @@
+// clang-format off
+/* ----------------------------------------------------------------------
+   LSDEM package: level-set discrete element method for LAMMPS.
+
+   fix wall/lsdem (doc/fix_wall_lsdem.rst). The wall is an analytic signed distance
+   from the core (plane: the half-space z <= 0 of its own frame; cylinder: an inverted
+   infinite cylinder, solid outside radius R) used as the slave shape B of the same
+   contact kernels the pair style calls.
+------------------------------------------------------------------------- */
+
+#include "fix_wall_lsdem.h"
+
+#include "atom.h"
+#include "atom_vec_lsdem.h"
+#include "comm.h"
+#include "error.h"
+#include "fix_lsdem_history.h"
+#include "input.h"
+#include "math_const.h"
+#include "memory.h"
+#include "modify.h"
+#include "update.h"
+#include "variable.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+using MathConst::MY_PI;
+
+// history partner tag of a wall (grain tags are >= 1)
+static constexpr tagint WALL_PARTNER = -1;
+
+/* ---------------------------------------------------------------------- */
+
+FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
+  Fix(lmp, narg, arg), axis(2), fix_history(nullptr), avec(nullptr), fall_valid(0),
+  moving(false), contact(nullptr), ncontact(0), maxcontact(0), contact_step(-1)
+{
+  for (int d = 0; d < 3; d++) {
+    vstr[d] = nullptr;
+    vvar[d] = -1;
+  }
+  const char *usage = "fix wall/lsdem plane px py pz nx ny nz kn ks mu [keywords] or "
+                      "fix wall/lsdem cylinder c1 c2 R kn ks mu [keywords]";
+  if (narg < 4) error->all(FLERR, "Illegal fix wall/lsdem command: {}", usage);
+
+  vector_flag = 1;
+  size_vector = 6;  // force on the wall (extensive), the wall's reference point
+  global_freq = 1;
+  extvector = -1;
+  extlist = new int[size_vector];
+  for (int k = 0; k < size_vector; k++) extlist[k] = k < 3 ? 1 : 0;
+  restart_global = 1;
+  dynamic_group_allow = 1;
+
+  memset(&wall, 0, sizeof(wall));
+  memset(&wpose, 0, sizeof(wpose));
+  memset(&prm, 0, sizeof(prm));
+  wall.radius = HUGE_VAL;  // unbounded: the kernel must not reject by B's bounding sphere
+
+  int iarg;
+  double geom[6];
+  if (strcmp(arg[3], "plane") == 0) {
+    wallstyle = PLANE;
+    iarg = 10;
+  } else if (strcmp(arg[3], "cylinder") == 0) {
+    wallstyle = CYLINDER;
+    iarg = 7;
+  } else error->all(FLERR, "fix wall/lsdem: unknown wall {} ({})", arg[3], usage);
+  if (narg < iarg + 3) error->all(FLERR, "Illegal fix wall/lsdem command: {}", usage);
+  for (int k = 4; k < iarg; k++) geom[k - 4] = utils::numeric(FLERR, arg[k], false, lmp);
+  prm.kn = utils::numeric(FLERR, arg[iarg], false, lmp);
+  prm.ks = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+  prm.mu = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+  prm.node_stride = 1;
+  prm.law = LSDEM_NORMAL_PER_NODE;
+  iarg += 3;
+
+  while (iarg < narg) {
+    std::string key = arg[iarg];
+    int nval = key == "velocity" ? 3 : 1;
+    if (iarg + nval >= narg) error->all(FLERR, "fix wall/lsdem: keyword {} needs a value", key);
+    std::string val = arg[iarg + 1];
+    if (key == "cn") prm.cn = utils::numeric(FLERR, val.c_str(), false, lmp);
+    else if (key == "ct") prm.ct = utils::numeric(FLERR, val.c_str(), false, lmp);
+    else if (key == "velocity") {
+      for (int d = 0; d < 3; d++) {
+        const char *val_d = arg[iarg + 1 + d];
+        if (utils::strmatch(val_d, "^v_")) vstr[d] = utils::strdup(val_d + 2);
+        else wpose.v[d] = utils::numeric(FLERR, val_d, false, lmp);
+        if (vstr[d] || wpose.v[d] != 0.0) moving = true;
+      }
+    } else if (key == "axis") {
+      if (val == "x" || val == "y" || val == "z") axis = val[0] - 'x';
+      else error->all(FLERR, "fix wall/lsdem: axis must be x, y or z, not {}", val);
+      if (wallstyle != CYLINDER) error->all(FLERR, "fix wall/lsdem: axis is for cylinder walls");
+    } else if (key == "normal") {
+      if (val == "node") prm.law = LSDEM_NORMAL_PER_NODE;
+      else if (val == "traction") prm.law = LSDEM_NORMAL_TRACTION;
+      else error->all(FLERR, "fix wall/lsdem: normal must be node or traction, not {}", val);
+    } else if (key == "stride") {
+      prm.node_stride = utils::inumeric(FLERR, val.c_str(), false, lmp);
+      if (prm.node_stride < 1) error->all(FLERR, "fix wall/lsdem: stride must be >= 1");
+    } else error->all(FLERR, "fix wall/lsdem: unknown keyword {}", key);
+    iarg += 1 + nval;
+  }
+  if (prm.kn <= 0.0 || prm.ks < 0.0 || prm.mu < 0.0 || prm.cn < 0.0 || prm.ct < 0.0)
+    error->all(FLERR, "fix wall/lsdem: need kn > 0 and ks, mu, cn, ct >= 0");
+
+  if (wallstyle == PLANE) {
+    double len = sqrt(geom[3] * geom[3] + geom[4] * geom[4] + geom[5] * geom[5]);
+    if (len == 0.0) error->all(FLERR, "fix wall/lsdem: plane normal must not be zero");
+    double n[3] = {geom[3] / len, geom[4] / len, geom[5] / len};
+    for (int d = 0; d < 3; d++) wpose.x[d] = geom[d];
+    wall.sdf.kind = LSDEM_SDF_PLANE;
+    set_plane_frame(n);
+  } else {
+    if (geom[2] <= 0.0) error->all(FLERR, "fix wall/lsdem: cylinder radius must be > 0");
+    // c1 c2 are the axis' coordinates in the other two directions, in x,y,z order
+    int other[2] = {axis == 0 ? 1 : 0, axis == 2 ? 1 : 2};
+    wpose.x[other[0]] = geom[0];
+    wpose.x[other[1]] = geom[1];
+    wall.sdf.kind = LSDEM_SDF_CYLINDER;
+    wall.sdf.inverted = 1;  // solid outside: a container
+    wall.sdf.a[0] = geom[2];
+    wall.sdf.a[1] = 0.0;    // infinite
+    set_axis_frame();
+  }
+  flocal[0] = flocal[1] = flocal[2] = 0.0;
+  fall[0] = fall[1] = fall[2] = 0.0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+FixWallLsdem::~FixWallLsdem()
+{
+  for (int d = 0; d < 3; d++) delete[] vstr[d];
+  delete[] extlist;
+  memory->destroy(contact);
+  if (fix_history && modify) {
+    int ifix = modify->find_fix(history_id);
+    if (ifix >= 0) modify->delete_fix(ifix);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixWallLsdem::setmask()
+{
+  int mask = POST_FORCE;
+  if (moving) mask |= INITIAL_INTEGRATE;
+  return mask;
+}
+
+/* ----------------------------------------------------------------------
+   the history store is created here (not in init) so that a restart file's
+   per-atom history reaches it when the fix is re-specified after read_restart
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::post_constructor()
+{
+  if (prm.mu <= 0.0) return;
+  history_id = std::string("LSDEM_WALL_HISTORY_") + id;
+  fix_history = dynamic_cast<FixLsdemHistory *>(
+      modify->add_fix(fmt::format("{} all LSDEM_HISTORY", history_id)));
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixWallLsdem::init()
+{
+  avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
+  if (!avec) error->all(FLERR, "Fix wall/lsdem requires atom_style lsdem");
+  prm.dt = update->dt;
+  for (int d = 0; d < 3; d++) {
+    if (!vstr[d]) continue;
+    vvar[d] = input->variable->find(vstr[d]);
+    if (vvar[d] < 0) error->all(FLERR, "fix wall/lsdem: velocity variable {} does not exist", vstr[d]);
+    if (!input->variable->equalstyle(vvar[d]))
+      error->all(FLERR, "fix wall/lsdem: velocity variable {} is not equal-style", vstr[d]);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   velocity components given as equal-style variables, evaluated once per step
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::update_velocity()
+{
+  for (int d = 0; d < 3; d++)
+    if (vstr[d]) wpose.v[d] = input->variable->compute_equal(vvar[d]);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixWallLsdem::reset_dt()
+{
+  prm.dt = update->dt;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixWallLsdem::setup(int vflag)
+{
+  update_velocity();
+  post_force(vflag);
+}
+
+/* ----------------------------------------------------------------------
+   a moving wall advances to where it is when this step's forces are computed
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::initial_integrate(int /*vflag*/)
+{
+  update_velocity();
+  for (int d = 0; d < 3; d++) wpose.x[d] += update->dt * wpose.v[d];
+}
+
+/* ----------------------------------------------------------------------
+   cheap rejection: the grain's bounding sphere does not reach the wall
+------------------------------------------------------------------------- */
+
+bool FixWallLsdem::may_touch(int i) const
+{
+  const double *x = atom->x[i];
+  const double r = atom->radius[i];
+  double rel[3] = {x[0] - wpose.x[0], x[1] - wpose.x[1], x[2] - wpose.x[2]};
+  double along[3];  // components in the wall frame: rel . column k of R
+  for (int k = 0; k < 3; k++)
+    along[k] = rel[0] * wpose.R[k] + rel[1] * wpose.R[3 + k] + rel[2] * wpose.R[6 + k];
+  if (wallstyle == PLANE) return along[2] < r;
+  double rperp = sqrt(along[0] * along[0] + along[1] * along[1]);
+  return wall.sdf.a[0] - rperp < r;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixWallLsdem::post_force(int /*vflag*/)
+{
+  double **x = atom->x, **v = atom->v, **omega = atom->omega;
+  double **f = atom->f, **torque = atom->torque;
+  const int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const bigint step = update->ntimestep;
+
+  flocal[0] = flocal[1] = flocal[2] = 0.0;
+  fall_valid = 0;
+  ncontact = 0;
+  contact_step = step;
+
+  for (int i = 0; i < nlocal; i++) {
+    if (fix_history) fix_history->begin_atom();
+    if ((mask[i] & groupbit) && may_touch(i)) {
+      lsdem_pose p;
+      for (int d = 0; d < 3; d++) {
+        p.x[d] = x[i][d];
+        p.v[d] = v[i][d];
+        p.omega[d] = omega[i][d];
+      }
+      lsdem_quat_to_matrix(avec->quat[i], p.R);
+      const lsdem_shape *A = avec->shape_of(i);
+      const bool sphere = A->sdf.kind == LSDEM_SDF_SPHERE;
+
+      const lsdem_node_hist *hin = nullptr;
+      lsdem_node_hist *hout = nullptr;
+      int nin = 0, nout = 0;
+      if (fix_history) {
+        hin = fix_history->find(i, WALL_PARTNER, nin);
+        hout = fix_history->reserve(sphere ? 1 : A->nnodes);
+      }
+      lsdem_contact_result res;
+      if (sphere) {
+        const double ra = A->sdf.a[0];
+        lsdem_contact_sphere_shape(ra, MY_PI * ra * ra, &p, &wall, &wpose, &prm, step, hin, nin,
+                                   hout, &nout, &res);
+      } else {
+        lsdem_contact_nodes(A, &p, &wall, &wpose, &prm, step, hin, nin, hout, &nout, &res);
+      }
+      if (fix_history) fix_history->commit(WALL_PARTNER, nout);
+      if (res.npen > 0) {
+        for (int d = 0; d < 3; d++) {
+          f[i][d] += res.force[d];
+          torque[i][d] += res.torque_a[d];
+          flocal[d] -= res.force[d];
+        }
+        add_contact(i, res);
+      }
+    }
+    if (fix_history) fix_history->end_atom(i);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixWallLsdem::add_contact(int i, const lsdem_contact_result &res)
+{
+  if (ncontact == maxcontact) {
+    maxcontact = maxcontact ? 2 * maxcontact : 256;
+    contact = (Contact *) memory->srealloc(contact, sizeof(Contact) * maxcontact,
+                                           "wall/lsdem:contact");
+  }
+  Contact &c = contact[ncontact++];
+  c.i = i;
+  for (int d = 0; d < 3; d++) {
+    c.force[d] = res.force[d];
+    c.point[d] = res.point[d];
+  }
+}
+
+/* ----------------------------------------------------------------------
+   n = 0,1,2: total force the grains exert on the wall (x,y,z);
+   n = 3,4,5: the wall's reference point (plane point or cylinder axis point) now
+------------------------------------------------------------------------- */
+
+double FixWallLsdem::compute_vector(int n)
+{
+  if (n >= 3) return wpose.x[n - 3];
+  if (!fall_valid) {
+    MPI_Allreduce(flocal, fall, 3, MPI_DOUBLE, MPI_SUM, world);
+    fall_valid = 1;
+  }
+  return fall[n];
+}
+
+/* ----------------------------------------------------------------------
+   wall frame: body z = plane normal n (outward from the wall's solid side)
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::set_plane_frame(const double n[3])
+{
+  // t1 = a unit vector perpendicular to n, t2 = n x t1: columns (t1, t2, n)
+  double a[3] = {0.0, 0.0, 0.0};
+  int k = fabs(n[0]) < fabs(n[1]) ? (fabs(n[0]) < fabs(n[2]) ? 0 : 2) : (fabs(n[1]) < fabs(n[2]) ? 1 : 2);
+  a[k] = 1.0;
+  double t1[3] = {a[1] * n[2] - a[2] * n[1], a[2] * n[0] - a[0] * n[2], a[0] * n[1] - a[1] * n[0]};
+  double len = sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
+  for (int d = 0; d < 3; d++) t1[d] /= len;
+  double t2[3] = {n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2],
+                  n[0] * t1[1] - n[1] * t1[0]};
+  for (int r = 0; r < 3; r++) {
+    wpose.R[3 * r + 0] = t1[r];
+    wpose.R[3 * r + 1] = t2[r];
+    wpose.R[3 * r + 2] = n[r];
+  }
+}
+
+/* ----------------------------------------------------------------------
+   cylinder frame: body z = the axis; a cyclic permutation of x,y,z (proper)
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::set_axis_frame()
+{
+  for (int k = 0; k < 9; k++) wpose.R[k] = 0.0;
+  for (int c = 0; c < 3; c++) {
+    int world_dim = (axis + 1 + c) % 3;  // body x,y,z -> world axis+1, axis+2, axis
+    wpose.R[3 * world_dim + c] = 1.0;
+  }
+}
+
+/* ----------------------------------------------------------------------
+   restart: the wall's current position (a moving wall resumes where it was)
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::write_restart(FILE *fp)
+{
+  if (comm->me == 0) {
+    int size = 3 * sizeof(double);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(wpose.x, sizeof(double), 3, fp);
+  }
+}
+
+void FixWallLsdem::restart(char *buf)
+{
+  const double *list = (const double *) buf;
+  for (int d = 0; d < 3; d++) wpose.x[d] = list[d];
+}

@@ -1,0 +1,80 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   LSDEM package: level-set discrete element method for LAMMPS.
+
+   fix wall/lsdem: a rigid analytic wall (plane or cylindrical container) that the
+   grains' nodes touch through the same core kernel as grain-grain contact (the wall
+   is the slave level set, report §4.6.3). Optional constant wall velocity.
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(wall/lsdem,FixWallLsdem);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_WALL_LSDEM_H
+#define LMP_FIX_WALL_LSDEM_H
+
+#include "fix.h"
+#include "lsdem.h"
+
+#include <string>
+
+namespace LAMMPS_NS {
+
+class FixWallLsdem : public Fix {
+ public:
+  FixWallLsdem(class LAMMPS *, int, char **);
+  ~FixWallLsdem() override;
+  int setmask() override;
+  void post_constructor() override;
+  void init() override;
+  void setup(int) override;
+  void initial_integrate(int) override;
+  void post_force(int) override;
+  void reset_dt() override;
+  double compute_vector(int) override;
+
+  // grains touched on the last force call, for compute stress/lsdem (owned atoms)
+  struct Contact {
+    int i;                          // local index of the grain
+    double force[3], point[3];      // force of the wall on the grain, contact point
+  };
+  int ncontacts() const { return ncontact; }
+  const Contact *contacts() const { return contact; }
+  bigint contacts_step() const { return contact_step; }
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+
+ private:
+  enum { PLANE, CYLINDER };
+  int wallstyle;
+  int axis;                    // cylinder axis 0,1,2 = x,y,z
+  lsdem_shape wall;            // the wall's signed distance (no nodes)
+  lsdem_pose wpose;            // where the wall is and how it moves
+  lsdem_contact_params prm;
+  std::string history_id;
+  class FixLsdemHistory *fix_history;  // nullptr when mu == 0
+  class AtomVecLsdem *avec;
+
+  double flocal[3], fall[3];   // force of the grains on the wall: this rank, all ranks
+  int fall_valid;
+  char *vstr[3];               // velocity components given as equal-style variables
+  int vvar[3];
+  bool moving;                 // a velocity is set (constant or variable)
+
+  Contact *contact;
+  int ncontact, maxcontact;
+  bigint contact_step;
+  void add_contact(int, const lsdem_contact_result &);
+  void update_velocity();
+
+  bool may_touch(int) const;
+  void set_plane_frame(const double n[3]);
+  void set_axis_frame();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,615 @@
+// clang-format off
+/* ----------------------------------------------------------------------
+   LSDEM package: level-set discrete element method for LAMMPS.
+
+   pair_style lsdem. All contact physics is in the core (lsdem_contact_nodes and the
+   sphere fast paths); this file decides who is master of each pair, passes the
+   master's history slice, and scatters the results (doc/pair_lsdem.rst).
+------------------------------------------------------------------------- */
+
+#include "pair_lsdem.h"
+
+#include "atom.h"
+#include "atom_vec_lsdem.h"
+#include "comm.h"
+#include "error.h"
+#include "fix_lsdem_history.h"
+#include "force.h"
+#include "math_const.h"
+#include "memory.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neigh_request.h"
+#include "neighbor.h"
+#include "update.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using MathConst::MY_PI;
+
+// setup warns when a node penetrates deeper than this fraction of the smaller grain's
+// equivalent-sphere radius (grains generated or imported overlapping)
+static constexpr double OVERLAP_WARN = 0.05;
+static const char HISTORY_ID[] = "LSDEM_PAIR_HISTORY";
+
+/* ---------------------------------------------------------------------- */
+
+PairLsdem::PairLsdem(LAMMPS *lmp) :
+  Pair(lmp), mode(ONEWAY), law(LSDEM_NORMAL_PER_NODE), stride(1), zcap(0), params(nullptr),
+  onerad(nullptr), maxrad(nullptr), kn_max(0.0), avec(nullptr), fix_history(nullptr),
+  nmax_atom(0), pose(nullptr), shape(nullptr), ncount(nullptr), contact(nullptr), ncontact(0),
+  maxcontact(0), contact_step(-1), ntested_pairs(0), ntested_nodes(0), npen_nodes(0)
+{
+  single_enable = 0;
+  finitecutflag = 1;
+  centroidstressflag = CENTROID_NOTAVAIL;
+  comm_forward = 1;  // contact counts, for zcap
+  comm_reverse = 1;
+  // workload of the last force call, for compute pair: pairs tested, contacts,
+  // nodes looked up, penetrating nodes (compute pair sums them over ranks)
+  nextra = 4;
+  pvector = new double[nextra];
+  for (int k = 0; k < nextra; k++) pvector[k] = 0.0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+PairLsdem::~PairLsdem()
+{
+  delete[] pvector;
+  int ifix = modify->find_fix(HISTORY_ID);
+  if (fix_history && ifix >= 0) modify->delete_fix(ifix);
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+    memory->destroy(params);
+    delete[] onerad;
+    delete[] maxrad;
+  }
+  memory->sfree(pose);
+  memory->sfree(shape);
+  memory->destroy(ncount);
+  memory->sfree(contact);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairLsdem::allocate()
+{
+  allocated = 1;
+  int n = atom->ntypes;
+  memory->create(setflag, n + 1, n + 1, "pair:setflag");
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++) setflag[i][j] = 0;
+  memory->create(cutsq, n + 1, n + 1, "pair:cutsq");
+  memory->create(params, n + 1, n + 1, "pair:params");
+  memset(&params[0][0], 0, sizeof(lsdem_contact_params) * (n + 1) * (n + 1));
+  onerad = new double[n + 1];
+  maxrad = new double[n + 1];
+}
+
+/* ----------------------------------------------------------------------
+   pair_style lsdem [mode oneway|twoway] [normal node|traction] [stride N] [zcap N]
+------------------------------------------------------------------------- */
+
+void PairLsdem::settings(int narg, char **arg)
+{
+  mode = ONEWAY;
+  law = LSDEM_NORMAL_PER_NODE;
+  stride = 1;
+  zcap = 0;
+  for (int iarg = 0; iarg < narg; iarg += 2) {
+    if (iarg + 1 >= narg) error->all(FLERR, "pair_style lsdem: keyword {} needs a value", arg[iarg]);
+    std::string key = arg[iarg], val = arg[iarg + 1];
+    if (key == "mode") {
+      if (val == "oneway") mode = ONEWAY;
+      else if (val == "twoway") mode = TWOWAY;
+      else error->all(FLERR, "pair_style lsdem: mode must be oneway or twoway, not {}", val);
+    } else if (key == "normal") {
+      if (val == "node") law = LSDEM_NORMAL_PER_NODE;
+      else if (val == "traction") law = LSDEM_NORMAL_TRACTION;
+      else error->all(FLERR, "pair_style lsdem: normal must be node or traction, not {}", val);
+    } else if (key == "stride") {
+      stride = utils::inumeric(FLERR, val.c_str(), false, lmp);
+      if (stride < 1) error->all(FLERR, "pair_style lsdem: stride must be >= 1");
+    } else if (key == "zcap") {
+      zcap = utils::inumeric(FLERR, val.c_str(), false, lmp);
+      if (zcap < 0) error->all(FLERR, "pair_style lsdem: zcap must be >= 0 (0 = off)");
+    } else error->all(FLERR, "pair_style lsdem: unknown keyword {}", key);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   pair_coeff I J kn ks mu [cn value] [ct value]
+------------------------------------------------------------------------- */
+
+void PairLsdem::coeff(int narg, char **arg)
+{
+  if (narg < 5 || (narg - 5) % 2)
+    error->all(FLERR, "pair_coeff for lsdem: expected I J kn ks mu [cn value] [ct value]");
+  if (!allocated) allocate();
+
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+
+  lsdem_contact_params p;
+  memset(&p, 0, sizeof(p));
+  p.kn = utils::numeric(FLERR, arg[2], false, lmp);
+  p.ks = utils::numeric(FLERR, arg[3], false, lmp);
+  p.mu = utils::numeric(FLERR, arg[4], false, lmp);
+  for (int iarg = 5; iarg < narg; iarg += 2) {
+    double value = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+    if (strcmp(arg[iarg], "cn") == 0) p.cn = value;
+    else if (strcmp(arg[iarg], "ct") == 0) p.ct = value;
+    else error->all(FLERR, "pair_coeff for lsdem: unknown keyword {}", arg[iarg]);
+  }
+  if (p.kn <= 0.0 || p.ks < 0.0 || p.mu < 0.0 || p.cn < 0.0 || p.ct < 0.0)
+    error->all(FLERR, "pair_coeff for lsdem: need kn > 0 and ks, mu, cn, ct >= 0");
+
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++)
+    for (int j = std::max(jlo, i); j <= jhi; j++) {
+      params[i][j] = p;
+      setflag[i][j] = 1;
+      count++;
+    }
+  if (count == 0) error->all(FLERR, "Incorrect args for pair coefficients");
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairLsdem::init_style()
+{
+  avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
+  if (!avec) error->all(FLERR, "Pair style lsdem requires atom_style lsdem");
+  if (!atom->tag_enable) error->all(FLERR, "Pair style lsdem requires atom IDs");
+  if (force->newton_pair == 0)
+    error->all(FLERR, "Pair style lsdem requires newton pair on (add 'newton on')");
+  if (comm->ghost_velocity == 0)
+    error->all(FLERR, "Pair style lsdem requires ghost velocities (add 'comm_modify vel yes')");
+
+  // a plain full list: each grain tests its own nodes against every neighbour
+  int irequest = neighbor->request(this, instance_me);
+  neighbor->requests[irequest]->half = 0;
+  neighbor->requests[irequest]->full = 1;
+
+  // largest bounding radius per type over all ranks: cutoff = maxrad[I] + maxrad[J]
+  int ntypes = atom->ntypes;
+  for (int t = 1; t <= ntypes; t++) onerad[t] = 0.0;
+  for (int i = 0; i < atom->nlocal; i++)
+    onerad[atom->type[i]] = std::max(onerad[atom->type[i]], atom->radius[i]);
+  MPI_Allreduce(&onerad[1], &maxrad[1], ntypes, MPI_DOUBLE, MPI_MAX, world);
+  kn_max = stiffest_node_spring();
+
+  // history only where friction is on; none at all when mu == 0 everywhere
+  int need_history = 0;
+  for (int i = 1; i <= ntypes; i++)
+    for (int j = i; j <= ntypes; j++)
+      if (setflag[i][j] && params[i][j].mu > 0.0) need_history = 1;
+  // a fixed ID, so restart files find it again (pair gran appends instance_me, which
+  // differs when a script clears and re-reads a restart within one process)
+  if (need_history) {
+    int ifix = modify->find_fix(HISTORY_ID);
+    Fix *fix = ifix >= 0 ? modify->fix[ifix]
+                         : modify->add_fix(fmt::format("{} all LSDEM_HISTORY", HISTORY_ID));
+    fix_history = dynamic_cast<FixLsdemHistory *>(fix);
+    if (!fix_history) error->all(FLERR, "Fix ID {} is reserved for pair lsdem", HISTORY_ID);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+double PairLsdem::init_one(int i, int j)
+{
+  if (setflag[i][j] == 0)
+    error->all(FLERR, "pair_coeff {} {} is not set (pair_style lsdem does not mix)", i, j);
+  params[i][j].dt = update->dt;
+  params[i][j].node_stride = stride;
+  params[i][j].law = law;
+  params[j][i] = params[i][j];
+  return maxrad[i] + maxrad[j];
+}
+
+/* ----------------------------------------------------------------------
+   largest per-node normal stiffness (force/length) of any type pair:
+   kn * stride, times the largest node area for the traction law (the sphere
+   fast path uses the sphere's cross-section pi r^2 as its area)
+------------------------------------------------------------------------- */
+
+double PairLsdem::stiffest_node_spring() const
+{
+  double area = 1.0;
+  if (law == LSDEM_NORMAL_TRACTION) {
+    area = 0.0;
+    const lsdem_library *lib = avec ? avec->library() : nullptr;
+    int nshape = lib ? avec->nshapes() : 0;
+    for (int s = 0; s < nshape; s++) {
+      const lsdem_shape *sh = lsdem_library_shape(lib, s);
+      if (sh->sdf.kind == LSDEM_SDF_SPHERE)
+        area = std::max(area, MY_PI * sh->sdf.a[0] * sh->sdf.a[0]);
+      for (int k = 0; k < sh->nnodes; k++) area = std::max(area, sh->node_area[k]);
+    }
+  }
+  double kmax = 0.0;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++)
+      if (setflag[i][j]) kmax = std::max(kmax, params[i][j].kn);
+  return kmax * stride * area;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairLsdem::reset_dt()
+{
+  if (!allocated) return;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = 1; j <= atom->ntypes; j++) params[i][j].dt = update->dt;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairLsdem::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+  update_poses();
+
+  ncontact = 0;
+  ntested_pairs = ntested_nodes = npen_nodes = 0;
+  contact_step = update->ntimestep;
+
+  const int inum = list->inum;
+  const int *ilist = list->ilist;
+  const int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const int *jlist = firstneigh[i];
+    if (fix_history) fix_history->begin_atom();
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const double scale = master_scale(i, j);
+      if (scale == 0.0) continue;
+      // bounding-sphere rejection (report eq 2.1)
+      double d[3] = {pose[i].x[0] - pose[j].x[0], pose[i].x[1] - pose[j].x[1],
+                     pose[i].x[2] - pose[j].x[2]};
+      double rsum = atom->radius[i] + atom->radius[j];
+      if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= rsum * rsum) continue;
+      test_pair(i, j, scale, contact_step);
+    }
+    if (fix_history) fix_history->end_atom(i);
+  }
+
+  apply_contacts();
+  tally_workload();
+  if (update->setupflag) report_overlaps();
+  if (vflag_fdotr) virial_fdotr_compute();
+}
+
+/* ----------------------------------------------------------------------
+   poses and shapes of all local+ghost grains for this force call
+------------------------------------------------------------------------- */
+
+void PairLsdem::update_poses()
+{
+  if (atom->nmax > nmax_atom) {
+    nmax_atom = atom->nmax;
+    pose = (lsdem_pose *) memory->srealloc(pose, sizeof(lsdem_pose) * nmax_atom, "pair:pose");
+    shape = (const lsdem_shape **) memory->srealloc(shape, sizeof(lsdem_shape *) * nmax_atom,
+                                                    "pair:shape");
+    memory->destroy(ncount);
+    memory->create(ncount, nmax_atom, "pair:ncount");
+  }
+  const int nall = atom->nlocal + atom->nghost;
+  double **x = atom->x, **v = atom->v, **omega = atom->omega, **quat = avec->quat;
+  for (int i = 0; i < nall; i++) {
+    lsdem_pose &p = pose[i];
+    for (int d = 0; d < 3; d++) {
+      p.x[d] = x[i][d];
+      p.v[d] = v[i][d];
+      p.omega[d] = omega[i][d];
+    }
+    lsdem_quat_to_matrix(quat[i], p.R);
+    shape[i] = avec->shape_of(i);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   factor for the test of i's nodes against j, 0 when i is not master:
+   - a sphere against a non-sphere: the sphere is master (fast path, 1 lookup);
+   - sphere-sphere (analytic, symmetric): the lower ID;
+   - two grains: the lower ID (oneway, report) or both, each half (twoway).
+   Same tag = a periodic image of the grain itself: no contact.
+------------------------------------------------------------------------- */
+
+double PairLsdem::master_scale(int i, int j) const
+{
+  const tagint *tag = atom->tag;
+  if (tag[i] == tag[j]) return 0.0;
+  const bool si = shape[i]->sdf.kind == LSDEM_SDF_SPHERE;
+  const bool sj = shape[j]->sdf.kind == LSDEM_SDF_SPHERE;
+  if (si != sj) return si ? 1.0 : 0.0;
+  if (!si && mode == TWOWAY) return 0.5;
+  return tag[i] < tag[j] ? 1.0 : 0.0;
+}
+
+/* ----------------------------------------------------------------------
+   run the core kernel for i's nodes (or i's sphere) against j's level set
+------------------------------------------------------------------------- */
+
+void PairLsdem::test_pair(int i, int j, double scale, bigint step)
+{
+  const lsdem_contact_params &prm = params[atom->type[i]][atom->type[j]];
+  const lsdem_shape *A = shape[i], *B = shape[j];
+  const bool sphere_a = A->sdf.kind == LSDEM_SDF_SPHERE;
+  const bool sphere_b = B->sdf.kind == LSDEM_SDF_SPHERE;
+  const tagint tagj = atom->tag[j];
+
+  const lsdem_node_hist *hin = nullptr;
+  lsdem_node_hist *hout = nullptr;
+  int nin = 0, nout = 0;
+  FixLsdemHistory *store = prm.mu > 0.0 ? fix_history : nullptr;
+  if (store) {
+    hin = store->find(i, tagj, nin);
+    hout = store->reserve(sphere_a ? 1 : A->nnodes);
+  }
+
+  lsdem_contact_result res;
+  if (sphere_a) {
+    const double ra = A->sdf.a[0];
+    const double area = MY_PI * ra * ra;  // traction law: the sphere's cross-section
+    if (sphere_b)
+      lsdem_contact_sphere_sphere(ra, area, &pose[i], B->sdf.a[0], &pose[j], &prm, step, hin, nin,
+                                  hout, &nout, &res);
+    else
+      lsdem_contact_sphere_shape(ra, area, &pose[i], B, &pose[j], &prm, step, hin, nin, hout,
+                                 &nout, &res);
+  } else {
+    lsdem_contact_nodes(A, &pose[i], B, &pose[j], &prm, step, hin, nin, hout, &nout, &res);
+  }
+  if (store) store->commit(tagj, nout);
+
+  ntested_pairs++;
+  ntested_nodes += res.ntested;
+  npen_nodes += res.npen;
+  if (res.npen > 0) add_contact(i, j, scale, res);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairLsdem::add_contact(int i, int j, double scale, const lsdem_contact_result &res)
+{
+  if (ncontact == maxcontact) {
+    maxcontact = std::max(64, 2 * maxcontact);
+    contact = (Contact *) memory->srealloc(contact, sizeof(Contact) * maxcontact, "pair:contact");
+  }
+  Contact &c = contact[ncontact++];
+  c.i = i;
+  c.j = j;
+  // the test made by the one-way master decides whether the pair is in contact
+  c.counts = (scale == 1.0 || atom->tag[i] < atom->tag[j]) ? 1 : 0;
+  c.scale = scale;
+  c.res = res;
+}
+
+/* ----------------------------------------------------------------------
+   force/torque on master i and the reaction on j (eqs 2.3, 2.5, 2.11, 2.15, 2.16).
+   zcap (report §3.3.3): a pair whose grains have more than zcap contacts is scaled
+   by zcap/count of the busier grain, equally on both sides (action = reaction).
+------------------------------------------------------------------------- */
+
+void PairLsdem::apply_contacts()
+{
+  if (zcap > 0) coordination(1);
+  double **f = atom->f, **torque = atom->torque;
+  for (int c = 0; c < ncontact; c++) {
+    Contact &k = contact[c];
+    if (zcap > 0) {
+      double busiest = std::max(ncount[k.i], ncount[k.j]);
+      if (busiest > zcap) k.scale *= zcap / busiest;
+    }
+    const double s = k.scale;
+    for (int d = 0; d < 3; d++) {
+      f[k.i][d] += s * k.res.force[d];
+      torque[k.i][d] += s * k.res.torque_a[d];
+      f[k.j][d] -= s * k.res.force[d];
+      torque[k.j][d] += s * k.res.torque_b[d];
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   contacts per grain (partners with >= 1 penetrating node, eq 3.15) from the
+   last force call, summed onto owners; to_ghosts also copies them to ghosts
+------------------------------------------------------------------------- */
+
+const double *PairLsdem::coordination(int to_ghosts)
+{
+  const int nall = atom->nlocal + atom->nghost;
+  for (int i = 0; i < nall; i++) ncount[i] = 0.0;
+  for (int c = 0; c < ncontact; c++)
+    if (contact[c].counts) {
+      ncount[contact[c].i] += 1.0;
+      ncount[contact[c].j] += 1.0;
+    }
+  comm->reverse_comm_pair(this);
+  if (to_ghosts) comm->forward_comm_pair(this);
+  return ncount;
+}
+
+/* ----------------------------------------------------------------------
+   local workload of the last force call into pvector (see constructor)
+------------------------------------------------------------------------- */
+
+void PairLsdem::tally_workload()
+{
+  double ncontacting = 0.0;
+  for (int c = 0; c < ncontact; c++) ncontacting += contact[c].counts;
+  pvector[0] = (double) ntested_pairs;
+  pvector[1] = ncontacting;
+  pvector[2] = (double) ntested_nodes;
+  pvector[3] = (double) npen_nodes;
+}
+
+/* ----------------------------------------------------------------------
+   at setup: warn about grains that start heavily overlapping
+------------------------------------------------------------------------- */
+
+static double equivalent_radius(const lsdem_shape *s)
+{
+  return cbrt(3.0 * s->volume / (4.0 * MY_PI));
+}
+
+void PairLsdem::report_overlaps()
+{
+  struct {
+    double ratio;
+    int rank;
+  } mine = {0.0, comm->me}, worst;
+  double info[4] = {0.0, 0.0, 0.0, 0.0};  // tag i, tag j, depth, radius
+  bigint nover = 0, nover_all = 0;
+  for (int c = 0; c < ncontact; c++) {
+    const Contact &k = contact[c];
+    double req = std::min(equivalent_radius(shape[k.i]), equivalent_radius(shape[k.j]));
+    double ratio = k.res.max_depth / req;
+    if (ratio > OVERLAP_WARN) nover++;
+    if (ratio > mine.ratio) {
+      mine.ratio = ratio;
+      info[0] = (double) atom->tag[k.i];
+      info[1] = (double) atom->tag[k.j];
+      info[2] = k.res.max_depth;
+      info[3] = req;
+    }
+  }
+  MPI_Allreduce(&mine, &worst, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
+  if (worst.ratio <= OVERLAP_WARN) return;
+  MPI_Allreduce(&nover, &nover_all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  MPI_Bcast(info, 4, MPI_DOUBLE, worst.rank, world);
+  if (comm->me == 0)
+    error->warning(FLERR,
+                   "pair lsdem: {} contact tests find a node deeper than {:.0f}% of the smaller "
+                   "grain's equivalent radius; deepest: grains {} and {}, depth {:.4g} = {:.1f}% "
+                   "of {:.4g}. Large repulsive forces follow: separate the grains first (e.g. "
+                   "a short run with a small time step, or a lower kn)",
+                   nover_all, 100.0 * OVERLAP_WARN, (tagint) info[0], (tagint) info[1], info[2],
+                   100.0 * worst.ratio, info[3]);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void *PairLsdem::extract(const char *str, int &dim)
+{
+  dim = 0;
+  if (strcmp(str, "kn_max") == 0) return (void *) &kn_max;
+  return nullptr;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int PairLsdem::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
+{
+  for (int k = 0; k < n; k++) buf[k] = ncount[list[k]];
+  return n;
+}
+
+void PairLsdem::unpack_forward_comm(int n, int first, double *buf)
+{
+  for (int k = 0; k < n; k++) ncount[first + k] = buf[k];
+}
+
+int PairLsdem::pack_reverse_comm(int n, int first, double *buf)
+{
+  for (int k = 0; k < n; k++) buf[k] = ncount[first + k];
+  return n;
+}
+
+void PairLsdem::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  for (int k = 0; k < n; k++) ncount[list[k]] += buf[k];
+}
+
+/* ----------------------------------------------------------------------
+   restart: settings, then for each I <= J the setflag and coefficients
+------------------------------------------------------------------------- */
+
+void PairLsdem::write_restart_settings(FILE *fp)
+{
+  int lawi = (int) law;
+  fwrite(&mode, sizeof(int), 1, fp);
+  fwrite(&lawi, sizeof(int), 1, fp);
+  fwrite(&stride, sizeof(int), 1, fp);
+  fwrite(&zcap, sizeof(int), 1, fp);
+}
+
+void PairLsdem::read_restart_settings(FILE *fp)
+{
+  int v[4] = {0, 0, 0, 0};
+  if (comm->me == 0) utils::sfread(FLERR, v, sizeof(int), 4, fp, nullptr, error);
+  MPI_Bcast(v, 4, MPI_INT, 0, world);
+  mode = v[0];
+  law = (lsdem_normal_law) v[1];
+  stride = v[2];
+  zcap = v[3];
+}
+
+void PairLsdem::write_restart(FILE *fp)
+{
+  write_restart_settings(fp);
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      fwrite(&setflag[i][j], sizeof(int), 1, fp);
+      if (setflag[i][j]) {
+        const lsdem_contact_params &p = params[i][j];
+        double c[5] = {p.kn, p.ks, p.mu, p.cn, p.ct};
+        fwrite(c, sizeof(double), 5, fp);
+      }
+    }
+}
+
+void PairLsdem::read_restart(FILE *fp)
+{
+  read_restart_settings(fp);
+  allocate();
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      if (comm->me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
+      MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
+      if (!setflag[i][j]) continue;
+      double c[5];
+      if (comm->me == 0) utils::sfread(FLERR, c, sizeof(double), 5, fp, nullptr, error);
+      MPI_Bcast(c, 5, MPI_DOUBLE, 0, world);
+      lsdem_contact_params &p = params[i][j];
+      p.kn = c[0];
+      p.ks = c[1];
+      p.mu = c[2];
+      p.cn = c[3];
+      p.ct = c[4];
+    }
+}
+
+/* ----------------------------------------------------------------------
+   interaction range for neighbor multi: the sum of bounding radii
+------------------------------------------------------------------------- */
+
+double PairLsdem::atom2cut(int i)
+{
+  return 2.0 * atom->radius[i];
+}
+
+double PairLsdem::radii2cut(double r1, double r2)
+{
+  return r1 + r2;
+}
+
+/* ---------------------------------------------------------------------- */
+
+double PairLsdem::memory_usage()
+{
+  double bytes = (double) nmax_atom * (sizeof(lsdem_pose) + sizeof(lsdem_shape *) + sizeof(double));
+  bytes += (double) maxcontact * sizeof(Contact);
+  return bytes;
+}

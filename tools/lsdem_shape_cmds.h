@@ -1,0 +1,14 @@
+/* lsdem_shape_cmds.h -- subcommands of lsdem-shape that live in their own files
+ * (tools/shape_<name>.c). Each takes the arguments after its name and returns the exit code
+ * (0 ok, 1 failure with a message on stderr, 2 usage error). Register a new one with one line
+ * here and one entry in the table in lsdem_shape.c's main(). */
+#ifndef LSDEM_SHAPE_CMDS_H
+#define LSDEM_SHAPE_CMDS_H
+
+int cmd_render(int argc, char **argv);  /* shape_render.c */
+int cmd_surface(int argc, char **argv); /* shape_render.c */
+
+int cmd_from_labels(int argc, char **argv); /* shape_labels.c */
+int cmd_from_mesh(int argc, char **argv);   /* shape_mesh.c */
+
+#endif

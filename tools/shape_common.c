@@ -1,0 +1,61 @@
+/* shape_common.c -- command-line plumbing shared by the lsdem-shape subcommands. */
+#include "shape_common.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int parse_number(const char *s, int positive, double *v)
+{
+  char *end;
+  *v = strtod(s, &end);
+  return end != s && *end == '\0' && isfinite(*v) && (!positive || *v > 0.0);
+}
+
+int parse_count(const char *s, long lo, long hi, long *v)
+{
+  char *end;
+  *v = strtol(s, &end, 10);
+  return end != s && *end == '\0' && *v >= lo && *v <= hi;
+}
+
+int shape_warn_quality(const lsdem_shape *s, const char *name)
+{
+  lsdem_shape_report r;
+  lsdem_error err;
+  char text[1536];
+  if (lsdem_shape_check(s, &r, &err) != LSDEM_OK) {
+    fprintf(stderr, "lsdem-shape: warning: %s: not checked: %s\n", name, err.msg);
+    return 0;
+  }
+  lsdem_shape_report_text(&r, text, sizeof text);
+  for (char *line = strtok(text, "\n"); line; line = strtok(NULL, "\n"))
+    fprintf(stderr, "lsdem-shape: warning: %s: %s\n", name, line);
+  return r.warnings;
+}
+
+int shape_write_data(const char *path, const char *title, int n, const int *shape,
+                     double density, const double *pos, const double *quat, const double lo[3],
+                     const double hi[3])
+{
+  FILE *f = fopen(path, "w");
+  if (!f) {
+    fprintf(stderr, "lsdem-shape: cannot write the data file %s\n", path);
+    return 1;
+  }
+  fprintf(f, "%s\n\n%d atoms\n1 atom types\n\n", title, n);
+  for (int k = 0; k < 3; k++)
+    fprintf(f, "%.12g %.12g %clo %chi\n", lo[k], hi[k], 'x' + k, 'x' + k);
+  fprintf(f, "\nAtoms # lsdem\n\n");
+  for (int i = 0; i < n; i++) {
+    const double *x = pos + 3 * i, *q = quat + 4 * i;
+    fprintf(f, "%d 1 %d %.12g %.12g %.12g %.12g %.15g %.15g %.15g %.15g\n", i + 1, shape[i],
+            density, x[0], x[1], x[2], q[0], q[1], q[2], q[3]);
+  }
+  if (fclose(f) != 0) {
+    fprintf(stderr, "lsdem-shape: writing the data file %s failed\n", path);
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,24 @@
+/* shape_common.h -- command-line plumbing shared by the lsdem-shape subcommands
+ * (lsdem_shape.c and tools/shape_<name>.c). */
+#ifndef LSDEM_SHAPE_COMMON_H
+#define LSDEM_SHAPE_COMMON_H
+
+#include "lsdem.h"
+
+/* A whole-string finite number into *v; positive when `positive` is set. 1 if valid. */
+int parse_number(const char *s, int positive, double *v);
+/* A whole-string integer in [lo, hi] into *v. 1 if valid. */
+int parse_count(const char *s, long lo, long hi, long *v);
+
+/* Print the warnings of the shared quality checks (lsdem_shape_check) for one shape as
+ * "lsdem-shape: warning: NAME: ..." lines on stderr; returns the LSDEM_CHECK_* bits. */
+int shape_warn_quality(const lsdem_shape *s, const char *name);
+
+/* A LAMMPS data file for atom_style lsdem: n grains, shape[i] the 1-based shape-ID,
+ * positions 3n, quaternions 4n (scalar-first, body -> world), one density, box lo/hi.
+ * Returns 0, or 1 after a message on stderr. */
+int shape_write_data(const char *path, const char *title, int n, const int *shape,
+                     double density, const double *pos, const double *quat, const double lo[3],
+                     const double hi[3]);
+
+#endif

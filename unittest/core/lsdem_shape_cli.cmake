@@ -1,0 +1,46 @@
+# lsdem_shape_cli.cmake -- end-to-end run of the lsdem-shape tool (cmake -P script).
+#   cmake -DTOOL=<path to lsdem-shape> -DWORK=<scratch dir> -P lsdem_shape_cli.cmake
+# Expectations are closed forms: sphere R=2 has volume 4/3 pi 8 = 33.5103; ellipsoid
+# 3 2 1 has 4/3 pi 6 = 25.1327, a grid of 2a/h + 1 + 2*3 margin samples per axis at the
+# default spacing h = 1/10 of the smallest semi-axis, and 25132.7 in voxel units of 0.1.
+file(MAKE_DIRECTORY ${WORK})
+
+function(run expect_ok)
+  execute_process(COMMAND ${TOOL} ${ARGN} WORKING_DIRECTORY ${WORK}
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(expect_ok AND NOT rc EQUAL 0)
+    message(FATAL_ERROR "lsdem-shape ${ARGN}: exit ${rc}\n${out}${err}")
+  elseif(NOT expect_ok AND rc EQUAL 0)
+    message(FATAL_ERROR "lsdem-shape ${ARGN}: succeeded, expected a failure\n${out}")
+  elseif(NOT expect_ok AND NOT err MATCHES "lsdem-shape")
+    message(FATAL_ERROR "lsdem-shape ${ARGN}: failed without a message")
+  endif()
+  set(out "${out}" PARENT_SCOPE)
+endfunction()
+
+function(expect_in text)
+  foreach(needle ${ARGN})
+    string(FIND "${text}" "${needle}" at)
+    if(at LESS 0)
+      message(FATAL_ERROR "expected '${needle}' in:\n${text}")
+    endif()
+  endforeach()
+endfunction()
+
+run(1 analytic s.lslib sphere 2 --analytic --nodes 50 --name ball)
+run(1 analytic e.lslib ellipsoid 3 2 1 --nodes 120)
+run(1 merge m.lslib s.lslib e.lslib)
+run(1 list m.lslib)
+expect_in("${out}" "2 shapes" "ball" "sphere" "33.5103" "ellipsoid" "25.1327" "67x47x27 h=0.1")
+run(1 verify m.lslib)
+expect_in("${out}" "0 bad")
+run(1 to-morph m.lslib 1 e.dat)
+run(1 from-morph back.lslib e.dat)
+run(1 list back.lslib)
+expect_in("${out}" "1 shape" " e " "25132.7" "120")
+run(0 to-morph m.lslib 0 x.dat)          # analytic sphere: no grid
+run(0 to-morph m.lslib 2 x.dat)          # no such index
+run(0 list missing.lslib)
+run(0 analytic x.lslib cube 1)
+run(0 from-morph x.lslib s.lslib)        # a library is not a morphology file
+message(STATUS "lsdem-shape CLI: all checks passed")

@@ -1,0 +1,71 @@
+"""contact_decks -- small building blocks shared by the contact-style tests
+(pair_style lsdem, fix wall/lsdem, compute contact/lsdem): shape libraries, data files
+and the common head of an input deck."""
+import math
+import os
+
+from lsdemtest import shape_tool
+
+
+def sphere_library(path, radius, spacing, nodes):
+    """A level-set (grid) sphere; one shape."""
+    if not os.path.exists(path):
+        shape_tool("analytic", path, "sphere", radius, "--spacing", spacing, "--nodes", nodes)
+    return path
+
+
+def box_library(path, half, spacing, nodes):
+    """A level-set (grid) cube of half-side `half`; one shape."""
+    if not os.path.exists(path):
+        shape_tool("analytic", path, "box", half, half, half, "--spacing", spacing,
+                   "--nodes", nodes)
+    return path
+
+
+def quat_axis_angle(axis, angle):
+    """Scalar-first unit quaternion of a rotation by `angle` about `axis`."""
+    n = math.sqrt(sum(a * a for a in axis))
+    s = math.sin(angle / 2) / n
+    return (math.cos(angle / 2), axis[0] * s, axis[1] * s, axis[2] * s)
+
+
+class Grain:
+    def __init__(self, x, q=(1, 0, 0, 0), v=(0, 0, 0), w=(0, 0, 0), shape=1, type=1,
+                 density=1.0):
+        self.x, self.q, self.v, self.w = x, q, v, w
+        self.shape, self.type, self.density = shape, type, density
+
+
+def write_data(path, box, grains, ids=None, ntypes=1):
+    """A data file for atom_style lsdem. box = (xlo, xhi, ylo, yhi, zlo, zhi);
+    ids = the atom ID of each grain (default 1..N, in order)."""
+    ids = ids or list(range(1, len(grains) + 1))
+    lines = ["LAMMPS data file (contact tests)", "",
+             "%d atoms" % len(grains), "%d atom types" % ntypes, "",
+             "%r %r xlo xhi" % box[0:2], "%r %r ylo yhi" % box[2:4], "%r %r zlo zhi" % box[4:6],
+             "", "Atoms # lsdem", ""]
+    for i, g in zip(ids, grains):
+        lines.append("%d %d %d %r %r %r %r %r %r %r %r" % ((i, g.type, g.shape, g.density)
+                                                             + tuple(g.x) + tuple(g.q)))
+    lines += ["", "Velocities", ""]
+    for i, g in zip(ids, grains):
+        lines.append("%d %r %r %r %r %r %r" % ((i,) + tuple(g.v) + tuple(g.w)))
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return path
+
+
+def head(library, data, boundary="p p f", extra=""):
+    """The lines every contact deck starts with."""
+    return """units lj
+atom_style lsdem library %s
+atom_modify map array
+boundary %s
+newton on
+comm_modify vel yes
+%s
+read_data %s
+""" % (os.path.abspath(library), boundary, extra, os.path.abspath(data))
+
+
+THERMO_FULL = "thermo_modify norm no format float %.17g\n"

@@ -1,0 +1,202 @@
+"""atom_style lsdem: shape library report, data file input/output, restart, migration
+between ranks, replicate, compute property/atom names, input errors, hybrid use.
+
+Expected masses and moments come from closed forms (grain_decks.closed_form); restart and
+migration are checked by continuing a run through a restart file and on 2 ranks, which must
+reproduce an uninterrupted single-rank run (this needs the integrator state dwprev too)."""
+import math
+import re
+
+from lsdemtest import run_lmp, shape_tool, check, near, finish
+import grain_decks as gd
+
+LIB = gd.library()
+
+# 1-based shape IDs, non-normalised quaternions on purpose; speeds carry grains across
+# the periodic box and between ranks within the runs below
+GRAINS = [
+    dict(id=1, shape=1, density=2.5, x=(0.5, -1.0, 2.0), q=(0.9, 0.2, -0.3, 0.4),
+         v=(0.3, -0.2, 0.1), w=(0.7, -1.1, 1.9)),
+    dict(id=2, shape=2, density=1.0, x=(5.0, 0.0, 0.0), q=(2.0, 0.0, 0.0, 0.0),
+         v=(-0.5, 0.0, 0.2), w=(0.0, 0.0, 0.0)),
+    dict(id=3, shape=3, density=3.0, x=(-5.0, 3.0, -4.0), q=(0.5, 0.5, 0.5, 0.5),
+         v=(0.1, 0.4, -0.3), w=(2.0, -1.0, 0.5)),
+    dict(id=4, shape=1, density=0.7, x=(8.0, 8.0, -8.0), q=(0.0, 1.0, 0.0, 0.0),
+         v=(1.5, 1.2, -0.9), w=(-0.4, 0.3, 1.2)),
+    dict(id=5, shape=3, density=1.3, x=(-8.0, -8.0, 8.0), q=(0.1, -0.7, 0.2, 0.3),
+         v=(-1.3, -1.1, 0.8), w=(0.9, 0.9, -0.9)),
+]
+gd.write_data("grains.data", GRAINS)
+
+HEAD = "units lj\natom_style lsdem library %s\n" % LIB
+
+
+def section(path, name):
+    """The lines of one data file section (without the title)."""
+    text = open(path).read()
+    body = text.split("\n" + name)[1].split("\n\n", 2)[1]
+    return body.strip().splitlines()
+
+
+# ---- library report and data input --------------------------------------------------
+rc, log = run_lmp(HEAD + "read_data grains.data\n" + gd.PROPS + gd.dump_line("d", 1, "a.dump")
+                  + "run 0\nwrite_data a.data\n")
+check("LSDEM shape library: 3 shapes" in log, "library summary line missing")
+for sid, name, kind in ((1, "ellipsoid", "grid"), (2, "sphere", "sphere"), (3, "box", "grid")):
+    vol = gd.closed_form(sid)[0]
+    check(re.search(r"^\s+%d\s+%s\s+%s\s+\d+\s+\S+\s+%s\s*$" % (sid, name, kind, "%.6g" % vol),
+                    log, re.M), "shape line %d %s %s %.6g not in the log" % (sid, name, kind, vol))
+# coarse grids: spacing > R/10 with R the equivalent-volume radius; the ball has no grid
+for sid, name, h in ((1, "ellipsoid", 0.2), (3, "box", 0.25)):
+    req = (3 * gd.closed_form(sid)[0] / (4 * math.pi)) ** (1 / 3)
+    want = "shape %d (%s) has grid spacing %g, coarser than R/10 = %.6g" % (sid, name, h, 0.1 * req)
+    check(want in log, "coarse-grid warning missing: %s" % want)
+check("shape 2 (" not in log, "the analytic ball must not get a grid warning")
+
+# more than 20 shapes: one summary line instead of a table; coarse-grid warnings name at
+# most 10 shapes and count the rest
+shape_tool("merge", "many.lslib", *(["ball.lslib"] * 8 + ["box.lslib"] * 13))
+rc, log = run_lmp("units lj\natom_style lsdem library many.lslib\n")
+check("LSDEM shape library: 21 shapes" in log and "bounding radius 0.5 to " in log
+      and not re.search(r"^\s+21\s+box", log, re.M), "summary for 21 shapes:\n" + log[-800:])
+named = re.findall(r"shape (\d+) \(box\) has grid spacing", log)
+check(named == [str(k) for k in range(9, 19)] and "3 more shapes have grid spacings" in log,
+      "coarse warnings for shapes 9..18 and a count of 3 more: %r" % named)
+
+frame = gd.read_dump("a.dump")[0][1]
+for g in GRAINS:
+    a = frame[g["id"]]
+    vol, inertia = gd.closed_form(g["shape"])
+    near(a["mass"], g["density"] * vol, rtol=1e-13, msg="mass of grain %d" % g["id"])
+    for k in range(3):
+        near(a["c_p[%d]" % (6 + k)], g["density"] * inertia[k], rtol=1e-13,
+             msg="inertia%d of grain %d" % (k + 1, g["id"]))
+    check(a["c_p[5]"] == g["shape"], "shape-ID of grain %d: %g" % (g["id"], a["c_p[5]"]))
+    qn = gd.qnormalize(g["q"])
+    for k in range(4):
+        near(gd.quat(a)[k], qn[k], atol=1e-15, msg="normalised quat of grain %d" % g["id"])
+    for k, c in enumerate("xyz"):
+        check(a[c] == g["x"][k], "position of grain %d" % g["id"])
+        check(a["omega" + c] == g["w"][k], "omega of grain %d" % g["id"])
+near(frame[2]["radius"], gd.BALL, rtol=1e-15, msg="bounding radius of the analytic ball")
+check(frame[1]["radius"] >= gd.ELL[0] and frame[3]["radius"] >= gd.norm(gd.BOX),
+      "bounding radii must contain the solids")
+
+# ---- write_data -> read_data round trip ---------------------------------------------
+atoms_a = section("a.data", "Atoms")
+for line, g in zip(atoms_a, GRAINS):
+    w = line.split()
+    check(int(w[0]) == g["id"] and int(w[2]) == g["shape"], "write_data id/shape: " + line)
+    near(float(w[3]), g["density"], rtol=1e-15, msg="write_data density of grain %d" % g["id"])
+    check(tuple(map(float, w[4:7])) == g["x"], "write_data position: " + line)
+rc, log = run_lmp(HEAD + "read_data a.data\nwrite_data b.data\n")
+check(section("a.data", "Atoms") == section("b.data", "Atoms"),
+      "Atoms section changed in a write_data/read_data round trip")
+check(section("a.data", "Velocities") == section("b.data", "Velocities"),
+      "Velocities section changed in a write_data/read_data round trip")
+
+# ---- restart and migration: every path must reproduce one uninterrupted run ----------
+RUN = gd.PROPS + "fix 1 all nve/lsdem\ntimestep 0.005\n"
+run_lmp(HEAD + "read_data grains.data\n" + RUN + gd.dump_line("d", 1200, "ref.dump")
+        + "run 1200\n")
+run_lmp(HEAD + "read_data grains.data\n" + RUN + gd.dump_line("d", 1200, "np2.dump")
+        + "run 600\nwrite_restart mid.restart\nrun 600\n", np=2)
+run_lmp("read_restart mid.restart\n" + RUN + gd.dump_line("d", 1200, "rst1.dump")
+        + "run 600\n")
+run_lmp("read_restart mid.restart\n" + RUN + gd.dump_line("d", 1200, "rst2.dump")
+        + "run 600\n", np=2)
+ref = gd.read_dump("ref.dump")[-1]
+check(ref[0] == 1200, "reference run ends at step 1200")
+moved = sum(1 for g in GRAINS if any(abs(ref[1][g["id"]][c] - g["x"][k]) > 3.0
+                                     for k, c in enumerate("xyz")))
+check(moved >= 3, "grains should travel across the box in the reference run")
+for name in ("np2.dump", "rst1.dump", "rst2.dump"):
+    step, atoms = gd.read_dump(name)[-1]
+    check(step == 1200 and len(atoms) == len(GRAINS), "%s: final frame" % name)
+    for i, a in atoms.items():
+        r = ref[1][i]
+        for c in ("x", "y", "z"):  # wrapping at different steps changes the last bits
+            near(a[c], r[c], atol=1e-11, msg="%s grain %d %s" % (name, i, c))
+        for c in ("vx", "vy", "vz", "omegax", "omegay", "omegaz", "mass", "c_p[5]", "c_p[6]",
+                  "c_p[7]", "c_p[8]", "c_p[1]", "c_p[2]", "c_p[3]", "c_p[4]"):
+            near(a[c], r[c], rtol=1e-13, atol=1e-15, msg="%s grain %d %s" % (name, i, c))
+
+# ---- ghosts: quat/omega forward, torque reverse; contacts across ranks match one rank --
+CHAIN = []
+for i, (x, y) in enumerate([(x, y) for x in (-3.0, -1.0, 1.0, 3.0) for y in (-1.3, 1.3)]):
+    s = 0.37 * (i + 1)
+    CHAIN.append(dict(id=i + 1, shape=1 if i % 2 == 0 else 3, density=1.0,
+                      x=(x + 0.05 * math.sin(7 * s), y, 0.05 * i),
+                      q=gd.qnormalize((math.cos(s), math.sin(2 * s), math.cos(3 * s), 0.3)),
+                      v=(0.4 * math.sin(5 * s), 0.3 * math.cos(3 * s), 0.2 * math.sin(s)),
+                      w=(math.cos(2 * s), math.sin(3 * s), math.cos(5 * s))))
+gd.write_data("chain.data", CHAIN, box=(-6.0, 6.0, -4.0, 4.0, -4.0, 4.0))
+CONTACT = (HEAD + "atom_modify map array\nnewton on\ncomm_modify vel yes\nread_data chain.data\n"
+           + gd.PROPS + "pair_style lsdem\npair_coeff * * 1000 1000 0.5\n"
+           "fix 1 all nve/lsdem\ntimestep 0.001\n")
+run_lmp(CONTACT + gd.dump_line("d", 2000, "chain1.dump") + "run 2000\n")
+run_lmp(CONTACT + gd.dump_line("d", 2000, "chain2.dump") + "run 2000\n", np=2)
+c0, c1 = gd.read_dump("chain1.dump")[0][1], gd.read_dump("chain1.dump")[-1][1]
+c2 = gd.read_dump("chain2.dump")[-1][1]
+check(max(abs(c1[i][c] - c0[i][c]) for i in c0 for c in ("vx", "omegax", "omegay")) > 0.1,
+      "the chain grains should collide")
+for i in c1:
+    for c in c1[i]:
+        near(c2[i][c], c1[i][c], atol=1e-9, msg="chain grain %d %s on 2 ranks vs 1" % (i, c))
+
+# ---- replicate keeps shapes, orientations and masses ---------------------------------
+run_lmp(HEAD + "read_data grains.data\nreplicate 2 1 1\n" + gd.PROPS
+        + gd.dump_line("d", 1, "rep.dump") + "run 0\n")
+rep = gd.read_dump("rep.dump")[0][1]
+check(len(rep) == 2 * len(GRAINS), "replicate 2 1 1 doubles the grains")
+for g in GRAINS:
+    a, b = rep[g["id"]], rep[g["id"] + len(GRAINS)]
+    for c in ("mass", "radius", "c_p[1]", "c_p[2]", "c_p[3]", "c_p[4]", "c_p[5]", "c_p[6]",
+              "omegax", "omegay", "omegaz", "y", "z"):
+        check(a[c] == b[c], "replicated grain %d: %s %r vs %r" % (g["id"], c, a[c], b[c]))
+
+# ---- input errors name the offending atom and the valid range ------------------------
+bad = [dict(g) for g in GRAINS]
+bad[1]["shape"] = 4
+gd.write_data("badshape.data", bad)
+rc, log = run_lmp(HEAD + "read_data badshape.data\n", expect_fail=True)
+check(rc != 0 and "Atom 2 in Atoms section has shape-ID 4; the shape library has shapes 1 to 3"
+      in log, "out-of-range shape-ID error:\n" + log[-600:])
+bad = [dict(g) for g in GRAINS]
+bad[2]["q"] = (0.0, 0.0, 0.0, 0.0)
+gd.write_data("badquat.data", bad)
+rc, log = run_lmp(HEAD + "read_data badquat.data\n", expect_fail=True)
+check(rc != 0 and "Atom 3 in Atoms section has invalid quaternion" in log,
+      "zero quaternion error:\n" + log[-600:])
+rc, log = run_lmp("atom_style lsdem library no-such-file.lslib\n", expect_fail=True)
+check(rc != 0 and "cannot open shape library no-such-file.lslib" in log,
+      "missing library error:\n" + log[-600:])
+rc, log = run_lmp("atom_style lsdem grains.lslib\n", expect_fail=True)
+check(rc != 0 and "Illegal atom_style lsdem command" in log, "bad syntax error")
+
+# ---- hybrid with bonds (membranes): create, run, restart, run again -------------------
+rc, log = run_lmp("""units lj
+atom_style hybrid lsdem library %s bond
+region b block -5 5 -5 5 -5 5
+create_box 1 b bond/types 1 extra/bond/per/atom 2
+mass 1 1.0
+create_atoms 1 single 0 0 0
+create_atoms 1 single 3 0 0
+velocity all set 0.1 0 0
+fix 1 all nve/lsdem
+run 10
+write_restart hybrid.restart
+clear
+read_restart hybrid.restart
+fix 1 all nve/lsdem
+%s
+run 10
+""" % (LIB, gd.PROPS + gd.dump_line("d", 20, "hyb.dump")))
+hyb = gd.read_dump("hyb.dump")[-1][1]
+vol = gd.closed_form(1)[0]
+check(rc == 0 and len(hyb) == 2, "hybrid lsdem/bond run through a restart")
+for i, x0 in ((1, 0.0), (2, 3.0)):
+    near(hyb[i]["x"], x0 + 0.1 * 20 * 0.005, atol=1e-12, msg="hybrid grain %d moved" % i)
+    near(hyb[i]["mass"], vol, rtol=1e-13, msg="create_atoms grain: shape 1 at density 1")
+
+finish()
