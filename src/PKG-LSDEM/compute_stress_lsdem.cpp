@@ -27,7 +27,7 @@
 #include <cstring>
 
 using namespace LAMMPS_NS;
-using MathConst::RAD2DEG;
+using MathConst::MY_PI;
 
 // vector: sxx syy szz sxy sxz syz p q phi_mob(deg) sigma1 sigma3
 static constexpr int NVALUES = 11;
@@ -158,7 +158,7 @@ void ComputeStressLsdem::compute_vector()
   vector[5] = sigma[5];
   vector[6] = lsdem_stress_mean(sigma);
   vector[7] = lsdem_stress_deviatoric(sigma);
-  vector[8] = RAD2DEG * lsdem_friction_angle(s[0], s[2]);
+  vector[8] = (180.0 / MY_PI) * lsdem_friction_angle(s[0], s[2]);
   vector[9] = s[0];
   vector[10] = s[2];
 }
