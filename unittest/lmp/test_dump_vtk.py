@@ -10,10 +10,11 @@ and every vertex lies within the grain's bounding radius of its centre."""
 import math
 import os
 import struct
+import subprocess
 import xml.etree.ElementTree as ET
 import zlib
 
-from lsdemtest import run_lmp, shape_tool, check, near, finish
+from lsdemtest import SHAPE_TOOL, run_lmp, shape_tool, check, near, finish
 import grain_decks as gd
 
 LIB = gd.library()
@@ -149,6 +150,15 @@ check(len(ET.parse("out/grains.pvd").getroot().findall("./Collection/DataSet")) 
       and os.path.exists("out/grains_20.vtp"), "files lost after a failing command")
 ET.parse("out/grains_20.vtp")
 
+# spacing 2: coarser lattices, about 4 times fewer triangles, grains still complete
+for f in os.listdir("out"):
+    os.remove(os.path.join("out", f))
+run_lmp(deck().replace("out/grains\n", "out/grains spacing 2.0\n"))
+n2, t2, pts2, a2 = read_vtp("out/grains_0.vtp")
+t1 = sum(ntri[g["shape"]] for g in GRAINS)
+check(0.15 * t1 < t2 < 0.4 * t1 and set(a2["id"]) == {g["id"] for g in GRAINS},
+      "spacing 2: %d triangles vs %d at spacing 1" % (t2, t1))
+
 # input errors
 rc, log = run_lmp("units lj\natom_style lsdem library %s\nread_data grains.data\n"
                   "dump v all lsdem/vtk 10 out/g*\n" % LIB, expect_fail=True)
@@ -157,23 +167,48 @@ rc, log = run_lmp("units lj\natom_style sphere\nregion b block 0 1 0 1 0 1\ncrea
                   "dump v all lsdem/vtk 10 g\n", expect_fail=True)
 check("requires atom_style lsdem" in log, "atom style not checked: %s" % log[-300:])
 
-# ---- lsdem-shape render of the last dump frame --------------------------------------
+# ---- lsdem-shape render of the last dump frame and of the data file -----------------
+def read_png(path):
+    """(width, height, rows of RGB bytes) of an 8-bit RGB PNG, every chunk CRC checked."""
+    png = open(path, "rb").read()
+    check(png[:8] == b"\x89PNG\r\n\x1a\n", "%s: PNG signature" % path)
+    pos, idat, chunks, size = 8, b"", [], (0, 0)
+    while pos < len(png):
+        n, kind = struct.unpack(">I4s", png[pos:pos + 8])
+        data = png[pos + 8:pos + 8 + n]
+        crc, = struct.unpack(">I", png[pos + 8 + n:pos + 12 + n])
+        check(zlib.crc32(kind + data) == crc, "%s: CRC of chunk %r" % (path, kind))
+        chunks.append(kind)
+        if kind == b"IHDR":
+            size = struct.unpack(">II", data[:8])
+            check(data[8:10] == b"\x08\x02", "%s: not 8-bit RGB" % path)
+        idat += data if kind == b"IDAT" else b""
+        pos += 12 + n
+    check(chunks[0] == b"IHDR" and chunks[-1] == b"IEND", "%s: chunks %r" % (path, chunks))
+    w, h = size
+    raw = zlib.decompress(idat)
+    check(len(raw) == h * (1 + 3 * w), "%s: decompressed %d bytes" % (path, len(raw)))
+    return w, h, [raw[r * (1 + 3 * w) + 1:(r + 1) * (1 + 3 * w)] for r in range(h)]
+
+
+def covered(rows, w):
+    return sum(1 for row in rows for c in range(w) if row[3 * c:3 * c + 3] != b"\xff\xff\xff")
+
+
 shape_tool("render", LIB, "grains.dump", "frame.png", "--size", 160, 120, "--view", "z")
-png = open("frame.png", "rb").read()
-check(png[:8] == b"\x89PNG\r\n\x1a\n", "PNG signature")
-pos, idat, chunks = 8, b"", []
-while pos < len(png):
-    n, kind = struct.unpack(">I4s", png[pos:pos + 8])
-    data = png[pos + 8:pos + 8 + n]
-    crc, = struct.unpack(">I", png[pos + 8 + n:pos + 12 + n])
-    check(zlib.crc32(kind + data) == crc, "CRC of chunk %r" % kind)
-    chunks.append(kind)
-    idat += data if kind == b"IDAT" else b""
-    pos += 12 + n
-check(chunks[0] == b"IHDR" and chunks[-1] == b"IEND", "chunks %r" % chunks)
-raw = zlib.decompress(idat)
-check(len(raw) == 120 * (1 + 3 * 160), "decompressed %d bytes" % len(raw))
-rows = [raw[r * 481 + 1:(r + 1) * 481] for r in range(120)]
-covered = sum(1 for row in rows for c in range(160) if row[3 * c:3 * c + 3] != b"\xff\xff\xff")
-check(0.01 * 160 * 120 < covered < 0.9 * 160 * 120, "grain pixels: %d of %d" % (covered, 160 * 120))
+w, h, rows = read_png("frame.png")
+check((w, h) == (160, 120), "frame.png is %dx%d" % (w, h))
+check(0.01 * w * h < covered(rows, w) < 0.9 * w * h, "grain pixels: %d of %d" % (covered(rows, w), w * h))
+shape_tool("render", LIB, "grains.data", "data.png", "--size", 90, 70, "--view", "y")
+w, h, rows = read_png("data.png")
+check((w, h) == (90, 70) and covered(rows, w) > 0.01 * w * h, "data.png: %dx%d" % (w, h))
+
+# readers reject what they cannot use, naming the problem
+bad = open("grains.data").read().replace("\n2 1 2 1.0 ", "\n2 1 9 1.0 ", 1)
+open("bad.data", "w").write(bad)
+open("bad.dump", "w").write(open("grains.dump").read().replace("c_p[2]", "c_q[2]"))
+for path, want in (("bad.data", "shape-ID in 1..3"), ("bad.dump", "c_NAME[1..5]")):
+    p = subprocess.run([SHAPE_TOOL, "render", LIB, path, "x.png"], stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, text=True)
+    check(p.returncode == 1 and want in p.stdout, "%s: exit %d, %s" % (path, p.returncode, p.stdout))
 finish()

@@ -252,6 +252,13 @@ lsdem_status lsdem_render(const lsdem_shape *const *shapes, int nshapes,
         !(shapes[grains[i].shape]->radius > 0.0) || !isfinite(shapes[grains[i].shape]->radius))
       return lsdem_fail(err, LSDEM_ERR_ARG, "render: grain %d has shape %d: not a shape in "
                         "0..%d with a finite radius", i, grains[i].shape, nshapes - 1);
+  for (int i = 0; i < ngrains; i++) {
+    const double *x = grains[i].x, *q = grains[i].q;
+    const double qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
+    if (!isfinite(x[0] + x[1] + x[2]) || !(fabs(qq - 1.0) < 1e-6))
+      return lsdem_fail(err, LSDEM_ERR_ARG, "render: grain %d: position not finite or "
+                        "quaternion not of unit length", i);
+  }
   camera c;
   c.w = view->width, c.h = view->height;
   memcpy(c.f, view->view, sizeof c.f);

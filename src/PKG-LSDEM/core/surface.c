@@ -27,8 +27,9 @@ typedef struct {
   int n[3];          /* lattice points per axis */
   double h, lo[3];   /* spacing, position of point (0,0,0) */
   float *phi;        /* n0*n1*n2 values */
-  int *edge_vertex;  /* 8 per lattice point: vertex on the edge to point + d (d coded
-                        0..6), vertex at the point itself (7); -1 when not yet made */
+  int *edge_vertex;  /* 8 per lattice point of two z-layers (z & 1): vertex on the edge
+                        to point + d (d coded 0..6), vertex at the point itself (7); -1
+                        when not yet made. Cubes of layer k only touch layers k, k+1. */
   lsdem_mesh *m;
   int cap_v, cap_t;
 } mesher;
@@ -36,6 +37,12 @@ typedef struct {
 static size_t point_index(const mesher *w, int i, int j, int k)
 {
   return (size_t)i + (size_t)w->n[0] * ((size_t)j + (size_t)w->n[1] * (size_t)k);
+}
+
+/* First of the 8 vertex slots of lattice point p in the two-layer table. */
+static size_t slot_index(const mesher *w, const int p[3])
+{
+  return 8 * ((size_t)p[0] + (size_t)w->n[0] * ((size_t)p[1] + (size_t)w->n[1] * (p[2] & 1)));
 }
 
 /* Lattice covering the shape: a grid shape's own samples when h <= 0, else its bounding
@@ -109,9 +116,9 @@ static int edge_vertex(mesher *w, const int a[3], const int b[3])
   const int *lo = a, *hi = b;
   if (a[0] > b[0] || a[1] > b[1] || a[2] > b[2]) lo = b, hi = a;
   const int code = (hi[0] - lo[0]) + 2 * (hi[1] - lo[1]) + 4 * (hi[2] - lo[2]) - 1;
-  size_t key = 8 * point_index(w, lo[0], lo[1], lo[2]) + (size_t)code;
-  if (fa == 0.0) key = 8 * point_index(w, a[0], a[1], a[2]) + 7;
-  if (fb == 0.0) key = 8 * point_index(w, b[0], b[1], b[2]) + 7;
+  size_t key = slot_index(w, lo) + (size_t)code;
+  if (fa == 0.0) key = slot_index(w, a) + 7;
+  if (fb == 0.0) key = slot_index(w, b) + 7;
   if (w->edge_vertex[key] >= 0) return w->edge_vertex[key];
   lsdem_mesh *m = w->m;
   if (!grow((void **)&m->verts, &w->cap_v, m->nverts + 1, 3 * sizeof(double))) return -1;
@@ -171,7 +178,7 @@ static int march_cube(mesher *w, int i, int j, int k)
 {
   for (int t = 0; t < 6; t++) {
     int p[4][3], nin = 0, order[4], lo = 0, hi = 3;
-    for (int c = 0; c < 4; c++) { /* inside corners first, original order kept */
+    for (int c = 0; c < 4; c++) { /* inside corners first, then the outside ones */
       int q[3];
       corner(i, j, k, KUHN[t][c], q);
       if (w->phi[point_index(w, q[0], q[1], q[2])] < 0.0f) order[lo++] = c, nin++;
@@ -195,17 +202,23 @@ lsdem_status lsdem_mesh_extract(const lsdem_sdf *s, double h, lsdem_mesh *m, lsd
   w.m = m;
   lsdem_status st = lattice_layout(s, h, &w, err);
   if (st != LSDEM_OK) return st;
-  const size_t np = (size_t)w.n[0] * w.n[1] * w.n[2];
+  const size_t np = (size_t)w.n[0] * w.n[1] * w.n[2], layer = (size_t)w.n[0] * w.n[1];
+  if (np > ((size_t)1 << 28))
+    return lsdem_fail(err, LSDEM_ERR_ARG, "surface mesh: lattice of %dx%dx%d points is too "
+                      "large (use a coarser spacing)", w.n[0], w.n[1], w.n[2]);
   w.phi = malloc(np * sizeof(float));
-  w.edge_vertex = malloc(8 * np * sizeof(int));
+  w.edge_vertex = malloc(16 * layer * sizeof(int));
   int ok = w.phi && w.edge_vertex;
   if (ok) {
-    memset(w.edge_vertex, 0xff, 8 * np * sizeof(int)); /* all -1 */
+    memset(w.edge_vertex, 0xff, 16 * layer * sizeof(int)); /* all -1 */
     sample_lattice(s, &w);
   }
-  for (int k = 0; ok && k + 1 < w.n[2]; k++)
+  for (int k = 0; ok && k + 1 < w.n[2]; k++) {
+    if (k > 0) /* layer k + 1 reuses the slots of layer k - 1 */
+      memset(w.edge_vertex + 8 * layer * ((k + 1) & 1), 0xff, 8 * layer * sizeof(int));
     for (int j = 0; ok && j + 1 < w.n[1]; j++)
       for (int i = 0; ok && i + 1 < w.n[0]; i++) ok = march_cube(&w, i, j, k);
+  }
   free(w.phi);
   free(w.edge_vertex);
   if (!ok) {
