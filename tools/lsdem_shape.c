@@ -10,6 +10,10 @@
  *   lsdem-shape render LIB SAMPLE OUT.png [--size W H] [--view x|y|z|iso] [--dump FRAME]
  *                      [--colour id|shape]                          (shape_render.c)
  *   lsdem-shape surface LIB INDEX OUT.vtk|OUT.ply [--spacing H]       (shape_render.c)
+ *   lsdem-shape random OUT.lslib --count K --size D [options]         (shape_random.c)
+ *   lsdem-shape pack LIB OUT.data --count N (--box X Y Z | --cylinder R H) [options]
+ *                                                                     (shape_pack.c)
+ *   lsdem-shape membrane PREFIX --radius RS --height H --rb RB ...     (shape_membrane.c)
  *
  * Exit status 0 on success, 1 on any error (with a message on stderr), 2 on bad usage. */
 #include "lsdem.h"
@@ -33,6 +37,7 @@ static int usage(void)
           "       lsdem-shape analytic OUT.lslib KIND PARAMS... [--spacing H] [--nodes N]\n"
           "                   [--name NAME] [--margin M] [--seed S] [--analytic]\n"
           "         KIND PARAMS: sphere R | ellipsoid A B C | box HX HY HZ | cylinder R HALFLEN\n"
+          "                      | superellipsoid A B C E1 E2\n"
           "       lsdem-shape merge OUT.lslib IN.lslib...\n"
           "       lsdem-shape render LIB SAMPLE OUT.png [--size W H] [--view x|y|z|iso]\n"
           "                   [--dump FRAME] [--colour id|shape]\n"
@@ -41,7 +46,17 @@ static int usage(void)
           "                   [--voxel S] [--min-voxels N] [--nodes N | --node-spacing S] [--smooth K]\n"
           "                   [--margin M] [--seed S] [--data OUT.data --density RHO]\n"
           "       lsdem-shape from-mesh MESH.stl|MESH.obj OUT.lslib [--spacing H] [--nodes N |\n"
-          "                   --node-spacing S] [--scale S] [--name NAME] [--margin M] [--seed S] [--allow-open]\n");
+          "                   --node-spacing S] [--scale S] [--name NAME] [--margin M] [--seed S] [--allow-open]\n"
+          "       lsdem-shape random OUT.lslib --count K --size D [--size-spread S] [--elongation EL]\n"
+          "                   [--flatness FL] [--angularity A] [--roughness R] [--seed S] [--nodes N]\n"
+          "                   [--spacing H] [--margin M] [--name PREFIX]\n"
+          "       lsdem-shape pack LIB OUT.data --count N (--box X Y Z | --cylinder R H) [--density RHO]\n"
+          "                   [--seed S] [--max-tries T] [--gap G] [--weights W1,W2,... |\n"
+          "                   --size-bins D0:W0,D1:W1,...,Dk] [--strict]\n"
+          "       lsdem-shape membrane PREFIX --radius RS --height H --rb RB --library LIB\n"
+          "                   --shapes SHAPE_IN SHAPE_OUT [--grains GRAINS.data] [--centre X Y]\n"
+          "                   [--z0 Z] [--outer F] [--density RHO] [--types T_IN T_OUT]\n"
+          "                   [--knbb K] [--ksbb K] [--kinter KN KS]\n");
   return 2;
 }
 
@@ -249,11 +264,19 @@ typedef struct {
 /* Closed-form volume and principal moments (density 1) of the solids, about the centroid:
  * sphere I = 2/5 V R^2; ellipsoid I_x = V (b^2 + c^2) / 5; box (half-extents) I_x =
  * V (hy^2 + hz^2) / 3; cylinder along z (half-length L) I_x = V (3 R^2 + 4 L^2) / 12,
- * I_z = V R^2 / 2. */
+ * I_z = V R^2 / 2. The superellipsoid has none: quadrature of its exact surface
+ * (lsdem_star_massprops, ~1e-5 relative); its axes are principal by symmetry. */
 static void closed_form_massprops(analytic_shape *a)
 {
   const double *p = a->sdf.a;
   double s2[3] = {0, 0, 0}; /* I_k = V * (sum of the other two s2) */
+  if (a->sdf.kind == LSDEM_SDF_SUPERELLIPSOID) {
+    lsdem_massprops mp;
+    lsdem_star_massprops(lsdem_superellipsoid_radius, &a->sdf, 256, &mp, NULL);
+    a->volume = mp.volume;
+    for (int k = 0; k < 3; k++) a->inertia[k] = mp.inertia[4 * k];
+    return;
+  }
   switch (a->sdf.kind) {
   case LSDEM_SDF_SPHERE:
     a->volume = 4.0 / 3.0 * PI * p[0] * p[0] * p[0];
@@ -282,7 +305,9 @@ static double surface_area(const analytic_shape *a)
   const double *p = a->sdf.a;
   switch (a->sdf.kind) {
   case LSDEM_SDF_SPHERE: return 4.0 * PI * p[0] * p[0];
-  case LSDEM_SDF_BOX: return 8.0 * (p[0] * p[1] + p[1] * p[2] + p[2] * p[0]);
+  case LSDEM_SDF_BOX:
+  case LSDEM_SDF_SUPERELLIPSOID: /* the box of its semi-axes: an upper bound */
+    return 8.0 * (p[0] * p[1] + p[1] * p[2] + p[2] * p[0]);
   case LSDEM_SDF_CYLINDER: return 2.0 * PI * p[0] * p[0] + 4.0 * PI * p[0] * p[1];
   default: {
     const double q = 1.6075;
@@ -308,7 +333,8 @@ static int parse_analytic(int argc, char **argv, analytic_shape *a)
     lsdem_sdf_kind kind;
     int nparams;
   } kinds[] = {{"sphere", LSDEM_SDF_SPHERE, 1}, {"ellipsoid", LSDEM_SDF_ELLIPSOID, 3},
-               {"box", LSDEM_SDF_BOX, 3}, {"cylinder", LSDEM_SDF_CYLINDER, 2}};
+               {"box", LSDEM_SDF_BOX, 3}, {"cylinder", LSDEM_SDF_CYLINDER, 2},
+               {"superellipsoid", LSDEM_SDF_SUPERELLIPSOID, 5}};
   memset(a, 0, sizeof *a);
   for (size_t k = 0; argc > 0 && k < sizeof kinds / sizeof kinds[0]; k++) {
     if (strcmp(argv[0], kinds[k].name) != 0) continue;
@@ -321,6 +347,12 @@ static int parse_analytic(int argc, char **argv, analytic_shape *a)
         return 0;
       }
     const double *p = a->sdf.a;
+    if (a->sdf.kind == LSDEM_SDF_SUPERELLIPSOID && !(p[3] >= 0.1 && p[3] <= 2.0 && p[4] >= 0.1 &&
+                                                     p[4] <= 2.0)) {
+      fprintf(stderr, "lsdem-shape: analytic: superellipsoid exponents E1 E2 must be in "
+              "[0.1, 2] (1: ellipsoid, 0.1: nearly a box, 2: a double cone / octahedron)\n");
+      return 0;
+    }
     switch (a->sdf.kind) {
     case LSDEM_SDF_SPHERE: a->half[0] = a->half[1] = a->half[2] = p[0]; break;
     case LSDEM_SDF_CYLINDER: a->half[0] = a->half[1] = p[0], a->half[2] = p[1]; break;
@@ -330,7 +362,7 @@ static int parse_analytic(int argc, char **argv, analytic_shape *a)
     return 1 + kinds[k].nparams;
   }
   fprintf(stderr, "lsdem-shape: analytic: expected sphere R | ellipsoid A B C | box HX HY HZ | "
-          "cylinder R HALFLEN, got '%s'\n", argc > 0 ? argv[0] : "");
+          "cylinder R HALFLEN | superellipsoid A B C E1 E2, got '%s'\n", argc > 0 ? argv[0] : "");
   return 0;
 }
 
@@ -471,7 +503,8 @@ int main(int argc, char **argv)
   } cmds[] = {{"list", cmd_list},         {"verify", cmd_verify},   {"from-morph", cmd_from_morph},
               {"to-morph", cmd_to_morph}, {"analytic", cmd_analytic}, {"merge", cmd_merge},
               {"render", cmd_render}, {"surface", cmd_surface},
-              {"from-labels", cmd_from_labels}, {"from-mesh", cmd_from_mesh}};
+              {"from-labels", cmd_from_labels}, {"from-mesh", cmd_from_mesh},
+              {"random", cmd_random}, {"pack", cmd_pack}, {"membrane", cmd_membrane}};
   if (argc < 2) return usage();
   for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++)
     if (!strcmp(argv[1], cmds[i].name)) return cmds[i].run(argc - 2, argv + 2);

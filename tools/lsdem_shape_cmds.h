@@ -11,4 +11,9 @@ int cmd_surface(int argc, char **argv); /* shape_render.c */
 int cmd_from_labels(int argc, char **argv); /* shape_labels.c */
 int cmd_from_mesh(int argc, char **argv);   /* shape_mesh.c */
 
+int cmd_random(int argc, char **argv); /* shape_random.c */
+int cmd_pack(int argc, char **argv);   /* shape_pack.c */
+
+int cmd_membrane(int argc, char **argv); /* shape_membrane.c */
+
 #endif

@@ -35,7 +35,7 @@ static int parse_labels_options(int argc, char **argv, labels_options *o)
 {
   memset(o, 0, sizeof *o);
   o->vox = (lsdem_voxel_options){1.0, 27, 0, 2};
-  o->nodes = 200, o->seed = 1, o->density = 0.0;
+  o->nodes = 0, o->seed = 1, o->density = 0.0; /* nodes 0: spacing d/10 (auto) */
   int have_density = 0;
   for (int i = 0; i < argc; i++) {
     const int has = i + 1 < argc;
@@ -48,7 +48,7 @@ static int parse_labels_options(int argc, char **argv, labels_options *o)
         o->dims[a] = (int)v;
       }
       o->raw = 1;
-      i += 4;
+      if (ok) i += 4;
     } else if (!strcmp(argv[i], "--big-endian")) o->big_endian = 1;
     else if (!strcmp(argv[i], "--voxel")) ok = has && parse_number(argv[++i], 1, &o->vox.voxel_size);
     else if (!strcmp(argv[i], "--min-voxels")) ok = has && parse_count(argv[++i], 1, 2147483647L, &o->vox.min_voxels);

@@ -20,7 +20,7 @@ typedef struct {
 
 static int parse_mesh_options(int argc, char **argv, mesh_options *o)
 {
-  *o = (mesh_options){0.0, 1.0, 0.0, 200, 3, 1, 0, NULL};
+  *o = (mesh_options){0.0, 1.0, 0.0, 0, 3, 1, 0, NULL}; /* nodes 0: spacing d/10 (auto) */
   for (int i = 0; i < argc; i++) {
     const int has = i + 1 < argc;
     int ok = 1;
@@ -43,7 +43,8 @@ static int parse_mesh_options(int argc, char **argv, mesh_options *o)
   return 1;
 }
 
-/* Read, scale and check the mesh; faces turned inside out are reversed. */
+/* Read, scale and check the mesh; faces turned inside out are reversed. On failure the
+ * caller frees *m (empty when reading failed). */
 static int load_mesh(const char *path, const mesh_options *o, lsdem_mesh *m)
 {
   lsdem_error err;
@@ -112,7 +113,10 @@ int cmd_from_mesh(int argc, char **argv)
   mesh_options o;
   if (!parse_mesh_options(argc - 2, argv + 2, &o)) return 2;
   lsdem_mesh m;
-  if (load_mesh(argv[0], &o, &m)) return 1;
+  if (load_mesh(argv[0], &o, &m)) {
+    lsdem_mesh_free(&m);
+    return 1;
+  }
   const double volume = fabs(lsdem_mesh_volume(&m));
   const double h = o.spacing > 0.0 ? o.spacing : cbrt(3.0 * volume / (4.0 * PI)) / 12.0;
   lsdem_sdf sdf;

@@ -13,6 +13,7 @@
 #include "atom.h"
 #include "atom_vec_lsdem.h"
 #include "comm.h"
+#include "domain.h"
 #include "error.h"
 #include "fix_lsdem_history.h"
 #include "input.h"
@@ -22,6 +23,7 @@
 #include "update.h"
 #include "variable.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -181,6 +183,32 @@ void FixWallLsdem::init()
     if (!input->variable->equalstyle(vvar[d]))
       error->all(FLERR, "fix wall/lsdem: velocity variable {} is not equal-style", vstr[d]);
   }
+  if (wallstyle == PLANE) check_plane_in_box();
+}
+
+/* ----------------------------------------------------------------------
+   a plane that leaves the whole box on its solid side would put every grain inside
+   the wall: stop and give the range of n.p that cuts the box
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::check_plane_in_box() const
+{
+  const double *lo = domain->triclinic ? domain->boxlo_bound : domain->boxlo;
+  const double *hi = domain->triclinic ? domain->boxhi_bound : domain->boxhi;
+  const double n[3] = {wpose.R[2], wpose.R[5], wpose.R[8]};
+  double smin = HUGE_VAL, smax = -HUGE_VAL;  // n.x over the box corners
+  for (int c = 0; c < 8; c++) {
+    const double s = n[0] * (c & 1 ? hi[0] : lo[0]) + n[1] * (c & 2 ? hi[1] : lo[1]) +
+        n[2] * (c & 4 ? hi[2] : lo[2]);
+    smin = std::min(smin, s);
+    smax = std::max(smax, s);
+  }
+  const double sp = n[0] * wpose.x[0] + n[1] * wpose.x[1] + n[2] * wpose.x[2];
+  if (sp > smax)
+    error->all(FLERR, "fix wall/lsdem {}: plane point ({} {} {}) is outside the box with the "
+               "whole box on the wall's solid side (n.p = {:.6g}); the plane must cut the box: "
+               "n.p in [{:.6g}, {:.6g}] for normal ({:.6g} {:.6g} {:.6g})", id, wpose.x[0],
+               wpose.x[1], wpose.x[2], sp, smin, smax, n[0], n[1], n[2]);
 }
 
 /* ----------------------------------------------------------------------

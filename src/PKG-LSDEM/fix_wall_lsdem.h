@@ -68,6 +68,7 @@ class FixWallLsdem : public Fix {
   bigint contact_step;
   void add_contact(int, const lsdem_contact_result &);
   void update_velocity();
+  void check_plane_in_box() const;
 
   bool may_touch(int) const;
   void set_plane_frame(const double n[3]);

@@ -43,4 +43,26 @@ run(0 to-morph m.lslib 2 x.dat)          # no such index
 run(0 list missing.lslib)
 run(0 analytic x.lslib cube 1)
 run(0 from-morph x.lslib s.lslib)        # a library is not a morphology file
+# superellipsoid, random grains, packing (shape_random.c, shape_pack.c): the count the
+# tool reports is the number of Atoms lines it wrote
+run(1 analytic se.lslib superellipsoid 1 0.8 0.6 0.5 0.5 --nodes 200)
+expect_in("${out}" "grid shape 'superellipsoid'")
+run(0 analytic x.lslib superellipsoid 1 1 1 3 1)     # exponent outside [0.1, 2]
+run(1 random r.lslib --count 2 --size 1.0 --seed 5 --elongation 0.7 --flatness 0.9)
+expect_in("${out}" "2 random grains" "elongation 0.700 (asked 0.700)" "flatness 0.900 (asked 0.900)")
+run(1 pack e.lslib p.data --count 5 --box 20 20 20 --seed 3)
+expect_in("${out}" "5 of 5 grains placed")
+file(STRINGS ${WORK}/p.data atoms REGEX "^[0-9]+ 1 1 ")
+list(LENGTH atoms natoms)
+if(NOT natoms EQUAL 5)
+  message(FATAL_ERROR "pack: 5 grains reported, ${natoms} Atoms lines written")
+endif()
+run(1 pack e.lslib q.data --count 40 --box 8 6 3 --seed 3 --max-tries 200)
+string(REGEX MATCH "([0-9]+) of 40 grains placed" placed "${out}")
+file(STRINGS ${WORK}/q.data atoms REGEX "^[0-9]+ 1 1 ")
+list(LENGTH atoms natoms)
+if(NOT placed OR NOT natoms EQUAL CMAKE_MATCH_1 OR natoms GREATER_EQUAL 40)
+  message(FATAL_ERROR "overfull pack: reported '${placed}', ${natoms} Atoms lines written")
+endif()
+run(0 pack e.lslib q.data --count 40 --box 8 6 3 --seed 3 --max-tries 200 --strict)
 message(STATUS "lsdem-shape CLI: all checks passed")

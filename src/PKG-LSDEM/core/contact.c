@@ -222,20 +222,24 @@ static void apply_contact(pair_ctx *restrict c, int node, const double p[3],
  * |p - xB| = |node - cb|, so rejecting a node costs 8 flops and no transform. The
  * screening pass is branch-free (no mispredicted branch per rejected node): it keeps
  * the indices of nodes inside B's bounding sphere, a batch at a time, and only those
- * are mapped to B's frame and looked up. */
+ * are mapped to B's frame and looked up, all lookups of a batch together (their cache
+ * misses overlap: lsdem_grid_eval_many). */
 enum { NODE_BATCH = 64 };
 
 typedef struct {
   int n;
   int node[NODE_BATCH];
+  double q[3 * NODE_BATCH];    /* kept nodes in B's frame */
+  double phi[NODE_BATCH];      /* B's level set there */
+  double grad[3 * NODE_BATCH]; /* and its outward unit gradient (B's frame) */
 } node_batch;
 
-/* Screen `count` (<= NODE_BATCH) nodes first, first + stride, ...: kept when
- * |node - cb|^2 <= rb2. */
+/* Screen `count` (<= NODE_BATCH - b->n) nodes first, first + stride, ...: appended to
+ * the batch when |node - cb|^2 <= rb2. */
 static void screen_nodes(const double *nodes, int first, int count, int stride,
                          const double cb[3], double rb2, node_batch *b)
 {
-  int n = 0;
+  int n = b->n;
   for (int i = 0; i < count; i++) {
     const int k = first + i * stride;
     const double *x = &nodes[3 * k];
@@ -246,30 +250,85 @@ static void screen_nodes(const double *nodes, int first, int count, int stride,
   b->n = n;
 }
 
-/* Level-set lookups of a screened batch (Algorithm 1) at q = M node + t (B's frame) and
- * the contacts of the penetrating nodes. A grid is interpolated directly, without the
- * lsdem_sdf_eval dispatch. */
+/* Level-set lookups of a screened batch (Algorithm 1) at q = M node + t (B's frame). A
+ * grid is interpolated directly, without the lsdem_sdf_eval dispatch. */
+static void lookup_batch(const lsdem_shape *A, const lsdem_sdf *sdfB, const double M[9],
+                         const double t[3], node_batch *b)
+{
+  for (int i = 0; i < b->n; i++) affine3(M, t, &A->nodes[3 * b->node[i]], &b->q[3 * i]);
+  if (sdfB->kind == LSDEM_SDF_GRID && !sdfB->inverted) {
+    lsdem_grid_eval_many(&sdfB->grid, b->n, b->q, b->phi, b->grad);
+    return;
+  }
+  for (int i = 0; i < b->n; i++) b->phi[i] = lsdem_sdf_eval(sdfB, &b->q[3 * i], &b->grad[3 * i]);
+}
+
+/* Looks the batch up, then the contacts of its penetrating nodes; empties the batch. */
 static void contact_batch(pair_ctx *restrict c, const lsdem_shape *A, const lsdem_shape *B,
                           const lsdem_pose *pb, const double M[9], const double t[3],
-                          const node_batch *b, double kstride)
+                          node_batch *b, double kstride)
 {
-  const int grid = B->sdf.kind == LSDEM_SDF_GRID && !B->sdf.inverted;
+  lookup_batch(A, &B->sdf, M, t, b);
   const int traction = c->prm.law == LSDEM_NORMAL_TRACTION && A->node_area;
   c->sum.ntested += b->n;
   for (int i = 0; i < b->n; i++) {
+    if (!(b->phi[i] < 0.0)) continue;
     const int k = b->node[i];
-    double q[3], g[3];
-    affine3(M, t, &A->nodes[3 * k], q);
-    const double phi = grid ? lsdem_grid_eval(&B->sdf.grid, q, g)
-                            : lsdem_sdf_eval(&B->sdf, q, g);
-    if (!(phi < 0.0)) continue;
-
     double p[3], n[3];
-    affine3(pb->R, pb->x, q, p); /* world position of the node */
-    lsdem_mat_vec(pb->R, g, n);  /* world normal, outward from B */
+    affine3(pb->R, pb->x, &b->q[3 * i], p); /* world position of the node */
+    lsdem_mat_vec(pb->R, &b->grad[3 * i], n); /* world normal, outward from B */
     const double kscale = traction ? kstride * A->node_area[k] : kstride;
-    apply_contact(c, k, p, n, -phi, kscale, kstride);
+    apply_contact(c, k, p, n, -b->phi[i], kscale, kstride);
   }
+  b->n = 0;
+}
+
+/* Whether B's level set is an exact signed distance, so |phi(p) - phi(q)| <= |p - q|
+ * (also inverted). Grids are not (trilinear interpolation of samples that may be
+ * smoothed or approximate), nor is the superellipsoid's first-order distance. */
+static int sdf_is_distance(const lsdem_sdf *s)
+{
+  switch (s->kind) {
+  case LSDEM_SDF_SPHERE:
+  case LSDEM_SDF_PLANE:
+  case LSDEM_SDF_CYLINDER:
+  case LSDEM_SDF_BOX:
+  case LSDEM_SDF_ELLIPSOID: return 1;
+  default: return 0;
+  }
+}
+
+/* For a distance B: no point of the ball of radius r about centre (A's frame, mapped to
+ * B's by q = M x + t) is inside B when phi_B(q) > r (1-Lipschitz). This is how a wall
+ * (unbounded: no bounding sphere) skips a grain, or a cluster, with one evaluation
+ * instead of one per node. The relative margin covers round-off in phi at the nodes. */
+static int ball_clear_of(const lsdem_sdf *sdfB, const double M[9], const double t[3],
+                         const double centre[3], double r)
+{
+  double q[3], g[3];
+  affine3(M, t, centre, q);
+  const double scale = fabs(q[0]) + fabs(q[1]) + fabs(q[2]) + r;
+  return lsdem_sdf_eval(sdfB, q, g) > r + 1e-12 * scale;
+}
+
+/* Node range [start, end) of cluster cl of A when it may touch B (or of all of A when
+ * A has no clusters); returns 0 when the cluster's sphere is clear of B's bounding
+ * sphere (cb: B's centre in A's frame) or, for a distance B, of B's solid. */
+static int cluster_range(const lsdem_shape *A, int cl, const lsdem_sdf *sdfB, double rb,
+                         int distance, const double cb[3], const double M[9],
+                         const double t[3], int *start, int *end)
+{
+  *start = 0;
+  *end = A->nnodes;
+  if (!(A->nclusters > 0 && A->cluster_start && A->cluster_sphere)) return 1;
+  const double *sph = &A->cluster_sphere[4 * cl];
+  const double d[3] = {sph[0] - cb[0], sph[1] - cb[1], sph[2] - cb[2]};
+  const double reach = rb + sph[3];
+  if (dot3(d, d) > reach * reach) return 0;
+  if (distance && ball_clear_of(sdfB, M, t, sph, sph[3])) return 0;
+  *start = A->cluster_start[cl];
+  *end = A->cluster_start[cl + 1];
+  return 1;
 }
 
 int lsdem_contact_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
@@ -283,9 +342,6 @@ int lsdem_contact_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_
   const double rb = B->radius, rab = A->radius + rb;
   if (dot3(dx, dx) > rab * rab) return no_contact(n_out, res);
 
-  pair_ctx c;
-  pair_begin(&c, pa, pb, prm, step, hist_in, n_in, hist_out);
-
   /* cb: B's centre in A's frame (for screening). A's frame -> B's frame:
    * q = M node + t with M = RB^T RA, t = RB^T (xA - xB). */
   double cb[3], M[9], t[3], mdx[3] = {-dx[0], -dx[1], -dx[2]};
@@ -293,28 +349,38 @@ int lsdem_contact_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_
   mat_transpose_mul(pb->R, pa->R, M);
   lsdem_matT_vec(pb->R, mdx, t);
 
+  /* an unbounded distance B (a wall) has no bounding sphere to screen with: reject A's
+   * bounding sphere (about A's centroid, the origin of A's frame) and then A's clusters
+   * by B's level set instead */
+  const int distance = !isfinite(rb) && sdf_is_distance(&B->sdf);
+  const double origin[3] = {0.0, 0.0, 0.0};
+  if (distance && ball_clear_of(&B->sdf, M, t, origin, A->radius))
+    return no_contact(n_out, res);
+
+  pair_ctx c;
+  pair_begin(&c, pa, pb, prm, step, hist_in, n_in, hist_out);
+
   const int stride = prm->node_stride > 1 ? prm->node_stride : 1;
   const double rb2 = rb * rb;
-  const int has_clusters = A->nclusters > 0 && A->cluster_start && A->cluster_sphere;
-  const int nclusters = has_clusters ? A->nclusters : 1;
+  const int nclusters = A->nclusters > 0 && A->cluster_start && A->cluster_sphere
+                            ? A->nclusters : 1;
+  /* the kept nodes of successive clusters share a batch (more lookups to overlap); the
+   * batch is looked up when full and at the end, so nodes stay in increasing order */
   node_batch batch;
-
+  batch.n = 0;
   for (int cl = 0; cl < nclusters; cl++) {
-    int start = 0, end = A->nnodes;
-    if (has_clusters) {
-      const double *sph = &A->cluster_sphere[4 * cl];
-      const double d[3] = {sph[0] - cb[0], sph[1] - cb[1], sph[2] - cb[2]};
-      const double reach = rb + sph[3];
-      if (dot3(d, d) > reach * reach) continue;
-      start = A->cluster_start[cl];
-      end = A->cluster_start[cl + 1];
-    }
-    for (int k = (start + stride - 1) / stride * stride; k < end; k += NODE_BATCH * stride) {
-      const int left = (end - k + stride - 1) / stride;
-      screen_nodes(A->nodes, k, left < NODE_BATCH ? left : NODE_BATCH, stride, cb, rb2, &batch);
-      contact_batch(&c, A, B, pb, M, t, &batch, (double)stride);
+    int start, end;
+    if (!cluster_range(A, cl, &B->sdf, rb, distance, cb, M, t, &start, &end)) continue;
+    int k = (start + stride - 1) / stride * stride;
+    while (k < end) {
+      const int left = (end - k + stride - 1) / stride, room = NODE_BATCH - batch.n;
+      const int count = left < room ? left : room;
+      screen_nodes(A->nodes, k, count, stride, cb, rb2, &batch);
+      k += count * stride;
+      if (batch.n == NODE_BATCH) contact_batch(&c, A, B, pb, M, t, &batch, (double)stride);
     }
   }
+  contact_batch(&c, A, B, pb, M, t, &batch, (double)stride);
   return pair_end(&c, n_out, res);
 }
 

@@ -534,8 +534,8 @@ static void cell_range(const tri_grid *g, const double *box, int c0[3], int c1[3
   for (int a = 0; a < 3; a++) c0[a] = cell_of(g, box[a], a), c1[a] = cell_of(g, box[3 + a], a);
 }
 
-/* Cell size: the mean triangle extent, but no more than ~64 cells per triangle and at
- * most 129 cells per axis (cs >= span / 128). */
+/* Cell size: half the mean triangle extent, but no more than ~64 cells per triangle and
+ * at most 129 cells per axis (cs >= span / 128). */
 static lsdem_status tri_grid_build(const lsdem_mesh *m, tri_grid *g, lsdem_error *err)
 {
   memset(g, 0, sizeof *g);
@@ -549,7 +549,7 @@ static lsdem_status tri_grid_build(const lsdem_mesh *m, tri_grid *g, lsdem_error
       b[a] = fmin(vert(m, t, 0)[a], fmin(vert(m, t, 1)[a], vert(m, t, 2)[a]));
       b[3 + a] = fmax(vert(m, t, 0)[a], fmax(vert(m, t, 1)[a], vert(m, t, 2)[a]));
       lo[a] = fmin(lo[a], b[a]), hi[a] = fmax(hi[a], b[3 + a]);
-      ext += (b[3 + a] - b[a]) / (3.0 * m->ntris);
+      ext += (b[3 + a] - b[a]) / (6.0 * m->ntris);
     }
   }
   const double span = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
@@ -770,46 +770,118 @@ static void feature_normal(const lsdem_mesh *m, const pseudonormals *pn, int t, 
   }
 }
 
-/* Nearest triangle to p: cells in growing shells around p's cell; the search stops
- * once the best distance is within the shells already searched. stamp[] (per triangle)
- * skips triangles met in several cells; query is this query's stamp value. */
-static double nearest_signed(const lsdem_mesh *m, const tri_grid *g, const pseudonormals *pn,
-                             const double p[3], int *stamp, int query)
+/* Signed distance from p to triangle t: sign by the pseudonormal of the closest feature. */
+static double signed_distance_to(const lsdem_mesh *m, const pseudonormals *pn, const double p[3],
+                                 int t)
 {
-  int c[3];
-  for (int a = 0; a < 3; a++) c[a] = cell_of(g, p[a], a);
-  const int rmax = g->n[0] + g->n[1] + g->n[2];
-  double best2 = HUGE_VAL, bestq[3] = {0, 0, 0};
-  int best_t = -1, best_f = 0;
-  for (int r = 0; r <= rmax; r++) {
-    for (int dk = -r; dk <= r; dk++)
-      for (int dj = -r; dj <= r; dj++) {
-        const int edge = abs(dk) == r || abs(dj) == r;
-        for (int di = -r; di <= r; di += edge || r == 0 ? 1 : 2 * r) {
-          const int i = c[0] + di, j = c[1] + dj, k = c[2] + dk;
-          if (i < 0 || j < 0 || k < 0 || i >= g->n[0] || j >= g->n[1] || k >= g->n[2]) continue;
-          const size_t cell = ((size_t)k * g->n[1] + j) * g->n[0] + i;
-          for (int x = g->start[cell]; x < g->start[cell + 1]; x++) {
-            const int t = g->items[x];
-            if (stamp[t] == query) continue;
-            stamp[t] = query;
-            double q[3], d[3];
-            int feat;
-            closest_on_triangle(p, vert(m, t, 0), vert(m, t, 1), vert(m, t, 2), q, &feat);
-            sub3(p, q, d);
-            const double d2 = dot3(d, d);
-            if (d2 < best2) best2 = d2, best_t = t, best_f = feat, memcpy(bestq, q, sizeof q);
-          }
+  double q[3], d[3], n[3];
+  int feat;
+  closest_on_triangle(p, vert(m, t, 0), vert(m, t, 1), vert(m, t, 2), q, &feat);
+  sub3(p, q, d);
+  feature_normal(m, pn, t, feat, n);
+  const double dist = sqrt(dot3(d, d));
+  return dot3(d, n) < 0.0 ? -dist : dist;
+}
+
+/* The sampler's state: per sample the smallest |distance| found, its triangle (-1: none
+ * yet) and the signed value. */
+typedef struct {
+  const lsdem_mesh *m;
+  const pseudonormals *pn;
+  const lsdem_grid *g;
+  double *best;
+  int *tri;
+  float *phi;
+} sdf_work;
+
+static size_t sample_index(const lsdem_grid *g, int i, int j, int k)
+{
+  return ((size_t)k * g->n[1] + j) * g->n[0] + i;
+}
+
+static void try_triangle(sdf_work *w, size_t q, int i, int j, int k, int t)
+{
+  const lsdem_grid *g = w->g;
+  const double p[3] = {g->origin[0] + g->h * i, g->origin[1] + g->h * j, g->origin[2] + g->h * k};
+  const double s = signed_distance_to(w->m, w->pn, p, t);
+  if (fabs(s) < w->best[q]) w->best[q] = fabs(s), w->tri[q] = t, w->phi[q] = (float)s;
+}
+
+/* Exact distances in a band: each triangle visits the samples within `band` of its
+ * bounding box, so a sample closer than `band` to the mesh meets its closest triangle. */
+static void rasterize(sdf_work *w, double band)
+{
+  const lsdem_grid *g = w->g;
+  for (int t = 0; t < w->m->ntris; t++) {
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; a++) {
+      double bmin = HUGE_VAL, bmax = -HUGE_VAL;
+      for (int c = 0; c < 3; c++) bmin = fmin(bmin, vert(w->m, t, c)[a]), bmax = fmax(bmax, vert(w->m, t, c)[a]);
+      lo[a] = (int)fmax(ceil((bmin - band - g->origin[a]) / g->h), 0.0);
+      hi[a] = (int)fmin(floor((bmax + band - g->origin[a]) / g->h), g->n[a] - 1.0);
+    }
+    for (int k = lo[2]; k <= hi[2]; k++)
+      for (int j = lo[1]; j <= hi[1]; j++)
+        for (int i = lo[0]; i <= hi[0]; i++) try_triangle(w, sample_index(g, i, j, k), i, j, k, t);
+  }
+}
+
+/* Closest-triangle propagation (Bridson's sweeps, as in his makelevelset3): each sample
+ * tries the closest triangles of its 7 neighbours behind it in sweep order (di, dj, dk). */
+static void sweep(sdf_work *w, int di, int dj, int dk)
+{
+  const lsdem_grid *g = w->g;
+  for (int kk = 0; kk < g->n[2]; kk++)
+    for (int jj = 0; jj < g->n[1]; jj++)
+      for (int ii = 0; ii < g->n[0]; ii++) {
+        const int i = di > 0 ? ii : g->n[0] - 1 - ii, j = dj > 0 ? jj : g->n[1] - 1 - jj;
+        const int k = dk > 0 ? kk : g->n[2] - 1 - kk;
+        const size_t q = sample_index(g, i, j, k);
+        for (int c = 1; c < 8; c++) {
+          const int ni = i - (c & 1 ? di : 0), nj = j - (c & 2 ? dj : 0), nk = k - (c & 4 ? dk : 0);
+          if (ni < 0 || nj < 0 || nk < 0 || ni >= g->n[0] || nj >= g->n[1] || nk >= g->n[2])
+            continue;
+          const int t = w->tri[sample_index(g, ni, nj, nk)];
+          if (t >= 0 && t != w->tri[q]) try_triangle(w, q, i, j, k, t);
         }
       }
-    const double reach = r * g->cs; /* every unsearched cell is at least this far */
-    if (best_t >= 0 && best2 <= reach * reach) break;
+}
+
+/* Signs away from the band by flood fill: the band (every sample within `band` >= h of
+ * the mesh, signed exactly) separates inside from outside, so each far sample takes the
+ * sign of the band samples its 6-connected region touches. */
+static lsdem_status fill_signs(sdf_work *w, double band, lsdem_error *err)
+{
+  const lsdem_grid *g = w->g;
+  const size_t total = (size_t)g->n[0] * g->n[1] * g->n[2];
+  size_t *queue = malloc(total * sizeof(size_t));
+  signed char *sign = malloc(total);
+  if (!queue || !sign) {
+    free(queue), free(sign);
+    return lsdem_fail(err, LSDEM_ERR_NOMEM, "cannot allocate the sign fill");
   }
-  double n[3], d[3];
-  feature_normal(m, pn, best_t, best_f, n);
-  sub3(p, bestq, d);
-  const double dist = sqrt(best2);
-  return dot3(d, n) < 0.0 ? -dist : dist;
+  size_t head = 0, tail = 0;
+  for (size_t q = 0; q < total; q++) {
+    sign[q] = w->best[q] <= band ? (w->phi[q] < 0.0f ? -1 : 1) : 0;
+    if (sign[q]) queue[tail++] = q;
+  }
+  const size_t stride[3] = {1, (size_t)g->n[0], (size_t)g->n[0] * g->n[1]};
+  while (head < tail) {
+    const size_t q = queue[head++];
+    const int c[3] = {(int)(q % stride[1]), (int)(q / stride[1] % g->n[1]), (int)(q / stride[2])};
+    for (int a = 0; a < 3; a++)
+      for (int dir = -1; dir <= 1; dir += 2) {
+        if (c[a] + dir < 0 || c[a] + dir >= g->n[a]) continue;
+        const size_t r = dir < 0 ? q - stride[a] : q + stride[a];
+        if (sign[r]) continue;
+        sign[r] = sign[q];
+        queue[tail++] = r;
+      }
+  }
+  for (size_t q = 0; q < total; q++)
+    if (w->best[q] > band) w->phi[q] = (float)(sign[q] < 0 ? -w->best[q] : w->best[q]);
+  free(queue), free(sign);
+  return LSDEM_OK;
 }
 
 lsdem_status lsdem_mesh_sdf_grid(const lsdem_mesh *m, double h, int margin, lsdem_grid *g,
@@ -824,25 +896,21 @@ lsdem_status lsdem_mesh_sdf_grid(const lsdem_mesh *m, double h, int margin, lsde
   float *phi;
   lsdem_status st = lsdem_grid_alloc(lo, hi, h, margin, g, &phi, err);
   if (st != LSDEM_OK) return st;
-  tri_grid tg = {{0, 0, 0}, {0, 0, 0}, 0.0, NULL, NULL, NULL};
+  const size_t total = (size_t)g->n[0] * g->n[1] * g->n[2];
   pseudonormals pn = {0};
-  int *stamp = malloc((size_t)m->ntris * sizeof(int));
-  if (!stamp) st = lsdem_fail(err, LSDEM_ERR_NOMEM, "out of memory");
-  if (st == LSDEM_OK) st = tri_grid_build(m, &tg, err);
+  sdf_work w = {m, &pn, g, malloc(total * sizeof(double)), malloc(total * sizeof(int)), phi};
+  if (!w.best || !w.tri) st = lsdem_fail(err, LSDEM_ERR_NOMEM, "out of memory");
   if (st == LSDEM_OK) st = build_pseudonormals(m, &pn, err);
   if (st == LSDEM_OK) {
-    for (int t = 0; t < m->ntris; t++) stamp[t] = -1;
-    size_t q = 0;
-    for (int k = 0; k < g->n[2]; k++)
-      for (int j = 0; j < g->n[1]; j++)
-        for (int i = 0; i < g->n[0]; i++, q++) {
-          const double p[3] = {g->origin[0] + h * i, g->origin[1] + h * j, g->origin[2] + h * k};
-          phi[q] = (float)nearest_signed(m, &tg, &pn, p, stamp, (int)(q & 0x7fffffff));
-        }
+    const double band = 2.0 * h;
+    for (size_t q = 0; q < total; q++) w.best[q] = HUGE_VAL, w.tri[q] = -1;
+    rasterize(&w, band);
+    for (int pass = 0; pass < 2; pass++)
+      for (int d = 0; d < 8; d++) sweep(&w, d & 1 ? -1 : 1, d & 2 ? -1 : 1, d & 4 ? -1 : 1);
+    st = fill_signs(&w, band, err);
   }
-  tri_grid_free(&tg);
   pseudonormals_free(&pn);
-  free(stamp);
+  free(w.best), free(w.tri);
   if (st != LSDEM_OK) lsdem_grid_free(g);
   return st;
 }

@@ -14,40 +14,49 @@ static const double PI = 3.14159265358979323846;
 
 /* Normalised associated Legendre functions Q_lm = N_lm P_lm(cos theta) by the standard
  * recurrences: Q_mm = sqrt((2m+1)/(2m)) sin(theta) Q_{m-1,m-1}, Q_{m+1,m} =
- * sqrt(2m+3) cos(theta) Q_mm, Q_lm = a_lm (cos(theta) Q_{l-1,m} - b_lm Q_{l-2,m}) with
- * a_lm = sqrt((4l^2-1)/(l^2-m^2)), b_lm = sqrt(((l-1)^2-m^2)/(4(l-1)^2-1)); the real
- * harmonics are Q_l0 and sqrt(2) Q_lm (cos m phi, sin m phi). */
-void lsdem_sph_harmonics(int L, const double u[3], double *Y)
+ * sqrt(2m+3) cos(theta) Q_mm, Q_lm = a_lm (cos(theta) Q_{l-1,m} - Q_{l-2,m} / a_{l-1,m})
+ * with a_lm = sqrt((4l^2-1)/(l^2-m^2)) (the usual b_lm is 1/a_{l-1,m}; a_{m,m} is taken as
+ * infinite, so the first step has no Q_{l-2} term); the real harmonics are Q_l0 and
+ * sqrt(2) Q_lm (cos m phi, sin m phi). */
+static double recurrence_factor(int l, int m)
+{
+  return l == m ? sqrt((2.0 * m + 1.0) / (2.0 * m)) /* m > 0 */
+                : sqrt((4.0 * l * l - 1.0) / ((double)(l * l - m * m)));
+}
+
+void lsdem_sph_harmonics_table(int L, double *table)
+{
+  for (int l = 1; l <= L; l++)
+    for (int m = 0; m <= l; m++) table[l * l + l + m] = recurrence_factor(l, m);
+}
+
+void lsdem_sph_harmonics(int L, const double u[3], const double *table, double *Y)
 {
   const double x = u[2], s = sqrt(u[0] * u[0] + u[1] * u[1]);
   const double cp = s > 0.0 ? u[0] / s : 1.0, sp = s > 0.0 ? u[1] / s : 0.0;
   double qmm = sqrt(1.0 / (4.0 * PI)), cm = 1.0, sm = 0.0; /* cos(m phi), sin(m phi) */
   for (int m = 0; m <= L; m++) {
     if (m > 0) {
-      qmm *= sqrt((2.0 * m + 1.0) / (2.0 * m)) * s;
+      qmm *= (table ? table[m * m + 2 * m] : recurrence_factor(m, m)) * s;
       const double c = cm * cp - sm * sp;
       sm = sm * cp + cm * sp;
       cm = c;
     }
-    double q2 = 0.0, q1 = qmm; /* Q_{l-2,m}, Q_{l-1,m} */
+    const double cw = sqrt(2.0) * cm, sw = sqrt(2.0) * sm;
+    double q2 = 0.0, q1 = qmm, inv_prev = 0.0; /* Q_{l-2,m}, Q_{l-1,m}, 1/a_{l-1,m} */
     for (int l = m; l <= L; l++) {
-      double q;
-      if (l == m)
-        q = qmm;
-      else if (l == m + 1)
-        q = sqrt(2.0 * m + 3.0) * x * qmm;
-      else {
-        const double a = sqrt((4.0 * l * l - 1.0) / ((double)l * l - (double)m * m));
-        const double b = sqrt(((l - 1.0) * (l - 1.0) - (double)m * m) /
-                              (4.0 * (l - 1.0) * (l - 1.0) - 1.0));
-        q = a * (x * q1 - b * q2);
+      double q = qmm;
+      if (l > m) {
+        const double a = table ? table[l * l + l + m] : recurrence_factor(l, m);
+        q = a * (x * q1 - q2 * inv_prev);
+        inv_prev = 1.0 / a;
+        q2 = q1, q1 = q;
       }
-      if (l > m) q2 = q1, q1 = q;
       if (m == 0)
         Y[l * l + l] = q;
       else {
-        Y[l * l + l + m] = sqrt(2.0) * q * cm;
-        Y[l * l + l - m] = sqrt(2.0) * q * sm;
+        Y[l * l + l + m] = q * cw;
+        Y[l * l + l - m] = q * sw;
       }
     }
   }
@@ -55,7 +64,7 @@ void lsdem_sph_harmonics(int L, const double u[3], double *Y)
 
 /* ------------------------------------------------------------- random numbers ---- */
 
-static uint64_t splitmix64(uint64_t *state)
+uint64_t lsdem_splitmix64(uint64_t *state)
 {
   uint64_t z = (*state += 0x9e3779b97f4a7c15ull);
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
@@ -63,16 +72,16 @@ static uint64_t splitmix64(uint64_t *state)
   return z ^ (z >> 31);
 }
 
-/* Uniform in (0, 1]: never 0, so the logarithm below is finite. */
-static double uniform01(uint64_t *state)
+/* Never 0, so the logarithm in normal01 is finite. */
+double lsdem_uniform01(uint64_t *state)
 {
-  return ((double)(splitmix64(state) >> 11) + 1.0) * (1.0 / 9007199254740992.0);
+  return ((double)(lsdem_splitmix64(state) >> 11) + 1.0) * (1.0 / 9007199254740992.0);
 }
 
 /* Box-Muller: one standard normal per call (the second value is not kept). */
 static double normal01(uint64_t *state)
 {
-  const double u1 = uniform01(state), u2 = uniform01(state);
+  const double u1 = lsdem_uniform01(state), u2 = lsdem_uniform01(state);
   return sqrt(-2.0 * log(u1)) * cos(2.0 * PI * u2);
 }
 
@@ -95,7 +104,7 @@ double lsdem_randgrain_radius(const double v[3], const void *grain)
   lsdem_mat_vec(g->Tinv, v, w);
   const double nw = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
   const double u[3] = {w[0] / nw, w[1] / nw, w[2] / nw};
-  lsdem_sph_harmonics(LSDEM_RANDGRAIN_LMAX, u, Y);
+  lsdem_sph_harmonics(LSDEM_RANDGRAIN_LMAX, u, g->table, Y);
   double S = 0.0;
   for (int i = 4; i < NCOEF; i++) S += g->coef[i] * Y[i]; /* l >= 2 */
   return exp(S) / nw;
@@ -148,10 +157,12 @@ lsdem_status lsdem_randgrain_make(const lsdem_randgrain_params *p, lsdem_randgra
   if (!(p->elongation > 0.0 && p->elongation <= 1.0) || !(p->flatness > 0.0 && p->flatness <= 1.0))
     return lsdem_fail(err, LSDEM_ERR_ARG, "elongation %g and flatness %g must be in (0, 1]",
                       p->elongation, p->flatness);
-  if (!(p->angularity >= 0.0 && p->angularity <= 1.0) || !(p->roughness >= 0.0 && p->roughness <= 1.0))
+  if (!(p->angularity >= 0.0 && p->angularity <= 1.0) ||
+      !(p->roughness >= 0.0 && p->roughness <= 1.0))
     return lsdem_fail(err, LSDEM_ERR_ARG, "angularity %g and roughness %g must be in [0, 1]",
                       p->angularity, p->roughness);
   memset(g, 0, sizeof *g);
+  lsdem_sph_harmonics_table(LSDEM_RANDGRAIN_LMAX, g->table);
   uint64_t rng = p->seed;
   for (int l = 2; l <= LSDEM_RANDGRAIN_LMAX; l++) {
     const int form = l <= LSDEM_RANDGRAIN_FORM_LMAX;

@@ -32,12 +32,19 @@ static double max_node_radius(const double *nodes, int n)
   return sqrt(r2);
 }
 
-/* Node count giving a mean spacing sqrt(area / N) of `spacing` on a grid's surface. */
+/* Node count giving a mean spacing sqrt(area / N) of `spacing` on a grid's surface;
+ * spacing <= 0: LSDEM_AUTO_NODE_SPACING times the equivalent-sphere diameter. */
 static lsdem_status count_from_spacing(const lsdem_sdf *sdf, double spacing, int *n,
                                        lsdem_error *err)
 {
   if (sdf->kind != LSDEM_SDF_GRID)
     return lsdem_fail(err, LSDEM_ERR_ARG, "a node spacing needs a grid shape");
+  if (!(spacing > 0.0)) {
+    lsdem_massprops mp;
+    const lsdem_status st = lsdem_massprops_grid(&sdf->grid, 1, &mp, err);
+    if (st != LSDEM_OK) return st;
+    spacing = LSDEM_AUTO_NODE_SPACING * 2.0 * cbrt(3.0 * mp.volume / (4.0 * PI));
+  }
   const double area = lsdem_surface_area_grid(&sdf->grid);
   const double want = ceil(area / (spacing * spacing));
   if (!(want >= 1.0) || want > (double)LSDEM_LIBRARY_MAX_NODES)
@@ -70,8 +77,6 @@ lsdem_status lsdem_shape_build(const lsdem_sdf *sdf, int nnodes, double node_spa
   if (sdf->kind == LSDEM_SDF_GRID) out->phi = (float *)sdf->grid.phi;
   lsdem_status st = LSDEM_OK;
   if (nnodes <= 0) {
-    if (!(node_spacing > 0.0))
-      return lsdem_fail(err, LSDEM_ERR_ARG, "give a node count or a positive node spacing");
     st = count_from_spacing(sdf, node_spacing, &nnodes, err);
     if (st != LSDEM_OK) return st;
   }

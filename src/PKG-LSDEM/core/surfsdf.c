@@ -58,7 +58,8 @@ lsdem_status lsdem_star_massprops(lsdem_radius_fn radius, const void *ctx, int n
   /* central second moments, then I = tr(M) 1 - M */
   double mc[9], tr = 0.0;
   for (int a = 0; a < 3; a++)
-    for (int b = 0; b < 3; b++) mc[3 * a + b] = m2[3 * a + b] - v * mp->centroid[a] * mp->centroid[b];
+    for (int b = 0; b < 3; b++)
+      mc[3 * a + b] = m2[3 * a + b] - v * mp->centroid[a] * mp->centroid[b];
   for (int a = 0; a < 3; a++) tr += mc[4 * a];
   for (int k = 0; k < 9; k++) mp->inertia[k] = (k % 4 == 0 ? tr : 0.0) - mc[k];
   lsdem_sym_eigen(mp->inertia, mp->principal, mp->axes);
@@ -275,7 +276,8 @@ static void propagate(nearest_field *F)
             const int q[3] = {i - (t & 1 ? sx : 0), j - (t & 2 ? sy : 0), k - (t & 4 ? sz : 0)};
             if (q[0] < 0 || q[1] < 0 || q[2] < 0 || q[0] >= n[0] || q[1] >= n[1] || q[2] >= n[2])
               continue;
-            const int s = F->near[(size_t)q[0] + (size_t)n[0] * ((size_t)q[1] + (size_t)n[1] * q[2])];
+            const size_t mq = (size_t)q[0] + (size_t)n[0] * ((size_t)q[1] + (size_t)n[1] * q[2]);
+            const int s = F->near[mq];
             if (s >= 0 && s != F->near[m]) try_sample(F, m, p, s);
           }
         }
@@ -289,6 +291,23 @@ static int star_inside(lsdem_radius_fn radius, const void *ctx, const double p[3
   if (d == 0.0) return 1;
   const double u[3] = {p[0] / d, p[1] / d, p[2] / d};
   return d < radius(u, ctx);
+}
+
+/* Inside or not: the side of the nearest disc's plane, (p - x) . n < 0, when p is more
+ * than `band` from the surface and p - x lies along the disc's normal (within ~11 deg):
+ * then x is the nearest surface point and its normal decides. Otherwise (near the
+ * surface, or near an edge or a vertex, where sampled normals are unreliable) the exact
+ * star test. */
+static int inside(const nearest_field *F, size_t m, const double p[3], lsdem_radius_fn radius,
+                  const void *ctx, double band)
+{
+  if (F->dist[m] > band) {
+    const double *x = F->S->x + 3 * (size_t)F->near[m], *n = F->S->nrm + 3 * (size_t)F->near[m];
+    const double d[3] = {p[0] - x[0], p[1] - x[1], p[2] - x[2]};
+    const double t = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+    if (t * t >= 0.96 * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2])) return t < 0.0;
+  }
+  return star_inside(radius, ctx, p);
 }
 
 lsdem_status lsdem_grid_from_star(lsdem_radius_fn radius, const void *ctx, const double lo[3],
@@ -315,7 +334,7 @@ lsdem_status lsdem_grid_from_star(lsdem_radius_fn radius, const void *ctx, const
       lsdem_grid_free(&out);
     } else {
       for (size_t m = 0; m < ns; m++) F.dist[m] = HUGE_VAL, F.near[m] = -1;
-      splat_band(&F, 2.0 * h);
+      splat_band(&F, 1.5 * h);
       propagate(&F);
       propagate(&F);
       size_t m = 0;
@@ -324,7 +343,7 @@ lsdem_status lsdem_grid_from_star(lsdem_radius_fn radius, const void *ctx, const
           for (int i = 0; i < out.n[0]; i++, m++) {
             double p[3];
             grid_point(&out, i, j, k, p);
-            phi[m] = (float)(star_inside(radius, ctx, p) ? -F.dist[m] : F.dist[m]);
+            phi[m] = (float)(inside(&F, m, p, radius, ctx, 2.0 * h) ? -F.dist[m] : F.dist[m]);
           }
       *g = out;
     }

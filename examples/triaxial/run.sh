@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# Virtual triaxial test: make the grains, pack them in a mould, put the membrane on,
+# consolidate and shear (in.triaxial), plot. Called by `./lsdem example triaxial` (which sets
+# LSDEM_LMP and LSDEM_SHAPE_TOOL). Environment knobs:
+#   SHAPES=angular (default: random sand-like grains) | spheres (equal-volume spheres,
+#   the report's §3.4.4 control); NP=2 ranks; NGRAINS=300; MU=0.6; OUT=out (or out-spheres)
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+lmp=${LSDEM_LMP:-$here/../../build/lmp}
+shape=${LSDEM_SHAPE_TOOL:-$here/../../build/lsdem-shape}
+np=${NP:-2}
+n=${NGRAINS:-300}
+kind=${SHAPES:-angular}
+mu=${MU:-0.6}
+out=${OUT:-$here/out$([ "$kind" = spheres ] && echo -spheres || true)}
+R=90          # specimen radius (pixels); grains ~30 px, so D/d ~ 6
+rho=2.65e-3   # scaled grain density (see in.triaxial)
+rb=10         # membrane sphere radius (report Table 3.2), outer layer 1.1 rb
+mkdir -p "$out"
+cd "$out"
+mpi=()
+[ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
+start=$SECONDS
+
+# 1. grains: eight random sand-like shapes, ~30 px, 120 nodes each; or spheres of the same
+#    volumes (level-set grids, so they roll like grains)
+rm -f grains.lslib rand.lslib sph*.lslib ball_*.lslib all.lslib
+"$shape" random rand.lslib --count 8 --size 31 --size-spread 0.15 --elongation 0.75 \
+  --flatness 0.75 --angularity 0.12 --roughness 0.02 --seed 5 --nodes 120 --spacing 1.5 >/dev/null 2>&1
+if [ "$kind" = spheres ]; then
+  parts=()
+  # `list` columns: index name kind grid h= nodes clusters radius volume I1 I2 I3
+  while read -r idx vol; do
+    r=$(awk -v v="$vol" 'BEGIN { printf "%.6g", (3 * v / (4 * 3.141592653589793))^(1/3) }')
+    "$shape" analytic "sph$idx.lslib" sphere "$r" --nodes 120 --spacing 1.5 --name "sphere$idx" >/dev/null 2>&1
+    parts+=("sph$idx.lslib")
+  done < <("$shape" list rand.lslib | awk '$3 == "grid" { print $1, $9 }')
+  "$shape" merge grains.lslib "${parts[@]}" >/dev/null
+  rm -f sph*.lslib
+else
+  mv rand.lslib grains.lslib
+fi
+nshapes=$("$shape" list grains.lslib | awk '$3 == "grid"' | wc -l)
+
+# 2. random loose packing in a tall cylinder, then packed in a rigid mould (in.prepare)
+"$shape" pack grains.lslib packed.data --count "$n" --cylinder "$((R - 2))" 720 --density "$rho" --seed 3
+"${mpi[@]}" "$lmp" -in "$here/in.prepare" -var lib grains.lslib -var data packed.data -var R "$R" \
+  -var sigma_prep 0.2 -var nprep "${NPREP:-6000}" -log log.prepare -echo none -screen none
+H=$(awk '/^PREPARED/ { print $3 }' log.prepare)
+echo "packed: $(grep '^PREPARED' log.prepare)"
+sed '/^Velocities/,$d' sample.data > sample_grains.data   # grains at rest
+
+# 3. the membrane (double layer, spheres rb and 1.1 rb) around the packed grains
+"$shape" analytic ball_in.lslib sphere "$rb" --analytic >/dev/null
+"$shape" analytic ball_out.lslib sphere "$(awk -v r=$rb 'BEGIN { print 1.1 * r }')" --analytic >/dev/null
+"$shape" merge all.lslib grains.lslib ball_in.lslib ball_out.lslib >/dev/null
+"$shape" membrane mem --radius "$R" --height "$H" --z0 0 --rb "$rb" --library all.lslib \
+  --shapes $((nshapes + 1)) $((nshapes + 2)) --types 2 3 --grains sample_grains.data \
+  --density "$rho" --knbb 50 --ksbb 50
+
+# 4. consolidation and shearing
+echo "running lmp on $np rank(s): $kind grains, mu $mu (progress in $out/log.lammps)"
+"${mpi[@]}" "$lmp" -in "$here/in.triaxial" -var lib all.lslib -var data mem.data \
+  -var memin mem.in -var memtri mem.tri -var mu "$mu" ${EPSMAX:+-var epsmax $EPSMAX} \
+  -log log.lammps -echo none -screen none
+grep -E '^(CONSOLIDATED|SHEARED)' log.lammps
+echo "total time $((SECONDS - start)) s"
+/usr/bin/python3 "$here/plot.py" triaxial.csv "$kind"
+echo "results: $out/triaxial.csv, $out/q_eps.png, $out/phi_eps.png, $out/epsv_eps.png, $out/dump.triaxial"

@@ -1,0 +1,584 @@
+// clang-format off
+/* ----------------------------------------------------------------------
+   LSDEM package: level-set discrete element method for LAMMPS.
+
+   fix ID group membrane/lsdem pressure P triangles FILE [weights wi wo] [knb K]
+
+   Each triangle is handled once, by the rank owning its lowest-ID vertex; the other
+   vertices are owned or ghost atoms (atom->map); forces on ghosts are summed back to
+   their owners by reverse communication of a private buffer. Formulas in the core
+   (membrane.c): lsdem_triangle_area_vector, lsdem_pressure_vertex_force,
+   lsdem_triangle_volume_term, lsdem_cap_edge_accumulate / lsdem_cap_volume_term.
+------------------------------------------------------------------------- */
+
+#include "fix_membrane_lsdem.h"
+
+#include "atom.h"
+#include "bond_lsdem_membrane.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "group.h"
+#include "input.h"
+#include "memory.h"
+#include "modify.h"
+#include "neighbor.h"
+#include "pair.h"
+#include "update.h"
+#include "variable.h"
+
+#include "lsdem.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+namespace {
+enum { ROLE_MEMBRANE = 1, ROLE_INNER = 2, ROLE_MIDDLE = 4 };
+constexpr int INNER_MIDDLE = ROLE_MEMBRANE | ROLE_INNER | ROLE_MIDDLE;
+constexpr double MAX_RB_FRACTION = 0.2;       // r_b <= Rs / 5
+constexpr double MAX_SINK_FRACTION = 0.2;     // p A_s / knb <= 0.2 r_b
+}    // namespace
+
+/* ---------------------------------------------------------------------- */
+
+FixMembraneLsdem::FixMembraneLsdem(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), specimen_radius(0.0), nlayers(0), ninner(0), pressure_value(0.0), knb(-1.0),
+    tributary_area(0.0), checked_pressure(-1.0), pvar(-1), nmax(0), fpress(nullptr),
+    role(nullptr), contact_radial(0.0), middle_area(0.0), vec_step(-1), bond(nullptr)
+{
+  const char *usage = "fix ID group membrane/lsdem pressure P triangles FILE "
+                      "[weights w_inner w_outer] [knb K]";
+  if (narg < 7 || strcmp(arg[3], "pressure") != 0 || strcmp(arg[5], "triangles") != 0)
+    error->all(FLERR, "Illegal fix membrane/lsdem command: {}", usage);
+
+  axis[0] = axis[1] = 0.0;
+  sphere_radius[0] = sphere_radius[1] = 0.0;
+  area0[0] = area0[1] = 0.0;
+  vector_flag = 1;
+  size_vector = 6;
+  global_freq = 1;
+  extvector = 0;
+  comm_reverse = 4;
+
+  if (utils::strmatch(arg[4], "^v_")) pstr = arg[4] + 2;
+  else pressure_value = utils::numeric(FLERR, arg[4], false, lmp);
+  file = arg[6];
+  weight[0] = weight[1] = -1.0;
+  for (int iarg = 7; iarg < narg;) {
+    if (strcmp(arg[iarg], "weights") == 0 && iarg + 2 < narg) {
+      weight[0] = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      weight[1] = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      if (weight[0] < 0.0 || weight[1] < 0.0)
+        error->all(FLERR, "fix membrane/lsdem: weights must be >= 0");
+      iarg += 3;
+    } else if (strcmp(arg[iarg], "knb") == 0 && iarg + 1 < narg) {
+      knb = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (knb <= 0.0) error->all(FLERR, "fix membrane/lsdem: knb ({}) must be > 0", knb);
+      iarg += 2;
+    } else error->all(FLERR, "Illegal fix membrane/lsdem keyword {}: {}", arg[iarg], usage);
+  }
+
+  // rank 0 reads; a failure is reported by all ranks (error->one output can be lost when
+  // LAMMPS aborts through an exception with buffered output)
+  std::string failure;
+  if (comm->me == 0) failure = read_file();
+  int len = (int) failure.size();
+  MPI_Bcast(&len, 1, MPI_INT, 0, world);
+  if (len) {
+    failure.resize(len);
+    MPI_Bcast(&failure[0], len, MPI_CHAR, 0, world);
+    error->all(FLERR, "fix membrane/lsdem: {}", failure);
+  }
+  bcast_file();
+  if (weight[0] < 0.0) {
+    weight[0] = nlayers == 2 ? 0.8 : 1.0;  // report §3.3.2: 80% inner, 20% outer
+    weight[1] = nlayers == 2 ? 0.2 : 0.0;
+  }
+  ninner = 0;
+  for (auto &kv : role_of)
+    if (kv.second & ROLE_INNER) ninner++;
+  for (int k = 0; k < 6; k++) vec[k] = 0.0;
+  // the layers share the force P A_inner: the outer layer's pressure is scaled by
+  // A_inner / A_outer of the membrane as generated (file), so restarts do not change it
+  layer_scale[0] = 1.0;
+  layer_scale[1] = nlayers == 2 ? area0[0] / area0[1] : 0.0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+FixMembraneLsdem::~FixMembraneLsdem()
+{
+  memory->destroy(fpress);
+  memory->destroy(role);
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixMembraneLsdem::setmask()
+{
+  return POST_FORCE;
+}
+
+/* ----------------------------------------------------------------------
+   triangles file (doc/fix_membrane_lsdem.rst), read on rank 0
+------------------------------------------------------------------------- */
+
+std::string FixMembraneLsdem::read_file()
+{
+  FILE *fp = fopen(file.c_str(), "r");
+  if (!fp) return fmt::format("cannot open triangles file {}", file);
+  char line[1024], key[64];
+  int lineno = 0, version = 0;
+  auto next = [&]() -> bool {
+    while (fgets(line, sizeof(line), fp)) {
+      lineno++;
+      char *h = strchr(line, '#');
+      if (h) *h = '\0';
+      if (strspn(line, " \t\r\n") != strlen(line)) return true;
+    }
+    return false;
+  };
+  std::string failure;
+  auto bad = [&](const char *what) {
+    if (failure.empty()) failure = fmt::format("{} line {}: {}", file, lineno, what);
+  };
+  if (!next() || sscanf(line, "lsdem-membrane-triangles %d", &version) != 1 || version != 1)
+    bad("expected 'lsdem-membrane-triangles 1' (a file from lsdem-shape membrane)");
+  int nv = -1, nt = -1, ne = -1;
+  while (failure.empty() && next()) {
+    if (sscanf(line, "%63s", key) != 1) continue;
+    std::string k = key;
+    long long a, b, c;
+    int l, e;
+    if (k == "axis") {
+      if (sscanf(line, "%*s %lf %lf", &axis[0], &axis[1]) != 2) bad("axis cx cy");
+    } else if (k == "specimen_radius") {
+      if (sscanf(line, "%*s %lf", &specimen_radius) != 1) bad("specimen_radius Rs");
+    } else if (k == "sphere_radius") {
+      if (sscanf(line, "%*s %lf %lf", &sphere_radius[0], &sphere_radius[1]) != 2)
+        bad("sphere_radius rb rb_outer");
+    } else if (k == "lateral_areas") {
+      if (sscanf(line, "%*s %lf %lf", &area0[0], &area0[1]) != 2 || area0[0] <= 0.0 ||
+          area0[1] < 0.0)
+        bad("lateral_areas A_inner A_outer");
+    } else if (k == "layers") {
+      if (sscanf(line, "%*s %d", &nlayers) != 1 || nlayers < 1 || nlayers > 2) bad("layers 1|2");
+    } else if (k == "vertices") {
+      if (sscanf(line, "%*s %d", &nv) != 1 || nv < 3) bad("vertices N");
+      for (int v = 0; v < nv && failure.empty(); v++) {
+        if (!next() || sscanf(line, "%lld %d %d", &a, &l, &e) != 3 || l < 0 || l > 1 || e < 0 ||
+            e > 2)
+          bad("expected 'atom-ID layer end'");
+        vtag.push_back((tagint) a);
+        int r = ROLE_MEMBRANE | (l == 0 ? ROLE_INNER : 0) | (e == 0 ? ROLE_MIDDLE : 0);
+        role_of[(tagint) a] = r;
+      }
+    } else if (k == "triangles") {
+      if (sscanf(line, "%*s %d", &nt) != 1 || nt < 1) bad("triangles N");
+      for (int t = 0; t < nt && failure.empty(); t++) {
+        if (!next() || sscanf(line, "%lld %lld %lld %d", &a, &b, &c, &l) != 4 || l < 0 || l > 1)
+          bad("expected 'id1 id2 id3 layer'");
+        tri.push_back((tagint) a);
+        tri.push_back((tagint) b);
+        tri.push_back((tagint) c);
+        tri_layer.push_back(l);
+      }
+    } else if (k == "cap_edges") {
+      if (sscanf(line, "%*s %d", &ne) != 1 || ne < 0) bad("cap_edges N");
+      for (int t = 0; t < ne && failure.empty(); t++) {
+        if (!next() || sscanf(line, "%lld %lld %d %d", &a, &b, &l, &e) != 4 || l < 0 || l > 1 ||
+            e < 1 || e > 2)
+          bad("expected 'id1 id2 layer end(1 bottom, 2 top)'");
+        cap.push_back((tagint) a);
+        cap.push_back((tagint) b);
+        cap_layer.push_back(l);
+        cap_end.push_back(e - 1);
+      }
+    } else bad("unknown keyword");
+  }
+  fclose(fp);
+  if (!failure.empty()) return failure;
+  if (nv < 0 || nt < 0 || ne < 0 || nlayers < 1 || specimen_radius <= 0.0 ||
+      sphere_radius[0] <= 0.0 || area0[0] <= 0.0 || (nlayers == 2 && area0[1] <= 0.0))
+    return fmt::format("{} is incomplete (needs axis, specimen_radius, sphere_radius, "
+                       "lateral_areas, layers, vertices, triangles, cap_edges)", file);
+  for (tagint t : tri)
+    if (!role_of.count(t))
+      return fmt::format("{}: triangle vertex {} is not in the vertices list", file, t);
+  for (tagint t : cap)
+    if (!role_of.count(t))
+      return fmt::format("{}: cap edge vertex {} is not in the vertices list", file, t);
+  return "";
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixMembraneLsdem::bcast_file()
+{
+  double d[7] = {axis[0], axis[1], specimen_radius, sphere_radius[0], sphere_radius[1],
+                 area0[0], area0[1]};
+  MPI_Bcast(d, 7, MPI_DOUBLE, 0, world);
+  axis[0] = d[0];
+  axis[1] = d[1];
+  specimen_radius = d[2];
+  sphere_radius[0] = d[3];
+  sphere_radius[1] = d[4];
+  area0[0] = d[5];
+  area0[1] = d[6];
+  int n[4] = {nlayers, (int) vtag.size(), (int) tri_layer.size(), (int) cap_layer.size()};
+  MPI_Bcast(n, 4, MPI_INT, 0, world);
+  nlayers = n[0];
+  std::vector<int> roles(n[1]);
+  if (comm->me == 0)
+    for (int v = 0; v < n[1]; v++) roles[v] = role_of[vtag[v]];
+  vtag.resize(n[1]);
+  tri.resize(3 * (size_t) n[2]);
+  tri_layer.resize(n[2]);
+  cap.resize(2 * (size_t) n[3]);
+  cap_layer.resize(n[3]);
+  cap_end.resize(n[3]);
+  MPI_Bcast(vtag.data(), n[1], MPI_LMP_TAGINT, 0, world);
+  MPI_Bcast(roles.data(), n[1], MPI_INT, 0, world);
+  MPI_Bcast(tri.data(), 3 * n[2], MPI_LMP_TAGINT, 0, world);
+  MPI_Bcast(tri_layer.data(), n[2], MPI_INT, 0, world);
+  MPI_Bcast(cap.data(), 2 * n[3], MPI_LMP_TAGINT, 0, world);
+  MPI_Bcast(cap_layer.data(), n[3], MPI_INT, 0, world);
+  MPI_Bcast(cap_end.data(), n[3], MPI_INT, 0, world);
+  role_of.clear();
+  for (int v = 0; v < n[1]; v++) role_of[vtag[v]] = roles[v];
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixMembraneLsdem::init()
+{
+  if (!atom->tag_enable || atom->map_style == Atom::MAP_NONE)
+    error->all(FLERR, "fix membrane/lsdem needs atom IDs and an atom map");
+  if (!force->newton_bond) error->all(FLERR, "fix membrane/lsdem needs newton_bond on");
+  if (domain->xperiodic || domain->yperiodic)
+    error->all(FLERR, "fix membrane/lsdem: the membrane must not cross a periodic boundary "
+               "in x or y (use a non-periodic box: boundary f f f or m m m)");
+  bond = dynamic_cast<BondLsdemMembrane *>(force->bond_match("lsdem/membrane"));
+  if (!bond) error->all(FLERR, "fix membrane/lsdem needs bond_style lsdem/membrane");
+  if (!pstr.empty()) {
+    pvar = input->variable->find(pstr.c_str());
+    if (pvar < 0) error->all(FLERR, "fix membrane/lsdem: variable {} does not exist", pstr);
+    if (!input->variable->equalstyle(pvar))
+      error->all(FLERR, "fix membrane/lsdem: variable {} must be equal-style", pstr);
+  }
+  if (knb <= 0.0) {
+    Pair *pair = force->pair_match("lsdem", 1);
+    int dim;
+    double *kmax = pair ? (double *) pair->extract("kn_max", dim) : nullptr;
+    if (!kmax || *kmax <= 0.0)
+      error->all(FLERR, "fix membrane/lsdem: give the grain-membrane stiffness with keyword "
+                 "knb (no pair_style lsdem stiffness found)");
+    knb = *kmax;
+  }
+  double rb = sphere_radius[0];
+  if (rb > MAX_RB_FRACTION * specimen_radius)
+    error->all(FLERR, "fix membrane/lsdem: membrane sphere radius r_b = {} is too large for the "
+               "specimen radius {} in {}: use r_b <= {} (a fifth of the specimen radius)",
+               rb, specimen_radius, file, MAX_RB_FRACTION * specimen_radius);
+  checked_pressure = -1.0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixMembraneLsdem::setup(int vflag)
+{
+  grow();
+  refresh_roles();
+  // every vertex exists once and is in the group
+  bigint mine = 0, outside = 0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (role[i]) {
+      mine++;
+      if (!(atom->mask[i] & groupbit)) outside++;
+    }
+  bigint all[2], loc[2] = {mine, outside};
+  MPI_Allreduce(loc, all, 2, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (all[0] != (bigint) vtag.size())
+    error->all(FLERR, "fix membrane/lsdem: {} of the {} membrane spheres of {} exist (read the "
+               "data file written with it)", all[0], vtag.size(), file);
+  if (all[1])
+    error->all(FLERR, "fix membrane/lsdem: {} membrane spheres are not in fix group {}", all[1],
+               group->names[igroup]);
+  // tributary area of one inner sphere, for the pressure check
+  vec_step = -1;
+  compute_geometry();
+  tributary_area = ninner ? vec[2] / ninner : 0.0;
+  post_force(vflag);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixMembraneLsdem::grow()
+{
+  if (atom->nmax <= nmax) return;
+  nmax = atom->nmax;
+  memory->grow(fpress, nmax, 4, "membrane/lsdem:fpress");
+  memory->grow(role, nmax, "membrane/lsdem:role");
+}
+
+/* per local and ghost atom, from the tag (after reneighbouring: atoms moved or changed) */
+void FixMembraneLsdem::refresh_roles()
+{
+  int nall = atom->nlocal + atom->nghost;
+  for (int i = 0; i < nall; i++) {
+    auto it = role_of.find(atom->tag[i]);
+    role[i] = it == role_of.end() ? 0 : it->second;
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixMembraneLsdem::current_pressure()
+{
+  if (pvar >= 0) {
+    modify->clearstep_compute();
+    pressure_value = input->variable->compute_equal(pvar);
+    modify->addstep_compute(update->ntimestep + 1);
+  }
+  if (pressure_value != checked_pressure) check_apparatus(pressure_value);
+}
+
+/* The pressure on one inner sphere's tributary area must not push it deeper than
+ * MAX_SINK_FRACTION r_b into a grain of contact stiffness knb. */
+void FixMembraneLsdem::check_apparatus(double p)
+{
+  double rb = sphere_radius[0];
+  double sink = std::fabs(p) * tributary_area / knb;
+  if (sink > MAX_SINK_FRACTION * rb)
+    error->all(FLERR, "fix membrane/lsdem: pressure {} is too high for the grain-membrane "
+               "stiffness knb = {}: one inner sphere (tributary area {:.4g}) would sink {:.4g} "
+               "= {:.0f}% of r_b = {} into a grain; use pressure <= {:.4g} or knb >= {:.4g}",
+               p, knb, tributary_area, sink, 100.0 * sink / rb, rb,
+               MAX_SINK_FRACTION * rb * knb / tributary_area,
+               std::fabs(p) * tributary_area / (MAX_SINK_FRACTION * rb));
+  checked_pressure = p;
+}
+
+/* ----------------------------------------------------------------------
+   local index of a triangle's vertex (closest image to the owner vertex)
+------------------------------------------------------------------------- */
+
+int FixMembraneLsdem::vertex(tagint tag, int owner, int itri)
+{
+  int j = atom->map(tag);
+  if (j < 0)
+    fail_one(fmt::format("fix membrane/lsdem: vertex {} of triangle {} ({} {} {}) is neither "
+                         "owned nor a ghost on rank {}: the ghost cutoff is shorter than a "
+                         "triangle edge (comm_modify cutoff) or the membrane tore apart", tag,
+                         itri + 1, tri[3 * itri], tri[3 * itri + 1], tri[3 * itri + 2], comm->me));
+  return owner < 0 ? j : domain->closest_image(owner, j);
+}
+
+/* An error seen by one rank: written and flushed first, since with LAMMPS exceptions
+   error->one's own output may still be buffered when the run aborts. */
+void FixMembraneLsdem::fail_one(const std::string &msg)
+{
+  if (screen) {
+    fprintf(screen, "ERROR on proc %d: %s\n", comm->me, msg.c_str());
+    fflush(screen);
+  }
+  if (logfile) {
+    fprintf(logfile, "ERROR on proc %d: %s\n", comm->me, msg.c_str());
+    fflush(logfile);
+  }
+  error->one(FLERR, msg);
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixMembraneLsdem::radial_projection(int i, const double *f) const
+{
+  double dx = atom->x[i][0] - axis[0], dy = atom->x[i][1] - axis[1];
+  double r = sqrt(dx * dx + dy * dy);
+  return r > 0.0 ? (f[0] * dx + f[1] * dy) / r : 0.0;
+}
+
+/* ----------------------------------------------------------------------
+   report §2.3.5: each vertex of triangle T gets -w p S_T / 3; the inner layer's
+   tributary areas |S_T|/3 go to column 3 (for the radial stress)
+------------------------------------------------------------------------- */
+
+void FixMembraneLsdem::apply_pressure(double p)
+{
+  int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  double **x = atom->x;
+  for (int i = 0; i < nall; i++) fpress[i][0] = fpress[i][1] = fpress[i][2] = fpress[i][3] = 0.0;
+  int ntri = (int) tri_layer.size();
+  for (int t = 0; t < ntri; t++) {
+    const tagint *tg = &tri[3 * t];
+    int low = tg[0] < tg[1] ? (tg[0] < tg[2] ? 0 : 2) : (tg[1] < tg[2] ? 1 : 2);
+    int owner = atom->map(tg[low]);
+    if (owner < 0 || owner >= nlocal) continue;
+    int v[3];
+    for (int k = 0; k < 3; k++) v[k] = k == low ? owner : vertex(tg[k], owner, t);
+    double S[3], f[3];
+    lsdem_triangle_area_vector(x[v[0]], x[v[1]], x[v[2]], S);
+    int layer = tri_layer[t];
+    lsdem_pressure_vertex_force(S, weight[layer] * layer_scale[layer] * p, f);
+    double share = tri_layer[t] == 0 ? sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]) / 3.0 : 0.0;
+    for (int k = 0; k < 3; k++) {
+      double *fp = fpress[v[k]];
+      fp[0] += f[0];
+      fp[1] += f[1];
+      fp[2] += f[2];
+      fp[3] += share;
+    }
+  }
+  comm->reverse_comm_fix(this);
+  double **fa = atom->f;
+  for (int i = 0; i < nlocal; i++) {
+    if (!role[i]) continue;
+    fa[i][0] += fpress[i][0];
+    fa[i][1] += fpress[i][1];
+    fa[i][2] += fpress[i][2];
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixMembraneLsdem::post_force(int /*vflag*/)
+{
+  grow();
+  if (neighbor->ago == 0) refresh_roles();
+  current_pressure();
+
+  // radial stress: contact force = force so far - bond forces, on inner middle-ring spheres
+  // (the grains push the membrane outward: positive = compressive on the specimen)
+  int nlocal = atom->nlocal;
+  double **f = atom->f, **x = atom->x;
+  double radial = 0.0;
+  for (int i = 0; i < nlocal; i++)
+    if ((role[i] & INNER_MIDDLE) == INNER_MIDDLE) radial += radial_projection(i, f[i]);
+  int **bondlist = neighbor->bondlist;
+  for (int n = 0; n < neighbor->nbondlist; n++) {
+    int i1 = bondlist[n][0], i2 = bondlist[n][1];
+    bool r1 = (role[i1] & INNER_MIDDLE) == INNER_MIDDLE, r2 = (role[i2] & INNER_MIDDLE) == INNER_MIDDLE;
+    if (!r1 && !r2) continue;
+    double f2[3], f1[3];
+    bond->bond_force(x[i1], x[i2], bondlist[n][2], f2);
+    f1[0] = -f2[0];
+    f1[1] = -f2[1];
+    f1[2] = -f2[2];
+    if (r1) radial -= radial_projection(i1, f1);
+    if (r2) radial -= radial_projection(i2, f2);
+  }
+  contact_radial = radial;
+
+  apply_pressure(pressure_value);
+  double area = 0.0;
+  for (int i = 0; i < nlocal; i++)
+    if ((role[i] & INNER_MIDDLE) == INNER_MIDDLE) area += fpress[i][3];
+  middle_area = area;
+  vec_step = -1;
+}
+
+/* ----------------------------------------------------------------------
+   volumes (eq 2.30 closed by the end-ring caps) and areas, reduced over ranks;
+   positions relative to a common origin on the axis
+------------------------------------------------------------------------- */
+
+void FixMembraneLsdem::compute_geometry()
+{
+  int nlocal = atom->nlocal;
+  double **x = atom->x;
+  const double origin[3] = {axis[0], axis[1], 0.0};
+  // local: volume[2], area[2], caps[layer][end] = sum_v(3), sum_s(3), n, radial sums(2)
+  double loc[2 + 2 + 2 * 2 * 7 + 2] = {0.0};
+  double *caps = loc + 4;
+  int ntri = (int) tri_layer.size();
+  auto rel = [&](int i, double *out) {
+    for (int k = 0; k < 3; k++) out[k] = x[i][k] - origin[k];
+  };
+  for (int t = 0; t < ntri; t++) {
+    const tagint *tg = &tri[3 * t];
+    int low = tg[0] < tg[1] ? (tg[0] < tg[2] ? 0 : 2) : (tg[1] < tg[2] ? 1 : 2);
+    int owner = atom->map(tg[low]);
+    if (owner < 0 || owner >= nlocal) continue;
+    double p[3][3], S[3];
+    for (int k = 0; k < 3; k++) rel(k == low ? owner : vertex(tg[k], owner, t), p[k]);
+    lsdem_triangle_area_vector(p[0], p[1], p[2], S);
+    loc[tri_layer[t]] += lsdem_triangle_volume_term(p[0], p[1], p[2]);
+    loc[2 + tri_layer[t]] += sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]);
+  }
+  int ncap = (int) cap_layer.size();
+  for (int e = 0; e < ncap; e++) {
+    tagint a = cap[2 * e], b = cap[2 * e + 1];
+    int owner = atom->map(a < b ? a : b);
+    if (owner < 0 || owner >= nlocal) continue;
+    int ja = atom->map(a), jb = atom->map(b);
+    if (ja < 0 || jb < 0)
+      fail_one(fmt::format("fix membrane/lsdem: cap edge {} {} has a missing vertex on rank {}",
+                           a, b, comm->me));
+    int ia = a < b ? owner : domain->closest_image(owner, ja);
+    int ib = a < b ? domain->closest_image(owner, jb) : owner;
+    double pa[3], pb[3];
+    rel(ia, pa);
+    rel(ib, pb);
+    double *c = caps + 7 * (2 * cap_layer[e] + cap_end[e]);
+    lsdem_cap_edge_accumulate(pa, pb, c, c + 3);
+    c[6] += 1.0;
+  }
+  loc[4 + 28] = contact_radial;
+  loc[4 + 29] = middle_area;
+  double all[34];
+  MPI_Allreduce(loc, all, 34, MPI_DOUBLE, MPI_SUM, world);
+  double vol[2] = {all[0], all[1]}, zc[2][2] = {{0, 0}, {0, 0}};
+  for (int layer = 0; layer < 2; layer++)
+    for (int end = 0; end < 2; end++) {
+      const double *c = all + 4 + 7 * (2 * layer + end);
+      int n = (int) lround(c[6]);
+      vol[layer] += lsdem_cap_volume_term(c, n, c + 3);
+      zc[layer][end] = n ? c[2] / n : 0.0;
+    }
+  double rb = sphere_radius[0], A = all[2], H = zc[0][1] - zc[0][0];
+  vec[0] = vol[0];
+  vec[1] = all[33] > 0.0 ? all[32] / all[33] : 0.0;  // compressive positive
+  vec[2] = A;
+  vec[3] = vol[0] - rb * A + M_PI * rb * rb * H;
+  vec[4] = pressure_value;
+  vec[5] = nlayers == 2 ? vol[1] : 0.0;
+  vec_step = update->ntimestep;
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixMembraneLsdem::compute_vector(int n)
+{
+  if (vec_step != update->ntimestep) compute_geometry();
+  return vec[n];
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixMembraneLsdem::pack_reverse_comm(int n, int first, double *buf)
+{
+  int m = 0;
+  for (int i = first; i < first + n; i++)
+    for (int k = 0; k < 4; k++) buf[m++] = fpress[i][k];
+  return m;
+}
+
+void FixMembraneLsdem::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  int m = 0;
+  for (int i = 0; i < n; i++)
+    for (int k = 0; k < 4; k++) fpress[list[i]][k] += buf[m++];
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixMembraneLsdem::memory_usage()
+{
+  return (double) nmax * (4 * sizeof(double) + sizeof(int)) +
+         (double) (tri.size() + cap.size() + vtag.size()) * sizeof(tagint);
+}

@@ -1,0 +1,88 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   LSDEM package: level-set discrete element method for LAMMPS.
+
+   fix membrane/lsdem: confining pressure on the triaxial test's flexible membrane
+   (report §2.3.5: p times a third of each triangle's area on its vertices, along the
+   inward normal), the enclosed volume (eq 2.30) and the radial stress of the grains on
+   the membrane. Triangles come from lsdem-shape membrane; the membrane is ordinary,
+   domain-decomposed atoms.
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(membrane/lsdem,FixMembraneLsdem);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_MEMBRANE_LSDEM_H
+#define LMP_FIX_MEMBRANE_LSDEM_H
+
+#include "fix.h"
+
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixMembraneLsdem : public Fix {
+ public:
+  FixMembraneLsdem(class LAMMPS *, int, char **);
+  ~FixMembraneLsdem() override;
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void post_force(int) override;
+  double compute_vector(int) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
+  double memory_usage() override;
+
+ private:
+  // the triangles file
+  std::string file;
+  double axis[2], specimen_radius, sphere_radius[2];
+  int nlayers;
+  bigint ninner;  // inner-layer spheres
+  std::vector<tagint> vtag, tri, cap;
+  std::vector<int> tri_layer, cap_layer, cap_end;
+  std::unordered_map<tagint, int> role_of;  // tag -> ROLE_* bits
+
+  // pressure
+  double pressure_value, weight[2], knb, tributary_area, checked_pressure;
+  double layer_scale[2];  // pressure factor per layer: 1 and A_inner / A_outer (as generated)
+  double area0[2];        // lateral areas of the layers as generated (file)
+  std::string pstr;
+  int pvar;
+
+  // per local+ghost atom
+  int nmax;
+  double **fpress;  // pressure force (3) and inner-layer tributary area (1), reverse-summed
+  int *role;        // ROLE_* bits of the atom (0: not a membrane sphere)
+
+  // radial stress, partial sums of the last post_force (this rank)
+  double contact_radial, middle_area;
+  // cached output
+  double vec[6];
+  bigint vec_step;
+
+  class BondLsdemMembrane *bond;
+
+  std::string read_file();  // "" or what is wrong
+  void fail_one(const std::string &msg);
+  void bcast_file();
+  void current_pressure();
+  void check_apparatus(double p);
+  void grow();
+  void refresh_roles();
+  int vertex(tagint tag, int owner, int itri);
+  double radial_projection(int i, const double *f) const;
+  void apply_pressure(double p);
+  void measure_radial(int i, const double *f, double sign, double &sum) const;
+  void compute_geometry();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,445 @@
+/* shape_membrane.c -- `lsdem-shape membrane`: the triaxial test's flexible membrane
+ * (core lsdem_membrane_build) around a grain data file, as LAMMPS input:
+ *   PREFIX.data  atom_style hybrid lsdem bond: grains (molecule 0) + membrane spheres + Bonds
+ *   PREFIX.tri   triangles file for fix membrane/lsdem (doc/fix_membrane_lsdem.rst)
+ *   PREFIX.in    bond_style lsdem/membrane, bond_coeff lines, groups (include after read_data)
+ * Hybrid Atoms lines (AtomVecHybrid: common "id type x y z", then each sub-style's own
+ * fields): id type x y z shape-ID density qw qx qy qz molecule-ID. */
+#include "lsdem_shape_cmds.h"
+#include "shape_common.h"
+
+#include <ctype.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+  long id;
+  int type, shape;
+  double density, x[3], q[4];
+} grain_line;
+
+typedef struct {
+  int n, ntypes;
+  double lo[3], hi[3];
+  grain_line *g;
+  char **vel; /* Velocities lines (copied verbatim), n or NULL */
+  int nvel;
+} grain_file;
+
+typedef struct {
+  const char *prefix, *grains, *library;
+  lsdem_membrane_params mp;
+  int shape[2], type[2];
+  double density, knbb, ksbb, kn_inter, ks_inter;
+} membrane_opts;
+
+static int membrane_usage(void)
+{
+  fprintf(stderr,
+          "usage: lsdem-shape membrane PREFIX --radius RS --height H --rb RB --library LIB\n"
+          "         --shapes SHAPE_IN SHAPE_OUT [--grains GRAINS.data] [--centre X Y] [--z0 Z]\n"
+          "         [--outer F] [--density RHO] [--types T_IN T_OUT] [--knbb K] [--ksbb K]\n"
+          "         [--kinter KN KS]\n"
+          "  writes PREFIX.data, PREFIX.tri, PREFIX.in (doc/fix_membrane_lsdem.rst)\n");
+  return 2;
+}
+
+static int bad(const char *what, const char *value)
+{
+  fprintf(stderr, "lsdem-shape membrane: bad %s '%s'\n", what, value);
+  return 2;
+}
+
+static int parse_opts(int argc, char **argv, membrane_opts *o)
+{
+  memset(o, 0, sizeof(*o));
+  o->mp.outer_factor = 1.1;
+  o->density = 1.0;
+  o->knbb = o->ksbb = 50.0;
+  o->kn_inter = o->ks_inter = -1.0;
+  o->shape[0] = o->shape[1] = -1;
+  if (argc < 1 || argv[0][0] == '-') return membrane_usage();
+  o->prefix = argv[0];
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    int left = argc - i - 1;
+    double v, w;
+    long k, l;
+    if (!strcmp(a, "--radius") && left >= 1) {
+      if (!parse_number(argv[++i], 1, &o->mp.specimen_radius)) return bad("radius", argv[i]);
+    } else if (!strcmp(a, "--height") && left >= 1) {
+      if (!parse_number(argv[++i], 1, &o->mp.height)) return bad("height", argv[i]);
+    } else if (!strcmp(a, "--rb") && left >= 1) {
+      if (!parse_number(argv[++i], 1, &o->mp.rb)) return bad("rb", argv[i]);
+    } else if (!strcmp(a, "--outer") && left >= 1) {
+      if (!parse_number(argv[++i], 0, &v) || (v != 0 && v < 1.0)) return bad("outer factor (0 or >= 1)", argv[i]);
+      o->mp.outer_factor = v;
+    } else if (!strcmp(a, "--z0") && left >= 1) {
+      if (!parse_number(argv[++i], 0, &o->mp.z0)) return bad("z0", argv[i]);
+    } else if (!strcmp(a, "--centre") && left >= 2) {
+      if (!parse_number(argv[i + 1], 0, &v) || !parse_number(argv[i + 2], 0, &w))
+        return bad("centre", argv[i + 1]);
+      o->mp.centre[0] = v;
+      o->mp.centre[1] = w;
+      i += 2;
+    } else if (!strcmp(a, "--density") && left >= 1) {
+      if (!parse_number(argv[++i], 1, &o->density)) return bad("density", argv[i]);
+    } else if (!strcmp(a, "--knbb") && left >= 1) {
+      if (!parse_number(argv[++i], 0, &o->knbb) || o->knbb < 0) return bad("knbb", argv[i]);
+    } else if (!strcmp(a, "--ksbb") && left >= 1) {
+      if (!parse_number(argv[++i], 0, &o->ksbb) || o->ksbb < 0) return bad("ksbb", argv[i]);
+    } else if (!strcmp(a, "--kinter") && left >= 2) {
+      if (!parse_number(argv[i + 1], 0, &o->kn_inter) || !parse_number(argv[i + 2], 0, &o->ks_inter) ||
+          o->kn_inter < 0 || o->ks_inter < 0)
+        return bad("kinter", argv[i + 1]);
+      i += 2;
+    } else if (!strcmp(a, "--shapes") && left >= 2) {
+      if (!parse_count(argv[i + 1], 1, 16777216, &k) || !parse_count(argv[i + 2], 1, 16777216, &l))
+        return bad("shapes", argv[i + 1]);
+      o->shape[0] = (int) k;
+      o->shape[1] = (int) l;
+      i += 2;
+    } else if (!strcmp(a, "--types") && left >= 2) {
+      if (!parse_count(argv[i + 1], 1, 1000000, &k) || !parse_count(argv[i + 2], 1, 1000000, &l))
+        return bad("types", argv[i + 1]);
+      o->type[0] = (int) k;
+      o->type[1] = (int) l;
+      i += 2;
+    } else if (!strcmp(a, "--grains") && left >= 1) {
+      o->grains = argv[++i];
+    } else if (!strcmp(a, "--library") && left >= 1) {
+      o->library = argv[++i];
+    } else {
+      fprintf(stderr, "lsdem-shape membrane: unknown or incomplete option '%s'\n", a);
+      return membrane_usage();
+    }
+  }
+  if (o->mp.specimen_radius <= 0 || o->mp.height <= 0 || o->mp.rb <= 0 || !o->library ||
+      o->shape[0] < 1) {
+    fprintf(stderr, "lsdem-shape membrane: --radius, --height, --rb, --library and --shapes "
+                    "are required\n");
+    return membrane_usage();
+  }
+  if (o->kn_inter < 0) o->kn_inter = o->knbb;
+  if (o->ks_inter < 0) o->ks_inter = o->ksbb;
+  return 0;
+}
+
+/* --------------------------------------------------------- grain data file ---- */
+
+static void free_grains(grain_file *gf)
+{
+  for (int i = 0; i < gf->nvel; i++) free(gf->vel[i]);
+  free(gf->vel);
+  free(gf->g);
+}
+
+/* The next non-blank line (comments stripped) into buf; 0 at end of file. */
+static int next_line(FILE *f, char *buf, int size, int *lineno)
+{
+  while (fgets(buf, size, f)) {
+    (*lineno)++;
+    char *h = strchr(buf, '#');
+    if (h) *h = '\0';
+    char *s = buf;
+    while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\n') s++;
+    if (*s) return 1;
+  }
+  return 0;
+}
+
+/* A header line "N keyword" (keyword exactly, then only blanks): 1 and *n = N. */
+static int header_count(const char *buf, const char *keyword, long *n)
+{
+  char *end;
+  *n = strtol(buf, &end, 10);
+  if (end == buf) return 0;
+  end += strspn(end, " \t");
+  size_t len = strlen(keyword);
+  return !strncmp(end, keyword, len) && strspn(end + len, " \t\r\n") == strlen(end + len);
+}
+
+static int grains_error(const char *path, int line, const char *what)
+{
+  fprintf(stderr, "lsdem-shape membrane: %s line %d: %s\n", path, line, what);
+  return 1;
+}
+
+/* A data file for atom_style lsdem (as written by lsdem-shape pack / from-labels):
+ * header counts and box, Atoms (id type shape density x y z qw qx qy qz), optional
+ * Velocities. */
+static int read_grains(const char *path, grain_file *gf)
+{
+  memset(gf, 0, sizeof(*gf));
+  FILE *f = fopen(path, "r");
+  if (!f) {
+    fprintf(stderr, "lsdem-shape membrane: cannot open %s\n", path);
+    return 1;
+  }
+  char buf[1024];
+  int line = 0, rc = 0;
+  long natoms = -1;
+  gf->ntypes = 1;
+  if (!fgets(buf, sizeof buf, f)) rc = grains_error(path, 1, "empty file");
+  line = 1;
+  while (!rc && next_line(f, buf, sizeof buf, &line)) {
+    double a, b;
+    long n;
+    char w1[64], w2[64];
+    if (header_count(buf, "atoms", &n)) {
+      natoms = n;
+      if (n < 0 || n > 100000000) rc = grains_error(path, line, "bad atom count");
+      else if (!(gf->g = calloc((size_t) (n ? n : 1), sizeof(grain_line))))
+        rc = grains_error(path, line, "out of memory");
+    } else if (header_count(buf, "atom types", &n)) {
+      gf->ntypes = (int) n;
+    } else if (sscanf(buf, "%lf %lf %63s %63s", &a, &b, w1, w2) == 4 && w1[1] == 'l' &&
+               w1[0] >= 'x' && w1[0] <= 'z') {
+      gf->lo[w1[0] - 'x'] = a;
+      gf->hi[w1[0] - 'x'] = b;
+    } else if (sscanf(buf, "%63s", w1) == 1 && !strcmp(w1, "Atoms")) {
+      if (natoms < 0) {
+        rc = grains_error(path, line, "Atoms before the atom count");
+        break;
+      }
+      for (long i = 0; i < natoms && !rc; i++) {
+        grain_line *g = gf->g + i;
+        if (!next_line(f, buf, sizeof buf, &line) ||
+            sscanf(buf, "%ld %d %d %lf %lf %lf %lf %lf %lf %lf %lf", &g->id, &g->type, &g->shape,
+                   &g->density, g->x, g->x + 1, g->x + 2, g->q, g->q + 1, g->q + 2, g->q + 3) != 11)
+          rc = grains_error(path, line, "expected 'id type shape density x y z qw qx qy qz' "
+                                        "(atom_style lsdem)");
+      }
+      gf->n = (int) natoms;
+    } else if (sscanf(buf, "%63s", w1) == 1 && !strcmp(w1, "Velocities")) {
+      gf->vel = calloc((size_t) (natoms > 0 ? natoms : 1), sizeof(char *));
+      for (long i = 0; i < natoms && !rc; i++) {
+        if (!next_line(f, buf, sizeof buf, &line)) rc = grains_error(path, line, "short Velocities");
+        else gf->vel[gf->nvel++] = strdup(buf);
+      }
+    } else if (isalpha((unsigned char) buf[strspn(buf, " \t")])) {
+      rc = grains_error(path, line, "unsupported section or header line (expected a data "
+                                    "file of atom_style lsdem)");
+    }
+  }
+  fclose(f);
+  if (!rc && natoms < 0) rc = grains_error(path, line, "no atom count");
+  if (rc) free_grains(gf);
+  return rc;
+}
+
+/* ----------------------------------------------------------------- output ---- */
+
+/* The two membrane shapes must be analytic spheres of radius rb and outer_factor rb. */
+static int check_shapes(const membrane_opts *o, const lsdem_membrane *m)
+{
+  lsdem_library *lib;
+  lsdem_error err;
+  if (lsdem_library_open(o->library, &lib, &err) != LSDEM_OK) {
+    fprintf(stderr, "lsdem-shape membrane: %s\n", err.msg);
+    return 1;
+  }
+  int rc = 0;
+  for (int layer = 0; layer < (m->nrings[1] ? 2 : 1) && !rc; layer++) {
+    if (o->shape[layer] > lsdem_library_count(lib)) {
+      fprintf(stderr, "lsdem-shape membrane: shape-ID %d not in %s (%d shapes)\n",
+              o->shape[layer], o->library, lsdem_library_count(lib));
+      rc = 1;
+      break;
+    }
+    const lsdem_shape *s = lsdem_library_shape(lib, o->shape[layer] - 1);
+    double r = m->sphere_radius[layer];
+    if (s->sdf.kind != LSDEM_SDF_SPHERE || fabs(s->sdf.a[0] - r) > 1e-9 * r) {
+      fprintf(stderr, "lsdem-shape membrane: shape-ID %d of %s must be an analytic sphere of "
+              "radius %g for the %s layer (make it with: lsdem-shape analytic OUT.lslib "
+              "sphere %g --analytic)\n", o->shape[layer], o->library, r,
+              layer ? "outer" : "inner", r);
+      rc = 1;
+    }
+  }
+  lsdem_library_close(lib);
+  return rc;
+}
+
+static FILE *open_out(const char *prefix, const char *ext, char *path, size_t size)
+{
+  snprintf(path, size, "%s%s", prefix, ext);
+  FILE *f = fopen(path, "w");
+  if (!f) fprintf(stderr, "lsdem-shape membrane: cannot write %s\n", path);
+  return f;
+}
+
+static int close_out(FILE *f, const char *path)
+{
+  if (fclose(f) != 0) {
+    fprintf(stderr, "lsdem-shape membrane: writing %s failed\n", path);
+    return 1;
+  }
+  return 0;
+}
+
+/* bond types written: the kinds up to the last one used (3 for a single layer, else 9) */
+static int bond_types(const lsdem_membrane *m)
+{
+  int n = 0;
+  for (int k = 0; k < LSDEM_MEMBRANE_BOND_KINDS; k++)
+    if (m->kind_used[k]) n = k + 1;
+  return n;
+}
+
+/* molecule ID of a membrane sphere: 1 bottom end ring, 2 top end ring, 3 otherwise */
+static int sphere_molecule(const lsdem_membrane *m, int i)
+{
+  if (m->ring[i] == 0) return 1;
+  return m->ring[i] == m->nrings[m->layer[i]] - 1 ? 2 : 3;
+}
+
+static int write_data(const membrane_opts *o, const grain_file *gf, const lsdem_membrane *m,
+                      long id0, int ntypes)
+{
+  char path[4096];
+  FILE *f = open_out(o->prefix, ".data", path, sizeof path);
+  if (!f) return 1;
+  double lo[3], hi[3], reach = m->ring_radius[m->nrings[1] ? 1 : 0] + 2.0 * o->mp.rb * 1.1;
+  for (int k = 0; k < 2; k++) {
+    lo[k] = o->mp.centre[k] - reach;
+    hi[k] = o->mp.centre[k] + reach;
+  }
+  lo[2] = o->mp.z0 - 2.0 * o->mp.rb;
+  hi[2] = o->mp.z0 + o->mp.height + 2.0 * o->mp.rb;
+  for (int k = 0; k < 3 && gf->n; k++) {
+    lo[k] = fmin(lo[k], gf->lo[k]);
+    hi[k] = fmax(hi[k], gf->hi[k]);
+  }
+  fprintf(f, "LSDEM grains + membrane (lsdem-shape membrane; atom_style hybrid lsdem bond)\n\n");
+  fprintf(f, "%ld atoms\n%d atom types\n%d bonds\n%d bond types\n\n", (long) gf->n + m->nspheres,
+          ntypes, m->nbonds, bond_types(m));
+  for (int k = 0; k < 3; k++) fprintf(f, "%.12g %.12g %clo %chi\n", lo[k], hi[k], 'x' + k, 'x' + k);
+  fprintf(f, "\nAtoms # hybrid\n\n");
+  for (int i = 0; i < gf->n; i++) {
+    const grain_line *g = gf->g + i;
+    fprintf(f, "%ld %d %.12g %.12g %.12g %d %.12g %.15g %.15g %.15g %.15g 0\n", g->id, g->type,
+            g->x[0], g->x[1], g->x[2], g->shape, g->density, g->q[0], g->q[1], g->q[2], g->q[3]);
+  }
+  for (int i = 0; i < m->nspheres; i++) {
+    int layer = m->layer[i];
+    fprintf(f, "%ld %d %.15g %.15g %.15g %d %.12g 1 0 0 0 %d\n", id0 + i, o->type[layer],
+            m->x[3 * i], m->x[3 * i + 1], m->x[3 * i + 2], o->shape[layer], o->density,
+            sphere_molecule(m, i));
+  }
+  if (gf->nvel) {
+    fprintf(f, "\nVelocities\n\n");
+    for (int i = 0; i < gf->nvel; i++) fputs(gf->vel[i], f);
+  }
+  fprintf(f, "\nBonds\n\n");
+  for (int b = 0; b < m->nbonds; b++)
+    fprintf(f, "%d %d %ld %ld\n", b + 1, m->bond_kind[b] + 1, id0 + m->bond[2 * b],
+            id0 + m->bond[2 * b + 1]);
+  return close_out(f, path);
+}
+
+static int write_triangles(const membrane_opts *o, const lsdem_membrane *m, long id0)
+{
+  char path[4096];
+  FILE *f = open_out(o->prefix, ".tri", path, sizeof path);
+  if (!f) return 1;
+  int layers = m->nrings[1] ? 2 : 1;
+  fprintf(f, "lsdem-membrane-triangles 1\n# written by lsdem-shape membrane; atom IDs of %s.data\n",
+          o->prefix);
+  fprintf(f, "axis %.15g %.15g\nspecimen_radius %.15g\nsphere_radius %.15g %.15g\nlayers %d\n",
+          o->mp.centre[0], o->mp.centre[1], o->mp.specimen_radius, m->sphere_radius[0],
+          m->sphere_radius[1], layers);
+  double area[2] = {0.0, 0.0}; /* lateral areas as generated: the pressure split's reference */
+  for (int t = 0; t < m->ntris; t++) {
+    double S[3];
+    lsdem_triangle_area_vector(m->x + 3 * m->tri[3 * t], m->x + 3 * m->tri[3 * t + 1],
+                               m->x + 3 * m->tri[3 * t + 2], S);
+    area[m->tri_layer[t]] += sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]);
+  }
+  fprintf(f, "lateral_areas %.15g %.15g\n", area[0], area[1]);
+  fprintf(f, "vertices %d\n", m->nspheres);
+  for (int i = 0; i < m->nspheres; i++) {
+    int mol = sphere_molecule(m, i);
+    fprintf(f, "%ld %d %d\n", id0 + i, m->layer[i], mol == 3 ? 0 : mol);
+  }
+  fprintf(f, "triangles %d\n", m->ntris);
+  for (int t = 0; t < m->ntris; t++)
+    fprintf(f, "%ld %ld %ld %d\n", id0 + m->tri[3 * t], id0 + m->tri[3 * t + 1],
+            id0 + m->tri[3 * t + 2], m->tri_layer[t]);
+  fprintf(f, "cap_edges %d\n", m->ncap_edges);
+  for (int e = 0; e < m->ncap_edges; e++)
+    fprintf(f, "%ld %ld %d %d\n", id0 + m->cap_edge[2 * e], id0 + m->cap_edge[2 * e + 1],
+            m->cap_layer[e], m->cap_end[e] + 1);
+  return close_out(f, path);
+}
+
+static int write_include(const membrane_opts *o, const lsdem_membrane *m)
+{
+  static const char *kind_names[LSDEM_MEMBRANE_BOND_KINDS] = {
+      "inner, in ring",        "inner, to upper ring +half step", "inner, to upper ring -half step",
+      "outer, in ring",        "outer, to upper ring +half step", "outer, to upper ring -half step",
+      "outer -> inner, -half", "outer -> inner, +half",            "outer -> inner, apex above"};
+  char path[4096];
+  FILE *f = open_out(o->prefix, ".in", path, sizeof path);
+  if (!f) return 1;
+  fprintf(f, "# membrane of %s.data (lsdem-shape membrane): include after read_data\n", o->prefix);
+  fprintf(f, "# %d spheres per ring, %d + %d rings, ring spacing %.6g, centre radii %.6g %.6g\n",
+          m->nper, m->nrings[0], m->nrings[1], m->dz, m->ring_radius[0], m->ring_radius[1]);
+  fprintf(f, "bond_style lsdem/membrane axis %.15g %.15g\n", o->mp.centre[0], o->mp.centre[1]);
+  fprintf(f, "# bond_coeff type Knbb Ksbb r0 rest_hoop rest_axial\n");
+  for (int k = 0; k < bond_types(m); k++) {
+    double kn = k < 6 ? o->knbb : o->kn_inter, ks = k < 6 ? o->ksbb : o->ks_inter;
+    fprintf(f, "bond_coeff %d %.12g %.12g %.15g %.15g %.15g  # %s (%d bonds)\n", k + 1, kn, ks,
+            m->kind_r0[k], m->kind_rest[2 * k], m->kind_rest[2 * k + 1], kind_names[k],
+            m->kind_used[k]);
+  }
+  if (m->nrings[1])
+    fprintf(f, "group membrane type %d %d\ngroup membrane_inner type %d\n"
+               "group membrane_outer type %d\n", o->type[0], o->type[1], o->type[0], o->type[1]);
+  else
+    fprintf(f, "group membrane type %d\ngroup membrane_inner type %d\n", o->type[0], o->type[0]);
+  fprintf(f, "group membrane_bottom molecule 1\ngroup membrane_top molecule 2\n");
+  return close_out(f, path);
+}
+
+int cmd_membrane(int argc, char **argv)
+{
+  membrane_opts o;
+  int rc = parse_opts(argc, argv, &o);
+  if (rc) return rc;
+  grain_file gf;
+  memset(&gf, 0, sizeof gf);
+  if (o.grains && read_grains(o.grains, &gf)) return 1;
+  long id0 = 1;
+  for (int i = 0; i < gf.n; i++)
+    if (gf.g[i].id >= id0) id0 = gf.g[i].id + 1;
+  if (o.type[0] == 0) {
+    o.type[0] = gf.n ? gf.ntypes + 1 : 1;
+    o.type[1] = o.type[0] + 1;
+  }
+  int ntypes = gf.n ? gf.ntypes : 0;
+  if (o.type[0] > ntypes) ntypes = o.type[0];
+  if (o.mp.outer_factor > 0 && o.type[1] > ntypes) ntypes = o.type[1];
+
+  lsdem_membrane m;
+  lsdem_error err;
+  if (lsdem_membrane_build(&o.mp, &m, &err) != LSDEM_OK) {
+    fprintf(stderr, "lsdem-shape membrane: %s\n", err.msg);
+    free_grains(&gf);
+    return 1;
+  }
+  rc = check_shapes(&o, &m);
+  if (!rc) rc = write_data(&o, &gf, &m, id0, ntypes);
+  if (!rc) rc = write_triangles(&o, &m, id0);
+  if (!rc) rc = write_include(&o, &m);
+  if (!rc)
+    printf("membrane: %d spheres (%d per ring, %d inner + %d outer rings, ring spacing %.12g), "
+           "%d bonds, %d triangles; inner centres on radius %.12g, outer %.12g; atom IDs %ld-%ld\n",
+           m.nspheres, m.nper, m.nrings[0], m.nrings[1], m.dz, m.nbonds, m.ntris,
+           m.ring_radius[0], m.ring_radius[1], id0, id0 + m.nspheres - 1);
+  lsdem_membrane_free(&m);
+  free_grains(&gf);
+  return rc;
+}

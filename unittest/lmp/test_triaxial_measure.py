@@ -1,0 +1,159 @@
+"""compute stress/lsdem and the variable-velocity platen of fix wall/lsdem.
+
+1. A static packing of 27 level-set grains (spheres and cubes) in a cell periodic in x and
+   y, squeezed between a floor and a servo-controlled top platen (velocity from an
+   equal-style variable) to a platen force F, then held until it is at rest. Independent
+   expectation: the Love-Weber axial stress of the grains equals the platen force over the
+   cell's cross-section, F / A, with V = A H (H = platen height above the floor); the same
+   holds for the floor's force. Tolerance 1%: node contact points sit inside the walls by
+   the penetration depth (~0.2% of H here). A missing or double-counted wall or pair
+   contribution is off by 50% or more.
+2. The packed state (restart) evaluated on 1 and 2 ranks: the stress vector agrees to
+   1e-10 at once and to 1e-8 after 100 steps.
+3. A platen whose velocity is a step-dependent variable ends where the integral of that
+   velocity puts it.
+4. A plane platen that leaves the whole box on its solid side is refused, naming the point
+   and the range of n.p that cuts the box.
+"""
+import math
+import os
+import random
+
+from lsdemtest import run_lmp, thermo, check, near, finish, shape_tool
+from contact_decks import Grain, write_data, sphere_library, box_library, quat_axis_angle, head
+
+L = 4.0        # periodic cell side: A = L^2
+TARGET = 16.0  # platen force: axial stress 1.0
+
+sphere_library("s.lslib", 0.5, 0.05, 120)
+box_library("b.lslib", 0.4, 0.05, 120)
+if not os.path.exists("g.lslib"):
+    shape_tool("merge", "g.lslib", "s.lslib", "b.lslib")
+
+rng = random.Random(7)
+grains = []
+for k in range(3):
+    for j in range(3):
+        for i in range(3):
+            x = (0.67 + 1.33 * i + rng.uniform(-0.1, 0.1),
+                 0.67 + 1.33 * j + rng.uniform(-0.1, 0.1), 0.7 + 1.3 * k)
+            q = quat_axis_angle((rng.random(), rng.random(), rng.random()), rng.uniform(0, 3))
+            grains.append(Grain(x, q=q, shape=1 + (i + j + k) % 2))
+write_data("pack.data", (0, L, 0, L, -1, 6), grains)
+
+WALLS = """pair_style lsdem
+pair_coeff * * 1000 900 0.3
+neighbor 0.1 bin
+fix bottom all wall/lsdem plane 0 0 0 0 0 1 1000 900 0.3
+variable target equal %r
+variable hold equal 1
+variable e equal 0.05*(f_top[3]-v_target)
+variable vz equal (1-v_hold)*(v_e*(abs(v_e)<=0.5)+0.5*(v_e>0.5)-0.5*(v_e<-0.5))
+fix top all wall/lsdem plane 0 0 4.0 0 0 -1 1000 900 0.3 velocity 0 0 v_vz
+fix nve all nve/lsdem damping 10
+timestep 0.0005
+variable V equal lx*ly*f_top[6]
+compute s all stress/lsdem volume v_V wall bottom top
+variable sA equal f_top[3]/(lx*ly)
+variable sB equal -f_bottom[3]/(lx*ly)
+thermo_style custom step ke f_top[3] f_top[6] v_sA v_sB c_s[*]
+thermo_modify norm no format float %%.17g
+""" % TARGET
+
+# 1. settle under gravity, squeeze with the servo platen, hold until at rest
+deck = head("g.lslib", "pack.data", boundary="p p f") + WALLS + """
+thermo 2000
+fix g all gravity 2.0 vector 0 0 -1
+run 8000
+unfix g
+variable hold equal 0
+run 20000
+variable hold equal 1
+run 10000
+write_restart packed.restart
+"""
+rc, log = run_lmp(deck, cwd=os.path.abspath("pack"))
+rows = thermo(log)
+if check(len(rows) > 2, "packing: no thermo output"):
+    last = rows[-1]
+    check(last["KinEng"] < 1e-12, "packing not at rest: KE %g" % last["KinEng"])
+    near(last["f_top[3]"], TARGET, rtol=0.01, msg="the servo brought the platen force to target")
+    near(last["v_sB"], last["v_sA"], rtol=1e-6, msg="floor and platen carry the same force")
+    near(last["c_s[3]"], last["v_sA"], rtol=0.01, msg="Love-Weber szz vs platen force / area")
+    check(abs(last["c_s[1]"]) < 0.05 * last["c_s[3]"] and abs(last["c_s[4]"]) < 0.05 *
+          last["c_s[3]"], "lateral and shear stresses are small without lateral walls")
+    near(last["c_s[7]"], (last["c_s[1]"] + last["c_s[2]"] + last["c_s[3]"]) / 3, rtol=1e-12,
+         msg="p = tr/3")
+    s1, s3 = last["c_s[10]"], last["c_s[11]"]
+    near(last["c_s[9]"], math.degrees(math.asin(min(1.0, (s1 - s3) / (s1 + s3)))), atol=1e-9,
+         msg="phi_mob from the principal stresses")
+
+# 2. the packed state on 1 and 2 ranks
+deck2 = """units lj
+atom_style lsdem library %s
+atom_modify map array
+newton on
+comm_modify vel yes
+read_restart %s
+""" % (os.path.abspath("g.lslib"), os.path.abspath("pack/packed.restart")) + WALLS.replace(
+    "fix bottom", "fix bottom").replace("variable hold equal 1", "variable hold equal 1") + """
+thermo 100
+run 100
+"""
+results = {}
+for np in (1, 2):
+    rc, log = run_lmp(deck2, np=np, cwd=os.path.abspath("np%d" % np))
+    results[np] = thermo(log)
+if check(len(results[1]) == 2 and len(results[2]) == 2, "ranks: thermo rows missing"):
+    for k in range(2):
+        for c in range(1, 12):
+            key = "c_s[%d]" % c
+            a, b = results[1][k][key], results[2][k][key]
+            near(b, a, atol=(1e-10 if k == 0 else 1e-8) * (1 + abs(a)),
+                 msg="%s at step %d, 1 vs 2 ranks" % (key, results[1][k]["Step"]))
+    if results[1]:
+        near(results[1][0]["c_s[3]"], rows[-1]["c_s[3]"] if rows else 0.0, rtol=1e-9,
+             msg="restart reproduces the packed stress")
+
+# 3. a platen moving as an equal-style variable prescribes (no grains in its way)
+DT = 0.001
+write_data("one.data", (0, L, 0, L, -1, 6), [Grain((2.0, 2.0, 1.0))])
+deck3 = head("s.lslib", "one.data", boundary="p p f") + """
+pair_style zero 1.0
+pair_coeff * *
+variable vz equal -0.02*(step<=100)+0.01*(step>100)*(step<=300)+0.03*sin(0.01*step)*(step>300)
+fix top all wall/lsdem plane 0 0 5.0 0 0 -1 1000 900 0.3 velocity 0 0 v_vz
+fix nve all nve/lsdem
+timestep %r
+thermo_style custom step f_top[4] f_top[5] f_top[6]
+thermo_modify norm no format float %%.17g
+thermo 100
+run 400
+""" % DT
+rc, log = run_lmp(deck3, cwd=os.path.abspath("platen"))
+rows3 = {int(r["Step"]): r for r in thermo(log)}
+def expected(n):
+    # the velocity at step s moves the platen during step s (evaluated when s starts)
+    z = 5.0
+    for s in range(1, n + 1):
+        v = -0.02 if s <= 100 else (0.01 if s <= 300 else 0.03 * math.sin(0.01 * s))
+        z += DT * v
+    return z
+if check(set(rows3) >= {0, 100, 200, 300, 400}, "platen: thermo rows missing"):
+    for n in (0, 100, 200, 300, 400):
+        near(rows3[n]["f_top[6]"], expected(n), atol=1e-12, msg="platen z at step %d" % n)
+        near(rows3[n]["f_top[4]"], 0.0, atol=0.0, msg="platen x does not move")
+
+# 4. a platen whose solid side holds the whole box stops with the range that works
+deck4 = head("s.lslib", "one.data", boundary="p p f") + """
+pair_style zero 1.0
+pair_coeff * *
+fix top all wall/lsdem plane 0 0 7.5 0 0 1 1000 900 0.3
+fix nve all nve/lsdem
+run 0
+"""
+rc, log = run_lmp(deck4, cwd=os.path.abspath("outside"), expect_fail=True)
+check(rc != 0 and "plane point (0 0 7.5) is outside the box" in log and "[-1, 6]" in log,
+      "a platen outside the box is refused naming the point and the range: %s" % log[-600:])
+
+finish()
