@@ -66,20 +66,6 @@ static int fail(const char *what, const lsdem_error *err)
   return 1;
 }
 
-static const char *kind_name(lsdem_sdf_kind k)
-{
-  switch (k) {
-  case LSDEM_SDF_GRID: return "grid";
-  case LSDEM_SDF_SPHERE: return "sphere";
-  case LSDEM_SDF_PLANE: return "plane";
-  case LSDEM_SDF_CYLINDER: return "cylinder";
-  case LSDEM_SDF_BOX: return "box";
-  case LSDEM_SDF_ELLIPSOID: return "ellipsoid";
-  case LSDEM_SDF_SUPERELLIPSOID: return "superellipsoid";
-  }
-  return "?";
-}
-
 /* ------------------------------------------------------------ list, verify ---- */
 
 static int cmd_list(int argc, char **argv)
@@ -101,7 +87,7 @@ static int cmd_list(int argc, char **argv)
     else
       snprintf(dims, sizeof dims, "%g %g %g", s->sdf.a[0], s->sdf.a[1], s->sdf.a[2]);
     printf("%5d  %-20s %-9s %-13s %6d %5d %10.6g %12.6g  %.6g %.6g %.6g\n", i,
-           lsdem_library_name(lib, i), kind_name(s->sdf.kind), dims, s->nnodes, s->nclusters,
+           lsdem_library_name(lib, i), lsdem_sdf_kind_name(s->sdf.kind), dims, s->nnodes, s->nclusters,
            s->radius, s->volume, s->inertia[0], s->inertia[1], s->inertia[2]);
   }
   lsdem_library_close(lib);
@@ -219,7 +205,7 @@ static int cmd_to_morph(int argc, char **argv)
   const lsdem_shape *s = lsdem_library_shape(lib, (int)index);
   if (s->sdf.kind != LSDEM_SDF_GRID) {
     fprintf(stderr, "lsdem-shape: to-morph: shape %ld is an analytic %s: a morphology file "
-            "needs a grid\n", index, kind_name(s->sdf.kind));
+            "needs a grid\n", index, lsdem_sdf_kind_name(s->sdf.kind));
     lsdem_library_close(lib);
     return 1;
   }

@@ -34,23 +34,22 @@ static int parse_random(int argc, char **argv, random_options *o)
   o->margin = 3, o->seed = 1, o->prefix = "grain";
   o->p.elongation = 0.8, o->p.flatness = 0.8, o->p.angularity = 0.1, o->p.roughness = 0.02;
   for (int i = 0; i < argc; i++) {
-    const int has = i + 1 < argc;
-    const char *a = argv[i];
-    int ok = has;
-    if (!ok) {
-    } else if (!strcmp(a, "--count")) ok = parse_count(argv[++i], 1, 1000000, &o->count);
-    else if (!strcmp(a, "--size")) ok = parse_number(argv[++i], 1, &o->size);
-    else if (!strcmp(a, "--size-spread")) ok = parse_fraction(argv[++i], 0, HUGE_VAL, &o->spread);
-    else if (!strcmp(a, "--elongation")) ok = parse_fraction(argv[++i], 1, 1.0, &o->p.elongation);
-    else if (!strcmp(a, "--flatness")) ok = parse_fraction(argv[++i], 1, 1.0, &o->p.flatness);
-    else if (!strcmp(a, "--angularity")) ok = parse_fraction(argv[++i], 0, 1.0, &o->p.angularity);
-    else if (!strcmp(a, "--roughness")) ok = parse_fraction(argv[++i], 0, 1.0, &o->p.roughness);
-    else if (!strcmp(a, "--seed")) ok = parse_count(argv[++i], 0, 2147483647L, &o->seed);
-    else if (!strcmp(a, "--nodes")) ok = parse_count(argv[++i], 1, 1000000, &o->nodes);
-    else if (!strcmp(a, "--spacing")) ok = parse_number(argv[++i], 1, &o->spacing);
-    else if (!strcmp(a, "--margin")) ok = parse_count(argv[++i], 1, 100, &o->margin);
-    else if (!strcmp(a, "--name")) o->prefix = argv[++i];
+    const char *a = argv[i], *v = i + 1 < argc ? argv[++i] : ""; /* every option has a value */
+    int ok = 1;
+    if (!strcmp(a, "--count")) ok = parse_count(v, 1, 1000000, &o->count);
+    else if (!strcmp(a, "--size")) ok = parse_number(v, 1, &o->size);
+    else if (!strcmp(a, "--size-spread")) ok = parse_fraction(v, 0, HUGE_VAL, &o->spread);
+    else if (!strcmp(a, "--elongation")) ok = parse_fraction(v, 1, 1.0, &o->p.elongation);
+    else if (!strcmp(a, "--flatness")) ok = parse_fraction(v, 1, 1.0, &o->p.flatness);
+    else if (!strcmp(a, "--angularity")) ok = parse_fraction(v, 0, 1.0, &o->p.angularity);
+    else if (!strcmp(a, "--roughness")) ok = parse_fraction(v, 0, 1.0, &o->p.roughness);
+    else if (!strcmp(a, "--seed")) ok = parse_count(v, 0, 2147483647L, &o->seed);
+    else if (!strcmp(a, "--nodes")) ok = parse_count(v, 1, 1000000, &o->nodes);
+    else if (!strcmp(a, "--spacing")) ok = parse_number(v, 1, &o->spacing);
+    else if (!strcmp(a, "--margin")) ok = parse_count(v, 1, 100, &o->margin);
+    else if (!strcmp(a, "--name")) ok = *v != '\0';
     else ok = 0;
+    if (ok && !strcmp(a, "--name")) o->prefix = v;
     if (!ok) {
       fprintf(stderr, "lsdem-shape: random: bad option or value near '%s' (elongation and "
               "flatness in (0, 1], angularity and roughness in [0, 1])\n", a);

@@ -39,19 +39,6 @@ AtomVecLsdem::Storage &storage_for(const Atom *a)
   return registry[a];  // value-initialised (all null) on first use
 }
 
-const char *sdf_kind_name(lsdem_sdf_kind k)
-{
-  switch (k) {
-    case LSDEM_SDF_GRID: return "grid";
-    case LSDEM_SDF_SPHERE: return "sphere";
-    case LSDEM_SDF_PLANE: return "plane";
-    case LSDEM_SDF_CYLINDER: return "cylinder";
-    case LSDEM_SDF_BOX: return "box";
-    case LSDEM_SDF_ELLIPSOID: return "ellipsoid";
-  }
-  return "unknown";
-}
-
 // radius of the sphere with the same volume
 double equivalent_radius(double volume)
 {
@@ -195,7 +182,7 @@ void AtomVecLsdem::report_library()
       const lsdem_shape *sh = lsdem_library_shape(lib, s);
       const char *name = lsdem_library_name(lib, s);
       mesg += fmt::format("  {:>5} {:<16} {:<9} {:>7} {:>13.6g} {:>13.6g}\n", s + 1,
-                          (name && name[0]) ? name : "-", sdf_kind_name(sh->sdf.kind),
+                          (name && name[0]) ? name : "-", lsdem_sdf_kind_name(sh->sdf.kind),
                           sh->nnodes, sh->radius, sh->volume);
     }
   } else {

@@ -48,11 +48,11 @@ constexpr double MAX_SINK_FRACTION = 0.2;     // p A_s / knb <= 0.2 r_b
 
 FixMembraneLsdem::FixMembraneLsdem(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), specimen_radius(0.0), nlayers(0), ninner(0), pressure_value(0.0), knb(-1.0),
-    tributary_area(0.0), checked_pressure(-1.0), pvar(-1), nmax(0), fpress(nullptr),
+    tributary_area(0.0), checked_pressure(-1.0), on_specimen(false), specimen_share(1.0), pvar(-1), nmax(0), fpress(nullptr),
     role(nullptr), contact_radial(0.0), middle_area(0.0), vec_step(-1), bond(nullptr)
 {
   const char *usage = "fix ID group membrane/lsdem pressure P triangles FILE "
-                      "[weights w_inner w_outer] [knb K]";
+                      "[weights w_inner w_outer] [knb K] [surface centres|specimen]";
   if (narg < 7 || strcmp(arg[3], "pressure") != 0 || strcmp(arg[5], "triangles") != 0)
     error->all(FLERR, "Illegal fix membrane/lsdem command: {}", usage);
 
@@ -76,6 +76,11 @@ FixMembraneLsdem::FixMembraneLsdem(LAMMPS *lmp, int narg, char **arg) :
       if (weight[0] < 0.0 || weight[1] < 0.0)
         error->all(FLERR, "fix membrane/lsdem: weights must be >= 0");
       iarg += 3;
+    } else if (strcmp(arg[iarg], "surface") == 0 && iarg + 1 < narg) {
+      if (strcmp(arg[iarg + 1], "centres") == 0) on_specimen = false;
+      else if (strcmp(arg[iarg + 1], "specimen") == 0) on_specimen = true;
+      else error->all(FLERR, "fix membrane/lsdem: surface must be centres or specimen");
+      iarg += 2;
     } else if (strcmp(arg[iarg], "knb") == 0 && iarg + 1 < narg) {
       knb = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (knb <= 0.0) error->all(FLERR, "fix membrane/lsdem: knb ({}) must be > 0", knb);
@@ -107,6 +112,12 @@ FixMembraneLsdem::FixMembraneLsdem(LAMMPS *lmp, int narg, char **arg) :
   // A_inner / A_outer of the membrane as generated (file), so restarts do not change it
   layer_scale[0] = 1.0;
   layer_scale[1] = nlayers == 2 ? area0[0] / area0[1] : 0.0;
+  // specimen surface (radius Rs) per unit area of the inner centres' surface (Rs + r_b)
+  specimen_share = specimen_radius / (specimen_radius + sphere_radius[0]);
+  if (on_specimen) {
+    layer_scale[0] *= specimen_share;
+    layer_scale[1] *= specimen_share;
+  }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -376,7 +387,7 @@ int FixMembraneLsdem::vertex(tagint tag, int owner, int itri)
                          "owned nor a ghost on rank {}: the ghost cutoff is shorter than a "
                          "triangle edge (comm_modify cutoff) or the membrane tore apart", tag,
                          itri + 1, tri[3 * itri], tri[3 * itri + 1], tri[3 * itri + 2], comm->me));
-  return owner < 0 ? j : domain->closest_image(owner, j);
+  return domain->closest_image(owner, j);
 }
 
 /* An error seen by one rank: written and flushed first, since with LAMMPS exceptions
@@ -392,6 +403,18 @@ void FixMembraneLsdem::fail_one(const std::string &msg)
     fflush(logfile);
   }
   error->one(FLERR, msg);
+}
+
+/* Triangle t is computed by the rank owning its lowest-ID vertex: true on that rank, with
+   the local indices of its vertices (owned or ghost, closest images) in v. */
+bool FixMembraneLsdem::owned_triangle(int t, int v[3])
+{
+  const tagint *tg = &tri[3 * t];
+  int low = tg[0] < tg[1] ? (tg[0] < tg[2] ? 0 : 2) : (tg[1] < tg[2] ? 1 : 2);
+  int owner = atom->map(tg[low]);
+  if (owner < 0 || owner >= atom->nlocal) return false;
+  for (int k = 0; k < 3; k++) v[k] = k == low ? owner : vertex(tg[k], owner, t);
+  return true;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -415,12 +438,8 @@ void FixMembraneLsdem::apply_pressure(double p)
   for (int i = 0; i < nall; i++) fpress[i][0] = fpress[i][1] = fpress[i][2] = fpress[i][3] = 0.0;
   int ntri = (int) tri_layer.size();
   for (int t = 0; t < ntri; t++) {
-    const tagint *tg = &tri[3 * t];
-    int low = tg[0] < tg[1] ? (tg[0] < tg[2] ? 0 : 2) : (tg[1] < tg[2] ? 1 : 2);
-    int owner = atom->map(tg[low]);
-    if (owner < 0 || owner >= nlocal) continue;
     int v[3];
-    for (int k = 0; k < 3; k++) v[k] = k == low ? owner : vertex(tg[k], owner, t);
+    if (!owned_triangle(t, v)) continue;
     double S[3], f[3];
     lsdem_triangle_area_vector(x[v[0]], x[v[1]], x[v[2]], S);
     int layer = tri_layer[t];
@@ -500,12 +519,10 @@ void FixMembraneLsdem::compute_geometry()
     for (int k = 0; k < 3; k++) out[k] = x[i][k] - origin[k];
   };
   for (int t = 0; t < ntri; t++) {
-    const tagint *tg = &tri[3 * t];
-    int low = tg[0] < tg[1] ? (tg[0] < tg[2] ? 0 : 2) : (tg[1] < tg[2] ? 1 : 2);
-    int owner = atom->map(tg[low]);
-    if (owner < 0 || owner >= nlocal) continue;
+    int v[3];
+    if (!owned_triangle(t, v)) continue;
     double p[3][3], S[3];
-    for (int k = 0; k < 3; k++) rel(k == low ? owner : vertex(tg[k], owner, t), p[k]);
+    for (int k = 0; k < 3; k++) rel(v[k], p[k]);
     lsdem_triangle_area_vector(p[0], p[1], p[2], S);
     loc[tri_layer[t]] += lsdem_triangle_volume_term(p[0], p[1], p[2]);
     loc[2 + tri_layer[t]] += sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]);
@@ -542,7 +559,8 @@ void FixMembraneLsdem::compute_geometry()
     }
   double rb = sphere_radius[0], A = all[2], H = zc[0][1] - zc[0][0];
   vec[0] = vol[0];
-  vec[1] = all[33] > 0.0 ? all[32] / all[33] : 0.0;  // compressive positive
+  // per unit area of the specimen surface, compressive positive
+  vec[1] = all[33] > 0.0 ? all[32] / (specimen_share * all[33]) : 0.0;
   vec[2] = A;
   vec[3] = vol[0] - rb * A + M_PI * rb * rb * H;
   vec[4] = pressure_value;

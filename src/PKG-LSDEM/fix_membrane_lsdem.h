@@ -52,6 +52,8 @@ class FixMembraneLsdem : public Fix {
   double pressure_value, weight[2], knb, tributary_area, checked_pressure;
   double layer_scale[2];  // pressure factor per layer: 1 and A_inner / A_outer (as generated)
   double area0[2];        // lateral areas of the layers as generated (file)
+  bool on_specimen;       // surface specimen: P acts on the specimen's surface area
+  double specimen_share;  // Rs / (Rs + r_b): specimen area per inner centre-surface area
   std::string pstr;
   int pvar;
 
@@ -76,9 +78,9 @@ class FixMembraneLsdem : public Fix {
   void grow();
   void refresh_roles();
   int vertex(tagint tag, int owner, int itri);
+  bool owned_triangle(int t, int v[3]);
   double radial_projection(int i, const double *f) const;
   void apply_pressure(double p);
-  void measure_radial(int i, const double *f, double sign, double &sum) const;
   void compute_geometry();
 };
 

@@ -90,6 +90,11 @@ static void test_dilatancy_inertial(void)
   CHECK_NEAR(lsdem_dilatancy_angle(0.0, 0.01), 0.0, 1e-15);
   CHECK_NEAR(sin(lsdem_dilatancy_angle(-0.01, 0.01)), 1.0 / 3.0, 1e-14);
   CHECK_NEAR(lsdem_dilatancy_angle(0.02, 0.02), -PI / 2.0, 1e-12);
+  /* stronger contraction (the radius shrinks too) stays at -90, never flips sign */
+  CHECK_NEAR(lsdem_dilatancy_angle(0.05, 0.01), -PI / 2.0, 1e-12);
+  CHECK_NEAR(lsdem_dilatancy_angle(0.02, 0.01), -PI / 2.0, 1e-12);
+  /* strong dilation tends to +90: x = -100 gives sin psi = 100/102 */
+  CHECK_NEAR(sin(lsdem_dilatancy_angle(-1.0, 0.01)), 100.0 / 102.0, 1e-12);
   /* report eq 3.5 with its numbers: 1%/s, d = 0.5 mm, 100 kPa, 2650 kg/m^3 */
   CHECK_REL(lsdem_inertial_number(0.01, 5e-4, 1e5, 2650.0), 0.01 * 5e-4 / sqrt(1e5 / 2650.0),
             1e-14);

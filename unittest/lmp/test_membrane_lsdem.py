@@ -15,8 +15,9 @@
 import math
 import os
 import re
+import subprocess
 
-from lsdemtest import run_lmp, shape_tool, thermo, check, near, finish
+from lsdemtest import SHAPE_TOOL, run_lmp, shape_tool, thermo, check, near, finish
 
 RS, H, RB, OUTER = 3.0, 4.0, 0.4, 1.1
 P = 0.5
@@ -153,7 +154,7 @@ def reconstruct_radial_stress(prefix, frame, p, w=(0.8, 0.2)):
                 area[v] += norm(S) / 3
     mid = [v[0] for v in sec["vertices"] if v[1] == 0 and v[2] == 0]
     radial = lambda i, f: (f[0] * X[i][0] + f[1] * X[i][1]) / math.hypot(X[i][0], X[i][1])
-    amid = sum(area[i] for i in mid)
+    amid = sum(area[i] for i in mid) * RS / (RS + RB)  # per specimen-surface area
     dumped = sum(radial(i, [frame[i]["f" + c] - fb[i][k] - fp[i][k]
                             for k, c in enumerate("xyz")]) for i in mid)
     equil = sum(radial(i, [-fb[i][k] - fp[i][k] for k in range(3)]) for i in mid)
@@ -238,6 +239,7 @@ run 400
 """ % (P, KNB)
 rc, log = run_lmp(DECK3)
 rows = thermo(log)
+print("empty membrane: volume %.8g -> %.8g" % (rows[0]["f_conf[1]"], rows[-1]["f_conf[1]"]))
 check(rows[-1]["f_conf[1]"] < 0.995 * rows[0]["f_conf[1]"],
       "volume decreases: %g -> %g" % (rows[0]["f_conf[1]"], rows[-1]["f_conf[1]"]))
 
@@ -285,13 +287,23 @@ thermo_modify format float %%.15g
 thermo 100
 run 1500
 """
-# single layer: every middle sphere carries P on its tributary area (tilt of the triangles
-# and the tiny sink into the core aside)
+# single layer: every middle sphere carries P on its tributary area of the centres'
+# surface (tilt of the triangles and the tiny sink into the core aside); the fix reports it
+# per area of the specimen surface, smaller by RS / (RS + RB). With "surface specimen" P
+# acts on the specimen surface.
+SHARE = RS / (RS + RB)
 make_membrane("single", grains="core.data", outer=0)
 rc, log = run_lmp(DECK4 % ("single", "single", KNB, P, HERE + "/single", KNB))
 rows = thermo(log)
-near(rows[-1]["f_conf[2]"], P, rtol=0.02, msg="radial stress on a rigid core, single layer")
+print("radial stress, single layer on a rigid core: %.8g (P / SHARE = %.8g)"
+      % (rows[-1]["f_conf[2]"], P / SHARE))
+near(rows[-1]["f_conf[2]"], P / SHARE, rtol=0.02, msg="radial stress on a rigid core, single layer")
 near(rows[-1]["f_conf[2]"], rows[-2]["f_conf[2]"], rtol=0.01, msg="radial stress settled")
+rc, log = run_lmp((DECK4 % ("single", "single", KNB, P, HERE + "/single", KNB)).replace(
+    "knb %g\n" % KNB, "knb %g surface specimen\n" % KNB))
+print("radial stress, single layer, surface specimen: %.8g (P = %g)"
+      % (thermo(log)[-1]["f_conf[2]"], P))
+near(thermo(log)[-1]["f_conf[2]"], P, rtol=0.02, msg="radial stress, surface specimen")
 # specimen volume estimate: the core cylinder of radius RS between the end-ring planes,
 # within the inscribed-polygon error
 near(rows[-1]["f_conf[4]"], math.pi * RS * RS * H, rtol=0.02, msg="specimen volume estimate")
@@ -312,7 +324,7 @@ print("radial stress, double layer on a rigid core: %.8g (P = %g; reconstructed 
       "from equilibrium %.8g)" % (sig, P, rec, eq))
 near(sig, rec, rtol=1e-6, msg="radial stress vs reconstruction from the dump")
 near(sig, eq, rtol=1e-3, msg="radial stress vs equilibrium -(bond + pressure)")
-near(sig, P, rtol=0.05, msg="radial stress on a rigid core, double layer, free ends")
+near(sig, P / SHARE, rtol=0.05, msg="radial stress on a rigid core, double layer, free ends")
 
 # ---- 5. 1 vs 2 ranks, 100 steps -------------------------------------------------------
 DECK5 = HEAD % ("cored", "cored", KNB) + """
@@ -329,6 +341,7 @@ run_lmp(DECK5, cwd="np1")
 run_lmp(DECK5, np=2, cwd="np2")
 d1, d2 = read_dump("np1/par.dump")[-1], read_dump("np2/par.dump")[-1]
 worst = max(abs(d1[i][c] - d2[i][c]) for i in d1 for c in ("x", "y", "z"))
+print("1 vs 2 ranks, 100 steps: max position difference %g" % worst)
 check(len(d1) == len(d2) and worst < 1e-8, "1 vs 2 ranks after 100 steps: max diff %g" % worst)
 moved = max(abs(d1[i]["x"] - read_dump("np1/par.dump")[0][i]["x"]) for i in d1)
 check(moved > 1e-4, "the parallel check moved the membrane (%g)" % moved)
@@ -336,15 +349,14 @@ check(moved > 1e-4, "the parallel check moved the membrane (%g)" % moved)
 # restart: 50 steps, write_restart, read_restart (bond coefficients and axis from the file),
 # 50 more steps == 100 uninterrupted steps (the fix keeps no state but its input file)
 FIXES5 = """group ends union membrane_bottom membrane_top
-variable p equal ramp(0,%g)
+variable p equal %g*step/100
 fix conf membrane membrane/lsdem pressure v_p triangles %s/cored.tri knb %g
 fix nve membrane nve/lsdem damping 1.0
 fix hold ends setforce 0 0 0
 """ % (2 * P, HERE, KNB)
 run_lmp(HEAD % ("cored", "cored", KNB) + FIXES5 + "run 50\nwrite_restart half.restart\n",
         cwd="rs")
-run_lmp("read_restart half.restart\ncomm_modify vel yes\n" + FIXES5.replace(
-    "ramp(0", "ramp(%r" % (P,)) + "dump d all custom 50 par.dump id x y z\n"
+run_lmp("read_restart half.restart\ncomm_modify vel yes\n" + FIXES5 + "dump d all custom 50 par.dump id x y z\n"
     "dump_modify d sort id format float %.17g\nrun 50\n", cwd="rs")
 d3 = read_dump("rs/par.dump")[-1]
 worst = max(abs(d1[i][c] - d3[i][c]) for i in d1 for c in ("x", "y", "z"))
@@ -371,4 +383,21 @@ check(rc != 0 and "cannot open triangles file nofile.tri" in log, "missing file 
 rc, log = run_lmp(HEAD % ("empty", "empty", KNB) + "group some id 1:10\nfix conf some "
                   "membrane/lsdem pressure 1 triangles empty.tri\nrun 0\n", expect_fail=True)
 check(rc != 0 and "membrane spheres are not in fix group some" in log, "group message")
+# generator input errors
+def tool_fails(*args):
+    p = subprocess.run([SHAPE_TOOL, "membrane"] + [str(a) for a in args], stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, text=True)
+    return p.returncode, p.stdout
+
+
+rc, msg = tool_fails("bad", "--radius", RS, "--height", H, "--rb", RB, "--library", "mem.lslib",
+                     "--shapes", 1, 3)
+check(rc == 1 and "shape-ID 1 of mem.lslib must be an analytic sphere of radius 0.4" in msg,
+      "wrong membrane shape message: " + msg)
+rc, msg = tool_fails("bad", "--radius", 0.3, "--height", H, "--rb", RB, "--library", "mem.lslib",
+                     "--shapes", 2, 3)
+check(rc == 1 and "sphere radius 0.4 too large for specimen radius 0.3" in msg,
+      "rb > Rs message: " + msg)
+rc, msg = tool_fails("bad", "--radius", RS, "--height", H)
+check(rc == 2 and "are required" in msg, "missing options: " + msg)
 finish()

@@ -14,6 +14,7 @@
    velocity puts it.
 4. A plane platen that leaves the whole box on its solid side is refused, naming the point
    and the range of n.p that cuts the box.
+5. compute dilatancy/lsdem on prescribed strain histories (eq 3.10 by hand).
 """
 import math
 import os
@@ -155,5 +156,28 @@ run 0
 rc, log = run_lmp(deck4, cwd=os.path.abspath("outside"), expect_fail=True)
 check(rc != 0 and "plane point (0 0 7.5) is outside the box" in log and "[-1, 6]" in log,
       "a platen outside the box is refused naming the point and the range: %s" % log[-600:])
+
+# 5. dilatancy angle from strain increments: eps_v = -eps_a (dilation) gives sin psi = 1/3,
+#    eps_v = eps_a (no lateral strain) gives -90 deg; the first evaluation gives 0
+deck5 = head("s.lslib", "one.data", boundary="p p f") + """
+pair_style zero 1.0
+pair_coeff * *
+fix nve all nve/lsdem
+variable ea equal 1e-4*step
+variable ev equal -1e-4*step*(step<=20)+(-2e-3+1e-4*(step-20))*(step>20)
+compute psi all dilatancy/lsdem v_ev v_ea
+thermo_style custom step v_ea v_ev c_psi
+thermo_modify format float %.17g
+thermo 10
+run 40
+"""
+rc, log = run_lmp(deck5, cwd=os.path.abspath("dilatancy"))
+rows5 = {int(r["Step"]): r["c_psi"] for r in thermo(log)}
+if check(set(rows5) >= {0, 10, 20, 30, 40}, "dilatancy: thermo rows missing"):
+    near(rows5[0], 0.0, atol=0.0, msg="first evaluation")
+    for n in (10, 20):
+        near(rows5[n], math.degrees(math.asin(1.0 / 3.0)), atol=1e-9, msg="psi at step %d" % n)
+    for n in (30, 40):
+        near(rows5[n], -90.0, atol=1e-6, msg="psi at step %d" % n)
 
 finish()

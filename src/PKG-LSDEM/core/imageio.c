@@ -290,29 +290,6 @@ static lsdem_status decode_page(const tiff_file *t, const tiff_page *p, int page
   return LSDEM_OK;
 }
 
-static lsdem_status slurp(const char *path, unsigned char **data, size_t *size, lsdem_error *err)
-{
-  FILE *f = fopen(path, "rb");
-  if (!f) return lsdem_fail(err, LSDEM_ERR_IO, "%s: cannot open", path);
-  const long long n = file_size(f);
-  lsdem_status st = LSDEM_OK;
-  if (n < 0) st = lsdem_fail(err, LSDEM_ERR_IO, "%s: cannot find the file size", path);
-  else if (n > 4 * (long long)LSDEM_IMAGE_MAX_VOXELS + (1 << 24))
-    st = lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: %lld bytes: larger than any image this reader "
-                    "accepts", path, n);
-  *data = st == LSDEM_OK ? malloc(n > 0 ? (size_t)n : 1) : NULL;
-  if (st == LSDEM_OK && !*data) st = lsdem_fail(err, LSDEM_ERR_NOMEM, "%s: out of memory", path);
-  if (st == LSDEM_OK && fread(*data, 1, (size_t)n, f) != (size_t)n)
-    st = lsdem_fail(err, LSDEM_ERR_IO, "%s: read failed", path);
-  fclose(f);
-  if (st != LSDEM_OK) {
-    free(*data);
-    *data = NULL;
-  }
-  *size = (size_t)(n > 0 ? n : 0);
-  return st;
-}
-
 /* Walk the IFD chain: every page checked, equal sizes; offsets of the pages into *ifds. */
 static lsdem_status list_pages(const tiff_file *t, uint32_t first, uint32_t **ifds, int *npages,
                                lsdem_error *err)
@@ -389,7 +366,8 @@ lsdem_status lsdem_image_read_tiff(const char *path, lsdem_label_image *img, lsd
   memset(img, 0, sizeof *img);
   unsigned char *data = NULL;
   size_t size = 0;
-  lsdem_status st = slurp(path, &data, &size, err);
+  lsdem_status st =
+      lsdem_read_file(path, 4 * (size_t)LSDEM_IMAGE_MAX_VOXELS + (1u << 24), &data, &size, err);
   if (st != LSDEM_OK) return st;
   tiff_file t = {data, size, 0, path};
   if (size < 8 || !((data[0] == 'I' && data[1] == 'I') || (data[0] == 'M' && data[1] == 'M')))

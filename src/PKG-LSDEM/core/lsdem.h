@@ -50,6 +50,11 @@ lsdem_status lsdem_fail(lsdem_error *err, lsdem_status s, const char *fmt, ...)
 #endif
     ;
 
+/* Read a whole file (at most max_bytes) into a new buffer, NUL-terminated (not counted in
+ * *size); free(*data) when done. */
+lsdem_status lsdem_read_file(const char *path, size_t max_bytes, unsigned char **data,
+                             size_t *size, lsdem_error *err);
+
 /* ------------------------------------------------- quaternions, rotations ---- */
 
 void lsdem_quat_normalize(double q[4]);
@@ -147,6 +152,8 @@ double lsdem_sdf_eval(const lsdem_sdf *s, const double p[3], double grad[3]);
  * {lsdem_grid_value < 0} (inside and outside the grid box) and over-estimates it by at
  * most 0.03 h (cells refined by bisection): it scans all cells, so compute it once per
  * shape, not per contact. */
+/* Lower-case name of a shape kind ("grid", "sphere", ...), for messages and listings. */
+const char *lsdem_sdf_kind_name(lsdem_sdf_kind k);
 double lsdem_sdf_bound_radius(const lsdem_sdf *s);
 
 /* Sample an SDF onto a new grid covering [lo, hi] (shape frame) with spacing h, plus
@@ -836,7 +843,8 @@ void lsdem_stress_principal(const double sigma[9], double s[3]);
 double lsdem_friction_angle(double s1, double s3);
 /* Dilatancy angle (eq 3.10, Schanz & Vermeer 1996 for triaxial compression), radians,
  * from increments of volumetric and axial strain (compression positive):
- * sin(psi) = -x / (2 - x), x = deps_v / deps_a; psi > 0 for dilation. 0 if deps_a == 0.
+ * sin(psi) = -x / (2 - x), x = deps_v / deps_a; psi > 0 for dilation. 0 if deps_a == 0;
+ * -pi/2 for x >= 1 (the radius shrinks as well: outside the formula's range).
  * (The report prints (x/2)/(2 - x/2); we use the published Schanz-Vermeer form.) */
 double lsdem_dilatancy_angle(double deps_v, double deps_a);
 /* Inertial number (eq 3.5): |strain_rate| d / sqrt(pressure / density); d = mean equivalent

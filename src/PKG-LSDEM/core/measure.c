@@ -67,15 +67,15 @@ double lsdem_friction_angle(double s1, double s3)
 }
 
 /* Report eq 3.10 (Schanz & Vermeer 1996, triaxial compression), compression positive:
- * sin(psi) = -x / (2 - x), x = d eps_v / d eps_a; psi > 0 when the specimen dilates. */
+ * sin(psi) = -x / (2 - x), x = d eps_v / d eps_a; psi > 0 when the specimen dilates.
+ * x >= 1 means the radius shrinks too (not triaxial-compression kinematics; the formula
+ * would pass -1 and blow up at x = 2): -90 degrees, the value at x = 1. */
 double lsdem_dilatancy_angle(double deps_v, double deps_a)
 {
   if (deps_a == 0.0) return 0.0;
   const double x = deps_v / deps_a;
-  double r = -x / (2.0 - x);
-  if (r > 1.0) r = 1.0;
-  if (r < -1.0) r = -1.0;
-  return asin(r);
+  if (x >= 1.0) return -asin(1.0);
+  return asin(-x / (2.0 - x));
 }
 
 /* Report eq 3.5: I = strain_rate d / sqrt(pressure / density). */

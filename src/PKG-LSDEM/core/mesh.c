@@ -126,32 +126,6 @@ static lsdem_status weld(const soup *s, lsdem_mesh *m, const char *path, lsdem_e
   return LSDEM_OK;
 }
 
-static lsdem_status read_all(const char *path, char **data, size_t *size, lsdem_error *err)
-{
-  FILE *f = fopen(path, "rb");
-  if (!f) return lsdem_fail(err, LSDEM_ERR_IO, "%s: cannot open", path);
-  long n = -1;
-  if (fseek(f, 0, SEEK_END) == 0) n = ftell(f);
-  lsdem_status st = LSDEM_OK;
-  if (n < 0 || fseek(f, 0, SEEK_SET) != 0) st = lsdem_fail(err, LSDEM_ERR_IO, "%s: cannot seek", path);
-  else if (n > MESH_MAX_FILE_BYTES)
-    st = lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: %ld bytes: above the mesh file limit of %ld",
-                    path, n, MESH_MAX_FILE_BYTES);
-  *data = st == LSDEM_OK ? malloc((size_t)n + 1) : NULL;
-  if (st == LSDEM_OK && !*data) st = lsdem_fail(err, LSDEM_ERR_NOMEM, "%s: out of memory", path);
-  if (st == LSDEM_OK && fread(*data, 1, (size_t)n, f) != (size_t)n)
-    st = lsdem_fail(err, LSDEM_ERR_IO, "%s: read failed", path);
-  fclose(f);
-  if (st != LSDEM_OK) {
-    free(*data);
-    *data = NULL;
-    return st;
-  }
-  (*data)[n] = '\0';
-  *size = (size_t)n;
-  return LSDEM_OK;
-}
-
 static float load_f32le(const unsigned char *p)
 {
   const uint32_t u = (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 |
@@ -409,7 +383,7 @@ lsdem_status lsdem_mesh_read(const char *path, lsdem_mesh *m, lsdem_error *err)
   memset(m, 0, sizeof *m);
   char *data = NULL;
   size_t size = 0;
-  lsdem_status st = read_all(path, &data, &size, err);
+  lsdem_status st = lsdem_read_file(path, MESH_MAX_FILE_BYTES, (unsigned char **)&data, &size, err);
   if (st != LSDEM_OK) return st;
   const int obj = has_extension(path, ".obj") ||
                   (!has_extension(path, ".stl") && !looks_binary_stl(data, size) &&

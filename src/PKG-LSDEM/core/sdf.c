@@ -428,3 +428,17 @@ double lsdem_sdf_bound_radius(const lsdem_sdf *s)
   }
   return HUGE_VAL;
 }
+
+const char *lsdem_sdf_kind_name(lsdem_sdf_kind k)
+{
+  switch (k) {
+  case LSDEM_SDF_GRID: return "grid";
+  case LSDEM_SDF_SPHERE: return "sphere";
+  case LSDEM_SDF_PLANE: return "plane";
+  case LSDEM_SDF_CYLINDER: return "cylinder";
+  case LSDEM_SDF_BOX: return "box";
+  case LSDEM_SDF_ELLIPSOID: return "ellipsoid";
+  case LSDEM_SDF_SUPERELLIPSOID: return "superellipsoid";
+  }
+  return "unknown";
+}
