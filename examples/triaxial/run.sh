@@ -3,7 +3,7 @@
 # consolidate and shear (in.triaxial), plot. Called by `./lsdem example triaxial` (which sets
 # LSDEM_LMP and LSDEM_SHAPE_TOOL). Environment knobs:
 #   SHAPES=angular (default: random sand-like grains) | spheres (equal-volume spheres,
-#   the report's §3.4.4 control); NP=2 ranks; NGRAINS=300; MU=0.6; OUT=out (or out-spheres)
+#   the report's §3.4.4 control); NP=2 ranks; NGRAINS=300; MU=0.6; OUT=out (or out/spheres)
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 lmp=${LSDEM_LMP:-$here/../../build/lmp}
@@ -12,7 +12,7 @@ np=${NP:-2}
 n=${NGRAINS:-300}
 kind=${SHAPES:-angular}
 mu=${MU:-0.6}
-out=${OUT:-$here/out$([ "$kind" = spheres ] && echo -spheres || true)}
+out=${OUT:-$here/out$([ "$kind" = spheres ] && echo /spheres || true)}
 R=90          # specimen radius (pixels); grains ~30 px, so D/d ~ 6
 rho=2.65e-3   # scaled grain density (see in.triaxial)
 rb=10         # membrane sphere radius (report Table 3.2), outer layer 1.1 rb

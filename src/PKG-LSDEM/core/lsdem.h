@@ -108,7 +108,7 @@ typedef struct {
  * never inside the solid. */
 double lsdem_grid_eval(const lsdem_grid *g, const double p[3], double grad[3]);
 /* lsdem_grid_eval of n points p[3m..3m+2] into phi[m], grad[3m..3m+2] (bit-identical
- * results), with the cache misses of the n lookups overlapped (cells prefetched first). */
+ * results), done back to back so that their cache misses overlap. */
 void lsdem_grid_eval_many(const lsdem_grid *g, int n, const double *p, double *phi,
                           double *grad);
 /* Value only (same outside rule), for mass properties and checks. */
@@ -149,9 +149,9 @@ typedef struct {
 double lsdem_sdf_eval(const lsdem_sdf *s, const double p[3], double grad[3]);
 /* Radius of a sphere about the origin that contains the solid (HUGE_VAL if unbounded,
  * including every inverted SDF). For a grid it bounds the trilinear solid
- * {lsdem_grid_value < 0} (inside and outside the grid box) and over-estimates it by at
- * most 0.03 h (cells refined by bisection): it scans all cells, so compute it once per
- * shape, not per contact. */
+ * {lsdem_grid_value < 0} (inside and outside the grid box); for a grid with positive
+ * values on its border it over-estimates the solid's extent by at most 0.03 h (cells
+ * refined by bisection). It scans all cells: compute it once per shape, not per contact. */
 /* Lower-case name of a shape kind ("grid", "sphere", ...), for messages and listings. */
 const char *lsdem_sdf_kind_name(lsdem_sdf_kind k);
 double lsdem_sdf_bound_radius(const lsdem_sdf *s);
