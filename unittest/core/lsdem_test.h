@@ -6,7 +6,20 @@
 #ifndef LSDEM_TEST_H
 #define LSDEM_TEST_H
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
+
+#include "lsdem.h"
+
+/* Random test inputs from the core's splitmix64 stream, same sequence on every run.
+ * urand() is uniform in (0, 1], srand1() in (-1, 1]. */
+static inline uint64_t *lsdem_test_rng(void)
+{
+  static uint64_t state = 0x5eedu;
+  return &state;
+}
+static inline double urand(void) { return lsdem_uniform01(lsdem_test_rng()); }
+static inline double srand1(void) { return 2.0 * urand() - 1.0; }
 
 static int lsdem_test_pass_ = 0, lsdem_test_fail_ = 0;
 

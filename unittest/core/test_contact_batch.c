@@ -12,16 +12,6 @@
 
 enum { NN = 400 };
 
-static uint64_t rng_state = 4242;
-static double urand(void) /* splitmix64 -> [0, 1) */
-{
-  uint64_t z = (rng_state += 0x9e3779b97f4a7c15ull);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  z ^= z >> 31;
-  return (double)(z >> 11) * (1.0 / 9007199254740992.0);
-}
-static double srand1(void) { return 2.0 * urand() - 1.0; }
 
 static void random_rotation(double R[9])
 {

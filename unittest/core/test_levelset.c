@@ -8,15 +8,6 @@
 #include <string.h>
 #include <time.h>
 
-static uint64_t rng_state = 12345;
-static double urand(void) /* splitmix64 -> [0, 1) */
-{
-  uint64_t z = (rng_state += 0x9e3779b97f4a7c15ull);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  z ^= z >> 31;
-  return (double)(z >> 11) * (1.0 / 9007199254740992.0);
-}
 
 /* f = c0 + c1 x + c2 y + c3 z + c4 xy + c5 xz + c6 yz + c7 xyz and its gradient */
 static double trilin(const double c[8], const double p[3])
