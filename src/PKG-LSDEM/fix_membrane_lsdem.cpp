@@ -427,8 +427,25 @@ double FixMembraneLsdem::radial_projection(int i, const double *f) const
 }
 
 /* ----------------------------------------------------------------------
+   A third of the specimen-surface area behind an inner triangle, for the radial stress:
+   the radial projection S_T . r_hat of its area vector (r_hat at the centroid, radius r_T)
+   is the area r dtheta dz it covers on a cylinder, unchanged when the membrane wrinkles
+   between the grains (|S_T| is not); the specimen surface lies r_b further in, so that area
+   is scaled by (r_T - r_b) / r_T.
+------------------------------------------------------------------------- */
+
+double FixMembraneLsdem::specimen_area_share(const double *a, const double *b, const double *c,
+                                             const double *S) const
+{
+  double cx = (a[0] + b[0] + c[0]) / 3.0 - axis[0], cy = (a[1] + b[1] + c[1]) / 3.0 - axis[1];
+  double r = sqrt(cx * cx + cy * cy);
+  if (r <= sphere_radius[0]) return 0.0;
+  return (S[0] * cx + S[1] * cy) / r * (r - sphere_radius[0]) / r / 3.0;
+}
+
+/* ----------------------------------------------------------------------
    report §2.3.5: each vertex of triangle T gets -w p S_T / 3; the inner layer's
-   tributary areas |S_T|/3 go to column 3 (for the radial stress)
+   specimen-surface shares go to column 3 (for the radial stress)
 ------------------------------------------------------------------------- */
 
 void FixMembraneLsdem::apply_pressure(double p)
@@ -444,7 +461,7 @@ void FixMembraneLsdem::apply_pressure(double p)
     lsdem_triangle_area_vector(x[v[0]], x[v[1]], x[v[2]], S);
     int layer = tri_layer[t];
     lsdem_pressure_vertex_force(S, weight[layer] * layer_scale[layer] * p, f);
-    double share = tri_layer[t] == 0 ? sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]) / 3.0 : 0.0;
+    double share = layer == 0 ? specimen_area_share(x[v[0]], x[v[1]], x[v[2]], S) : 0.0;
     for (int k = 0; k < 3; k++) {
       double *fp = fpress[v[k]];
       fp[0] += f[0];
@@ -560,7 +577,7 @@ void FixMembraneLsdem::compute_geometry()
   double rb = sphere_radius[0], A = all[2], H = zc[0][1] - zc[0][0];
   vec[0] = vol[0];
   // per unit area of the specimen surface, compressive positive
-  vec[1] = all[33] > 0.0 ? all[32] / (specimen_share * all[33]) : 0.0;
+  vec[1] = all[33] > 0.0 ? all[32] / all[33] : 0.0;
   vec[2] = A;
   vec[3] = vol[0] - rb * A + M_PI * rb * rb * H;
   vec[4] = pressure_value;

@@ -80,6 +80,8 @@ class FixMembraneLsdem : public Fix {
   int vertex(tagint tag, int owner, int itri);
   bool owned_triangle(int t, int v[3]);
   double radial_projection(int i, const double *f) const;
+  double specimen_area_share(const double *a, const double *b, const double *c,
+                             const double *S) const;
   void apply_pressure(double p);
   void compute_geometry();
 };

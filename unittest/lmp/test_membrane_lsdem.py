@@ -117,9 +117,18 @@ def cross_half(a, b, c):
             0.5 * (ab[0] * ac[1] - ab[1] * ac[0])]
 
 
+def specimen_share(a, b, c, S):
+    """Specimen-surface area behind a triangle: radial projection of its area vector at the
+    centroid (radius r), scaled to the surface r_b further in by (r - r_b) / r."""
+    cx, cy = (a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3
+    r = math.hypot(cx, cy)
+    return (S[0] * cx + S[1] * cy) / r * (r - RB) / r
+
+
 def reconstruct_radial_stress(prefix, frame, p, w=(0.8, 0.2)):
     """(contact from dumped forces, contact from equilibrium) radial stress on the inner
-    middle rings: sum f.r / sum (area/3), f = dumped - bond - pressure or -(bond + pressure)."""
+    middle rings: sum f.r / sum (specimen area/3), f = dumped - bond - pressure or
+    -(bond + pressure)."""
     X = {i: (v["x"], v["y"], v["z"]) for i, v in frame.items()}
     coeff = {}
     for l in open(prefix + ".in"):
@@ -151,10 +160,10 @@ def reconstruct_radial_stress(prefix, frame, p, w=(0.8, 0.2)):
             for k in range(3):
                 fp[v][k] -= scale[ly] * p * S[k] / 3
             if ly == 0:
-                area[v] += norm(S) / 3
+                area[v] += specimen_share(X[a], X[b], X[c], S) / 3
     mid = [v[0] for v in sec["vertices"] if v[1] == 0 and v[2] == 0]
     radial = lambda i, f: (f[0] * X[i][0] + f[1] * X[i][1]) / math.hypot(X[i][0], X[i][1])
-    amid = sum(area[i] for i in mid) * RS / (RS + RB)  # per specimen-surface area
+    amid = sum(area[i] for i in mid)  # specimen-surface area of the middle rings
     dumped = sum(radial(i, [frame[i]["f" + c] - fb[i][k] - fp[i][k]
                             for k, c in enumerate("xyz")]) for i in mid)
     equil = sum(radial(i, [-fb[i][k] - fp[i][k] for k in range(3)]) for i in mid)
