@@ -32,7 +32,7 @@ typedef struct {
   const char *prefix, *grains, *library;
   lsdem_membrane_params mp;
   int shape[2], type[2];
-  double density, knbb, ksbb, kn_inter, ks_inter;
+  double density, knbb, ksbb, kn_outer, ks_outer, kn_inter, ks_inter;
 } membrane_opts;
 
 static int membrane_usage(void)
@@ -41,7 +41,7 @@ static int membrane_usage(void)
           "usage: lsdem-shape membrane PREFIX --radius RS --height H --rb RB --library LIB\n"
           "         --shapes SHAPE_IN SHAPE_OUT [--grains GRAINS.data] [--centre X Y] [--z0 Z]\n"
           "         [--outer F] [--density RHO] [--types T_IN T_OUT] [--knbb K] [--ksbb K]\n"
-          "         [--kinter KN KS]\n"
+          "         [--kouter KN KS] [--kinter KN KS]\n"
           "  writes PREFIX.data, PREFIX.tri, PREFIX.in (doc/fix_membrane_lsdem.rst)\n");
   return 2;
 }
@@ -52,13 +52,20 @@ static int bad(const char *what, const char *value)
   return 2;
 }
 
+/* Two non-negative stiffnesses after an option (--kouter, --kinter). */
+static int parse_stiffness_pair(char **argv, int i, double *kn, double *ks)
+{
+  return parse_number(argv[i + 1], 0, kn) && parse_number(argv[i + 2], 0, ks) && *kn >= 0 &&
+         *ks >= 0;
+}
+
 static int parse_opts(int argc, char **argv, membrane_opts *o)
 {
   memset(o, 0, sizeof(*o));
   o->mp.outer_factor = 1.1;
   o->density = 1.0;
   o->knbb = o->ksbb = 50.0;
-  o->kn_inter = o->ks_inter = -1.0;
+  o->kn_outer = o->ks_outer = o->kn_inter = o->ks_inter = -1.0;
   o->shape[0] = o->shape[1] = -1;
   if (argc < 1 || argv[0][0] == '-') return membrane_usage();
   o->prefix = argv[0];
@@ -90,10 +97,11 @@ static int parse_opts(int argc, char **argv, membrane_opts *o)
       if (!parse_number(argv[++i], 0, &o->knbb) || o->knbb < 0) return bad("knbb", argv[i]);
     } else if (!strcmp(a, "--ksbb") && left >= 1) {
       if (!parse_number(argv[++i], 0, &o->ksbb) || o->ksbb < 0) return bad("ksbb", argv[i]);
+    } else if (!strcmp(a, "--kouter") && left >= 2) {
+      if (!parse_stiffness_pair(argv, i, &o->kn_outer, &o->ks_outer)) return bad("kouter", argv[i + 1]);
+      i += 2;
     } else if (!strcmp(a, "--kinter") && left >= 2) {
-      if (!parse_number(argv[i + 1], 0, &o->kn_inter) || !parse_number(argv[i + 2], 0, &o->ks_inter) ||
-          o->kn_inter < 0 || o->ks_inter < 0)
-        return bad("kinter", argv[i + 1]);
+      if (!parse_stiffness_pair(argv, i, &o->kn_inter, &o->ks_inter)) return bad("kinter", argv[i + 1]);
       i += 2;
     } else if (!strcmp(a, "--shapes") && left >= 2) {
       if (!parse_count(argv[i + 1], 1, 16777216, &k) || !parse_count(argv[i + 2], 1, 16777216, &l))
@@ -122,6 +130,8 @@ static int parse_opts(int argc, char **argv, membrane_opts *o)
                     "are required\n");
     return membrane_usage();
   }
+  if (o->kn_outer < 0) o->kn_outer = o->knbb;
+  if (o->ks_outer < 0) o->ks_outer = o->ksbb;
   if (o->kn_inter < 0) o->kn_inter = o->knbb;
   if (o->ks_inter < 0) o->ks_inter = o->ksbb;
   return 0;
@@ -390,7 +400,9 @@ static int write_include(const membrane_opts *o, const lsdem_membrane *m)
   fprintf(f, "bond_style lsdem/membrane axis %.15g %.15g\n", o->mp.centre[0], o->mp.centre[1]);
   fprintf(f, "# bond_coeff type Knbb Ksbb r0 rest_hoop rest_axial\n");
   for (int k = 0; k < bond_types(m); k++) {
-    double kn = k < 6 ? o->knbb : o->kn_inter, ks = k < 6 ? o->ksbb : o->ks_inter;
+    /* bond kinds: 0-2 inner layer, 3-5 outer layer, 6-8 outer -> inner */
+    const double kn = k < 3 ? o->knbb : k < 6 ? o->kn_outer : o->kn_inter;
+    const double ks = k < 3 ? o->ksbb : k < 6 ? o->ks_outer : o->ks_inter;
     fprintf(f, "bond_coeff %d %.12g %.12g %.15g %.15g %.15g  # %s (%d bonds)\n", k + 1, kn, ks,
             m->kind_r0[k], m->kind_rest[2 * k], m->kind_rest[2 * k + 1], kind_names[k],
             m->kind_used[k]);
