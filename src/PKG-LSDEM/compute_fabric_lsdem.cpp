@@ -132,12 +132,7 @@ void ComputeFabricLsdem::compute_vector()
   MPI_Allreduce(local, all, 10, MPI_DOUBLE, MPI_SUM, world);
   double D[9];
   lsdem_fabric_deviator(all, all[9], D);
-  vector[0] = D[0];
-  vector[1] = D[4];
-  vector[2] = D[8];
-  vector[3] = D[1];
-  vector[4] = D[2];
-  vector[5] = D[5];
+  lsdem_sym_to_voigt(D, vector);
   vector[6] = lsdem_fabric_anisotropy(D);
   rotation_stats(vector[7], vector[8], vector[9]);
 }

@@ -150,12 +150,7 @@ void ComputeStressLsdem::compute_vector()
 
   lsdem_love_weber_stress(M, specimen_volume(), sigma);
   lsdem_stress_principal(sigma, s);
-  vector[0] = sigma[0];
-  vector[1] = sigma[4];
-  vector[2] = sigma[8];
-  vector[3] = sigma[1];
-  vector[4] = sigma[2];
-  vector[5] = sigma[5];
+  lsdem_sym_to_voigt(sigma, vector);
   vector[6] = lsdem_stress_mean(sigma);
   vector[7] = lsdem_stress_deviatoric(sigma);
   vector[8] = (180.0 / MY_PI) * lsdem_friction_angle(s[0], s[2]);

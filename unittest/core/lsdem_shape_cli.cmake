@@ -5,27 +5,7 @@
 # default spacing h = 1/10 of the smallest semi-axis, and 25132.7 in voxel units of 0.1.
 file(MAKE_DIRECTORY ${WORK})
 
-function(run expect_ok)
-  execute_process(COMMAND ${TOOL} ${ARGN} WORKING_DIRECTORY ${WORK}
-    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(expect_ok AND NOT rc EQUAL 0)
-    message(FATAL_ERROR "lsdem-shape ${ARGN}: exit ${rc}\n${out}${err}")
-  elseif(NOT expect_ok AND rc EQUAL 0)
-    message(FATAL_ERROR "lsdem-shape ${ARGN}: succeeded, expected a failure\n${out}")
-  elseif(NOT expect_ok AND NOT err MATCHES "lsdem-shape")
-    message(FATAL_ERROR "lsdem-shape ${ARGN}: failed without a message")
-  endif()
-  set(out "${out}" PARENT_SCOPE)
-endfunction()
-
-function(expect_in text)
-  foreach(needle ${ARGN})
-    string(FIND "${text}" "${needle}" at)
-    if(at LESS 0)
-      message(FATAL_ERROR "expected '${needle}' in:\n${text}")
-    endif()
-  endforeach()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/cli_common.cmake)
 
 run(1 analytic s.lslib sphere 2 --analytic --nodes 50 --name ball)
 run(1 analytic e.lslib ellipsoid 3 2 1 --nodes 120)

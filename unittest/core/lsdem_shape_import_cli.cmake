@@ -6,26 +6,7 @@
 # voxel counts and box centroids, closed-form cube volumes, the names of mesh defects.
 file(MAKE_DIRECTORY ${WORK})
 
-function(run expect_ok)
-  execute_process(COMMAND ${TOOL} ${ARGN} WORKING_DIRECTORY ${WORK}
-    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(expect_ok AND NOT rc EQUAL 0)
-    message(FATAL_ERROR "lsdem-shape ${ARGN}: exit ${rc}\n${out}${err}")
-  elseif(NOT expect_ok AND rc EQUAL 0)
-    message(FATAL_ERROR "lsdem-shape ${ARGN}: succeeded, expected a failure\n${out}")
-  endif()
-  set(out "${out}" PARENT_SCOPE)
-  set(err "${err}" PARENT_SCOPE)
-endfunction()
-
-function(expect_in text)
-  foreach(needle ${ARGN})
-    string(FIND "${text}" "${needle}" at)
-    if(at LESS 0)
-      message(FATAL_ERROR "expected '${needle}' in:\n${text}")
-    endif()
-  endforeach()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/cli_common.cmake)
 
 # ---- from-labels: a 12 x 6 x 6 u8 image, label 1 for x < 6, label 2 for x >= 6, and one
 # voxel of label 3 at (11, 5, 5) (dropped below --min-voxels 2). Grain 1 is a 6-voxel cube,

@@ -839,6 +839,8 @@ double lsdem_stress_mean(const double sigma[9]);       /* p = tr(sigma) / 3 (eq 
 double lsdem_stress_deviatoric(const double sigma[9]); /* q = sqrt(3/2 s:s) (eq 3.8) */
 /* Principal stresses, descending: s[0] = sigma_1 (major) >= s[1] >= s[2] = sigma_3. */
 void lsdem_stress_principal(const double sigma[9], double s[3]);
+/* A symmetric tensor's six components in LAMMPS order: xx yy zz xy xz yz. */
+void lsdem_sym_to_voigt(const double T[9], double out[6]);
 /* Mobilised friction angle (eq 3.9), radians: asin((s1 - s3) / (s1 + s3)); 0 if s1 + s3 <= 0. */
 double lsdem_friction_angle(double s1, double s3);
 /* Dilatancy angle (eq 3.10, Schanz & Vermeer 1996 for triaxial compression), radians,

@@ -47,6 +47,16 @@ double lsdem_stress_deviatoric(const double sigma[9])
   return sqrt(1.5 * sym_contract(s, s));
 }
 
+void lsdem_sym_to_voigt(const double T[9], double out[6])
+{
+  out[0] = T[0];
+  out[1] = T[4];
+  out[2] = T[8];
+  out[3] = T[1];
+  out[4] = T[2];
+  out[5] = T[5];
+}
+
 void lsdem_stress_principal(const double sigma[9], double s[3])
 {
   double w[3], V[9];
