@@ -9,6 +9,7 @@
  * LSDEM's scalar-first convention). The box is taken from SCENE_DIR/geometry.txt (box_x ..)
  * when present, else from --box, else from the grains' extent. */
 #include "lsdem.h"
+#include "shape_common.h"
 
 #include <dirent.h>
 #include <limits.h>
@@ -142,24 +143,25 @@ static int import_shapes(const char *scene, int ngrains, const char *lib_path, i
   return rc;
 }
 
+/* The data file: shape IDs 1-based, Tan's quaternions converted to scalar-first. */
 static int write_data(const char *path, int n, const double *pos, const double *rot,
                       const int *shape_of, double density, const double lo[3], const double hi[3])
 {
-  FILE *f = fopen(path, "w");
-  if (!f) return die("cannot write the data file", NULL);
-  fprintf(f, "LSDEM data file from a Kawamoto/Tan scene (lengths in voxels)\n\n");
-  fprintf(f, "%d atoms\n1 atom types\n\n", n);
-  for (int k = 0; k < 3; k++)
-    fprintf(f, "%.9g %.9g %clo %chi\n", lo[k], hi[k], 'x' + k, 'x' + k);
-  fprintf(f, "\nAtoms # lsdem\n\n");
-  for (int i = 0; i < n; i++) {
-    double q[4];
-    lsdem_quat_from_tan(rot + 4 * i, q);
-    lsdem_quat_normalize(q);
-    fprintf(f, "%d 1 %d %.9g %.9g %.9g %.9g %.12g %.12g %.12g %.12g\n", i + 1, shape_of[i] + 1,
-            density, pos[3 * i], pos[3 * i + 1], pos[3 * i + 2], q[0], q[1], q[2], q[3]);
+  double *quat = malloc(sizeof(double) * 4 * (size_t)(n > 0 ? n : 1));
+  int *shape = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+  if (!quat || !shape) {
+    free(quat), free(shape);
+    return die("out of memory", NULL);
   }
-  return fclose(f) == 0 ? 0 : die("cannot write the data file", NULL);
+  for (int i = 0; i < n; i++) {
+    lsdem_quat_from_tan(rot + 4 * i, quat + 4 * i);
+    lsdem_quat_normalize(quat + 4 * i);
+    shape[i] = shape_of[i] + 1;
+  }
+  const int rc = shape_write_data(path, "LSDEM data file from a Kawamoto/Tan scene (lengths in voxels)",
+                                  n, shape, density, pos, quat, lo, hi);
+  free(quat), free(shape);
+  return rc;
 }
 
 int main(int argc, char **argv)

@@ -1,0 +1,77 @@
+"""lsdem-import-tan: a Kawamoto/Tan scene folder -> shape library + data file.
+Independent expectations: the rotation matrix of each imported (scalar-first) quaternion equals
+the report's eq 2.26 evaluated on the file's quaternion as printed; morphology files that are
+symlinks to one file share one shape; positions are copied; lmp reads the data file."""
+import math
+import os
+import subprocess
+
+from lsdemtest import SHAPE_TOOL, check, finish, near, run_lmp, shape_tool
+
+IMPORT = os.path.join(os.path.dirname(SHAPE_TOOL), "lsdem-import-tan")
+
+
+def eq226(q):
+    """Report eq 2.26 with Evans' (q1, q2, q3, q4) = the file's (q0, q1, q2, q3)."""
+    q1, q2, q3, q4 = q
+    return [[-q1*q1 + q2*q2 - q3*q3 + q4*q4, -2*(q1*q2 - q3*q4), 2*(q2*q3 + q1*q4)],
+            [-2*(q1*q2 + q3*q4), q1*q1 - q2*q2 - q3*q3 + q4*q4, -2*(q1*q3 - q2*q4)],
+            [2*(q2*q3 - q1*q4), -2*(q1*q3 + q2*q4), -q1*q1 - q2*q2 + q3*q3 + q4*q4]]
+
+
+def textbook(w, x, y, z):
+    """Body -> world matrix of a scalar-first unit quaternion."""
+    return [[1 - 2*(y*y + z*z), 2*(x*y - w*z), 2*(x*z + w*y)],
+            [2*(x*y + w*z), 1 - 2*(x*x + z*z), 2*(y*z - w*x)],
+            [2*(x*z - w*y), 2*(y*z + w*x), 1 - 2*(x*x + y*y)]]
+
+
+# two morphology files (voxel units) from analytic shapes
+shape_tool("analytic", "a.lslib", "ellipsoid", 6, 5, 4, "--spacing", 1, "--nodes", 100)
+shape_tool("analytic", "b.lslib", "sphere", 5, "--spacing", 1, "--nodes", 100)
+os.makedirs("scene/Morphologies/shapes", exist_ok=True)
+os.makedirs("scene/InitState", exist_ok=True)
+shape_tool("to-morph", "a.lslib", 0, "scene/Morphologies/shapes/a.dat")
+shape_tool("to-morph", "b.lslib", 0, "scene/Morphologies/shapes/b.dat")
+which = ["a", "b", "a", "a"]            # grains 1, 3, 4 share one file
+for i, w in enumerate(which):
+    link = "scene/Morphologies/morph_%d.dat" % (i + 1)
+    if not os.path.lexists(link):
+        os.symlink("shapes/%s.dat" % w, link)
+pos = [(15.0, 15.0, 15.0), (35.0, 15.0, 15.0), (15.0, 35.0, 15.0), (35.0, 35.0, 35.0)]
+rots = []
+for i in range(4):                      # unit quaternions in the file's (x y z w) order
+    a, b = 0.3 + 0.7 * i, 1.1 * i + 0.2
+    v = (math.sin(a) * math.cos(b), math.sin(a) * math.sin(b), math.cos(a))
+    h = 0.4 + 0.5 * i
+    rots.append((v[0] * math.sin(h), v[1] * math.sin(h), v[2] * math.sin(h), math.cos(h)))
+with open("scene/InitState/positions_t.dat", "w") as f:
+    f.write("".join("%r %r %r\n" % p for p in pos))
+with open("scene/InitState/rotations_t.dat", "w") as f:
+    f.write("".join("%.15f %.15f %.15f %.15f\n" % q for q in rots))
+
+p = subprocess.run([IMPORT, "scene", "out", "--density", "2.0", "--box", "50", "50", "50"],
+                   stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+check(p.returncode == 0, "lsdem-import-tan failed: %s" % p.stdout)
+check("4 grains, 2 distinct shapes" in p.stdout, "two distinct shapes: %s" % p.stdout)
+
+lines = open("out.data").read().splitlines()
+atoms = [l.split() for l in lines[lines.index("Atoms # lsdem") + 2:] if l.strip()]
+check(len(atoms) == 4, "four Atoms lines")
+ids = {}
+for row, w, x, qf in zip(atoms, which, pos, rots):
+    ids.setdefault(w, set()).add(int(row[2]))
+    near(float(row[3]), 2.0, msg="density")
+    for k in range(3):
+        near(float(row[4 + k]), x[k], atol=1e-6, msg="position")
+    R, E = textbook(*map(float, row[7:11])), eq226(qf)
+    for r in range(3):
+        for c in range(3):
+            near(R[r][c], E[r][c], atol=1e-9, msg="grain %s: R[%d][%d] vs eq 2.26" % (row[0], r, c))
+check(len(ids["a"]) == 1 and len(ids["b"]) == 1 and ids["a"] != ids["b"],
+      "shared files share a shape id: %r" % ids)
+
+rc, log = run_lmp("units si\natom_style lsdem library out.lslib\nboundary f f f\n"
+                  "read_data out.data\nrun 0\n")
+check("4 atoms" in log, "lmp reads the imported data file")
+finish()
