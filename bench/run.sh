@@ -1,23 +1,29 @@
 #!/usr/bin/env bash
 # Benchmark LSDEM on a scene in the Kawamoto/Tan layout (the report code's input format).
 #
-#   bench/run.sh [SCENE_DIR] [--steps N] [--np N] [--mode oneway|twoway]
+#   bench/run.sh [SCENE_DIR] [--steps N] [--np N] [--mode oneway|twoway] [--instructions]
 #
 # Without SCENE_DIR it generates the reference scene of ../shared/bench (2,197 ellipsoids,
 # 250 nodes each) into a temporary folder. Prints the LAMMPS time split (pair, neighbour,
 # comm, modify), the workload per grain-step, and as its last line
 #   us_per_grain_step=<x> node_tests_per_s=<y>
+# --instructions: instead of timing, count the CPU instructions of one grain-step under
+# valgrind (callgrind): runs of N and 2N steps (N = --steps, at most 20), one rank, the
+# difference divided by N * grains.
+# A figure that does not depend on machine load (it leaves out memory stalls), for
+# comparing code changes; last line `instructions_per_grain_step=<x>`. Needs valgrind.
 # Environment: LSDEM_LMP (lmp binary), LSDEM_BUILD_DIR (for lsdem-import-tan).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 build=${LSDEM_BUILD_DIR:-$here/../build}
 lmp=${LSDEM_LMP:-$build/lmp}
-scene="" steps=500 np=1 mode=oneway
+scene="" steps=500 np=1 mode=oneway instructions=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --steps) steps=$2; shift 2 ;;
     --np) np=$2; shift 2 ;;
     --mode) mode=$2; shift 2 ;;
+    --instructions) instructions=1; shift ;;
     -*) echo "unknown option $1" >&2; exit 2 ;;
     *) scene=$1; shift ;;
   esac
@@ -33,9 +39,23 @@ if [ -z "$scene" ]; then
 fi
 # density 2650 kg/m^3 at 0.1 um per voxel: rho k^3 (report Table 3.1)
 "$build/lsdem-import-tan" "$scene" "$work/scene" --density 2.65e-18
+cd "$work"
+if [ "$instructions" = 1 ]; then
+  command -v valgrind >/dev/null || { echo "--instructions needs valgrind (Debian: apt-get install valgrind)" >&2; exit 2; }
+  count() { # instructions of a run of $1 steps
+    valgrind --tool=callgrind --callgrind-out-file=/dev/null "$lmp" -in "$here/in.bench" \
+      -var steps "$1" -var mode "$mode" -var seed 2197 -log none -screen none 2>&1 |
+      awk '/refs:/ { gsub(",", "", $NF); print $NF }'
+  }
+  n=$((steps < 20 ? steps : 20))
+  i1=$(count "$n") i2=$(count $((2 * n)))
+  grains=$(awk '/ atoms$/ { print $1; exit }' scene.data)
+  echo "instructions: $i1 for $n steps, $i2 for $((2 * n)) steps, $grains grains, mode $mode"
+  echo "instructions_per_grain_step=$(( (i2 - i1) / (n * grains) ))"
+  exit 0
+fi
 mpi=()
 [ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
-cd "$work"
 "${mpi[@]}" "$lmp" -in "$here/in.bench" -var steps "$steps" -var mode "$mode" -var seed 2197 \
   -log log.bench -screen none
 /usr/bin/python3 "$here/report.py" log.bench --np "$np" --mode "$mode"
