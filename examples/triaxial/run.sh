@@ -3,7 +3,10 @@
 # consolidate and shear (in.triaxial), plot. Called by `./lsdem example triaxial` (which sets
 # LSDEM_LMP and LSDEM_SHAPE_TOOL). Environment knobs:
 #   SHAPES=angular (default: random sand-like grains) | spheres (equal-volume spheres,
-#   the report's §3.4.4 control); NP=2 ranks; NGRAINS=300; MU=0.6; OUT=out (or out/spheres)
+#   the report's §3.4.4 control); NP=2 ranks; NGRAINS=300; MU=0.6; OUT=out (or out/spheres);
+#   EPSMAX (final axial strain); UNLOAD_AT (axial strain of an unload-reload cycle, default
+#   none; UNLOAD_Q the fraction of the axial deviator to unload to, default 0.3); KM, KM_OUTER
+#   (membrane springs)
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 lmp=${LSDEM_LMP:-$here/../../build/lmp}
@@ -16,13 +19,14 @@ out=${OUT:-$here/out$([ "$kind" = spheres ] && echo /spheres || true)}
 R=90          # specimen radius (pixels); grains ~30 px, so D/d ~ 6
 rho=2.65e-3   # scaled grain density (see in.triaxial)
 rb=10         # membrane sphere radius (report Table 3.2), outer layer 1.1 rb
-km=10         # membrane spring stiffness K_nbb = K_sbb: the report's 50 N/m (Table 3.2) is for a
+km=${KM:-10}  # membrane spring stiffness K_nbb = K_sbb: the report's 50 N/m (Table 3.2) is for a
               # specimen of radius 500 px; the hoop springs of a membrane shrunk by a radial strain
               # e push outward with a stress ~ K e / R, so this R = 90 specimen keeps the report's
               # share of sigma_c with K = 50 * 90/500 ~ 10 (K = 50 here: sigma_r ~ 0.8 sigma_c)
-km_outer=2     # the outer layer only covers the inner layer's gaps and passes its 20 % share of the
-              # pressure inward; stiff hoop springs there hold part of that share back
-              # (consolidation: sigma_r 0.967 sigma_c with 10, 0.986 with 2)
+km_outer=${KM_OUTER:-2}  # the outer layer only covers the inner layer's gaps and passes its 20 %
+              # share of the pressure inward; stiff hoop springs there hold part of that share back.
+              # Softer still (KM=4 KM_OUTER=1) and the outer layer is pressed through the inner
+              # one's gaps onto the grains; that membrane fails at ~3% axial strain.
 mkdir -p "$out"
 cd "$out"
 mpi=()
@@ -69,8 +73,9 @@ sed '/^Velocities/,$d' sample.data > sample_grains.data   # grains at rest
 echo "running lmp on $np rank(s): $kind grains, mu $mu (progress in $out/log.lammps)"
 "${mpi[@]}" "$lmp" -in "$here/in.triaxial" -var lib all.lslib -var data mem.data \
   -var memin mem.in -var memtri mem.tri -var mu "$mu" ${EPSMAX:+-var epsmax $EPSMAX} \
+  ${UNLOAD_AT:+-var unload_at $UNLOAD_AT} ${UNLOAD_Q:+-var unload_q $UNLOAD_Q} \
   -log log.lammps -echo none -screen none
-grep -E '^(CONSOLIDATED|SHEARED)' log.lammps
+grep -E '^(CONSOLIDATED|UNLOAD|RELOAD|SHEARED)' log.lammps
 echo "total time $((SECONDS - start)) s"
 /usr/bin/python3 "$here/plot.py" triaxial.csv "$kind"
 echo "results: $out/triaxial.csv, $out/q_eps.png, $out/phi_eps.png, $out/epsv_eps.png, $out/dump.triaxial"

@@ -39,7 +39,9 @@ using namespace FixConst;
 
 namespace {
 enum { ROLE_MEMBRANE = 1, ROLE_INNER = 2, ROLE_MIDDLE = 4 };
-constexpr int INNER_MIDDLE = ROLE_MEMBRANE | ROLE_INNER | ROLE_MIDDLE;
+constexpr int MIDDLE = ROLE_MEMBRANE | ROLE_MIDDLE;
+constexpr int INNER_MIDDLE = MIDDLE | ROLE_INNER;
+bool has_role(int role, int bits) { return (role & bits) == bits; }
 constexpr double MAX_RB_FRACTION = 0.2;       // r_b <= Rs / 5
 constexpr double MAX_SINK_FRACTION = 0.2;     // p A_s / knb <= 0.2 r_b
 }    // namespace
@@ -488,17 +490,19 @@ void FixMembraneLsdem::post_force(int /*vflag*/)
   if (neighbor->ago == 0) refresh_roles();
   current_pressure();
 
-  // radial stress: contact force = force so far - bond forces, on inner middle-ring spheres
-  // (the grains push the membrane outward: positive = compressive on the specimen)
+  // radial stress: contact force = force so far - bond forces, on the middle-ring spheres of
+  // both layers (grains that reach an outer sphere through the inner layer's gaps push on the
+  // membrane too; contacts between membrane spheres cancel in the sum). The grains push the
+  // membrane outward: positive = compressive on the specimen.
   int nlocal = atom->nlocal;
   double **f = atom->f, **x = atom->x;
   double radial = 0.0;
   for (int i = 0; i < nlocal; i++)
-    if ((role[i] & INNER_MIDDLE) == INNER_MIDDLE) radial += radial_projection(i, f[i]);
+    if (has_role(role[i], MIDDLE)) radial += radial_projection(i, f[i]);
   int **bondlist = neighbor->bondlist;
   for (int n = 0; n < neighbor->nbondlist; n++) {
     int i1 = bondlist[n][0], i2 = bondlist[n][1];
-    bool r1 = (role[i1] & INNER_MIDDLE) == INNER_MIDDLE, r2 = (role[i2] & INNER_MIDDLE) == INNER_MIDDLE;
+    bool r1 = has_role(role[i1], MIDDLE), r2 = has_role(role[i2], MIDDLE);
     if (!r1 && !r2) continue;
     double f2[3], f1[3];
     bond->bond_force(x[i1], x[i2], bondlist[n][2], f2);
@@ -513,7 +517,7 @@ void FixMembraneLsdem::post_force(int /*vflag*/)
   apply_pressure(pressure_value);
   double area = 0.0;
   for (int i = 0; i < nlocal; i++)
-    if ((role[i] & INNER_MIDDLE) == INNER_MIDDLE) area += fpress[i][3];
+    if (has_role(role[i], INNER_MIDDLE)) area += fpress[i][3];
   middle_area = area;
   vec_step = -1;
 }

@@ -126,8 +126,9 @@ def specimen_share(a, b, c, S):
 
 
 def reconstruct_radial_stress(prefix, frame, p, w=(0.8, 0.2)):
-    """(contact from dumped forces, contact from equilibrium) radial stress on the inner
-    middle rings: sum f.r / sum (specimen area/3), f = dumped - bond - pressure or
+    """(contact from dumped forces, contact from equilibrium) radial stress on the middle
+    rings of both layers: sum f.r over their spheres / specimen area behind the inner middle
+    spheres (sum of a third of each inner triangle's share), f = dumped - bond - pressure or
     -(bond + pressure)."""
     X = {i: (v["x"], v["y"], v["z"]) for i, v in frame.items()}
     coeff = {}
@@ -161,9 +162,9 @@ def reconstruct_radial_stress(prefix, frame, p, w=(0.8, 0.2)):
                 fp[v][k] -= scale[ly] * p * S[k] / 3
             if ly == 0:
                 area[v] += specimen_share(X[a], X[b], X[c], S) / 3
-    mid = [v[0] for v in sec["vertices"] if v[1] == 0 and v[2] == 0]
+    mid = [v[0] for v in sec["vertices"] if v[2] == 0]
     radial = lambda i, f: (f[0] * X[i][0] + f[1] * X[i][1]) / math.hypot(X[i][0], X[i][1])
-    amid = sum(area[i] for i in mid)  # specimen-surface area of the middle rings
+    amid = sum(area[i] for i in mid)  # specimen-surface area of the middle rings (inner)
     dumped = sum(radial(i, [frame[i]["f" + c] - fb[i][k] - fp[i][k]
                             for k, c in enumerate("xyz")]) for i in mid)
     equil = sum(radial(i, [-fb[i][k] - fp[i][k] for k in range(3)]) for i in mid)
