@@ -1,5 +1,6 @@
 /* test_contact_batch.c -- the fast paths of the node kernel against a plain second path:
- *   - lsdem_grid_eval_many gives bit-identical values and gradients to lsdem_grid_eval;
+ *   - lsdem_grid_eval_many gives bit-identical values and gradients to lsdem_grid_eval, and
+ *     lsdem_sdf_eval_many to lsdem_sdf_eval for every SDF kind, inverted or not;
  *   - lsdem_contact_nodes against a grid (batches of kept nodes, flushed when full) and
  *     against walls (grain and cluster rejection by the wall's distance function) gives
  *     the force of a brute-force sum over every node: f = sum over nodes with phi < 0 of
@@ -84,6 +85,37 @@ static void test_eval_many(const lsdem_grid *grid)
     same &= memcmp(&v, &phi[m], sizeof v) == 0 && memcmp(g, &grad[3 * m], sizeof g) == 0;
   }
   CHECK(same, "%s", "eval_many differs from eval");
+}
+
+static void test_sdf_eval_many(const lsdem_sdf *grid)
+{
+  enum { M = 100 };
+  lsdem_sdf kinds[8] = {*grid,
+                        fix_sdf(LSDEM_SDF_SPHERE, 5.0, 0, 0),
+                        fix_sdf(LSDEM_SDF_PLANE, 0, 0, 0),
+                        fix_sdf(LSDEM_SDF_CYLINDER, 6.0, 4.0, 0),
+                        fix_sdf(LSDEM_SDF_CYLINDER, 6.0, 0.0, 0),
+                        fix_sdf(LSDEM_SDF_BOX, 3.0, 4.0, 5.0),
+                        fix_sdf(LSDEM_SDF_ELLIPSOID, 7.0, 5.0, 3.0),
+                        fix_sdf(LSDEM_SDF_SUPERELLIPSOID, 7.0, 5.0, 3.0)};
+  kinds[7].a[3] = 0.5;
+  kinds[7].a[4] = 1.5;
+  double p[3 * M], phi[M], grad[3 * M];
+  for (int m = 0; m < 3 * M; m++) p[m] = 12.0 * srand1();
+  for (int k = 0; k < 8; k++)
+    for (int inv = 0; inv < 2; inv++) {
+      lsdem_sdf s = kinds[k];
+      s.inverted = inv;
+      lsdem_sdf_eval_many(&s, M, p, phi, grad);
+      int same = 1;
+      for (int m = 0; m < M; m++) {
+        double g[3];
+        const double v = lsdem_sdf_eval(&s, &p[3 * m], g);
+        same &= memcmp(&v, &phi[m], sizeof v) == 0 && memcmp(g, &grad[3 * m], sizeof g) == 0;
+      }
+      CHECK(same, "sdf_eval_many differs from sdf_eval: kind %s, inverted %d",
+            lsdem_sdf_kind_name(s.kind), inv);
+    }
 }
 
 /* Grid B, overlapping deeply so that more than one batch of nodes is looked up. */
@@ -175,6 +207,7 @@ int main(void)
   lsdem_shape B = fix_shape(gsdf, 0, NULL, lsdem_sdf_bound_radius(&gsdf));
 
   test_eval_many(&gsdf.grid);
+  test_sdf_eval_many(&gsdf);
   test_grid_pairs(&ga, &B);
   test_walls(&ga);
   lsdem_grid_free(&gsdf.grid);

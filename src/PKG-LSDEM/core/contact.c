@@ -250,17 +250,13 @@ static void screen_nodes(const double *nodes, int first, int count, int stride,
   b->n = n;
 }
 
-/* Level-set lookups of a screened batch (Algorithm 1) at q = M node + t (B's frame). A
- * grid is interpolated directly, without the lsdem_sdf_eval dispatch. */
+/* Level-set lookups of a screened batch (Algorithm 1 for a grid) at q = M node + t (B's
+ * frame), the SDF kind dispatched once per batch. */
 static void lookup_batch(const lsdem_shape *A, const lsdem_sdf *sdfB, const double M[9],
                          const double t[3], node_batch *b)
 {
   for (int i = 0; i < b->n; i++) affine3(M, t, &A->nodes[3 * b->node[i]], &b->q[3 * i]);
-  if (sdfB->kind == LSDEM_SDF_GRID && !sdfB->inverted) {
-    lsdem_grid_eval_many(&sdfB->grid, b->n, b->q, b->phi, b->grad);
-    return;
-  }
-  for (int i = 0; i < b->n; i++) b->phi[i] = lsdem_sdf_eval(sdfB, &b->q[3 * i], &b->grad[3 * i]);
+  lsdem_sdf_eval_many(sdfB, b->n, b->q, b->phi, b->grad);
 }
 
 /* Looks the batch up, then the contacts of its penetrating nodes; empties the batch. */

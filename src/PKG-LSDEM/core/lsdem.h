@@ -147,6 +147,10 @@ typedef struct {
 } lsdem_sdf;
 
 double lsdem_sdf_eval(const lsdem_sdf *s, const double p[3], double grad[3]);
+/* lsdem_sdf_eval of n points p[3m..3m+2] into phi[m], grad[3m..3m+2], bit-identical, with
+ * the kind dispatched once (grids: lsdem_grid_eval_many). */
+void lsdem_sdf_eval_many(const lsdem_sdf *s, int n, const double *p, double *phi,
+                         double *grad);
 /* Radius of a sphere about the origin that contains the solid (HUGE_VAL if unbounded,
  * including every inverted SDF). For a grid it bounds the trilinear solid
  * {lsdem_grid_value < 0} (inside and outside the grid box); for a grid with positive

@@ -289,6 +289,30 @@ double lsdem_sdf_eval(const lsdem_sdf *s, const double p[3], double grad[3])
   return phi;
 }
 
+/* The kind's function is chosen once for the batch (walls test many nodes per call). */
+void lsdem_sdf_eval_many(const lsdem_sdf *s, int n, const double *p, double *phi,
+                         double *grad)
+{
+  switch (s->kind) {
+  case LSDEM_SDF_GRID: lsdem_grid_eval_many(&s->grid, n, p, phi, grad); break;
+  case LSDEM_SDF_PLANE:
+    for (int m = 0; m < n; m++) phi[m] = plane_sdf(&p[3 * m], &grad[3 * m]);
+    break;
+  case LSDEM_SDF_CYLINDER:
+    for (int m = 0; m < n; m++)
+      phi[m] = cylinder_sdf(s->a[0], s->a[1], &p[3 * m], &grad[3 * m]);
+    break;
+  default: /* the rest one by one, inversion included */
+    for (int m = 0; m < n; m++) phi[m] = lsdem_sdf_eval(s, &p[3 * m], &grad[3 * m]);
+    return;
+  }
+  if (s->inverted)
+    for (int m = 0; m < n; m++) {
+      phi[m] = -phi[m];
+      set3(&grad[3 * m], -grad[3 * m], -grad[3 * m + 1], -grad[3 * m + 2]);
+    }
+}
+
 /* ------------------------------------------------------ grid bound radius ---- */
 
 /* The bound of a grid is that of the solid the lookups see, {phi_trilinear < 0}: a
