@@ -6,7 +6,8 @@
 #   the report's §3.4.4 control); NP=2 ranks; NGRAINS=300; MU=0.6; OUT=out (or out/spheres);
 #   EPSMAX (final axial strain); UNLOAD_AT (axial strain of an unload-reload cycle, default
 #   none; UNLOAD_Q the fraction of the axial deviator to unload to, default 0.3); KM, KM_OUTER
-#   (membrane springs)
+#   (membrane springs); PIVOT=1 (the top platen pivots about the ram contact point, report
+#   §3.2.1; OUT default out/pivot)
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 lmp=${LSDEM_LMP:-$here/../../build/lmp}
@@ -15,7 +16,8 @@ np=${NP:-2}
 n=${NGRAINS:-300}
 kind=${SHAPES:-angular}
 mu=${MU:-0.6}
-out=${OUT:-$here/out$([ "$kind" = spheres ] && echo /spheres || true)}
+pivot=${PIVOT:-0}
+out=${OUT:-$here/out$([ "$kind" = spheres ] && echo /spheres || true)$([ "$pivot" != 0 ] && echo /pivot || true)}
 R=90          # specimen radius (pixels); grains ~30 px, so D/d ~ 6
 rho=2.65e-3   # scaled grain density (see in.triaxial)
 rb=10         # membrane sphere radius (report Table 3.2), outer layer 1.1 rb
@@ -72,10 +74,11 @@ sed '/^Velocities/,$d' sample.data > sample_grains.data   # grains at rest
 # 4. consolidation and shearing
 echo "running lmp on $np rank(s): $kind grains, mu $mu (progress in $out/log.lammps)"
 "${mpi[@]}" "$lmp" -in "$here/in.triaxial" -var lib all.lslib -var data mem.data \
-  -var memin mem.in -var memtri mem.tri -var mu "$mu" ${EPSMAX:+-var epsmax $EPSMAX} \
+  -var memin mem.in -var memtri mem.tri -var mu "$mu" -var pivot "$pivot" -var rho "$rho" -var R "$R" \
+  ${EPSMAX:+-var epsmax $EPSMAX} \
   ${UNLOAD_AT:+-var unload_at $UNLOAD_AT} ${UNLOAD_Q:+-var unload_q $UNLOAD_Q} \
   -log log.lammps -echo none -screen none
-grep -E '^(CONSOLIDATED|UNLOAD|RELOAD|SHEARED)' log.lammps
+grep -E '^(PIVOT|CONSOLIDATED|UNLOAD|RELOAD|SHEARED)' log.lammps
 echo "total time $((SECONDS - start)) s"
 /usr/bin/python3 "$here/plot.py" triaxial.csv "$kind"
 echo "results: $out/triaxial.csv, $out/q_eps.png, $out/phi_eps.png, $out/epsv_eps.png, $out/dump.triaxial"

@@ -5,7 +5,8 @@
    fix wall/lsdem (doc/fix_wall_lsdem.rst). The wall is an analytic signed distance
    from the core (plane: the half-space z <= 0 of its own frame; cylinder: an inverted
    infinite cylinder, solid outside radius R) used as the slave shape B of the same
-   contact kernels the pair style calls.
+   contact kernels the pair style calls. With pivot a plane is a platen that tilts about
+   the ram contact point (report §3.2.1; core/pivot.c).
 ------------------------------------------------------------------------- */
 
 #include "fix_wall_lsdem.h"
@@ -38,7 +39,8 @@ static constexpr tagint WALL_PARTNER = -1;
 
 FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), axis(2), fix_history(nullptr), avec(nullptr), fall_valid(0),
-  moving(false), contact(nullptr), ncontact(0), maxcontact(0), contact_step(-1)
+  moving(false), pivot(false), pivot_h(0.0), pivot_inertia(0.0), pivot_damping(0.0),
+  contact(nullptr), ncontact(0), maxcontact(0), contact_step(-1)
 {
   for (int d = 0; d < 3; d++) {
     vstr[d] = nullptr;
@@ -49,11 +51,12 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   if (narg < 4) error->all(FLERR, "Illegal fix wall/lsdem command: {}", usage);
 
   vector_flag = 1;
-  size_vector = 6;  // force on the wall (extensive), the wall's reference point
+  size_vector = 13;  // force on the wall (extensive), point, normal/axis, tilt, tilt rate
   global_freq = 1;
   extvector = -1;
   extlist = new int[size_vector];
   for (int k = 0; k < size_vector; k++) extlist[k] = k < 3 ? 1 : 0;
+  for (int d = 0; d < 3; d++) tlocal[d] = pivot_torque[d] = pivot_omega[d] = 0.0;
   restart_global = 1;
   dynamic_group_allow = 1;
 
@@ -82,7 +85,7 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
 
   while (iarg < narg) {
     std::string key = arg[iarg];
-    int nval = key == "velocity" ? 3 : 1;
+    int nval = key == "velocity" ? 3 : (key == "pivot" ? 2 : 1);
     if (iarg + nval >= narg) error->all(FLERR, "fix wall/lsdem: keyword {} needs a value", key);
     std::string val = arg[iarg + 1];
     if (key == "cn") prm.cn = utils::numeric(FLERR, val.c_str(), false, lmp);
@@ -102,6 +105,8 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
       if (val == "node") prm.law = LSDEM_NORMAL_PER_NODE;
       else if (val == "traction") prm.law = LSDEM_NORMAL_TRACTION;
       else error->all(FLERR, "fix wall/lsdem: normal must be node or traction, not {}", val);
+    } else if (key == "pivot") {
+      nval = parse_pivot(iarg, narg, arg);
     } else if (key == "stride") {
       prm.node_stride = utils::inumeric(FLERR, val.c_str(), false, lmp);
       if (prm.node_stride < 1) error->all(FLERR, "fix wall/lsdem: stride must be >= 1");
@@ -118,6 +123,7 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
     for (int d = 0; d < 3; d++) wpose.x[d] = geom[d];
     wall.sdf.kind = LSDEM_SDF_PLANE;
     set_plane_frame(n);
+    if (pivot) start_pivot();
   } else {
     if (geom[2] <= 0.0) error->all(FLERR, "fix wall/lsdem: cylinder radius must be > 0");
     // c1 c2 are the axis' coordinates in the other two directions, in x,y,z order
@@ -132,6 +138,48 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   }
   flocal[0] = flocal[1] = flocal[2] = 0.0;
   fall[0] = fall[1] = fall[2] = 0.0;
+}
+
+/* ----------------------------------------------------------------------
+   pivot h I [c]: returns the number of values read (c is optional, default 0)
+------------------------------------------------------------------------- */
+
+int FixWallLsdem::parse_pivot(int iarg, int narg, char **arg)
+{
+  if (wallstyle != PLANE)
+    error->all(FLERR, "fix wall/lsdem: keyword pivot is for plane walls only, not {}", arg[3]);
+  pivot = true;
+  pivot_h = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+  pivot_inertia = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+  int nval = 2;
+  if (iarg + 3 < narg && utils::is_double(arg[iarg + 3])) {
+    pivot_damping = utils::numeric(FLERR, arg[iarg + 3], false, lmp);
+    nval = 3;
+  }
+  if (pivot_h < 0.0)
+    error->all(FLERR, "fix wall/lsdem: pivot h = {} must be >= 0 (distance of the pivot "
+               "behind the plane)", pivot_h);
+  if (pivot_inertia <= 0.0)
+    error->all(FLERR, "fix wall/lsdem: pivot I = {} must be > 0 (moment of inertia about "
+               "the pivot, mass*distance^2)", pivot_inertia);
+  if (pivot_damping < 0.0)
+    error->all(FLERR, "fix wall/lsdem: pivot c = {} must be >= 0 (damping torque per "
+               "angular velocity)", pivot_damping);
+  return nval;
+}
+
+/* ----------------------------------------------------------------------
+   the pivot P sits h behind the plane's point, along -n; the ram axis is n, the plate
+   starts untilted and at rest
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::start_pivot()
+{
+  for (int d = 0; d < 3; d++) {
+    ram_axis[d] = wpose.R[3 * d + 2];
+    pivot_x[d] = wpose.x[d] - pivot_h * ram_axis[d];
+  }
+  lsdem_matrix_to_quat(wpose.R, pivot_q);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -152,7 +200,7 @@ FixWallLsdem::~FixWallLsdem()
 int FixWallLsdem::setmask()
 {
   int mask = POST_FORCE;
-  if (moving) mask |= INITIAL_INTEGRATE;
+  if (moving || pivot) mask |= INITIAL_INTEGRATE;
   return mask;
 }
 
@@ -243,7 +291,56 @@ void FixWallLsdem::setup(int vflag)
 void FixWallLsdem::initial_integrate(int /*vflag*/)
 {
   update_velocity();
-  for (int d = 0; d < 3; d++) wpose.x[d] += update->dt * wpose.v[d];
+  if (pivot) step_pivot();
+  else
+    for (int d = 0; d < 3; d++) wpose.x[d] += update->dt * wpose.v[d];
+}
+
+/* ----------------------------------------------------------------------
+   the platen tilts under the last force call's torque about P (n -> n+1), P moves
+   with the wall velocity, and the plane's point and frame follow
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::step_pivot()
+{
+  lsdem_step_pivot(pivot_q, pivot_omega, pivot_torque, ram_axis, pivot_inertia, pivot_damping,
+                   update->dt);
+  for (int d = 0; d < 3; d++) pivot_x[d] += update->dt * wpose.v[d];
+  place_platen();
+}
+
+/* ----------------------------------------------------------------------
+   the plane's point, frame and angular velocity from the pivot state (wpose.v stays the
+   ram's velocity, the velocity P moves with)
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::place_platen()
+{
+  lsdem_pose now;
+  lsdem_pivot_pose(pivot_x, wpose.v, pivot_q, pivot_omega, pivot_h, &now);
+  for (int d = 0; d < 3; d++) {
+    wpose.x[d] = now.x[d];
+    wpose.omega[d] = now.omega[d];
+  }
+  for (int k = 0; k < 9; k++) wpose.R[k] = now.R[k];
+}
+
+/* ----------------------------------------------------------------------
+   the grains' force and torque on the platen summed over ranks (every rank then moves
+   the platen identically); the torque is taken from the plane's point to P
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::reduce_pivot_load()
+{
+  double local[6], all[6];
+  for (int d = 0; d < 3; d++) {
+    local[d] = flocal[d];
+    local[3 + d] = tlocal[d];
+  }
+  MPI_Allreduce(local, all, 6, MPI_DOUBLE, MPI_SUM, world);
+  for (int d = 0; d < 3; d++) fall[d] = all[d];
+  fall_valid = 1;
+  lsdem_torque_about(all + 3, wpose.x, fall, pivot_x, pivot_torque);
 }
 
 /* ----------------------------------------------------------------------
@@ -274,7 +371,17 @@ void FixWallLsdem::post_force(int /*vflag*/)
   const bigint step = update->ntimestep;
 
   flocal[0] = flocal[1] = flocal[2] = 0.0;
+  tlocal[0] = tlocal[1] = tlocal[2] = 0.0;
   fall_valid = 0;
+
+  // the wall as the contact kernel sees it: a tilting platen's point moves with P plus
+  // its rotation about P
+  lsdem_pose tilting;
+  const lsdem_pose *bp = &wpose;
+  if (pivot) {
+    lsdem_pivot_pose(pivot_x, wpose.v, pivot_q, pivot_omega, pivot_h, &tilting);
+    bp = &tilting;
+  }
   ncontact = 0;
   contact_step = step;
 
@@ -301,10 +408,10 @@ void FixWallLsdem::post_force(int /*vflag*/)
       lsdem_contact_result res;
       if (sphere) {
         const double ra = A->sdf.a[0];
-        lsdem_contact_sphere_shape(ra, MY_PI * ra * ra, &p, &wall, &wpose, &prm, step, hin, nin,
+        lsdem_contact_sphere_shape(ra, MY_PI * ra * ra, &p, &wall, bp, &prm, step, hin, nin,
                                    hout, &nout, &res);
       } else {
-        lsdem_contact_nodes(A, &p, &wall, &wpose, &prm, step, hin, nin, hout, &nout, &res);
+        lsdem_contact_nodes(A, &p, &wall, bp, &prm, step, hin, nin, hout, &nout, &res);
       }
       if (fix_history) fix_history->commit(WALL_PARTNER, nout);
       if (res.npen > 0) {
@@ -312,12 +419,14 @@ void FixWallLsdem::post_force(int /*vflag*/)
           f[i][d] += res.force[d];
           torque[i][d] += res.torque_a[d];
           flocal[d] -= res.force[d];
+          tlocal[d] += res.torque_b[d];
         }
         add_contact(i, res);
       }
     }
     if (fix_history) fix_history->end_atom(i);
   }
+  if (pivot) reduce_pivot_load();
 }
 
 /* ---------------------------------------------------------------------- */
@@ -339,11 +448,21 @@ void FixWallLsdem::add_contact(int i, const lsdem_contact_result &res)
 
 /* ----------------------------------------------------------------------
    n = 0,1,2: total force the grains exert on the wall (x,y,z);
-   n = 3,4,5: the wall's reference point (plane point or cylinder axis point) now
+   n = 3,4,5: the wall's reference point (plane point or cylinder axis point) now;
+   n = 6,7,8: the wall's body z axis in the world (plane normal or cylinder axis) now;
+   n = 9: tilt of a pivoting platen, the angle (degrees) between its normal and the ram axis;
+   n = 10,11,12: its angular velocity (world, radians/time; 0 without pivot)
 ------------------------------------------------------------------------- */
 
 double FixWallLsdem::compute_vector(int n)
 {
+  if (n >= 10) return pivot ? pivot_omega[n - 10] : 0.0;
+  if (n == 9) {
+    if (!pivot) return 0.0;
+    const double n[3] = {wpose.R[2], wpose.R[5], wpose.R[8]};
+    return lsdem_tilt_angle(n, ram_axis) * 180.0 / MY_PI;
+  }
+  if (n >= 6) return wpose.R[3 * (n - 6) + 2];
   if (n >= 3) return wpose.x[n - 3];
   if (!fall_valid) {
     MPI_Allreduce(flocal, fall, 3, MPI_DOUBLE, MPI_SUM, world);
@@ -388,15 +507,27 @@ void FixWallLsdem::set_axis_frame()
 }
 
 /* ----------------------------------------------------------------------
-   restart: the wall's current position (a moving wall resumes where it was)
+   restart: the wall's current position (a moving wall resumes where it was); a pivoting
+   platen adds its pivot point, frame and angular velocity (13 doubles in all)
 ------------------------------------------------------------------------- */
 
 void FixWallLsdem::write_restart(FILE *fp)
 {
   if (comm->me == 0) {
-    int size = 3 * sizeof(double);
+    double list[13];
+    int n = 3;
+    for (int d = 0; d < 3; d++) list[d] = wpose.x[d];
+    if (pivot) {
+      for (int d = 0; d < 3; d++) {
+        list[3 + d] = pivot_x[d];
+        list[10 + d] = pivot_omega[d];
+      }
+      for (int k = 0; k < 4; k++) list[6 + k] = pivot_q[k];
+      n = 13;
+    }
+    int size = n * sizeof(double);
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(wpose.x, sizeof(double), 3, fp);
+    fwrite(list, sizeof(double), n, fp);
   }
 }
 
@@ -404,4 +535,11 @@ void FixWallLsdem::restart(char *buf)
 {
   const double *list = (const double *) buf;
   for (int d = 0; d < 3; d++) wpose.x[d] = list[d];
+  if (!pivot) return;
+  for (int d = 0; d < 3; d++) {
+    pivot_x[d] = list[3 + d];
+    pivot_omega[d] = list[10 + d];
+  }
+  for (int k = 0; k < 4; k++) pivot_q[k] = list[6 + k];
+  place_platen();
 }

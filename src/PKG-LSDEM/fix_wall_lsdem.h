@@ -3,7 +3,8 @@
 
    fix wall/lsdem: a rigid analytic wall (plane or cylindrical container) that the
    grains' nodes touch through the same core kernel as grain-grain contact (the wall
-   is the slave level set, report §4.6.3). Optional constant wall velocity.
+   is the slave level set, report §4.6.3). Optional wall velocity; optionally a plane
+   pivots about the ram contact point behind it (report §3.2.1).
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -66,7 +67,22 @@ class FixWallLsdem : public Fix {
   Contact *contact;
   int ncontact, maxcontact;
   bigint contact_step;
+  // pivot (plane only, report §3.2.1): the plate tilts about P, h behind its face
+  bool pivot;
+  double pivot_h, pivot_inertia, pivot_damping;
+  double ram_axis[3];          // the plane's initial normal: no spin about it
+  double pivot_x[3];           // P, moves with the wall velocity
+  double pivot_q[4];           // plate frame body -> world (body z = normal)
+  double pivot_omega[3];       // world, perpendicular to ram_axis, at step n-1/2
+  double tlocal[3];            // torque of the grains on the wall about wpose.x, this rank
+  double pivot_torque[3];      // torque about P, all ranks, of the last force call
+
   void add_contact(int, const lsdem_contact_result &);
+  int parse_pivot(int, int, char **);
+  void start_pivot();
+  void step_pivot();
+  void place_platen();
+  void reduce_pivot_load();
   void update_velocity();
   void check_plane_in_box() const;
 

@@ -85,6 +85,7 @@ void lsdem_tan_matrix_eq226(const double qtan[4], double R[9]);
 /* 3x3 helpers shared by the core and the styles. */
 void lsdem_mat_vec(const double R[9], const double v[3], double out[3]);   /* R v */
 void lsdem_matT_vec(const double R[9], const double v[3], double out[3]);  /* R^T v */
+void lsdem_cross3(const double a[3], const double b[3], double out[3]); /* a x b; out may alias */
 /* Symmetric 3x3 eigen-decomposition (Jacobi). Eigenvalues ascending in w; column k of V
  * (V[3*i+k]) is the unit eigenvector of w[k]; V is a proper rotation (det +1). */
 void lsdem_sym_eigen(const double A[9], double w[3], double V[9]);
@@ -410,6 +411,29 @@ void lsdem_step_body(double x[3], double v[3], double q[4], double omega_body[3]
 /* Kinetic energy of a rigid body: translational and rotational parts. */
 double lsdem_kinetic_translational(double mass, const double v[3]);
 double lsdem_kinetic_rotational(const double inertia[3], const double omega_body[3]);
+
+/* Pivoting platen (report §3.2.1): a rigid plate that may rotate about a pivot point P
+ * (the ram's ball joint) with the two rotational degrees of freedom perpendicular to the
+ * unit ram axis a (no spin about a), scalar moment of inertia I about P, viscous
+ * damping torque -c omega. All vectors world frame. */
+/* Torque about point p of a force f whose torque about point o is t_o:
+ * t_p = t_o + (o - p) x f. */
+void lsdem_torque_about(const double t_o[3], const double o[3], const double f[3],
+                        const double p[3], double t_p[3]);
+/* One centred-difference step (eqs 2.18-2.19 with mass I and xi = c / I): the
+ * torque about P at step n with its component along a removed drives omega (world,
+ * n-1/2 -> n+1/2, kept perpendicular to a); q (plate body -> world) is advanced from n
+ * to n+1 by omega over dt (eq 2.28). */
+void lsdem_step_pivot(double q[4], double omega[3], const double torque_p[3],
+                      const double axis[3], double inertia, double damping, double dt);
+/* Pose of a plate whose frame is q, whose reference point sits at h along the plate's
+ * body z axis from the pivot P (x = P + h R(q) e_z), with P moving at v_p and the plate
+ * turning at omega about P: pose->v = v_p + omega x (x - P). */
+void lsdem_pivot_pose(const double pivot[3], const double v_p[3], const double q[4],
+                      const double omega[3], double h, lsdem_pose *pose);
+/* Tilt of the plate: the angle (radians, [0, pi]) between unit vectors n and a, as
+ * atan2(|n x a|, n . a) (accurate for small angles, unlike acos). */
+double lsdem_tilt_angle(const double n[3], const double a[3]);
 
 /* ---------------------------------------------------------- shape library ---- */
 

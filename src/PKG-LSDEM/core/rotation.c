@@ -92,7 +92,7 @@ void lsdem_matrix_to_quat(const double R[9], double q[4])
   lsdem_quat_normalize(q);
 }
 
-static void cross3(const double a[3], const double b[3], double out[3])
+static inline void cross3(const double a[3], const double b[3], double out[3])
 {
   const double x = a[1] * b[2] - a[2] * b[1];
   const double y = a[2] * b[0] - a[0] * b[2];
@@ -101,6 +101,9 @@ static void cross3(const double a[3], const double b[3], double out[3])
   out[1] = y;
   out[2] = z;
 }
+
+/* the public entry (other core files); calls here inline the static one */
+void lsdem_cross3(const double a[3], const double b[3], double out[3]) { cross3(a, b, out); }
 
 static double dot3(const double a[3], const double b[3])
 {
