@@ -25,6 +25,7 @@
 #include "variable.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 
@@ -507,23 +508,25 @@ void FixWallLsdem::set_axis_frame()
 }
 
 /* ----------------------------------------------------------------------
-   restart: the wall's current position (a moving wall resumes where it was); a pivoting
-   platen adds its pivot point, frame and angular velocity (13 doubles in all)
+   restart: the wall's current position, so that a moving wall resumes where it was (3
+   doubles); with pivot, PIVOT_TAG first and then the wall point,
+   pivot point, orientation and angular velocity (14 doubles). The tag lets either kind of
+   fix read either kind of file without reading past its end.
 ------------------------------------------------------------------------- */
+
+static const double PIVOT_TAG = -DBL_MAX;
 
 void FixWallLsdem::write_restart(FILE *fp)
 {
   if (comm->me == 0) {
-    double list[13];
-    int n = 3;
-    for (int d = 0; d < 3; d++) list[d] = wpose.x[d];
+    double list[14];
+    int n = 0;
+    if (pivot) list[n++] = PIVOT_TAG;
+    for (int d = 0; d < 3; d++) list[n++] = wpose.x[d];
     if (pivot) {
-      for (int d = 0; d < 3; d++) {
-        list[3 + d] = pivot_x[d];
-        list[10 + d] = pivot_omega[d];
-      }
-      for (int k = 0; k < 4; k++) list[6 + k] = pivot_q[k];
-      n = 13;
+      for (int d = 0; d < 3; d++) list[n++] = pivot_x[d];
+      for (int k = 0; k < 4; k++) list[n++] = pivot_q[k];
+      for (int d = 0; d < 3; d++) list[n++] = pivot_omega[d];
     }
     int size = n * sizeof(double);
     fwrite(&size, sizeof(int), 1, fp);
@@ -534,12 +537,18 @@ void FixWallLsdem::write_restart(FILE *fp)
 void FixWallLsdem::restart(char *buf)
 {
   const double *list = (const double *) buf;
-  for (int d = 0; d < 3; d++) wpose.x[d] = list[d];
+  const bool tagged = list[0] == PIVOT_TAG;
+  const double *x = tagged ? list + 1 : list;
+  for (int d = 0; d < 3; d++) wpose.x[d] = x[d];
   if (!pivot) return;
-  for (int d = 0; d < 3; d++) {
-    pivot_x[d] = list[3 + d];
-    pivot_omega[d] = list[10 + d];
+  if (tagged) {
+    for (int d = 0; d < 3; d++) {
+      pivot_x[d] = list[4 + d];
+      pivot_omega[d] = list[11 + d];
+    }
+    for (int k = 0; k < 4; k++) pivot_q[k] = list[7 + k];
+  } else { // a file without pivot: the level platen where it was, at rest
+    for (int d = 0; d < 3; d++) pivot_x[d] = wpose.x[d] - pivot_h * ram_axis[d];
   }
-  for (int k = 0; k < 4; k++) pivot_q[k] = list[6 + k];
   place_platen();
 }

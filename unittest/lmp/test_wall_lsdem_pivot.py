@@ -13,7 +13,8 @@ front of P along the normal, to P + h n. Checked against these closed forms (the
 force f_ID[3] against kn (d1 + d2)); a sliding sphere's drag turns the platen with the
 arm from P (not from the plane); a single sphere on the axis gives no tilt; 2 ranks
 (one sphere each) give the 1-rank result; a restart mid-run (moving ram) continues as
-if uninterrupted; bad input stops with the keyword and the valid range."""
+if uninterrupted, and restart files cross between fixes with and without pivot; bad input
+stops with the keyword and the valid range."""
 import math
 import os
 
@@ -140,6 +141,49 @@ run 200
                  msg="restart, step 200: %s" % key)
             near(rows[-1][key], ref[-1][key], rtol=1e-10, atol=1e-300,
                  msg="restart, step 400: %s" % key)
+
+# ---- restart files across the two kinds of fix: a fix without pivot reads a pivot file's
+# wall point; a pivot fix reads a file without pivot as a level platen at rest where the
+# wall was (the moving ram's point after 200 steps: Z0 - 0.05 * 200 dt)
+def cross_restart(name, restart_file, fix_args):
+    d = """read_restart %s
+pair_style zero 1.0
+pair_coeff * *
+fix top all wall/lsdem plane 0 0 %r 0 0 -1 %r 0 0 %s
+thermo_style custom step f_top[4] f_top[6] f_top[7] f_top[10]
+%s
+timestep %r
+run 0
+""" % (restart_file, Z0, KN, fix_args, THERMO_FULL, DT)
+    rc, log = run_lmp(d, cwd=os.path.abspath(name))
+    rows = thermo(log)
+    return rows[0] if check(len(rows) == 1, "%s: thermo output missing" % name) else None
+
+
+if os.path.exists("ref/mid.200") and len(ref) == 3:
+    row = cross_restart("plain_reads_pivot", os.path.abspath("ref/mid.200"), ram)
+    if row:
+        near(row["f_top[4]"], ref[1]["f_top[4]"], rtol=1e-12, atol=1e-300,
+             msg="a fix without pivot reads the wall point of a pivot restart (x)")
+        near(row["f_top[6]"], ref[1]["f_top[6]"], rtol=1e-12, msg="... (z)")
+        near(row["f_top[10]"], 0.0, atol=0.0, msg="... and has no tilt")
+plain = head(lib, os.path.abspath("two.data"), boundary="f f f") + """
+pair_style zero 1.0
+pair_coeff * *
+fix top all wall/lsdem plane 0 0 %r 0 0 -1 %r 0 0 %s
+timestep %r
+run 200
+write_restart plain.200
+""" % (Z0, KN, ram, DT)
+rc, log = run_lmp(plain, cwd=os.path.abspath("plain"))
+if check(os.path.exists("plain/plain.200"), "restart without pivot failed"):
+    row = cross_restart("pivot_reads_plain", os.path.abspath("plain/plain.200"),
+                        "pivot %r %r 0.0 %s" % (H, I, ram))
+    if row:
+        near(row["f_top[6]"], Z0 - 0.05 * 200 * DT, rtol=1e-12,
+             msg="a pivot fix reads the wall point of a restart without pivot")
+        near(row["f_top[7]"], 0.0, atol=0.0, msg="... level (normal x)")
+        near(row["f_top[10]"], 0.0, atol=0.0, msg="... no tilt")
 
 # ---- bad input: the keyword and the valid range
 for name, args, words in (
