@@ -460,8 +460,8 @@ double FixWallLsdem::compute_vector(int n)
   if (n >= 10) return pivot ? pivot_omega[n - 10] : 0.0;
   if (n == 9) {
     if (!pivot) return 0.0;
-    const double n[3] = {wpose.R[2], wpose.R[5], wpose.R[8]};
-    return lsdem_tilt_angle(n, ram_axis) * 180.0 / MY_PI;
+    const double normal[3] = {wpose.R[2], wpose.R[5], wpose.R[8]};
+    return lsdem_tilt_angle(normal, ram_axis) * 180.0 / MY_PI;
   }
   if (n >= 6) return wpose.R[3 * (n - 6) + 2];
   if (n >= 3) return wpose.x[n - 3];

@@ -116,6 +116,20 @@ static inline lsdem_shape fix_shape(lsdem_sdf sdf, int nnodes, const double *nod
   return s;
 }
 
+/* Contact parameters: kn, ks, mu, dt; no damping, every node, per-node normal law. */
+static inline lsdem_contact_params fix_params(double kn, double ks, double mu, double dt)
+{
+  lsdem_contact_params p;
+  memset(&p, 0, sizeof p);
+  p.kn = kn;
+  p.ks = ks;
+  p.mu = mu;
+  p.dt = dt;
+  p.node_stride = 1;
+  p.law = LSDEM_NORMAL_PER_NODE;
+  return p;
+}
+
 static inline lsdem_sdf fix_sdf(lsdem_sdf_kind kind, double a0, double a1, double a2)
 {
   lsdem_sdf s;

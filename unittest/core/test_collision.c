@@ -108,11 +108,8 @@ static void collide(int two_way)
   grain A, B;
   if (!grain_init(&A, a1, -10.6, 0.02, q1) || !grain_init(&B, a2, 9.6, -0.015, q2)) return;
 
-  lsdem_contact_params prm;
-  memset(&prm, 0, sizeof prm);
-  prm.kn = 1.0;
-  prm.node_stride = 1;
-  prm.dt = 0.2; /* the contact lasts ~100 time units (pi sqrt(m_eff / k_eff)) */
+  /* the contact lasts ~100 time units (pi sqrt(m_eff / k_eff)) */
+  const lsdem_contact_params prm = fix_params(1.0, 0.0, 0.0, 0.2);
 
   const double e0 = kinetic(&A) + kinetic(&B);
   const double p0 = A.mass * A.pose.v[0] + B.mass * B.pose.v[0];

@@ -14,19 +14,6 @@
 
 static double nodes_unit[3 * NNODES]; /* ring nodes on the unit sphere */
 
-static lsdem_contact_params params(double kn, double ks, double mu, double dt)
-{
-  lsdem_contact_params p;
-  memset(&p, 0, sizeof p);
-  p.kn = kn;
-  p.ks = ks;
-  p.mu = mu;
-  p.dt = dt;
-  p.node_stride = 1;
-  p.law = LSDEM_NORMAL_PER_NODE;
-  return p;
-}
-
 static void world_node(const lsdem_pose *pa, const double *node, double p[3])
 {
   for (int i = 0; i < 3; i++)
@@ -53,7 +40,7 @@ static void test_single_axis_node(void)
   lsdem_shape A = fix_shape(fix_sdf(LSDEM_SDF_SPHERE, 1, 0, 0), NNODES, nodes_unit, 1.0);
   lsdem_shape B = A;
   lsdem_pose pa = fix_pose(0, 0, 0), pb = fix_pose(2.0 - delta, 0, 0);
-  lsdem_contact_params prm = params(kn, 0, 0, 1e-3);
+  lsdem_contact_params prm = fix_params(kn, 0, 0, 1e-3);
   lsdem_contact_result r;
   const int np = lsdem_contact_nodes(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &r);
   CHECK(np == 1 && r.npen == 1, "penetrating nodes %d (only the axis node expected)", np);
@@ -98,7 +85,7 @@ static void test_sphere_overlap_sum(void)
   const double kn = 1000.0;
   lsdem_shape A = fix_shape(fix_sdf(LSDEM_SDF_SPHERE, 1, 0, 0), NNODES, nodes_unit, 1.0);
   lsdem_shape B = A;
-  lsdem_contact_params prm = params(kn, 0, 0, 1e-3);
+  lsdem_contact_params prm = fix_params(kn, 0, 0, 1e-3);
   lsdem_contact_result r;
   double F[3], Ta[3];
   int npen;
@@ -193,7 +180,7 @@ static void test_box_transform(void)
   lsdem_shape A, B;
   lsdem_pose pa, pb;
   box_pair(&A, &B, &pa, &pb, a);
-  lsdem_contact_params prm = params(kn, 0, 0, 1e-3);
+  lsdem_contact_params prm = fix_params(kn, 0, 0, 1e-3);
   lsdem_contact_result r;
   double F[3];
   int npen;
@@ -223,7 +210,7 @@ static void test_momentum_balance(void)
   memcpy(pb.v, vb, sizeof vb);
   memcpy(pa.omega, wa, sizeof wa);
   memcpy(pb.omega, wb, sizeof wb);
-  lsdem_contact_params prm = params(50.0, 40.0, 0.4, 1e-2);
+  lsdem_contact_params prm = fix_params(50.0, 40.0, 0.4, 1e-2);
   prm.cn = 2.0;
   prm.ct = 1.0;
   lsdem_node_hist h1[NNODES], h2[NNODES];
@@ -257,7 +244,7 @@ static void test_two_way(void)
   lsdem_pose pa = fix_pose(0, 0, 0), pb = fix_pose(1.8, 0.3, -0.2);
   fix_axis_angle((double[]){0, 0.6, 0.8}, 0.4, pa.R);
   memcpy(pb.R, pa.R, sizeof pa.R);
-  lsdem_contact_params prm = params(100.0, 0, 0, 1e-3);
+  lsdem_contact_params prm = fix_params(100.0, 0, 0, 1e-3);
   lsdem_contact_result ab, ba;
   lsdem_contact_nodes(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &ab);
   lsdem_contact_nodes(&B, &pb, &A, &pa, &prm, 1, NULL, 0, NULL, NULL, &ba);
@@ -297,7 +284,7 @@ static one_node one_node_setup(void)
   s.B = s.A;
   s.pa = fix_pose(0, 0, 0);
   s.pb = fix_pose(2.0 - s.delta, 0, 0);
-  s.prm = params(1000.0, 800.0, 0.5, 1e-3);
+  s.prm = fix_params(1000.0, 800.0, 0.5, 1e-3);
   return s;
 }
 
@@ -460,7 +447,7 @@ static void test_rejection_and_clusters(void)
   lsdem_shape A = fix_shape(fix_sdf(LSDEM_SDF_SPHERE, 1, 0, 0), NNODES, nodes_unit, 1.0);
   lsdem_shape B = A;
   lsdem_pose pa = fix_pose(0, 0, 0), pb = fix_pose(2.0001, 0, 0);
-  lsdem_contact_params prm = params(100.0, 0, 0, 1e-3);
+  lsdem_contact_params prm = fix_params(100.0, 0, 0, 1e-3);
   lsdem_contact_result r;
   lsdem_contact_nodes(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &r);
   CHECK(r.ntested == 0 && r.npen == 0 && r.force[0] == 0.0, "far pair: ntested %d",
@@ -515,7 +502,7 @@ static void test_inverted_container(void)
   wall.inverted = 1;
   lsdem_shape W = fix_shape(wall, 0, NULL, HUGE_VAL);
   lsdem_pose pa = fix_pose(2.0 + delta, 0, 0), pw = fix_pose(0, 0, 0);
-  lsdem_contact_params prm = params(kn, 0, 0, 1e-3);
+  lsdem_contact_params prm = fix_params(kn, 0, 0, 1e-3);
   lsdem_contact_result r;
   lsdem_contact_nodes(&A, &pa, &W, &pw, &prm, 1, NULL, 0, NULL, NULL, &r);
   CHECK(r.npen == 1 && r.ntested == NNODES, "container: npen %d, ntested %d", r.npen,
@@ -527,7 +514,7 @@ static void test_inverted_container(void)
 /* Sphere fast paths: one lookup; analytic depth and normal; agree with each other. */
 static void test_sphere_paths(void)
 {
-  lsdem_contact_params prm = params(200.0, 150.0, 0.3, 1e-3);
+  lsdem_contact_params prm = fix_params(200.0, 150.0, 0.3, 1e-3);
   const double ra = 0.5, rb = 2.0;
   lsdem_shape B = fix_shape(fix_sdf(LSDEM_SDF_SPHERE, rb, 0, 0), 0, NULL, rb);
   lsdem_pose pa = fix_pose(1.2, 1.6, 0.9), pb = fix_pose(0.1, 0.2, 0.3);

@@ -42,16 +42,6 @@ static int brute_force(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_s
   return npen;
 }
 
-static lsdem_contact_params params_kn(double kn)
-{
-  lsdem_contact_params p;
-  memset(&p, 0, sizeof p);
-  p.kn = kn;
-  p.dt = 1e-3;
-  p.node_stride = 1;
-  return p;
-}
-
 /* An ellipsoid grain with NN clustered nodes (core clustering) and its grid. */
 typedef struct {
   double nodes[3 * NN], area[NN], sphere[4 * NN];
@@ -122,7 +112,7 @@ static void test_sdf_eval_many(const lsdem_sdf *grid)
 static void test_grid_pairs(grain *ga, const lsdem_shape *B)
 {
   const double kn = 10.0;
-  lsdem_contact_params prm = params_kn(kn);
+  lsdem_contact_params prm = fix_params(kn, 0.0, 0.0, 1e-3);
   int batches = 0;
   for (int t = 0; t < 40; t++) {
     lsdem_pose pa = fix_pose(0, 0, 0), pb = fix_pose(srand1() * 8, srand1() * 8, srand1() * 8);
@@ -148,7 +138,7 @@ static void test_grid_pairs(grain *ga, const lsdem_shape *B)
 static void test_walls(grain *ga)
 {
   const double kn = 7.0;
-  lsdem_contact_params prm = params_kn(kn);
+  lsdem_contact_params prm = fix_params(kn, 0.0, 0.0, 1e-3);
   lsdem_sdf plane = fix_sdf(LSDEM_SDF_PLANE, 0, 0, 0);
   lsdem_sdf tube = fix_sdf(LSDEM_SDF_CYLINDER, 30.0, 0.0, 0);
   tube.inverted = 1;

@@ -112,41 +112,37 @@ static void test_cylinder(void)
 
 /* Brute-force distance from p to the ellipsoid surface: dense (theta, phi) sampling,
  * then a few rounds of local refinement around the best sample. */
+/* The brute-force search's best surface point so far: keeps (th, ph) when the ellipsoid
+ * point at those angles is nearer to p. */
+typedef struct {
+  double dist, th, ph;
+} surface_best;
+
+static void try_surface_point(const double a[3], const double p[3], double th, double ph,
+                              surface_best *b)
+{
+  const double x[3] = {a[0] * sin(th) * cos(ph) - p[0], a[1] * sin(th) * sin(ph) - p[1],
+                       a[2] * cos(th) - p[2]};
+  const double d = len3(x);
+  if (d < b->dist) *b = (surface_best){d, th, ph};
+}
+
 static double brute_ellipsoid_distance(const double a[3], const double p[3])
 {
-  double best = HUGE_VAL, bt = 0, bp = 0;
+  surface_best best = {HUGE_VAL, 0.0, 0.0};
   const int nt = 200, np = 400;
   for (int i = 0; i <= nt; i++)
-    for (int j = 0; j < np; j++) {
-      const double th = M_PI * i / nt, ph = 2 * M_PI * j / np;
-      const double x[3] = {a[0] * sin(th) * cos(ph) - p[0], a[1] * sin(th) * sin(ph) - p[1],
-                           a[2] * cos(th) - p[2]};
-      const double d = len3(x);
-      if (d < best) {
-        best = d;
-        bt = th;
-        bp = ph;
-      }
-    }
+    for (int j = 0; j < np; j++) try_surface_point(a, p, M_PI * i / nt, 2 * M_PI * j / np, &best);
   double step_t = M_PI / nt, step_p = 2 * M_PI / np;
   for (int round = 0; round < 40; round++) {
-    const double t0 = bt, p0 = bp;
+    const double t0 = best.th, p0 = best.ph;
     for (int i = -10; i <= 10; i++)
-      for (int j = -10; j <= 10; j++) {
-        const double th = t0 + step_t * i / 5, ph = p0 + step_p * j / 5;
-        const double x[3] = {a[0] * sin(th) * cos(ph) - p[0], a[1] * sin(th) * sin(ph) - p[1],
-                             a[2] * cos(th) - p[2]};
-        const double d = len3(x);
-        if (d < best) {
-          best = d;
-          bt = th;
-          bp = ph;
-        }
-      }
+      for (int j = -10; j <= 10; j++)
+        try_surface_point(a, p, t0 + step_t * i / 5, p0 + step_p * j / 5, &best);
     step_t /= 2.5;
     step_p /= 2.5;
   }
-  return best;
+  return best.dist;
 }
 
 static void test_ellipsoid(void)
