@@ -583,7 +583,7 @@ void FixMembraneLsdem::compute_geometry()
   // per unit area of the specimen surface, compressive positive
   vec[1] = all[33] > 0.0 ? all[32] / all[33] : 0.0;
   vec[2] = A;
-  vec[3] = vol[0] - rb * A + M_PI * rb * rb * H;
+  vec[3] = lsdem_membrane_inset_volume(vol[0], A, H, rb);
   vec[4] = pressure_value;
   vec[5] = nlayers == 2 ? vol[1] : 0.0;
   vec_step = update->ntimestep;

@@ -397,23 +397,15 @@ void FixWallLsdem::post_force(int /*vflag*/)
       }
       lsdem_quat_to_matrix(avec->quat[i], p.R);
       const lsdem_shape *A = avec->shape_of(i);
-      const bool sphere = A->sdf.kind == LSDEM_SDF_SPHERE;
-
       const lsdem_node_hist *hin = nullptr;
       lsdem_node_hist *hout = nullptr;
       int nin = 0, nout = 0;
       if (fix_history) {
         hin = fix_history->find(i, WALL_PARTNER, nin);
-        hout = fix_history->reserve(sphere ? 1 : A->nnodes);
+        hout = fix_history->reserve(lsdem_contact_history_capacity(A));
       }
       lsdem_contact_result res;
-      if (sphere) {
-        const double ra = A->sdf.a[0];
-        lsdem_contact_sphere_shape(ra, MY_PI * ra * ra, &p, &wall, bp, &prm, step, hin, nin,
-                                   hout, &nout, &res);
-      } else {
-        lsdem_contact_nodes(A, &p, &wall, bp, &prm, step, hin, nin, hout, &nout, &res);
-      }
+      lsdem_contact_grain(A, &p, &wall, bp, &prm, step, hin, nin, hout, &nout, &res);
       if (fix_history) fix_history->commit(WALL_PARTNER, nout);
       if (res.npen > 0) {
         for (int d = 0; d < 3; d++) {

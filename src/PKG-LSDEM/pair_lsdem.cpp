@@ -216,8 +216,8 @@ double PairLsdem::init_one(int i, int j)
 
 /* ----------------------------------------------------------------------
    largest per-node normal stiffness (force/length) of any type pair:
-   kn * stride, times the largest node area for the traction law (the sphere
-   fast path uses the sphere's cross-section pi r^2 as its area)
+   kn * stride, times the largest node area for the traction law (a sphere's
+   area is lsdem_sphere_contact_area)
 ------------------------------------------------------------------------- */
 
 double PairLsdem::stiffest_node_spring() const
@@ -230,7 +230,7 @@ double PairLsdem::stiffest_node_spring() const
     for (int s = 0; s < nshape; s++) {
       const lsdem_shape *sh = lsdem_library_shape(lib, s);
       if (sh->sdf.kind == LSDEM_SDF_SPHERE)
-        area = std::max(area, MY_PI * sh->sdf.a[0] * sh->sdf.a[0]);
+        area = std::max(area, lsdem_sphere_contact_area(sh->sdf.a[0]));
       for (int k = 0; k < sh->nnodes; k++) area = std::max(area, sh->node_area[k]);
     }
   }
@@ -345,8 +345,6 @@ void PairLsdem::test_pair(int i, int j, double scale, bigint step)
 {
   const lsdem_contact_params &prm = params[atom->type[i]][atom->type[j]];
   const lsdem_shape *A = shape[i], *B = shape[j];
-  const bool sphere_a = A->sdf.kind == LSDEM_SDF_SPHERE;
-  const bool sphere_b = B->sdf.kind == LSDEM_SDF_SPHERE;
   const tagint tagj = atom->tag[j];
 
   const lsdem_node_hist *hin = nullptr;
@@ -355,22 +353,11 @@ void PairLsdem::test_pair(int i, int j, double scale, bigint step)
   FixLsdemHistory *store = prm.mu > 0.0 ? fix_history : nullptr;
   if (store) {
     hin = store->find(i, tagj, nin);
-    hout = store->reserve(sphere_a ? 1 : A->nnodes);
+    hout = store->reserve(lsdem_contact_history_capacity(A));
   }
 
   lsdem_contact_result res;
-  if (sphere_a) {
-    const double ra = A->sdf.a[0];
-    const double area = MY_PI * ra * ra;  // traction law: the sphere's cross-section
-    if (sphere_b)
-      lsdem_contact_sphere_sphere(ra, area, &pose[i], B->sdf.a[0], &pose[j], &prm, step, hin, nin,
-                                  hout, &nout, &res);
-    else
-      lsdem_contact_sphere_shape(ra, area, &pose[i], B, &pose[j], &prm, step, hin, nin, hout,
-                                 &nout, &res);
-  } else {
-    lsdem_contact_nodes(A, &pose[i], B, &pose[j], &prm, step, hin, nin, hout, &nout, &res);
-  }
+  lsdem_contact_grain(A, &pose[i], B, &pose[j], &prm, step, hin, nin, hout, &nout, &res);
   if (store) store->commit(tagj, nout);
 
   ntested_pairs++;

@@ -289,6 +289,14 @@ static void test_bad_input(void)
   lsdem_membrane_free(&m);
 }
 
+/* The inset volume of a circular cylinder of radius R + rb is the cylinder of radius R. */
+static void test_inset_volume(void)
+{
+  const double R = 7.0, rb = 0.8, H = 3.5, Rc = R + rb;
+  const double V = M_PI * Rc * Rc * H, A = 2.0 * M_PI * Rc * H;
+  CHECK_REL(lsdem_membrane_inset_volume(V, A, H, rb), M_PI * R * R * H, 1e-14);
+}
+
 int main(void)
 {
   lsdem_membrane m;
@@ -301,6 +309,7 @@ int main(void)
   test_volume_translation(&m);
   test_pressure(&m);
   test_bond_force(&m);
+  test_inset_volume();
   lsdem_membrane_free(&m);
   test_bad_input();
   return lsdem_test_summary();

@@ -445,3 +445,26 @@ int lsdem_contact_sphere_sphere(double ra, double area, const lsdem_pose *pa, do
   return sphere_contact(ra, area, n, reach - dist, pa, pb, prm, step, hist_in, n_in,
                         hist_out, n_out, res);
 }
+
+/* ----------------------------------------------------------------- dispatch ---- */
+
+static int is_sphere(const lsdem_shape *s) { return s->sdf.kind == LSDEM_SDF_SPHERE; }
+
+int lsdem_contact_history_capacity(const lsdem_shape *A) { return is_sphere(A) ? 1 : A->nnodes; }
+
+double lsdem_sphere_contact_area(double radius) { return M_PI * radius * radius; }
+
+int lsdem_contact_grain(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
+                        const lsdem_pose *pb, const lsdem_contact_params *prm, int64_t step,
+                        const lsdem_node_hist *hist_in, int n_in, lsdem_node_hist *hist_out,
+                        int *n_out, lsdem_contact_result *res)
+{
+  if (!is_sphere(A))
+    return lsdem_contact_nodes(A, pa, B, pb, prm, step, hist_in, n_in, hist_out, n_out, res);
+  const double ra = A->sdf.a[0], area = lsdem_sphere_contact_area(ra);
+  if (is_sphere(B))
+    return lsdem_contact_sphere_sphere(ra, area, pa, B->sdf.a[0], pb, prm, step, hist_in,
+                                       n_in, hist_out, n_out, res);
+  return lsdem_contact_sphere_shape(ra, area, pa, B, pb, prm, step, hist_in, n_in, hist_out,
+                                    n_out, res);
+}

@@ -376,6 +376,18 @@ int lsdem_contact_sphere_sphere(double ra, double area, const lsdem_pose *pa, do
                                 lsdem_node_hist *hist_out, int *n_out,
                                 lsdem_contact_result *res);
 
+/* Contact of grain A (its nodes, or one lookup when A is a sphere kind) against shape B,
+ * the path chosen from the kinds: sphere-sphere, sphere-shape (area
+ * lsdem_sphere_contact_area) or nodes. Same conventions and returns;
+ * hist_out needs lsdem_contact_history_capacity(A) entries. */
+int lsdem_contact_grain(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
+                        const lsdem_pose *pb, const lsdem_contact_params *prm, int64_t step,
+                        const lsdem_node_hist *hist_in, int n_in, lsdem_node_hist *hist_out,
+                        int *n_out, lsdem_contact_result *res);
+int lsdem_contact_history_capacity(const lsdem_shape *A); /* 1 for a sphere, else nnodes */
+/* The sphere path's tributary area under the traction law: the cross-section pi r^2. */
+double lsdem_sphere_contact_area(double radius);
+
 /* ---------------------------------------------------------------- integrator ---- */
 
 /* Centred-difference translation with global damping xi (report eqs 2.18-2.19):
@@ -979,6 +991,10 @@ double lsdem_cap_volume_term(const double sum_v[3], int n, const double sum_s[3]
 /* Enclosed volume of one layer's lateral triangles closed by its two end caps (serial
  * reference: the LAMMPS fix computes the same sums distributed). x: 3 * nspheres. */
 double lsdem_membrane_volume(const lsdem_membrane *m, const double *x, int layer);
+/* Specimen volume inside a membrane whose sphere centres enclose volume V with lateral
+ * area A and height H, the lateral surface moved inward by the sphere radius rb (a
+ * cylinder's parallel surface): V - rb A + pi rb^2 H. */
+double lsdem_membrane_inset_volume(double V, double A, double H, double rb);
 
 /* Membrane bond force (bond_style lsdem/membrane): with d = xj - xi, u = d/|d|, a local
  * cylindrical frame at the bond midpoint (r = horizontal unit vector away from the axis

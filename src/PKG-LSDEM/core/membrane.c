@@ -356,3 +356,8 @@ double lsdem_membrane_bond_force(const double xi[3], const double xj[3], const d
   for (int k = 0; k < 3; k++) fj[k] = -kn * stretch * u[k] - ks * delta[k];
   return 0.5 * kn * stretch * stretch + 0.5 * ks * dot3(delta, delta);
 }
+
+double lsdem_membrane_inset_volume(double V, double A, double H, double rb)
+{
+  return V - rb * A + M_PI * rb * rb * H;
+}
