@@ -67,6 +67,7 @@ AtomVecLsdem::AtomVecLsdem(LAMMPS *lmp) : AtomVec(lmp)
   omega = nullptr;
   lib = nullptr;
   maxradius = 0.0;
+  min_grain_radius = HUGE_VAL;
   rmass_one = 0.0;
 
   store = &storage_for(atom);
@@ -161,8 +162,32 @@ void AtomVecLsdem::open_library(const char *path)
     error->all(FLERR, "atom_style lsdem: shape library {} holds no shapes", path);
 
   maxradius = 0.0;
-  for (int s = 0; s < lsdem_library_count(lib); s++)
-    maxradius = std::max(maxradius, lsdem_library_shape(lib, s)->radius);
+  min_grain_radius = HUGE_VAL;
+  for (int s = 0; s < lsdem_library_count(lib); s++) {
+    const lsdem_shape *sh = lsdem_library_shape(lib, s);
+    maxradius = std::max(maxradius, sh->radius);
+    if (sh->sdf.kind != LSDEM_SDF_SPHERE) min_grain_radius = std::min(min_grain_radius, sh->radius);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   nodelist keyword of pair lsdem and fix wall/lsdem: auto | off | skin length
+------------------------------------------------------------------------- */
+
+double AtomVecLsdem::parse_node_skin(const char *val, LAMMPS *lmp)
+{
+  if (strcmp(val, "auto") == 0) return -1.0;
+  if (strcmp(val, "off") == 0) return 0.0;
+  double skin = utils::is_double(val) ? utils::numeric(FLERR, val, false, lmp) : 0.0;
+  if (!(skin > 0.0))
+    lmp->error->all(FLERR, "nodelist must be auto, off or a skin length > 0, not {}", val);
+  return skin;
+}
+
+double AtomVecLsdem::node_skin(double setting) const
+{
+  if (setting >= 0.0) return setting;
+  return std::isfinite(min_grain_radius) ? NODE_SKIN_AUTO * min_grain_radius : 0.0;
 }
 
 /* ----------------------------------------------------------------------

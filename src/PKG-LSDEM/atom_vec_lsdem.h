@@ -55,6 +55,14 @@ class AtomVecLsdem : public AtomVec {
   int nshapes() const { return lsdem_library_count(lib); }
   double max_shape_radius() const { return maxradius; }
 
+  // node lists of the contact styles (core: lsdem_contact_params.node_skin): the keyword
+  // value "auto", "off" or a skin length as a setting (-1, 0, length), and the skin a
+  // setting gives: auto = NODE_SKIN_AUTO x the smallest bounding radius of a grain shape
+  // (not a sphere: spheres have no nodes)
+  static constexpr double NODE_SKIN_AUTO = 0.02;
+  static double parse_node_skin(const char *, class LAMMPS *);
+  double node_skin(double setting) const;
+
   // error->one that first flushes every open output stream and flushes again after the
   // message is logged: with LAMMPS_EXCEPTIONS the stand-alone lmp ends an error->one in
   // MPI_Abort, which discards buffered output (log lines, dump frames, the message itself)
@@ -65,6 +73,7 @@ class AtomVecLsdem : public AtomVec {
   Storage *store;
   lsdem_library *lib;
   double maxradius;
+  double min_grain_radius;  // smallest bounding radius of a non-sphere shape (HUGE_VAL: none)
   double *radius, *rmass;
   double **omega;
   double rmass_one;  // saved by pack_data_pre for pack_data_post

@@ -40,7 +40,7 @@ static constexpr tagint WALL_PARTNER = -1;
 
 FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), axis(2), fix_history(nullptr), avec(nullptr), fall_valid(0),
-  moving(false), pivot(false), pivot_h(0.0), pivot_inertia(0.0), pivot_damping(0.0),
+  moving(false), nodelist(-1.0), pivot(false), pivot_h(0.0), pivot_inertia(0.0), pivot_damping(0.0),
   contact(nullptr), ncontact(0), maxcontact(0), contact_step(-1)
 {
   for (int d = 0; d < 3; d++) {
@@ -111,6 +111,8 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
     } else if (key == "stride") {
       prm.node_stride = utils::inumeric(FLERR, val.c_str(), false, lmp);
       if (prm.node_stride < 1) error->all(FLERR, "fix wall/lsdem: stride must be >= 1");
+    } else if (key == "nodelist") {
+      nodelist = AtomVecLsdem::parse_node_skin(val.c_str(), lmp);
     } else error->all(FLERR, "fix wall/lsdem: unknown keyword {}", key);
     iarg += 1 + nval;
   }
@@ -212,7 +214,7 @@ int FixWallLsdem::setmask()
 
 void FixWallLsdem::post_constructor()
 {
-  if (prm.mu <= 0.0) return;
+  if (prm.mu <= 0.0 && nodelist == 0.0) return;
   history_id = std::string("LSDEM_WALL_HISTORY_") + id;
   fix_history = dynamic_cast<FixLsdemHistory *>(
       modify->add_fix(fmt::format("{} all LSDEM_HISTORY", history_id)));
@@ -225,6 +227,7 @@ void FixWallLsdem::init()
   avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
   if (!avec) error->all(FLERR, "Fix wall/lsdem requires atom_style lsdem");
   prm.dt = update->dt;
+  prm.node_skin = fix_history ? avec->node_skin(nodelist) : 0.0;
   for (int d = 0; d < 3; d++) {
     if (!vstr[d]) continue;
     vvar[d] = input->variable->find(vstr[d]);

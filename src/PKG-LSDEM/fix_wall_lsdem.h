@@ -63,6 +63,7 @@ class FixWallLsdem : public Fix {
   char *vstr[3];               // velocity components given as equal-style variables
   int vvar[3];
   bool moving;                 // a velocity is set (constant or variable)
+  double nodelist;             // node-list skin setting: -1 auto, 0 off, > 0 length
 
   Contact *contact;
   int ncontact, maxcontact;

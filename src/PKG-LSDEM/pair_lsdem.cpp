@@ -38,7 +38,8 @@ static const char HISTORY_ID[] = "LSDEM_PAIR_HISTORY";
 /* ---------------------------------------------------------------------- */
 
 PairLsdem::PairLsdem(LAMMPS *lmp) :
-  Pair(lmp), mode(ONEWAY), law(LSDEM_NORMAL_PER_NODE), stride(1), zcap(0), params(nullptr),
+  Pair(lmp), mode(ONEWAY), law(LSDEM_NORMAL_PER_NODE), stride(1), zcap(0), nodelist(-1.0),
+  params(nullptr),
   onerad(nullptr), maxrad(nullptr), kn_max(0.0), avec(nullptr), fix_history(nullptr),
   nmax_atom(0), pose(nullptr), shape(nullptr), ncount(nullptr), contact(nullptr), ncontact(0),
   maxcontact(0), contact_step(-1), ntested_pairs(0), ntested_nodes(0), npen_nodes(0)
@@ -93,6 +94,7 @@ void PairLsdem::allocate()
 
 /* ----------------------------------------------------------------------
    pair_style lsdem [mode oneway|twoway] [normal node|traction] [stride N] [zcap N]
+                    [nodelist auto|off|skin]
 ------------------------------------------------------------------------- */
 
 void PairLsdem::settings(int narg, char **arg)
@@ -101,6 +103,7 @@ void PairLsdem::settings(int narg, char **arg)
   law = LSDEM_NORMAL_PER_NODE;
   stride = 1;
   zcap = 0;
+  nodelist = -1.0;
   for (int iarg = 0; iarg < narg; iarg += 2) {
     if (iarg + 1 >= narg) error->all(FLERR, "pair_style lsdem: keyword {} needs a value", arg[iarg]);
     std::string key = arg[iarg], val = arg[iarg + 1];
@@ -118,6 +121,8 @@ void PairLsdem::settings(int narg, char **arg)
     } else if (key == "zcap") {
       zcap = utils::inumeric(FLERR, val.c_str(), false, lmp);
       if (zcap < 0) error->all(FLERR, "pair_style lsdem: zcap must be >= 0 (0 = off)");
+    } else if (key == "nodelist") {
+      nodelist = AtomVecLsdem::parse_node_skin(val.c_str(), lmp);
     } else error->all(FLERR, "pair_style lsdem: unknown keyword {}", key);
   }
 }
@@ -185,8 +190,9 @@ void PairLsdem::init_style()
   MPI_Allreduce(&onerad[1], &maxrad[1], ntypes, MPI_DOUBLE, MPI_MAX, world);
   kn_max = stiffest_node_spring();
 
-  // history only where friction is on; none at all when mu == 0 everywhere
-  int need_history = 0;
+  // history where friction is on or node lists are kept; none at all when mu == 0
+  // everywhere and node lists are off
+  int need_history = avec->node_skin(nodelist) > 0.0;
   for (int i = 1; i <= ntypes; i++)
     for (int j = i; j <= ntypes; j++)
       if (setflag[i][j] && params[i][j].mu > 0.0) need_history = 1;
@@ -210,6 +216,7 @@ double PairLsdem::init_one(int i, int j)
   params[i][j].dt = update->dt;
   params[i][j].node_stride = stride;
   params[i][j].law = law;
+  params[i][j].node_skin = avec->node_skin(nodelist);
   params[j][i] = params[i][j];
   return maxrad[i] + maxrad[j];
 }
@@ -350,7 +357,7 @@ void PairLsdem::test_pair(int i, int j, double scale, bigint step)
   const lsdem_node_hist *hin = nullptr;
   lsdem_node_hist *hout = nullptr;
   int nin = 0, nout = 0;
-  FixLsdemHistory *store = prm.mu > 0.0 ? fix_history : nullptr;
+  FixLsdemHistory *store = prm.mu > 0.0 || prm.node_skin > 0.0 ? fix_history : nullptr;
   if (store) {
     hin = store->find(i, tagj, nin);
     hout = store->reserve(lsdem_contact_history_capacity(A));
@@ -530,6 +537,7 @@ void PairLsdem::write_restart_settings(FILE *fp)
   fwrite(&lawi, sizeof(int), 1, fp);
   fwrite(&stride, sizeof(int), 1, fp);
   fwrite(&zcap, sizeof(int), 1, fp);
+  fwrite(&nodelist, sizeof(double), 1, fp);
 }
 
 void PairLsdem::read_restart_settings(FILE *fp)
@@ -541,6 +549,8 @@ void PairLsdem::read_restart_settings(FILE *fp)
   law = (lsdem_normal_law) v[1];
   stride = v[2];
   zcap = v[3];
+  if (comm->me == 0) utils::sfread(FLERR, &nodelist, sizeof(double), 1, fp, nullptr, error);
+  MPI_Bcast(&nodelist, 1, MPI_DOUBLE, 0, world);
 }
 
 void PairLsdem::write_restart(FILE *fp)

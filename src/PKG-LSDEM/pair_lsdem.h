@@ -65,6 +65,7 @@ class PairLsdem : public Pair {
   lsdem_normal_law law;      // per-node kn*d or traction kn*d*area
   int stride;                // test every stride-th node (report §3.4.1)
   int zcap;                  // coordination cap (report §3.3.3), 0 = off
+  double nodelist;           // node-list skin setting: -1 auto, 0 off, > 0 length
 
   lsdem_contact_params **params;  // per type pair
   double *onerad, *maxrad;        // largest bounding radius per type (local, global)

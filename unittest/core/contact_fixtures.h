@@ -97,6 +97,13 @@ static inline void fix_axis_angle(const double k[3], double th, double R[9])
   R[8] = t * k[2] * k[2] + c;
 }
 
+/* Rotation by th about the axis (k0, k1, k2), normalised here. */
+static inline void fix_rotation_about(double k0, double k1, double k2, double th, double R[9])
+{
+  const double n = sqrt(k0 * k0 + k1 * k1 + k2 * k2), k[3] = {k0 / n, k1 / n, k2 / n};
+  fix_axis_angle(k, th, R);
+}
+
 static inline void fix_identity(double R[9])
 {
   static const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
@@ -163,4 +170,27 @@ static inline double fix_norm(const double a[3])
 {
   return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
 }
+
+/* An ellipsoid grain (semi-axes a) with FIX_GRAIN_NODES Fibonacci nodes clustered by the
+ * core, around the level set sdf: `clustered` and `plain` (no clusters) share the nodes. */
+enum { FIX_GRAIN_NODES = 400 };
+typedef struct {
+  double nodes[3 * FIX_GRAIN_NODES], area[FIX_GRAIN_NODES], sphere[4 * FIX_GRAIN_NODES];
+  int start[FIX_GRAIN_NODES + 1];
+  lsdem_shape clustered, plain;
+} fix_grain;
+
+static inline void fix_make_grain(fix_grain *g, const double a[3], const lsdem_sdf *sdf)
+{
+  fix_fibonacci_ellipsoid(FIX_GRAIN_NODES, a, g->nodes);
+  for (int k = 0; k < FIX_GRAIN_NODES; k++) g->area[k] = 1.0;
+  const int nc = lsdem_nodes_cluster(FIX_GRAIN_NODES, g->nodes, g->area, LSDEM_CLUSTER_TARGET,
+                                     g->start, g->sphere);
+  g->plain = fix_shape(*sdf, FIX_GRAIN_NODES, g->nodes, fmax(a[0], fmax(a[1], a[2])));
+  g->clustered = g->plain;
+  g->clustered.nclusters = nc;
+  g->clustered.cluster_start = g->start;
+  g->clustered.cluster_sphere = g->sphere;
+}
+
 #endif

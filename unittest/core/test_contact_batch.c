@@ -11,15 +11,11 @@
 
 #include <stdint.h>
 
-enum { NN = 400 };
 
 
 static void random_rotation(double R[9])
 {
-  double k[3] = {srand1(), srand1(), srand1()};
-  const double n = sqrt(k[0] * k[0] + k[1] * k[1] + k[2] * k[2]);
-  for (int i = 0; i < 3; i++) k[i] /= n;
-  fix_axis_angle(k, FIX_PI * urand(), R);
+  fix_rotation_about(srand1(), srand1(), srand1(), FIX_PI * urand(), R);
 }
 
 /* Brute force: force on A from every node of A with phi_B < 0 (per-node law, mu = 0). */
@@ -40,26 +36,6 @@ static int brute_force(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_s
     npen++;
   }
   return npen;
-}
-
-/* An ellipsoid grain with NN clustered nodes (core clustering) and its grid. */
-typedef struct {
-  double nodes[3 * NN], area[NN], sphere[4 * NN];
-  int start[NN + 1];
-  lsdem_shape clustered, plain; /* same node order; plain has no clusters */
-} grain;
-
-static void make_grain(grain *g, const double a[3], const lsdem_sdf *sdf)
-{
-  fix_fibonacci_ellipsoid(NN, a, g->nodes);
-  for (int k = 0; k < NN; k++) g->area[k] = 1.0;
-  const int nc = lsdem_nodes_cluster(NN, g->nodes, g->area, LSDEM_CLUSTER_TARGET, g->start,
-                                     g->sphere);
-  g->plain = fix_shape(*sdf, NN, g->nodes, fmax(a[0], fmax(a[1], a[2])));
-  g->clustered = g->plain;
-  g->clustered.nclusters = nc;
-  g->clustered.cluster_start = g->start;
-  g->clustered.cluster_sphere = g->sphere;
 }
 
 static void test_eval_many(const lsdem_grid *grid)
@@ -109,7 +85,7 @@ static void test_sdf_eval_many(const lsdem_sdf *grid)
 }
 
 /* Grid B, overlapping deeply so that more than one batch of nodes is looked up. */
-static void test_grid_pairs(grain *ga, const lsdem_shape *B)
+static void test_grid_pairs(fix_grain *ga, const lsdem_shape *B)
 {
   const double kn = 10.0;
   lsdem_contact_params prm = fix_params(kn, 0.0, 0.0, 1e-3);
@@ -135,7 +111,7 @@ static void test_grid_pairs(grain *ga, const lsdem_shape *B)
 }
 
 /* Walls (unbounded, radius HUGE_VAL): a plane and an inverted infinite cylinder. */
-static void test_walls(grain *ga)
+static void test_walls(fix_grain *ga)
 {
   const double kn = 7.0;
   lsdem_contact_params prm = fix_params(kn, 0.0, 0.0, 1e-3);
@@ -175,7 +151,7 @@ static void test_walls(grain *ga)
         CHECK(rc.force[i] == rp.force[i], "wall %d case %d: clusters change the force", w, t);
         CHECK_NEAR(rc.force[i], f[i], 1e-12 * (1.0 + fabs(f[i])));
       }
-      fewer += npen > 0 && rc.ntested < NN / 2;
+      fewer += npen > 0 && rc.ntested < FIX_GRAIN_NODES / 2;
       if (s > 10.5) { /* beyond the bounding radius: no lookup at all */
         far++;
         CHECK(rc.ntested == 0 && rp.ntested == 0, "far grain: ntested %d %d", rc.ntested,
@@ -192,8 +168,8 @@ int main(void)
   lsdem_sdf gsdf = fix_sdf(LSDEM_SDF_GRID, 0, 0, 0);
   lsdem_error err;
   CHECK(lsdem_grid_sample(&ell, lo, hi, 1.0, 3, &gsdf.grid, &err) == LSDEM_OK, "%s", err.msg);
-  static grain ga;
-  make_grain(&ga, a, &gsdf);
+  static fix_grain ga;
+  fix_make_grain(&ga, a, &gsdf);
   lsdem_shape B = fix_shape(gsdf, 0, NULL, lsdem_sdf_bound_radius(&gsdf));
 
   test_eval_many(&gsdf.grid);

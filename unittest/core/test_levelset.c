@@ -50,7 +50,7 @@ static void random_inside(const lsdem_grid *g, double p[3])
  * double round-off. */
 static void test_trilinear_exact(void)
 {
-  lsdem_grid g = {{7, 5, 9}, 0.5, {-1.5, -1.0, 0.25}, NULL};
+  lsdem_grid g = {{7, 5, 9}, 0.5, {-1.5, -1.0, 0.25}, NULL, 0.0, 0.0};
   double worst_v = 0, worst_g = 0, worst_unit = 0, worst_dir = 0;
   for (int field = 0; field < 20; field++) {
     double c[8];
@@ -82,7 +82,7 @@ static void test_trilinear_exact(void)
 /* General random coefficients and spacing: exact up to the float rounding of samples. */
 static void test_trilinear_random(void)
 {
-  lsdem_grid g = {{11, 6, 8}, 0.37, {0.3, -2.1, 1.7}, NULL};
+  lsdem_grid g = {{11, 6, 8}, 0.37, {0.3, -2.1, 1.7}, NULL, 0.0, 0.0};
   double c[8];
   for (int i = 0; i < 8; i++) c[i] = 2.0 * urand() - 1.0;
   float *phi = fill_grid(&g, c);
@@ -102,7 +102,7 @@ static void test_trilinear_random(void)
 static void test_linear_gradient(void)
 {
   /* phi = 0.3 + 0.6x - 0.48y + 0.64z: a unit-gradient (exact SDF of a plane) */
-  lsdem_grid g = {{4, 4, 4}, 0.25, {-0.5, -0.5, -0.5}, NULL};
+  lsdem_grid g = {{4, 4, 4}, 0.25, {-0.5, -0.5, -0.5}, NULL, 0.0, 0.0};
   const double c[8] = {0.3, 0.6, -0.48, 0.64, 0, 0, 0, 0};
   float *phi = fill_grid(&g, c);
   for (int t = 0; t < 200; t++) {
@@ -120,7 +120,7 @@ static void test_linear_gradient(void)
 
 static void test_boundary_and_outside(void)
 {
-  lsdem_grid g = {{5, 6, 7}, 0.5, {-1.0, -1.5, -2.0}, NULL};
+  lsdem_grid g = {{5, 6, 7}, 0.5, {-1.0, -1.5, -2.0}, NULL, 0.0, 0.0};
   const double c[8] = {2.0, 1.0, -1.0, 0.5, 0.25, 0, -0.5, 0.125};
   float *phi = fill_grid(&g, c);
   const double hi[3] = {g.origin[0] + g.h * 4, g.origin[1] + g.h * 5, g.origin[2] + g.h * 6};
@@ -171,7 +171,7 @@ static void test_boundary_and_outside(void)
 static void test_check(void)
 {
   float vals[8] = {1, 1, 1, 1, 1, 1, 1, 1};
-  lsdem_grid g = {{2, 2, 2}, 1.0, {0, 0, 0}, vals};
+  lsdem_grid g = {{2, 2, 2}, 1.0, {0, 0, 0}, vals, 0.0, 0.0};
   lsdem_error err;
   CHECK(lsdem_grid_check(&g, &err) == LSDEM_OK, "valid grid");
   lsdem_grid b = g;
@@ -211,7 +211,7 @@ static void test_check(void)
 static void test_sample(void)
 {
   /* a half-space sampled: phi = z exactly, covering [lo, hi] plus the margin */
-  lsdem_sdf plane = {LSDEM_SDF_PLANE, 0, {0, 0, 0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL}};
+  lsdem_sdf plane = {LSDEM_SDF_PLANE, 0, {0, 0, 0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}};
   const double lo[3] = {-1.0, -0.5, -0.75}, hi[3] = {1.0, 0.5, 0.75};
   lsdem_grid g;
   lsdem_error err;
@@ -242,7 +242,7 @@ static void test_sample(void)
 /* Not a pass/fail timing: prints the cost of one lookup for the record. */
 static void report_speed(void)
 {
-  lsdem_sdf sph = {LSDEM_SDF_SPHERE, 0, {1.0, 0, 0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL}};
+  lsdem_sdf sph = {LSDEM_SDF_SPHERE, 0, {1.0, 0, 0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}};
   const double lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
   lsdem_grid g;
   if (lsdem_grid_sample(&sph, lo, hi, 0.05, 2, &g, NULL) != LSDEM_OK) return;

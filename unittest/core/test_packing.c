@@ -20,8 +20,8 @@ static lsdem_shape shapes[NSHAPES];
 static void make_shapes(void)
 {
   const lsdem_sdf kinds[NSHAPES] = {
-      {LSDEM_SDF_ELLIPSOID, 0, {0.5, 0.35, 0.25}, {{0, 0, 0}, 0, {0, 0, 0}, NULL}},
-      {LSDEM_SDF_BOX, 0, {0.35, 0.3, 0.2}, {{0, 0, 0}, 0, {0, 0, 0}, NULL}}};
+      {LSDEM_SDF_ELLIPSOID, 0, {0.5, 0.35, 0.25}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}},
+      {LSDEM_SDF_BOX, 0, {0.35, 0.3, 0.2}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}}};
   for (int k = 0; k < NSHAPES; k++) {
     const double lo[3] = {-kinds[k].a[0], -kinds[k].a[1], -kinds[k].a[2]};
     lsdem_sdf g;
@@ -45,7 +45,7 @@ static void pose_of(const lsdem_placed *g, lsdem_pose *p)
 /* Penetrating nodes of every pair, both directions, all pairs (no culling). */
 static int pair_penetrations(const lsdem_placed *g, int n)
 {
-  const lsdem_contact_params prm = {1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1, LSDEM_NORMAL_PER_NODE};
+  const lsdem_contact_params prm = {1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1, LSDEM_NORMAL_PER_NODE, 0.0};
   int total = 0;
   for (int i = 0; i < n; i++)
     for (int j = i + 1; j < n; j++) {

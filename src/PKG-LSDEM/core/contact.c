@@ -14,6 +14,7 @@
 #include "lsdem.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <string.h>
 
 /* --------------------------------------------------------- small vector ops ---- */
@@ -259,14 +260,179 @@ static void lookup_batch(const lsdem_shape *A, const lsdem_sdf *sdfB, const doub
   lsdem_sdf_eval_many(sdfB, b->n, b->q, b->phi, b->grad);
 }
 
-/* Looks the batch up, then the contacts of its penetrating nodes; empties the batch. */
+/* ------------------------------------------------------------- node lists ---- */
+
+/* A pair's node list travels in its history (sorted by node) as entries with negative
+ * node ids, ahead of the node entries:
+ *   LIST_MASK - b, b = 0 .. nb-1: the nodes b*LIST_BLOCK .. b*LIST_BLOCK + LIST_BLOCK-1,
+ *     one bit each, LIST_WORD_BITS bits per double (an exact integer) of shear, normal;
+ *   LIST_POSE_M: M[0..5] of the pose the list was built at (shear, normal); stamp: the
+ *     bits of the skin it was built with;
+ *   LIST_POSE_T: M[6..8] and t (shear, normal); stamp: the node stride.
+ * The masks' stamp is the step the list was built at. A list built with another skin or
+ * stride is not used. */
+enum { LIST_POSE_T = -1, LIST_POSE_M = -2, LIST_MASK = -3 };
+enum { LIST_WORD_BITS = 48, LIST_WORDS = 6, LIST_BLOCK = LIST_WORD_BITS * LIST_WORDS };
+
+static int list_blocks(int nnodes) { return (nnodes + LIST_BLOCK - 1) / LIST_BLOCK; }
+
+/* The double that holds word w of a list whose nb mask entries start at e. */
+static double *list_word(lsdem_node_hist *e, int nb, int w)
+{
+  lsdem_node_hist *blk = &e[nb - 1 - w / LIST_WORDS];
+  const int r = w % LIST_WORDS;
+  return r < 3 ? &blk->shear[r] : &blk->normal[r - 3];
+}
+
+static uint64_t list_word_bits(const lsdem_node_hist *e, int nb, int w)
+{
+  return (uint64_t)*list_word((lsdem_node_hist *)e, nb, w);
+}
+
+/* The list state of one call. */
+typedef struct {
+  double skin;  /* s; 0: no list */
+  double reach; /* L s: a looked-up node with phi >= reach is left out (HUGE_VAL: none) */
+  int nb;       /* mask entries */
+  int use;      /* hist_in's list holds: look up its nodes only */
+  lsdem_node_hist *out; /* hist_out's list entries being built, or NULL */
+  int word;     /* word being filled */
+  uint64_t bits;
+} node_list;
+
+/* The node-list reach L s for skin s: a node looked up with phi >= L s cannot reach
+ * phi < 0 by moving less than s, L bounding |grad phi| where 0 <= phi <= L s (exact
+ * distances: 1; grids: lsdem_grid_outer_lipschitz, within its limit). HUGE_VAL when
+ * there is no such bound: every looked-up node is listed. */
+static double list_reach(const lsdem_sdf *s, double skin)
+{
+  switch (s->kind) {
+  case LSDEM_SDF_SPHERE:
+  case LSDEM_SDF_PLANE:
+  case LSDEM_SDF_CYLINDER:
+  case LSDEM_SDF_BOX:
+  case LSDEM_SDF_ELLIPSOID: return skin;
+  case LSDEM_SDF_GRID:
+    if (s->grid.lip > 0.0 && s->grid.lip * skin < s->grid.lip_reach) return s->grid.lip * skin;
+    return HUGE_VAL;
+  default: return HUGE_VAL;
+  }
+}
+
+/* Whether hist_in starts with a list for A whose nodes cannot have moved by the skin
+ * relative to B since it was built: |M - M0| rA + |t - t0| < s (q = M x + t, |x| <= rA).
+ * M M0^T is a rotation by some angle a: |M - M0| = 2 sin(a/2) = |M - M0|_F / sqrt(2),
+ * plus a relative 1e-12 for round-off in M, M0. */
+static int64_t skin_bits(double skin)
+{
+  int64_t bits;
+  memcpy(&bits, &skin, sizeof bits);
+  return bits;
+}
+
+static int list_holds(const lsdem_node_hist *h, int n, int nb, const double M[9],
+                      const double t[3], double ra, double skin, int stride)
+{
+  if (n < nb + 2 || h[0].node != LIST_MASK - (nb - 1) || h[nb].node != LIST_POSE_M ||
+      h[nb + 1].node != LIST_POSE_T || h[nb].stamp != skin_bits(skin) ||
+      h[nb + 1].stamp != stride)
+    return 0;
+  const double M0[9] = {h[nb].shear[0],  h[nb].shear[1],      h[nb].shear[2],
+                        h[nb].normal[0], h[nb].normal[1],     h[nb].normal[2],
+                        h[nb + 1].shear[0], h[nb + 1].shear[1], h[nb + 1].shear[2]};
+  double dm = 0.0, dt = 0.0;
+  for (int i = 0; i < 9; i++) dm += (M[i] - M0[i]) * (M[i] - M0[i]);
+  for (int i = 0; i < 3; i++) dt += (t[i] - h[nb + 1].normal[i]) * (t[i] - h[nb + 1].normal[i]);
+  return (sqrt(0.5 * dm) + 1e-12) * ra + sqrt(dt) < skin * (1.0 - 1e-9);
+}
+
+/* Decides whether hist_in's list is used; when it is not and hist_out is given, starts a
+ * new one there (pose M, t; empty masks). Either way hist_out's list entries are
+ * reserved: the caller's history entries follow them. */
+static void list_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
+                       const lsdem_contact_params *prm, int64_t step,
+                       const lsdem_node_hist *hist_in, int n_in, lsdem_node_hist *hist_out,
+                       const double M[9], const double t[3])
+{
+  memset(L, 0, sizeof *L);
+  L->skin = prm->node_skin > 0.0 ? prm->node_skin : 0.0;
+  if (L->skin == 0.0) return;
+  L->reach = list_reach(sdfB, L->skin);
+  L->nb = list_blocks(A->nnodes);
+  const int stride = prm->node_stride > 1 ? prm->node_stride : 1;
+  L->use = hist_in && list_holds(hist_in, n_in, L->nb, M, t, A->radius, L->skin, stride);
+  if (!hist_out) return;
+  const int ne = L->nb + 2;
+  if (L->use) {
+    memcpy(hist_out, hist_in, sizeof *hist_out * (size_t)ne);
+    return;
+  }
+  memset(hist_out, 0, sizeof *hist_out * (size_t)ne);
+  for (int b = 0; b < L->nb; b++) hist_out[L->nb - 1 - b].node = LIST_MASK - b;
+  lsdem_node_hist *pm = &hist_out[L->nb], *pt = &hist_out[L->nb + 1];
+  pm->node = LIST_POSE_M;
+  pt->node = LIST_POSE_T;
+  for (int i = 0; i < 3; i++) {
+    pm->shear[i] = M[i];
+    pm->normal[i] = M[3 + i];
+    pt->shear[i] = M[6 + i];
+    pt->normal[i] = t[i];
+  }
+  for (int b = 0; b < L->nb; b++) hist_out[b].stamp = step;
+  pm->stamp = skin_bits(L->skin);
+  pt->stamp = stride;
+  L->out = hist_out;
+}
+
+static void list_flush(node_list *L)
+{
+  if (L->bits) *list_word(L->out, L->nb, L->word) = (double)L->bits;
+  L->bits = 0;
+}
+
+static void list_flush_if_built(node_list *L)
+{
+  if (L->out) list_flush(L);
+}
+
+/* Index of the lowest set bit of a nonzero word. */
+static int ctz64(uint64_t x)
+{
+#if defined(__GNUC__)
+  return __builtin_ctzll(x);
+#else
+  int n = 0;
+  while (!(x & 1)) {
+    x >>= 1;
+    n++;
+  }
+  return n;
+#endif
+}
+
+/* Adds node k (nodes come in increasing order). */
+static void list_add(node_list *L, int k)
+{
+  const int w = k / LIST_WORD_BITS;
+  if (w != L->word) {
+    list_flush(L);
+    L->word = w;
+  }
+  L->bits |= (uint64_t)1 << (k % LIST_WORD_BITS);
+}
+
+/* Looks the batch up, then the contacts of its penetrating nodes; empties the batch.
+ * While a list is built (L->out), the nodes that may come to touch join it. */
 static void contact_batch(pair_ctx *restrict c, const lsdem_shape *A, const lsdem_shape *B,
                           const lsdem_pose *pb, const double M[9], const double t[3],
-                          node_batch *b, double kstride)
+                          node_batch *b, double kstride, node_list *L)
 {
   lookup_batch(A, &B->sdf, M, t, b);
   const int traction = c->prm.law == LSDEM_NORMAL_TRACTION && A->node_area;
   c->sum.ntested += b->n;
+  if (L->out)
+    for (int i = 0; i < b->n; i++)
+      if (b->phi[i] < L->reach) list_add(L, b->node[i]);
   for (int i = 0; i < b->n; i++) {
     if (!(b->phi[i] < 0.0)) continue;
     const int k = b->node[i];
@@ -309,9 +475,10 @@ static int ball_clear_of(const lsdem_sdf *sdfB, const double M[9], const double 
 
 /* Node range [start, end) of cluster cl of A when it may touch B (or of all of A when
  * A has no clusters); returns 0 when the cluster's sphere is clear of B's bounding
- * sphere (cb: B's centre in A's frame) or, for a distance B, of B's solid. */
+ * sphere (cb: B's centre in A's frame; rb may include a skin) or, for a distance B, of
+ * B's solid by more than `clear`. */
 static int cluster_range(const lsdem_shape *A, int cl, const lsdem_sdf *sdfB, double rb,
-                         int distance, const double cb[3], const double M[9],
+                         int distance, double clear, const double cb[3], const double M[9],
                          const double t[3], int *start, int *end)
 {
   *start = 0;
@@ -321,10 +488,60 @@ static int cluster_range(const lsdem_shape *A, int cl, const lsdem_sdf *sdfB, do
   const double d[3] = {sph[0] - cb[0], sph[1] - cb[1], sph[2] - cb[2]};
   const double reach = rb + sph[3];
   if (dot3(d, d) > reach * reach) return 0;
-  if (distance && ball_clear_of(sdfB, M, t, sph, sph[3])) return 0;
+  if (distance && ball_clear_of(sdfB, M, t, sph, sph[3] + clear)) return 0;
   *start = A->cluster_start[cl];
   *end = A->cluster_start[cl + 1];
   return 1;
+}
+
+/* Every node of A screened: clusters, then nodes against B's bounding sphere (both
+ * widened by the skin while a list is built), the kept ones looked up in batches. The
+ * kept nodes of successive clusters share a batch (more lookups to overlap); the batch is
+ * looked up when full and at the end, so nodes stay in increasing order. */
+static void contacts_of_screened_nodes(pair_ctx *restrict c, const lsdem_shape *A,
+                                       const lsdem_shape *B, const lsdem_pose *pb,
+                                       const double cb[3], const double M[9],
+                                       const double t[3], int distance, node_list *L,
+                                       node_batch *batch, int stride)
+{
+  const double rb = B->radius + (L->out ? L->skin : 0.0), rb2 = rb * rb;
+  const double clear = L->out && isfinite(L->reach) ? L->reach : 0.0;
+  const int nclusters = A->nclusters > 0 && A->cluster_start && A->cluster_sphere
+                            ? A->nclusters : 1;
+  for (int cl = 0; cl < nclusters; cl++) {
+    int start, end;
+    if (!cluster_range(A, cl, &B->sdf, rb, distance, clear, cb, M, t, &start, &end)) continue;
+    int k = (start + stride - 1) / stride * stride;
+    while (k < end) {
+      const int left = (end - k + stride - 1) / stride, room = NODE_BATCH - batch->n;
+      const int count = left < room ? left : room;
+      screen_nodes(A->nodes, k, count, stride, cb, rb2, batch);
+      k += count * stride;
+      if (batch->n == NODE_BATCH) contact_batch(c, A, B, pb, M, t, batch, (double)stride, L);
+    }
+  }
+  contact_batch(c, A, B, pb, M, t, batch, (double)stride, L);
+}
+
+/* Only the nodes of the pair's list, in increasing order, looked up in batches. */
+static void contacts_of_listed_nodes(pair_ctx *restrict c, const lsdem_shape *A,
+                                     const lsdem_shape *B, const lsdem_pose *pb,
+                                     const double M[9], const double t[3],
+                                     const lsdem_node_hist *hist_in, const node_list *L,
+                                     node_batch *batch, int stride)
+{
+  const int nwords = (A->nnodes + LIST_WORD_BITS - 1) / LIST_WORD_BITS;
+  node_list none;
+  memset(&none, 0, sizeof none);
+  for (int w = 0; w < nwords; w++) {
+    uint64_t bits = list_word_bits(hist_in, L->nb, w);
+    while (bits) {
+      batch->node[batch->n++] = w * LIST_WORD_BITS + ctz64(bits);
+      bits &= bits - 1;
+      if (batch->n == NODE_BATCH) contact_batch(c, A, B, pb, M, t, batch, (double)stride, &none);
+    }
+  }
+  contact_batch(c, A, B, pb, M, t, batch, (double)stride, &none);
 }
 
 int lsdem_contact_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
@@ -355,28 +572,18 @@ int lsdem_contact_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_
 
   pair_ctx c;
   pair_begin(&c, pa, pb, prm, step, hist_in, n_in, hist_out);
+  node_list list;
+  list_begin(&list, A, &B->sdf, prm, step, hist_in, n_in, hist_out, M, t);
+  if (hist_out && list.skin > 0.0) c.n_out = list.nb + 2;
 
-  const int stride = prm->node_stride > 1 ? prm->node_stride : 1;
-  const double rb2 = rb * rb;
-  const int nclusters = A->nclusters > 0 && A->cluster_start && A->cluster_sphere
-                            ? A->nclusters : 1;
-  /* the kept nodes of successive clusters share a batch (more lookups to overlap); the
-   * batch is looked up when full and at the end, so nodes stay in increasing order */
   node_batch batch;
   batch.n = 0;
-  for (int cl = 0; cl < nclusters; cl++) {
-    int start, end;
-    if (!cluster_range(A, cl, &B->sdf, rb, distance, cb, M, t, &start, &end)) continue;
-    int k = (start + stride - 1) / stride * stride;
-    while (k < end) {
-      const int left = (end - k + stride - 1) / stride, room = NODE_BATCH - batch.n;
-      const int count = left < room ? left : room;
-      screen_nodes(A->nodes, k, count, stride, cb, rb2, &batch);
-      k += count * stride;
-      if (batch.n == NODE_BATCH) contact_batch(&c, A, B, pb, M, t, &batch, (double)stride);
-    }
-  }
-  contact_batch(&c, A, B, pb, M, t, &batch, (double)stride);
+  const int stride = prm->node_stride > 1 ? prm->node_stride : 1;
+  if (list.use)
+    contacts_of_listed_nodes(&c, A, B, pb, M, t, hist_in, &list, &batch, stride);
+  else
+    contacts_of_screened_nodes(&c, A, B, pb, cb, M, t, distance, &list, &batch, stride);
+  list_flush_if_built(&list);
   return pair_end(&c, n_out, res);
 }
 
@@ -450,7 +657,10 @@ int lsdem_contact_sphere_sphere(double ra, double area, const lsdem_pose *pa, do
 
 static int is_sphere(const lsdem_shape *s) { return s->sdf.kind == LSDEM_SDF_SPHERE; }
 
-int lsdem_contact_history_capacity(const lsdem_shape *A) { return is_sphere(A) ? 1 : A->nnodes; }
+int lsdem_contact_history_capacity(const lsdem_shape *A)
+{
+  return is_sphere(A) ? 1 : A->nnodes + list_blocks(A->nnodes) + 2;
+}
 
 double lsdem_sphere_contact_area(double radius) { return M_PI * radius * radius; }
 

@@ -129,6 +129,59 @@ void lsdem_grid_gradient_raw(const lsdem_grid *g, const double p[3], double grad
   for (int a = 0; a < 3; a++) grad[a] = du[a] * inv_h;
 }
 
+/* Largest |edge difference| of cell (i,j,k) along each axis, and its smallest and
+ * largest corner. */
+static void cell_edges(const lsdem_grid *g, size_t i, size_t j, size_t k, float big[3],
+                       float *lo, float *hi)
+{
+  const size_t sy = (size_t)g->n[0], sz = sy * (size_t)g->n[1];
+  const float *c = g->phi + i + sy * j + sz * k;
+  const float v[8] = {c[0], c[1], c[sy], c[sy + 1], c[sz], c[sz + 1], c[sz + sy], c[sz + sy + 1]};
+  big[0] = big[1] = big[2] = 0.0f;
+  *lo = *hi = v[0];
+  for (int m = 0; m < 8; m++) {
+    *lo = v[m] < *lo ? v[m] : *lo;
+    *hi = v[m] > *hi ? v[m] : *hi;
+    for (int a = 0; a < 3; a++) { /* corner m's neighbour along axis a: bit a of m set */
+      if (!(m & (1 << a))) continue;
+      const float d = v[m] > v[m ^ (1 << a)] ? v[m] - v[m ^ (1 << a)] : v[m ^ (1 << a)] - v[m];
+      big[a] = d > big[a] ? d : big[a];
+    }
+  }
+}
+
+/* Smallest sample on the grid box's six faces. */
+static double boundary_min(const lsdem_grid *g)
+{
+  const int n0 = g->n[0], n1 = g->n[1], n2 = g->n[2];
+  double lo = HUGE_VAL;
+  for (int k = 0; k < n2; k++)
+    for (int j = 0; j < n1; j++)
+      for (int i = 0; i < n0; i++) {
+        if (i && j && k && i < n0 - 1 && j < n1 - 1 && k < n2 - 1) continue;
+        lo = fmin(lo, (double)g->phi[i + (size_t)n0 * (j + (size_t)n1 * k)]);
+      }
+  return lo;
+}
+
+double lsdem_grid_outer_lipschitz(const lsdem_grid *g, double *reach_limit)
+{
+  double worst = 0.0;
+  for (size_t k = 0; k + 1 < (size_t)g->n[2]; k++)
+    for (size_t j = 0; j + 1 < (size_t)g->n[1]; j++)
+      for (size_t i = 0; i + 1 < (size_t)g->n[0]; i++) {
+        float big[3], lo, hi;
+        cell_edges(g, i, j, k, big, &lo, &hi);
+        if (hi < 0.0f) continue; /* phi < 0 throughout */
+        const double b2 = (double)big[0] * big[0] + (double)big[1] * big[1] +
+                          (double)big[2] * big[2];
+        worst = fmax(worst, b2);
+      }
+  const double edge = boundary_min(g);
+  *reach_limit = edge > 0.0 ? edge : 0.0;
+  return sqrt(worst) / g->h;
+}
+
 /* Validation: every condition the lookups rely on, each with its own message. */
 lsdem_status lsdem_grid_check(const lsdem_grid *g, lsdem_error *err)
 {
@@ -170,7 +223,7 @@ lsdem_status lsdem_grid_alloc(const double lo[3], const double hi[3], double h, 
   if (!(h > 0.0) || !isfinite(h))
     return lsdem_fail(err, LSDEM_ERR_ARG, "grid spacing h = %g: must be positive", h);
   if (margin < 0) return lsdem_fail(err, LSDEM_ERR_ARG, "margin %d is negative", margin);
-  lsdem_grid out = {{0, 0, 0}, h, {0, 0, 0}, NULL};
+  lsdem_grid out = {{0, 0, 0}, h, {0, 0, 0}, NULL, 0.0, 0.0};
   for (int a = 0; a < 3; a++) {
     const double span = hi[a] - lo[a];
     if (!isfinite(lo[a]) || !isfinite(span) || span < 0.0)

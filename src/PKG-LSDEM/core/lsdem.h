@@ -99,6 +99,9 @@ typedef struct {
   double h;          /* uniform spacing, length units */
   double origin[3];  /* position of sample (0,0,0) */
   const float *phi;
+  double lip;        /* bound on |grad phi| where phi >= 0 (lsdem_grid_outer_lipschitz),
+                        0 = unknown; set by lsdem_library_open, for the node lists */
+  double lip_reach;  /* ... valid while lip * skin < lip_reach */
 } lsdem_grid;
 
 /* Trilinear interpolation of value and gradient (report Algorithm 1).
@@ -117,6 +120,14 @@ double lsdem_grid_value(const lsdem_grid *g, const double p[3]);
 /* Raw trilinear gradient (not normalised) inside the grid; zero outside. For tests. */
 void lsdem_grid_gradient_raw(const lsdem_grid *g, const double p[3], double grad[3]);
 lsdem_status lsdem_grid_check(const lsdem_grid *g, lsdem_error *err); /* sizes, NaN */
+/* A bound L on |grad phi| of the trilinear level set along any path on which
+ * 0 <= phi <= L s, for every s with L s below the smallest sample on the grid's boundary
+ * (0 if there is none: no bound). The gradient components of a cell are blends of its
+ * edge differences, so max over cells with a corner >= 0 of
+ * sqrt(sum over axes of (largest |edge difference| / h)^2) bounds it inside the box; the
+ * outside rule (phi >= that smallest boundary sample) is never reached on such a path.
+ * Returned as L, with the limit on L s in *reach_limit. */
+double lsdem_grid_outer_lipschitz(const lsdem_grid *g, double *reach_limit);
 
 /* ------------------------------------------------------- signed distances ---- */
 
@@ -308,6 +319,8 @@ typedef struct {
   double dt;        /* time step, for the shear increment (eq 2.7) */
   int node_stride;  /* test every N-th node, forces scaled by N (report §3.4.1); 1 = all */
   lsdem_normal_law law;
+  double node_skin; /* > 0: keep a node list per pair in its history (see below), built
+                       with this skin (length); 0 = screen every node at every call */
 } lsdem_contact_params;
 
 /* What one master-on-slave test produced. Forces and torques are world-frame and act
@@ -328,9 +341,21 @@ typedef struct {
  *
  * History: hist_in (n_in entries, sorted by node) is this pair's history from the
  * previous step; every penetrating node's updated entry is written to hist_out (sorted,
- * capacity >= A->nnodes), count in *n_out. An entry whose stamp == step is reused as is
- * (already advanced this step: a second force call at the same step must not advance the
- * shear twice). With mu == 0 no history is read or written (pass NULL, 0, NULL).
+ * capacity >= lsdem_contact_history_capacity(A)), count in *n_out. An entry whose stamp
+ * == step is reused as is (already advanced this step: a second force call at the same
+ * step must not advance the shear twice). With mu == 0 and node_skin == 0 no history is
+ * read or written (pass NULL, 0, NULL).
+ *
+ * Node list (node_skin = s > 0; a Verlet list of nodes): the history also carries, in
+ * entries with negative node ids placed first, the nodes of A that may touch B and the
+ * pose of B relative to A they were found at. While no node has moved by s relative to
+ * B since then (bound |M - M0|_F rA + |t - t0| on the change of q = M x + t), only those
+ * nodes are looked up; otherwise every node is screened again and the list rebuilt. A
+ * node is left out when it is farther than rB + s from B's centre or, when B's level set
+ * has a known gradient bound L (exact distances: 1; grids: lsdem_grid_outer_lipschitz), when
+ * phi_B >= L s there: it cannot reach phi < 0 before the list is rebuilt. The contacts
+ * found are therefore the same, bit for bit, as without a list; only the lookups of
+ * nodes that cannot touch are saved (res->ntested counts the lookups made).
  * Returns the number of penetrating nodes. */
 int lsdem_contact_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
                         const lsdem_pose *pb, const lsdem_contact_params *prm, int64_t step,
@@ -384,7 +409,8 @@ int lsdem_contact_grain(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_
                         const lsdem_pose *pb, const lsdem_contact_params *prm, int64_t step,
                         const lsdem_node_hist *hist_in, int n_in, lsdem_node_hist *hist_out,
                         int *n_out, lsdem_contact_result *res);
-int lsdem_contact_history_capacity(const lsdem_shape *A); /* 1 for a sphere, else nnodes */
+/* 1 for a sphere, else nnodes plus the node list's entries */
+int lsdem_contact_history_capacity(const lsdem_shape *A);
 /* The sphere path's tributary area under the traction law: the cross-section pi r^2. */
 double lsdem_sphere_contact_area(double radius);
 

@@ -83,7 +83,7 @@ static void pose_of(const lsdem_placed *g, lsdem_pose *p)
 static int nodes_penetrate(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
                            const lsdem_pose *pb)
 {
-  const lsdem_contact_params prm = {1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1, LSDEM_NORMAL_PER_NODE};
+  const lsdem_contact_params prm = {1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1, LSDEM_NORMAL_PER_NODE, 0.0};
   lsdem_contact_result res;
   int nout = 0;
   return lsdem_contact_nodes(A, pa, B, pb, &prm, 0, NULL, 0, NULL, &nout, &res) > 0;

@@ -474,6 +474,8 @@ static void attach_arrays(const unsigned char *m, const unsigned char *e, lsdem_
   s->nodes = (const double *)p[A_NODES];
   s->node_area = (const double *)p[A_AREA];
   s->sdf.grid.phi = (const float *)p[A_PHI];
+  if (s->sdf.kind == LSDEM_SDF_GRID && s->sdf.grid.phi)
+    s->sdf.grid.lip = lsdem_grid_outer_lipschitz(&s->sdf.grid, &s->sdf.grid.lip_reach);
 }
 
 static lsdem_status load_entry(lsdem_library *lib, int i, uint64_t *prev_end, const char *path,

@@ -1,0 +1,209 @@
+/* test_contact_nodelist.c -- node lists (lsdem_contact_params.node_skin) change the work,
+ * never the result:
+ *   - a grain sliding, rolling and jumping over a grid grain and over a plane wall, with
+ *     friction history and without, every node and every second node: at every step the
+ *     force, both torques, the contact point, the depth, the penetrating nodes and the
+ *     shear history are bit-identical to the same run without lists, while most steps
+ *     reuse the list (far fewer lookups) and the jumps rebuild it;
+ *   - lsdem_grid_outer_lipschitz bounds |phi(p) - phi(p')| / |p - p'| on random nearby
+ *     pairs where phi >= 0, stays close to 1 for a sampled exact distance, and its reach
+ *     limit is the smallest boundary sample. */
+#include "contact_fixtures.h"
+#include "lsdem_test.h"
+
+enum { STEPS = 400, CAP = FIX_GRAIN_NODES + 8 };
+
+/* One run: its own history, swapped between steps. */
+typedef struct {
+  lsdem_node_hist buf[2][CAP];
+  int n, cur;
+} run_state;
+
+static int step_run(run_state *r, const lsdem_shape *A, const lsdem_pose *pa,
+                    const lsdem_shape *B, const lsdem_pose *pb,
+                    const lsdem_contact_params *prm, int64_t step, lsdem_contact_result *res)
+{
+  int nout = 0;
+  lsdem_contact_nodes(A, pa, B, pb, prm, step, r->buf[r->cur], r->n, r->buf[1 - r->cur], &nout,
+                      res);
+  r->cur = 1 - r->cur;
+  r->n = nout;
+  return nout;
+}
+
+/* The shear entries (node >= 0) of a history. */
+static const lsdem_node_hist *shear_entries(const run_state *r, int *n)
+{
+  const lsdem_node_hist *h = r->buf[r->cur];
+  int first = 0;
+  while (first < r->n && h[first].node < 0) first++;
+  *n = r->n - first;
+  return h + first;
+}
+
+/* A's pose at step s. SLIDE: a slow slide and roll across B's surface, approaching at
+ * height z0 + 0.3 - 0.002 s, with a jump (the list must be rebuilt) every 97 steps.
+ * APPROACH: straight down along z at 0.004 per step from z0 + 0.5, so that nodes just
+ * outside the list's reach are the first to come into contact. */
+enum { SLIDE, APPROACH };
+
+static void path_pose(int path, int s, double z0, lsdem_pose *pa)
+{
+  if (path == APPROACH) {
+    *pa = fix_pose(0.3, -0.2, z0 + 0.5 - 0.004 * s);
+    fix_rotation_about(1.0, 0.3, 0.2, 0.4, pa->R);
+    pa->v[2] = -0.004;
+    return;
+  }
+  const double jump = (double)(s / 97);
+  *pa = fix_pose(-2.0 + 0.006 * s + 0.7 * jump, sin(0.003 * s) - 0.5 * jump,
+                 z0 + 0.3 - 0.002 * s);
+  fix_rotation_about(1.0, 0.3 + 0.1 * jump, 0.2, 0.0005 * s + 0.3 * jump, pa->R);
+  pa->v[0] = 0.006;
+  pa->v[2] = -0.002;
+  pa->omega[1] = 0.0005;
+}
+
+/* fewer: the list leaves nodes out (B has a gradient bound), so lookups must drop */
+static void compare_runs(const char *what, int path, const lsdem_shape *A,
+                         const lsdem_shape *B, const lsdem_pose *pb, double z0, double mu,
+                         int stride, double skin, int fewer)
+{
+  lsdem_contact_params prm = fix_params(50.0, 40.0, mu, 0.5);
+  prm.node_stride = stride;
+  lsdem_contact_params listed = prm;
+  listed.node_skin = skin;
+  static run_state plain, fast;
+  memset(&plain, 0, sizeof plain);
+  memset(&fast, 0, sizeof fast);
+  long tested_plain = 0, tested_fast = 0;
+  int contact_steps = 0, reused = 0, rebuilt = 0, same = 1, same_hist = 1;
+  for (int s = 0; s < STEPS; s++) {
+    lsdem_pose pa;
+    path_pose(path, s, z0, &pa);
+    lsdem_contact_result rp, rf;
+    step_run(&plain, A, &pa, B, pb, &prm, s, &rp);
+    step_run(&fast, A, &pa, B, pb, &listed, s, &rf);
+    same &= memcmp(rp.force, rf.force, sizeof rp.force) == 0 &&
+            memcmp(rp.torque_a, rf.torque_a, sizeof rp.torque_a) == 0 &&
+            memcmp(rp.torque_b, rf.torque_b, sizeof rp.torque_b) == 0 &&
+            memcmp(rp.point, rf.point, sizeof rp.point) == 0 && rp.npen == rf.npen &&
+            rp.max_depth == rf.max_depth;
+    int np, nf;
+    const lsdem_node_hist *hp = shear_entries(&plain, &np), *hf = shear_entries(&fast, &nf);
+    same_hist &= np == nf && memcmp(hp, hf, sizeof *hp * (size_t)np) == 0;
+    contact_steps += rp.npen > 0;
+    tested_plain += rp.ntested;
+    tested_fast += rf.ntested;
+    if (rp.npen > 0) {
+      reused += rf.ntested < rp.ntested / 2;
+      rebuilt += rf.ntested > rp.ntested; /* a rebuild screens with the wider sphere */
+    }
+  }
+  CHECK(same, "%s: a result differs with node lists", what);
+  CHECK(same_hist, "%s: the shear history differs with node lists", what);
+  CHECK(contact_steps > STEPS / 2, "%s: only %d steps in contact", what, contact_steps);
+  if (!fewer) return;
+  CHECK(reused > STEPS / 2 && rebuilt >= 3, "%s: list reused at %d steps, rebuilt at %d",
+        what, reused, rebuilt);
+  CHECK(tested_fast < tested_plain / 2, "%s: %ld lookups with lists, %ld without", what,
+        tested_fast, tested_plain);
+}
+
+/* A list is kept only under the settings it was built with: built with skin 0.1, it must
+ * not be trusted after a move of 0.4 under skin 0.5; built with stride 2 (every second
+ * node), not for stride 1 under the same skin. Against a plain evaluation (mu = 0, no list). */
+static void test_list_settings(const lsdem_shape *A, const lsdem_shape *wall,
+                               const lsdem_pose *pw)
+{
+  static lsdem_node_hist h0[CAP], h1[CAP];
+  lsdem_contact_params prm = fix_params(50.0, 0.0, 0.0, 0.5), first = prm, second = prm;
+  first.node_skin = 0.1;
+  second.node_skin = 0.5;
+  lsdem_pose pa, moved;
+  path_pose(APPROACH, 0, 0.0, &pa);
+  moved = pa;
+  moved.x[2] -= 0.4;
+  int n0 = 0, n1 = 0;
+  lsdem_contact_result r0, r1, ref;
+  lsdem_contact_nodes(A, &pa, wall, pw, &first, 0, NULL, 0, h0, &n0, &r0);
+  lsdem_contact_nodes(A, &moved, wall, pw, &second, 1, h0, n0, h1, &n1, &r1);
+  lsdem_contact_nodes(A, &moved, wall, pw, &prm, 1, NULL, 0, NULL, NULL, &ref);
+  CHECK(r1.npen == ref.npen && r1.npen > r0.npen + 3 &&
+            memcmp(r1.force, ref.force, sizeof ref.force) == 0,
+        "skin changed: %d penetrating nodes, %d without list (%d before the move)", r1.npen,
+        ref.npen, r0.npen);
+  first.node_stride = 2;
+  first.node_skin = second.node_skin;
+  lsdem_contact_nodes(A, &pa, wall, pw, &first, 0, NULL, 0, h0, &n0, &r0);
+  lsdem_contact_nodes(A, &pa, wall, pw, &second, 1, h0, n0, h1, &n1, &r1);
+  lsdem_contact_nodes(A, &pa, wall, pw, &prm, 1, NULL, 0, NULL, NULL, &ref);
+  CHECK(r1.npen == ref.npen && r1.npen > r0.npen &&
+            memcmp(r1.force, ref.force, sizeof ref.force) == 0,
+        "stride changed: %d penetrating nodes, %d without list (%d at stride 2)", r1.npen,
+        ref.npen, r0.npen);
+}
+
+static void test_outer_lipschitz(const lsdem_sdf *g)
+{
+  double limit = 0.0;
+  const double L = lsdem_grid_outer_lipschitz(&g->grid, &limit);
+  CHECK(L >= 1.0 && L < 1.2, "L = %g for a sampled exact distance", L);
+  double lo = HUGE_VAL;
+  const int *n = g->grid.n;
+  for (int k = 0; k < n[2]; k++)
+    for (int j = 0; j < n[1]; j++)
+      for (int i = 0; i < n[0]; i++)
+        if (!i || !j || !k || i == n[0] - 1 || j == n[1] - 1 || k == n[2] - 1)
+          lo = fmin(lo, g->grid.phi[i + n[0] * (j + n[1] * k)]);
+  CHECK(limit == lo && limit > 2.5, "reach limit %g, smallest boundary sample %g", limit, lo);
+  int pairs = 0, ok = 1;
+  double worst = 0.0;
+  for (int t = 0; t < 20000; t++) {
+    double p[3], q[3], gp[3], gq[3];
+    for (int i = 0; i < 3; i++) {
+      p[i] = 11.0 * srand1();
+      q[i] = p[i] + 0.3 * srand1();
+    }
+    const double a = lsdem_grid_eval(&g->grid, p, gp), b = lsdem_grid_eval(&g->grid, q, gq);
+    if (!(a >= 0.0 && b >= 0.0 && a <= limit && b <= limit)) continue;
+    const double d = sqrt(pow(p[0] - q[0], 2) + pow(p[1] - q[1], 2) + pow(p[2] - q[2], 2));
+    const double ratio = fabs(a - b) / d;
+    worst = fmax(worst, ratio);
+    ok &= ratio <= L * (1.0 + 1e-9);
+    pairs++;
+  }
+  CHECK(ok && pairs > 1000, "%d pairs, largest slope %g against L = %g", pairs, worst, L);
+}
+
+int main(void)
+{
+  const double a[3] = {10.0, 8.0, 6.0}, lo[3] = {-10, -8, -6}, hi[3] = {10, 8, 6};
+  lsdem_sdf ell = fix_sdf(LSDEM_SDF_ELLIPSOID, a[0], a[1], a[2]);
+  lsdem_sdf gsdf = fix_sdf(LSDEM_SDF_GRID, 0, 0, 0);
+  lsdem_error err;
+  CHECK(lsdem_grid_sample(&ell, lo, hi, 1.0, 3, &gsdf.grid, &err) == LSDEM_OK, "%s", err.msg);
+  gsdf.grid.lip = lsdem_grid_outer_lipschitz(&gsdf.grid, &gsdf.grid.lip_reach);
+  static fix_grain ga;
+  fix_make_grain(&ga, a, &gsdf);
+  const lsdem_shape B = fix_shape(gsdf, 0, NULL, lsdem_sdf_bound_radius(&gsdf));
+  const lsdem_shape plane = fix_shape(fix_sdf(LSDEM_SDF_PLANE, 0, 0, 0), 0, NULL, HUGE_VAL);
+  lsdem_pose pb = fix_pose(0.0, 0.0, 0.0), pw = fix_pose(0.0, 0.0, -5.6);
+  fix_rotation_about(0.2, 1.0, 0.1, 0.7, pb.R);
+
+  test_outer_lipschitz(&gsdf);
+  test_list_settings(&ga.clustered, &plane, &pw);
+  compare_runs("grid, friction", SLIDE, &ga.clustered, &B, &pb, 11.6, 0.5, 1, 0.3, 1);
+  compare_runs("grid, no friction", SLIDE, &ga.clustered, &B, &pb, 11.6, 0.0, 1, 0.3, 1);
+  compare_runs("grid, stride 2", SLIDE, &ga.plain, &B, &pb, 11.6, 0.5, 2, 0.3, 1);
+  compare_runs("plane, friction", SLIDE, &ga.clustered, &plane, &pw, 0.0, 0.5, 1, 0.3, 1);
+  compare_runs("grid, approach", APPROACH, &ga.clustered, &B, &pb, 11.6, 0.5, 1, 0.3, 1);
+  compare_runs("plane, approach", APPROACH, &ga.clustered, &plane, &pw, 0.0, 0.5, 1, 0.3, 1);
+  /* without a gradient bound every looked-up node is listed: still the same results */
+  lsdem_shape unbounded = B;
+  unbounded.sdf.grid.lip = 0.0;
+  compare_runs("grid without bound", SLIDE, &ga.clustered, &unbounded, &pb, 11.6, 0.5, 1, 0.3,
+               0);
+  lsdem_grid_free(&gsdf.grid);
+  return lsdem_test_summary();
+}
