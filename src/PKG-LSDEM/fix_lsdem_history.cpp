@@ -16,8 +16,20 @@
 
 using namespace LAMMPS_NS;
 
-// doubles per packed entry: partner, node, stamp, shear[3], normal[3]
+// doubles per packed entry: partner, node and pad_ (pad_ << 32 | node: the node lists'
+// entries use pad_), stamp, shear[3], normal[3]
 static constexpr int ENTRY_DOUBLES = 9;
+
+static int64_t pack_node(const lsdem_node_hist &h)
+{
+  return (int64_t) (((uint64_t) (uint32_t) h.pad_ << 32) | (uint32_t) h.node);
+}
+
+static void unpack_node(int64_t v, lsdem_node_hist &h)
+{
+  h.node = (int32_t) (uint32_t) ((uint64_t) v & 0xffffffffu);
+  h.pad_ = (int32_t) (uint32_t) ((uint64_t) v >> 32);
+}
 
 /* ---------------------------------------------------------------------- */
 
@@ -206,7 +218,7 @@ void FixLsdemHistory::set_arrays(int i)
 }
 
 /* ----------------------------------------------------------------------
-   count, then per entry: partner, node, stamp, shear[3], normal[3]
+   count, then per entry: partner, node/pad_, stamp, shear[3], normal[3]
 ------------------------------------------------------------------------- */
 
 int FixLsdemHistory::pack_entries(int i, double *buf) const
@@ -216,7 +228,7 @@ int FixLsdemHistory::pack_entries(int i, double *buf) const
   for (int k = 0; k < nhist[i]; k++) {
     const lsdem_node_hist &h = hist[i][k];
     buf[m++] = ubuf(partner[i][k]).d;
-    buf[m++] = ubuf(h.node).d;
+    buf[m++] = ubuf(pack_node(h)).d;
     buf[m++] = ubuf((int64_t) h.stamp).d;
     for (int d = 0; d < 3; d++) buf[m++] = h.shear[d];
     for (int d = 0; d < 3; d++) buf[m++] = h.normal[d];
@@ -234,8 +246,7 @@ int FixLsdemHistory::unpack_entries(int i, const double *buf)
   for (int k = 0; k < n; k++) {
     lsdem_node_hist &h = hist[i][k];
     partner[i][k] = (tagint) ubuf(buf[m++]).i;
-    h.node = (int32_t) ubuf(buf[m++]).i;
-    h.pad_ = 0;
+    unpack_node(ubuf(buf[m++]).i, h);
     h.stamp = (int64_t) ubuf(buf[m++]).i;
     for (int d = 0; d < 3; d++) h.shear[d] = buf[m++];
     for (int d = 0; d < 3; d++) h.normal[d] = buf[m++];

@@ -5,13 +5,15 @@
  *     force, both torques, the contact point, the depth, the penetrating nodes and the
  *     shear history are bit-identical to the same run without lists, while most steps
  *     reuse the list (far fewer lookups) and the jumps rebuild it;
+ *   - a list is not trusted under another skin or stride;
+ *   - against a grid the list keeps its nodes' cells: lookups in the same cell read them;
  *   - lsdem_grid_outer_lipschitz bounds |phi(p) - phi(p')| / |p - p'| on random nearby
  *     pairs where phi >= 0, stays close to 1 for a sampled exact distance, and its reach
  *     limit is the smallest boundary sample. */
 #include "contact_fixtures.h"
 #include "lsdem_test.h"
 
-enum { STEPS = 400, CAP = FIX_GRAIN_NODES + 8 };
+enum { STEPS = 400, CAP = 2 * FIX_GRAIN_NODES + 8 };
 
 /* One run: its own history, swapped between steps. */
 typedef struct {
@@ -31,13 +33,15 @@ static int step_run(run_state *r, const lsdem_shape *A, const lsdem_pose *pa,
   return nout;
 }
 
-/* The shear entries (node >= 0) of a history. */
+/* The shear entries (node >= 0) of a history: after the list's masks and pose, before
+ * its cells. */
 static const lsdem_node_hist *shear_entries(const run_state *r, int *n)
 {
   const lsdem_node_hist *h = r->buf[r->cur];
-  int first = 0;
+  int first = 0, last;
   while (first < r->n && h[first].node < 0) first++;
-  *n = r->n - first;
+  for (last = first; last < r->n && h[last].node >= 0; last++) continue;
+  *n = last - first;
   return h + first;
 }
 
@@ -144,6 +148,36 @@ static void test_list_settings(const lsdem_shape *A, const lsdem_shape *wall,
         ref.npen, r0.npen);
 }
 
+/* The list keeps the cells of its nodes: at the same pose, a lookup in the same cell reads
+ * the kept samples, not the grid. Seen by changing the grid under the list: the listed
+ * run still gives the answer of the grid the cells came from. */
+static void test_kept_cells(const lsdem_shape *A, const lsdem_shape *B, const lsdem_pose *pb)
+{
+  static lsdem_node_hist h0[CAP], h1[CAP];
+  static float shifted[40000];
+  const lsdem_grid *g = &B->sdf.grid;
+  const size_t ns = (size_t)g->n[0] * g->n[1] * g->n[2];
+  CHECK(ns <= 40000, "grid of %zu samples", ns);
+  for (size_t m = 0; m < ns; m++) shifted[m] = g->phi[m] + 0.05f;
+  lsdem_shape B2 = *B;
+  B2.sdf.grid.phi = shifted;
+  lsdem_contact_params prm = fix_params(50.0, 0.0, 0.0, 0.5), listed = prm;
+  listed.node_skin = 0.3;
+  lsdem_pose pa;
+  path_pose(APPROACH, 100, 11.6, &pa);
+  int n0 = 0, n1 = 0;
+  lsdem_contact_result r0, r1, on_b, on_b2;
+  lsdem_contact_nodes(A, &pa, B, pb, &listed, 0, NULL, 0, h0, &n0, &r0);
+  lsdem_contact_nodes(A, &pa, &B2, pb, &listed, 1, h0, n0, h1, &n1, &r1);
+  lsdem_contact_nodes(A, &pa, B, pb, &prm, 1, NULL, 0, NULL, NULL, &on_b);
+  lsdem_contact_nodes(A, &pa, &B2, pb, &prm, 1, NULL, 0, NULL, NULL, &on_b2);
+  CHECK(on_b.npen > 5 && on_b2.npen != on_b.npen, "%d / %d penetrating nodes", on_b.npen,
+        on_b2.npen);
+  CHECK(r1.npen == on_b.npen && memcmp(r1.force, on_b.force, sizeof r1.force) == 0,
+        "listed run: %d nodes, force %g; from the cells' grid %d, %g", r1.npen, r1.force[2],
+        on_b.npen, on_b.force[2]);
+}
+
 static void test_outer_lipschitz(const lsdem_sdf *g)
 {
   double limit = 0.0;
@@ -193,6 +227,7 @@ int main(void)
 
   test_outer_lipschitz(&gsdf);
   test_list_settings(&ga.clustered, &plane, &pw);
+  test_kept_cells(&ga.clustered, &B, &pb);
   compare_runs("grid, friction", SLIDE, &ga.clustered, &B, &pb, 11.6, 0.5, 1, 0.3, 1);
   compare_runs("grid, no friction", SLIDE, &ga.clustered, &B, &pb, 11.6, 0.0, 1, 0.3, 1);
   compare_runs("grid, stride 2", SLIDE, &ga.plain, &B, &pb, 11.6, 0.5, 2, 0.3, 1);

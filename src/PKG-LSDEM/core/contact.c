@@ -233,6 +233,8 @@ typedef struct {
   double q[3 * NODE_BATCH];    /* kept nodes in B's frame */
   double phi[NODE_BATCH];      /* B's level set there */
   double grad[3 * NODE_BATCH]; /* and its outward unit gradient (B's frame) */
+  int cached;                  /* B is a grid whose cells come from the pair's list */
+  lsdem_grid_cell cell[NODE_BATCH];
 } node_batch;
 
 /* Screen `count` (<= NODE_BATCH - b->n) nodes first, first + stride, ...: appended to
@@ -257,7 +259,10 @@ static void lookup_batch(const lsdem_shape *A, const lsdem_sdf *sdfB, const doub
                          const double t[3], node_batch *b)
 {
   for (int i = 0; i < b->n; i++) affine3(M, t, &A->nodes[3 * b->node[i]], &b->q[3 * i]);
-  lsdem_sdf_eval_many(sdfB, b->n, b->q, b->phi, b->grad);
+  if (b->cached)
+    lsdem_grid_eval_many_cached(&sdfB->grid, b->n, b->q, b->phi, b->grad, b->cell);
+  else
+    lsdem_sdf_eval_many(sdfB, b->n, b->q, b->phi, b->grad);
 }
 
 /* ------------------------------------------------------------- node lists ---- */
@@ -270,8 +275,12 @@ static void lookup_batch(const lsdem_shape *A, const lsdem_sdf *sdfB, const doub
  *     bits of the skin it was built with;
  *   LIST_POSE_T: M[6..8] and t (shear, normal); stamp: the node stride.
  * The masks' stamp is the step the list was built at. A list built with another skin or
- * stride is not used. */
-enum { LIST_POSE_T = -1, LIST_POSE_M = -2, LIST_MASK = -3 };
+ * stride is not used. When B is a grid, the list also keeps the 8 samples of each listed
+ * node's cell (where it was last looked up), so that a lookup in the same cell reads no
+ * grid memory: one entry per node k, id LIST_CELL + k, after the node entries (ids >= 0):
+ * samples 0-5 in shear, normal (exact as doubles), sample 6's bits in pad_, the cell's
+ * index and sample 7's bits in stamp (index << 32 | bits). */
+enum { LIST_POSE_T = -1, LIST_POSE_M = -2, LIST_MASK = -3, LIST_CELL = -(1 << 30) };
 enum { LIST_WORD_BITS = 48, LIST_WORDS = 6, LIST_BLOCK = LIST_WORD_BITS * LIST_WORDS };
 
 static int list_blocks(int nnodes) { return (nnodes + LIST_BLOCK - 1) / LIST_BLOCK; }
@@ -298,7 +307,72 @@ typedef struct {
   lsdem_node_hist *out; /* hist_out's list entries being built, or NULL */
   int word;     /* word being filled */
   uint64_t bits;
+  int cached;   /* B is a grid: listed nodes' cells are kept */
+  const lsdem_node_hist *cell_in; /* hist_in's cell entries (increasing node), count */
+  int ncell_in, cell_cursor;
+  lsdem_node_hist *cell_top;      /* hist_out's cell entries are written downwards from
+                                     here (moved after the node entries at the end) */
+  int ncell_out;
 } node_list;
+
+static void cell_to_entry(int k, const lsdem_grid_cell *c, lsdem_node_hist *e)
+{
+  uint32_t b6, b7;
+  memcpy(&b6, &c->v[6], sizeof b6);
+  memcpy(&b7, &c->v[7], sizeof b7);
+  e->node = LIST_CELL + k;
+  e->pad_ = (int32_t)b6;
+  e->stamp = (int64_t)(((uint64_t)c->index << 32) | b7);
+  for (int i = 0; i < 3; i++) {
+    e->shear[i] = c->v[i];
+    e->normal[i] = c->v[3 + i];
+  }
+}
+
+static void entry_to_cell(const lsdem_node_hist *e, lsdem_grid_cell *c)
+{
+  const uint32_t b6 = (uint32_t)e->pad_, b7 = (uint32_t)((uint64_t)e->stamp & 0xffffffffu);
+  c->index = (int64_t)((uint64_t)e->stamp >> 32);
+  for (int i = 0; i < 3; i++) {
+    c->v[i] = (float)e->shear[i];
+    c->v[3 + i] = (float)e->normal[i];
+  }
+  memcpy(&c->v[6], &b6, sizeof b6);
+  memcpy(&c->v[7], &b7, sizeof b7);
+}
+
+/* The kept cell of node k (nodes asked in increasing order), or none. */
+static void cell_of_listed_node(node_list *L, int k, lsdem_grid_cell *c)
+{
+  while (L->cell_cursor < L->ncell_in && L->cell_in[L->cell_cursor].node < LIST_CELL + k)
+    L->cell_cursor++;
+  if (L->cell_cursor < L->ncell_in && L->cell_in[L->cell_cursor].node == LIST_CELL + k)
+    entry_to_cell(&L->cell_in[L->cell_cursor], c);
+  else
+    c->index = -1;
+}
+
+static void keep_cell(node_list *L, int k, const lsdem_grid_cell *c)
+{
+  if (c->index < 0) return;
+  cell_to_entry(k, c, L->cell_top - L->ncell_out);
+  L->ncell_out++;
+}
+
+/* Moves the kept cells (written downwards from cell_top, increasing node) to follow the
+ * n_out entries written so far; returns the new count. */
+static int place_cells(node_list *L, lsdem_node_hist *hist_out, int n_out)
+{
+  const int n = L->ncell_out;
+  lsdem_node_hist *first = L->cell_top - (n - 1);
+  for (int a = 0, b = n - 1; a < b; a++, b--) { /* into increasing order in place */
+    const lsdem_node_hist tmp = first[a];
+    first[a] = first[b];
+    first[b] = tmp;
+  }
+  memmove(hist_out + n_out, first, sizeof *first * (size_t)n);
+  return n_out + n;
+}
 
 /* The node-list reach L s for skin s: a node looked up with phi >= L s cannot reach
  * phi < 0 by moving less than s, L bounding |grad phi| where 0 <= phi <= L s (exact
@@ -359,9 +433,18 @@ static void list_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB
   if (L->skin == 0.0) return;
   L->reach = list_reach(sdfB, L->skin);
   L->nb = list_blocks(A->nnodes);
+  L->cached = sdfB->kind == LSDEM_SDF_GRID && !sdfB->inverted;
   const int stride = prm->node_stride > 1 ? prm->node_stride : 1;
   L->use = hist_in && list_holds(hist_in, n_in, L->nb, M, t, A->radius, L->skin, stride);
+  if (L->cached && hist_in) { /* kept cells stay good when the list does not: the cell
+                                 entries are the last ones (ids below the node entries') */
+    int first = n_in;
+    while (first > 0 && hist_in[first - 1].node < LIST_MASK - L->nb) first--;
+    L->cell_in = hist_in + first;
+    L->ncell_in = n_in - first;
+  }
   if (!hist_out) return;
+  if (L->cached) L->cell_top = hist_out + lsdem_contact_history_capacity(A) - 1;
   const int ne = L->nb + 2;
   if (L->use) {
     memcpy(hist_out, hist_in, sizeof *hist_out * (size_t)ne);
@@ -422,17 +505,24 @@ static void list_add(node_list *L, int k)
 }
 
 /* Looks the batch up, then the contacts of its penetrating nodes; empties the batch.
- * While a list is built (L->out), the nodes that may come to touch join it. */
+ * While a list is built (L->out), the nodes that may come to touch join it; the cells of
+ * listed nodes are taken from and kept in the list when B is a grid. */
 static void contact_batch(pair_ctx *restrict c, const lsdem_shape *A, const lsdem_shape *B,
                           const lsdem_pose *pb, const double M[9], const double t[3],
                           node_batch *b, double kstride, node_list *L)
 {
+  b->cached = L->cached;
+  if (L->cached)
+    for (int i = 0; i < b->n; i++) cell_of_listed_node(L, b->node[i], &b->cell[i]);
   lookup_batch(A, &B->sdf, M, t, b);
   const int traction = c->prm.law == LSDEM_NORMAL_TRACTION && A->node_area;
   c->sum.ntested += b->n;
-  if (L->out)
-    for (int i = 0; i < b->n; i++)
-      if (b->phi[i] < L->reach) list_add(L, b->node[i]);
+  for (int i = 0; i < b->n; i++) {
+    const int listed = L->use || (L->out && b->phi[i] < L->reach);
+    if (!listed) continue;
+    if (L->out) list_add(L, b->node[i]);
+    if (L->cell_top) keep_cell(L, b->node[i], &b->cell[i]);
+  }
   for (int i = 0; i < b->n; i++) {
     if (!(b->phi[i] < 0.0)) continue;
     const int k = b->node[i];
@@ -527,21 +617,19 @@ static void contacts_of_screened_nodes(pair_ctx *restrict c, const lsdem_shape *
 static void contacts_of_listed_nodes(pair_ctx *restrict c, const lsdem_shape *A,
                                      const lsdem_shape *B, const lsdem_pose *pb,
                                      const double M[9], const double t[3],
-                                     const lsdem_node_hist *hist_in, const node_list *L,
+                                     const lsdem_node_hist *hist_in, node_list *L,
                                      node_batch *batch, int stride)
 {
   const int nwords = (A->nnodes + LIST_WORD_BITS - 1) / LIST_WORD_BITS;
-  node_list none;
-  memset(&none, 0, sizeof none);
   for (int w = 0; w < nwords; w++) {
     uint64_t bits = list_word_bits(hist_in, L->nb, w);
     while (bits) {
       batch->node[batch->n++] = w * LIST_WORD_BITS + ctz64(bits);
       bits &= bits - 1;
-      if (batch->n == NODE_BATCH) contact_batch(c, A, B, pb, M, t, batch, (double)stride, &none);
+      if (batch->n == NODE_BATCH) contact_batch(c, A, B, pb, M, t, batch, (double)stride, L);
     }
   }
-  contact_batch(c, A, B, pb, M, t, batch, (double)stride, &none);
+  contact_batch(c, A, B, pb, M, t, batch, (double)stride, L);
 }
 
 int lsdem_contact_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
@@ -584,6 +672,7 @@ int lsdem_contact_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_
   else
     contacts_of_screened_nodes(&c, A, B, pb, cb, M, t, distance, &list, &batch, stride);
   list_flush_if_built(&list);
+  if (list.cell_top) c.n_out = place_cells(&list, hist_out, c.n_out);
   return pair_end(&c, n_out, res);
 }
 
@@ -659,7 +748,8 @@ static int is_sphere(const lsdem_shape *s) { return s->sdf.kind == LSDEM_SDF_SPH
 
 int lsdem_contact_history_capacity(const lsdem_shape *A)
 {
-  return is_sphere(A) ? 1 : A->nnodes + list_blocks(A->nnodes) + 2;
+  /* node entries, the list's masks and pose, a cell per listed node */
+  return is_sphere(A) ? 1 : 2 * A->nnodes + list_blocks(A->nnodes) + 2;
 }
 
 double lsdem_sphere_contact_area(double radius) { return M_PI * radius * radius; }

@@ -10,23 +10,16 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-/* Trilinear interpolation at grid coordinates u inside [0, n-1]^3 (report Algorithm 1,
- * written as nested lerps). The cell index is clamped to n-2 so points on the upper
- * face use the last cell with fraction 1. When du is not NULL it receives the
- * derivative with respect to u (per grid spacing, not per length). Inlined into each
- * caller, so the value-only path carries no gradient code. */
-static inline double trilinear(const lsdem_grid *g, const double u[3], double du[3])
+/* Trilinear interpolation in one cell from its 8 samples v (x fastest: v000, v100, v010,
+ * v110, v001, v101, v011, v111) at fractions f (report Algorithm 1, written as nested
+ * lerps). When du is not NULL it receives the derivative with respect to the grid
+ * coordinates (per grid spacing, not per length). Inlined into each caller, so the
+ * value-only path carries no gradient code. */
+static inline double trilinear_cell(const float v[8], const double f[3], double du[3])
 {
-  const int n0 = g->n[0], n1 = g->n[1];
-  int i = (int)u[0], j = (int)u[1], k = (int)u[2];
-  i = i > n0 - 2 ? n0 - 2 : i;
-  j = j > n1 - 2 ? n1 - 2 : j;
-  k = k > g->n[2] - 2 ? g->n[2] - 2 : k;
-  const double fx = u[0] - i, fy = u[1] - j, fz = u[2] - k;
-  const size_t sy = (size_t)n0, sz = (size_t)n0 * (size_t)n1;
-  const float *c = g->phi + (size_t)i + sy * (size_t)j + sz * (size_t)k;
-  const double v000 = c[0], v100 = c[1], v010 = c[sy], v110 = c[sy + 1];
-  const double v001 = c[sz], v101 = c[sz + 1], v011 = c[sz + sy], v111 = c[sz + sy + 1];
+  const double v000 = v[0], v100 = v[1], v010 = v[2], v110 = v[3];
+  const double v001 = v[4], v101 = v[5], v011 = v[6], v111 = v[7];
+  const double fx = f[0], fy = f[1], fz = f[2];
   /* lerp along x on the four cell edges */
   const double e00 = v000 + fx * (v100 - v000), e10 = v010 + fx * (v110 - v010);
   const double e01 = v001 + fx * (v101 - v001), e11 = v011 + fx * (v111 - v011);
@@ -40,6 +33,46 @@ static inline double trilinear(const lsdem_grid *g, const double u[3], double du
     du[2] = f1 - f0;
   }
   return f0 + fz * (f1 - f0);
+}
+
+/* The cell of grid coordinates u inside [0, n-1]^3: its (0,0,0) sample's index, and the
+ * fractions f within it. The cell index is clamped to n-2 so points on the upper face
+ * use the last cell with fraction 1. */
+static inline size_t cell_of(const lsdem_grid *g, const double u[3], double f[3])
+{
+  const int n0 = g->n[0], n1 = g->n[1];
+  int i = (int)u[0], j = (int)u[1], k = (int)u[2];
+  i = i > n0 - 2 ? n0 - 2 : i;
+  j = j > n1 - 2 ? n1 - 2 : j;
+  k = k > g->n[2] - 2 ? g->n[2] - 2 : k;
+  f[0] = u[0] - i;
+  f[1] = u[1] - j;
+  f[2] = u[2] - k;
+  return (size_t)i + (size_t)n0 * ((size_t)j + (size_t)n1 * (size_t)k);
+}
+
+/* The 8 samples of the cell whose (0,0,0) sample is at index c. */
+static inline void load_cell(const lsdem_grid *g, size_t c, float v[8])
+{
+  const size_t sy = (size_t)g->n[0], sz = sy * (size_t)g->n[1];
+  const float *p = g->phi + c;
+  v[0] = p[0];
+  v[1] = p[1];
+  v[2] = p[sy];
+  v[3] = p[sy + 1];
+  v[4] = p[sz];
+  v[5] = p[sz + 1];
+  v[6] = p[sz + sy];
+  v[7] = p[sz + sy + 1];
+}
+
+/* Trilinear interpolation at grid coordinates u inside [0, n-1]^3. */
+static inline double trilinear(const lsdem_grid *g, const double u[3], double du[3])
+{
+  double f[3];
+  float v[8];
+  load_cell(g, cell_of(g, u, f), v);
+  return trilinear_cell(v, f, du);
 }
 
 /* Grid coordinates of p, inv_h = 1 / h (a caller doing many lookups divides once);
@@ -72,6 +105,21 @@ static double outside_value(const lsdem_grid *g, const double u[3], double grad[
   return trilinear(g, uc, NULL) + dist;
 }
 
+/* Unit gradient from the raw trilinear derivative (+x when it vanishes); h cancels. */
+static inline void unit_gradient(const double du[3], double grad[3])
+{
+  const double n2 = du[0] * du[0] + du[1] * du[1] + du[2] * du[2];
+  if (n2 > 0.0) {
+    const double s = 1.0 / sqrt(n2);
+    grad[0] = du[0] * s;
+    grad[1] = du[1] * s;
+    grad[2] = du[2] * s;
+  } else {
+    grad[0] = 1.0;
+    grad[1] = grad[2] = 0.0;
+  }
+}
+
 /* lsdem_grid_eval with 1/h given. */
 static inline double grid_eval(const lsdem_grid *g, double inv_h, const double p[3],
                                double grad[3])
@@ -80,17 +128,37 @@ static inline double grid_eval(const lsdem_grid *g, double inv_h, const double p
   if (!grid_coords(g, inv_h, p, u)) return outside_value(g, u, grad);
   double du[3];
   const double phi = trilinear(g, u, du);
-  const double n2 = du[0] * du[0] + du[1] * du[1] + du[2] * du[2];
-  if (n2 > 0.0) {
-    const double s = 1.0 / sqrt(n2); /* normalisation; h cancels */
-    grad[0] = du[0] * s;
-    grad[1] = du[1] * s;
-    grad[2] = du[2] * s;
-  } else {
-    grad[0] = 1.0;
-    grad[1] = grad[2] = 0.0;
-  }
+  unit_gradient(du, grad);
   return phi;
+}
+
+/* grid_eval with the cell's samples taken from `cell` when it holds p's cell, else read
+ * from the grid into it (index -1 outside the box). */
+static inline double grid_eval_cached(const lsdem_grid *g, double inv_h, const double p[3],
+                                      double grad[3], lsdem_grid_cell *cell)
+{
+  double u[3];
+  if (!grid_coords(g, inv_h, p, u)) {
+    cell->index = -1;
+    return outside_value(g, u, grad);
+  }
+  double f[3], du[3];
+  const size_t c = cell_of(g, u, f);
+  if (cell->index != (int64_t)c) {
+    load_cell(g, c, cell->v);
+    cell->index = (int64_t)c;
+  }
+  const double phi = trilinear_cell(cell->v, f, du);
+  unit_gradient(du, grad);
+  return phi;
+}
+
+void lsdem_grid_eval_many_cached(const lsdem_grid *g, int n, const double *p, double *phi,
+                                 double *grad, lsdem_grid_cell *cells)
+{
+  const double inv_h = 1.0 / g->h;
+  for (int m = 0; m < n; m++)
+    phi[m] = grid_eval_cached(g, inv_h, &p[3 * m], &grad[3 * m], &cells[m]);
 }
 
 double lsdem_grid_eval(const lsdem_grid *g, const double p[3], double grad[3])

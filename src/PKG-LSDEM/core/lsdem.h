@@ -115,6 +115,17 @@ double lsdem_grid_eval(const lsdem_grid *g, const double p[3], double grad[3]);
  * results), done back to back so that their cache misses overlap. */
 void lsdem_grid_eval_many(const lsdem_grid *g, int n, const double *p, double *phi,
                           double *grad);
+/* The 8 samples of one grid cell, kept by a caller between lookups (x fastest: 000,
+ * 100, 010, 110, 001, 101, 011, 111; index = that of sample 000, -1 = none). */
+typedef struct {
+  int64_t index;
+  float v[8];
+} lsdem_grid_cell;
+/* lsdem_grid_eval_many (bit-identical) whose samples come from cells[m] when it holds
+ * the cell of p[m], and are otherwise read from the grid into cells[m]: a caller that
+ * looks the same points up step after step keeps the samples near at hand. */
+void lsdem_grid_eval_many_cached(const lsdem_grid *g, int n, const double *p, double *phi,
+                                 double *grad, lsdem_grid_cell *cells);
 /* Value only (same outside rule), for mass properties and checks. */
 double lsdem_grid_value(const lsdem_grid *g, const double p[3]);
 /* Raw trilinear gradient (not normalised) inside the grid; zero outside. For tests. */
