@@ -88,6 +88,19 @@ const lsdem_node_hist *FixLsdemHistory::find(int i, tagint ptag, int &n) const
   return n ? hist[i] + (first - p) : nullptr;
 }
 
+/* ----------------------------------------------------------------------
+   the lists are touched once per step, so they are out of cache when an atom's
+   turn comes: the styles ask for the next atom's list while they work on one
+------------------------------------------------------------------------- */
+
+void FixLsdemHistory::prefetch(int i) const
+{
+  static constexpr int LINES = 64;  // up to 4 KB: a grain's usual list
+  const int n = std::min(nhist[i], LINES * 64 / (int) sizeof(lsdem_node_hist));
+  __builtin_prefetch(partner[i]);
+  for (int k = 0; k < n; k++) __builtin_prefetch(&hist[i][k]);
+}
+
 /* ---------------------------------------------------------------------- */
 
 void FixLsdemHistory::begin_atom()

@@ -390,7 +390,10 @@ void FixWallLsdem::post_force(int /*vflag*/)
   contact_step = step;
 
   for (int i = 0; i < nlocal; i++) {
-    if (fix_history) fix_history->begin_atom();
+    if (fix_history) {
+      if (i + 1 < nlocal) fix_history->prefetch(i + 1);
+      fix_history->begin_atom();
+    }
     if ((mask[i] & groupbit) && may_touch(i)) {
       lsdem_pose p;
       for (int d = 0; d < 3; d++) {

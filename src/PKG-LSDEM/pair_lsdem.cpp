@@ -276,7 +276,10 @@ void PairLsdem::compute(int eflag, int vflag)
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     const int *jlist = firstneigh[i];
-    if (fix_history) fix_history->begin_atom();
+    if (fix_history) {
+      if (ii + 1 < inum) fix_history->prefetch(ilist[ii + 1]);
+      fix_history->begin_atom();
+    }
     for (int jj = 0; jj < numneigh[i]; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
       const double scale = master_scale(i, j);
