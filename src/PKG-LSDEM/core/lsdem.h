@@ -360,14 +360,17 @@ typedef struct {
  * Node list (node_skin = s > 0; a Verlet list of nodes): the history also carries, in
  * entries with negative node ids placed first, the nodes of A that may touch B and the
  * pose of B relative to A they were found at. While no node has moved by s relative to
- * B since then (bound |M - M0|_F rA + |t - t0| on the change of q = M x + t), only those
+ * B since then (bound |M - M0| rA + |t - t0| on the change of q = M x + t), only those
  * nodes are looked up; otherwise every node is screened again and the list rebuilt. A
  * node is left out when it is farther than rB + s from B's centre or, when B's level set
  * has a known gradient bound L (exact distances: 1; grids: lsdem_grid_outer_lipschitz), when
- * phi_B >= L s there: it cannot reach phi < 0 before the list is rebuilt. The contacts
- * found are therefore the same, bit for bit, as without a list; only the lookups of
- * nodes that cannot touch are saved (res->ntested counts the lookups made).
- * Returns the number of penetrating nodes. */
+ * phi_B >= L s there: it cannot reach phi < 0 before the list is rebuilt. Against a grid
+ * the history also keeps each listed node's cell (its 8 samples, one entry per node after
+ * the shear entries), and a lookup in the same cell reads those instead of the grid
+ * (lsdem_grid_eval_many_cached). The contacts found are therefore the same, bit for bit,
+ * as without a list; only lookups of nodes that cannot touch, and grid reads, are saved
+ * (res->ntested counts the lookups made). A list built with another skin or stride is
+ * not used (rebuilt). Returns the number of penetrating nodes. */
 int lsdem_contact_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
                         const lsdem_pose *pb, const lsdem_contact_params *prm, int64_t step,
                         const lsdem_node_hist *hist_in, int n_in, lsdem_node_hist *hist_out,
