@@ -5,7 +5,10 @@
  *     force, both torques, the contact point, the depth, the penetrating nodes and the
  *     shear history are bit-identical to the same run without lists, while most steps
  *     reuse the list (far fewer lookups) and the jumps rebuild it;
- *   - a list is not trusted under another skin or stride;
+ *   - a list is trusted as far as the nodes it leaves out are from touching: lists built
+ *     at random poses near a plane and a round grid, used after random moves towards B;
+ *   - a list is not trusted under another stride, nor beyond its own validity radius
+ *     when the skin changes;
  *   - against a grid the list keeps its nodes' cells: lookups in the same cell read them;
  *   - lsdem_grid_outer_lipschitz bounds |phi(p) - phi(p')| / |p - p'| on random nearby
  *     pairs where phi >= 0, stays close to 1 for a sampled exact distance, and its reach
@@ -114,9 +117,10 @@ static void compare_runs(const char *what, int path, const lsdem_shape *A,
         tested_fast, tested_plain);
 }
 
-/* A list is kept only under the settings it was built with: built with skin 0.1, it must
- * not be trusted after a move of 0.4 under skin 0.5; built with stride 2 (every second
- * node), not for stride 1 under the same skin. Against a plain evaluation (mu = 0, no list). */
+/* A list holds only as far as it was proven: built with skin 0.1, it must not be trusted
+ * after a move of 0.4 under skin 0.5 (new contacts appear); built with stride 2 (every
+ * second node), not for stride 1 under the same skin. Against a plain evaluation (mu = 0,
+ * no list). */
 static void test_list_settings(const lsdem_shape *A, const lsdem_shape *wall,
                                const lsdem_pose *pw)
 {
@@ -178,6 +182,50 @@ static void test_kept_cells(const lsdem_shape *A, const lsdem_shape *B, const ls
         on_b.npen, on_b.force[2]);
 }
 
+/* Lists are trusted only as far as the nodes they leave out are from touching: lists
+ * built at random poses (grain near B, small and wide skins) and then used after random
+ * moves towards B, of up to four skins, give the plain answer every time, while many of
+ * the moves do reuse the list (seen as fewer lookups where B's bounding sphere is loose;
+ * for a round B both look up about the same nodes). */
+static void test_random_moves(const lsdem_shape *A, const lsdem_shape *B,
+                              const lsdem_pose *pb, double lift, int loose, const char *what)
+{
+  static lsdem_node_hist h0[CAP];
+  int trusted = 0, same = 1, touching = 0;
+  for (int t = 0; t < 300; t++) {
+    const double skin = t % 2 ? 0.4 : 2.0;
+    lsdem_contact_params prm = fix_params(50.0, 0.0, 0.0, 0.5), listed = prm;
+    listed.node_skin = skin;
+    lsdem_pose pa = fix_pose(3.0 * srand1(), 3.0 * srand1(), lift + 2.5 * srand1());
+    fix_rotation_about(srand1(), srand1(), srand1(), FIX_PI * urand(), pa.R);
+    int n0 = 0;
+    lsdem_contact_result r0;
+    lsdem_contact_nodes(A, &pa, B, pb, &listed, 0, NULL, 0, h0, &n0, &r0);
+    for (int m = 0; m < 8; m++) {
+      lsdem_pose moved = pa;
+      const double u = 4.0 * skin * urand();
+      const double dir[3] = {0.3 * srand1(), 0.3 * srand1(), -1.0};
+      for (int i = 0; i < 3; i++) moved.x[i] += u * dir[i] / sqrt(1.18);
+      double turn[9], R[9];
+      fix_rotation_about(srand1(), srand1(), srand1(), 0.02 * urand(), turn);
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+          R[3 * i + j] = turn[3 * i] * pa.R[j] + turn[3 * i + 1] * pa.R[3 + j] +
+                         turn[3 * i + 2] * pa.R[6 + j];
+      memcpy(moved.R, R, sizeof R);
+      lsdem_contact_result r1, ref;
+      lsdem_contact_nodes(A, &moved, B, pb, &listed, 1, h0, n0, NULL, NULL, &r1);
+      lsdem_contact_nodes(A, &moved, B, pb, &prm, 1, NULL, 0, NULL, NULL, &ref);
+      same &= r1.npen == ref.npen && memcmp(r1.force, ref.force, sizeof r1.force) == 0;
+      trusted += r1.ntested < ref.ntested;
+      touching += ref.npen > 0;
+    }
+  }
+  CHECK(same, "%s: a moved grain's list missed a contact", what);
+  CHECK((trusted > 500 || !loose) && touching > 1000, "%s: %d moves reused the list, %d touch",
+        what, trusted, touching);
+}
+
 static void test_outer_lipschitz(const lsdem_sdf *g)
 {
   double limit = 0.0;
@@ -234,11 +282,28 @@ int main(void)
   compare_runs("plane, friction", SLIDE, &ga.clustered, &plane, &pw, 0.0, 0.5, 1, 0.3, 1);
   compare_runs("grid, approach", APPROACH, &ga.clustered, &B, &pb, 11.6, 0.5, 1, 0.3, 1);
   compare_runs("plane, approach", APPROACH, &ga.clustered, &plane, &pw, 0.0, 0.5, 1, 0.3, 1);
+  /* a wide skin: the clusters left out by their clearance from the plane bound the list */
+  compare_runs("plane, approach, wide skin", APPROACH, &ga.clustered, &plane, &pw, 0.0, 0.5,
+               1, 1.5, 0);
+  /* a round B, whose bounding sphere is tight: the nodes left out by it bound the list */
+  lsdem_sdf ball = fix_sdf(LSDEM_SDF_SPHERE, 8.0, 0, 0);
+  lsdem_sdf bgrid = fix_sdf(LSDEM_SDF_GRID, 0, 0, 0);
+  const double blo[3] = {-8, -8, -8}, bhi[3] = {8, 8, 8};
+  CHECK(lsdem_grid_sample(&ball, blo, bhi, 1.0, 3, &bgrid.grid, &err) == LSDEM_OK, "%s",
+        err.msg);
+  bgrid.grid.lip = lsdem_grid_outer_lipschitz(&bgrid.grid, &bgrid.grid.lip_reach);
+  const lsdem_shape round = fix_shape(bgrid, 0, NULL, lsdem_sdf_bound_radius(&bgrid));
+  compare_runs("round grid, approach", APPROACH, &ga.plain, &round, &pb, 14.2, 0.5, 1, 0.3, 0);
+  test_random_moves(&ga.clustered, &plane, &pw, 1.0, 1, "plane");
+  test_random_moves(&ga.clustered, &round, &pb, 15.0, 0, "round grid");
+  compare_runs("round grid, approach, clusters", APPROACH, &ga.clustered, &round, &pb, 14.2,
+               0.5, 1, 0.3, 0);
   /* without a gradient bound every looked-up node is listed: still the same results */
   lsdem_shape unbounded = B;
   unbounded.sdf.grid.lip = 0.0;
   compare_runs("grid without bound", SLIDE, &ga.clustered, &unbounded, &pb, 11.6, 0.5, 1, 0.3,
                0);
   lsdem_grid_free(&gsdf.grid);
+  lsdem_grid_free(&bgrid.grid);
   return lsdem_test_summary();
 }

@@ -238,19 +238,25 @@ typedef struct {
 } node_batch;
 
 /* Screen `count` (<= NODE_BATCH - b->n) nodes first, first + stride, ...: appended to
- * the batch when |node - cb|^2 <= rb2. */
+ * the batch when |node - cb|^2 <= rb2; *nearest_out is lowered to the smallest
+ * |node - cb|^2 of the nodes left out. */
 static void screen_nodes(const double *nodes, int first, int count, int stride,
-                         const double cb[3], double rb2, node_batch *b)
+                         const double cb[3], double rb2, node_batch *b, double *nearest_out)
 {
   int n = b->n;
+  double nearest = *nearest_out;
   for (int i = 0; i < count; i++) {
     const int k = first + i * stride;
     const double *x = &nodes[3 * k];
     const double d0 = x[0] - cb[0], d1 = x[1] - cb[1], d2 = x[2] - cb[2];
+    const double r2 = d0 * d0 + d1 * d1 + d2 * d2;
+    const int in = r2 <= rb2;
     b->node[n] = k;
-    n += d0 * d0 + d1 * d1 + d2 * d2 <= rb2;
+    n += in;
+    nearest = !in && r2 < nearest ? r2 : nearest;
   }
   b->n = n;
+  *nearest_out = nearest;
 }
 
 /* Level-set lookups of a screened batch (Algorithm 1 for a grid) at q = M node + t (B's
@@ -272,10 +278,11 @@ static void lookup_batch(const lsdem_shape *A, const lsdem_sdf *sdfB, const doub
  *   LIST_MASK - b, b = 0 .. nb-1: the nodes b*LIST_BLOCK .. b*LIST_BLOCK + LIST_BLOCK-1,
  *     one bit each, LIST_WORD_BITS bits per double (an exact integer) of shear, normal;
  *   LIST_POSE_M: M[0..5] of the pose the list was built at (shear, normal); stamp: the
- *     bits of the skin it was built with;
+ *     bits of its validity radius: the least distance any left-out node had to move to
+ *     touch B (at least the skin);
  *   LIST_POSE_T: M[6..8] and t (shear, normal); stamp: the node stride.
- * The masks' stamp is the step the list was built at. A list built with another skin or
- * stride is not used. When B is a grid, the list also keeps the 8 samples of each listed
+ * The masks' stamp is the step the list was built at. A list built with another stride
+ * is not used. When B is a grid, the list also keeps the 8 samples of each listed
  * node's cell (where it was last looked up), so that a lookup in the same cell reads no
  * grid memory: one entry per node k, id LIST_CELL + k, after the node entries (ids >= 0):
  * samples 0-5 in shear, normal (exact as doubles), sample 6's bits in pad_, the cell's
@@ -307,6 +314,9 @@ typedef struct {
   lsdem_node_hist *out; /* hist_out's list entries being built, or NULL */
   int word;     /* word being filled */
   uint64_t bits;
+  double lip;   /* L (reach / skin) when finite */
+  double margin; /* while built: the least distance a left-out node must move to touch */
+  double cap;   /* the margin may not exceed this (grids: the gradient bound's limit) */
   int cached;   /* B is a grid: listed nodes' cells are kept */
   const lsdem_node_hist *cell_in; /* hist_in's cell entries (increasing node), count */
   int ncell_in, cell_cursor;
@@ -393,31 +403,38 @@ static double list_reach(const lsdem_sdf *s, double skin)
   }
 }
 
-/* Whether hist_in starts with a list for A whose nodes cannot have moved by the skin
- * relative to B since it was built: |M - M0| rA + |t - t0| < s (q = M x + t, |x| <= rA).
- * M M0^T is a rotation by some angle a: |M - M0| = 2 sin(a/2) = |M - M0|_F / sqrt(2),
- * plus a relative 1e-12 for round-off in M, M0. */
-static int64_t skin_bits(double skin)
+/* Whether hist_in starts with a list for A whose left-out nodes cannot have moved far
+ * enough to touch B since it was built: |M - M0| rA + |t - t0| < r, r its validity radius
+ * (at least the skin; q = M x + t, |x| <= rA). M M0^T is a rotation by some angle a:
+ * |M - M0| = 2 sin(a/2) = |M - M0|_F / sqrt(2), plus a relative 1e-12 for round-off. */
+static int64_t double_bits(double x)
 {
   int64_t bits;
-  memcpy(&bits, &skin, sizeof bits);
+  memcpy(&bits, &x, sizeof bits);
   return bits;
 }
 
+static double bits_double(int64_t bits)
+{
+  double x;
+  memcpy(&x, &bits, sizeof x);
+  return x;
+}
+
 static int list_holds(const lsdem_node_hist *h, int n, int nb, const double M[9],
-                      const double t[3], double ra, double skin, int stride)
+                      const double t[3], double ra, int stride)
 {
   if (n < nb + 2 || h[0].node != LIST_MASK - (nb - 1) || h[nb].node != LIST_POSE_M ||
-      h[nb + 1].node != LIST_POSE_T || h[nb].stamp != skin_bits(skin) ||
-      h[nb + 1].stamp != stride)
+      h[nb + 1].node != LIST_POSE_T || h[nb + 1].stamp != stride)
     return 0;
+  const double radius = bits_double(h[nb].stamp);
   const double M0[9] = {h[nb].shear[0],  h[nb].shear[1],      h[nb].shear[2],
                         h[nb].normal[0], h[nb].normal[1],     h[nb].normal[2],
                         h[nb + 1].shear[0], h[nb + 1].shear[1], h[nb + 1].shear[2]};
   double dm = 0.0, dt = 0.0;
   for (int i = 0; i < 9; i++) dm += (M[i] - M0[i]) * (M[i] - M0[i]);
   for (int i = 0; i < 3; i++) dt += (t[i] - h[nb + 1].normal[i]) * (t[i] - h[nb + 1].normal[i]);
-  return (sqrt(0.5 * dm) + 1e-12) * ra + sqrt(dt) < skin * (1.0 - 1e-9);
+  return (sqrt(0.5 * dm) + 1e-12) * ra + sqrt(dt) < radius * (1.0 - 1e-9);
 }
 
 /* Decides whether hist_in's list is used; when it is not and hist_out is given, starts a
@@ -432,10 +449,14 @@ static void list_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB
   L->skin = prm->node_skin > 0.0 ? prm->node_skin : 0.0;
   if (L->skin == 0.0) return;
   L->reach = list_reach(sdfB, L->skin);
+  L->lip = isfinite(L->reach) ? L->reach / L->skin : 0.0;
+  L->cap = sdfB->kind == LSDEM_SDF_GRID && L->lip > 0.0 ? sdfB->grid.lip_reach / L->lip
+                                                         : HUGE_VAL;
+  L->margin = HUGE_VAL;
   L->nb = list_blocks(A->nnodes);
   L->cached = sdfB->kind == LSDEM_SDF_GRID && !sdfB->inverted;
   const int stride = prm->node_stride > 1 ? prm->node_stride : 1;
-  L->use = hist_in && list_holds(hist_in, n_in, L->nb, M, t, A->radius, L->skin, stride);
+  L->use = hist_in && list_holds(hist_in, n_in, L->nb, M, t, A->radius, stride);
   if (L->cached && hist_in) { /* kept cells stay good when the list does not: the cell
                                  entries are the last ones (ids below the node entries') */
     int first = n_in;
@@ -462,8 +483,7 @@ static void list_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB
     pt->normal[i] = t[i];
   }
   for (int b = 0; b < L->nb; b++) hist_out[b].stamp = step;
-  pm->stamp = skin_bits(L->skin);
-  pt->stamp = stride;
+  pt->stamp = stride; /* pm->stamp: the validity radius, when the list is finished */
   L->out = hist_out;
 }
 
@@ -473,9 +493,19 @@ static void list_flush(node_list *L)
   L->bits = 0;
 }
 
-static void list_flush_if_built(node_list *L)
+/* A left-out node (or cluster) that must move by d to touch B: the list holds until d. */
+static void list_margin(node_list *L, double d)
 {
-  if (L->out) list_flush(L);
+  L->margin = d < L->margin ? d : L->margin;
+}
+
+/* Writes the last mask word and the validity radius of a list being built. */
+static void list_finish(node_list *L)
+{
+  if (!L->out) return;
+  list_flush(L);
+  const double radius = L->margin < L->cap ? L->margin : L->cap;
+  L->out[L->nb].stamp = double_bits(radius > L->skin ? radius : L->skin);
 }
 
 /* Index of the lowest set bit of a nonzero word. */
@@ -519,7 +549,10 @@ static void contact_batch(pair_ctx *restrict c, const lsdem_shape *A, const lsde
   c->sum.ntested += b->n;
   for (int i = 0; i < b->n; i++) {
     const int listed = L->use || (L->out && b->phi[i] < L->reach);
-    if (!listed) continue;
+    if (!listed) {
+      if (L->out) list_margin(L, b->phi[i] / L->lip); /* phi >= L s: L > 0 here */
+      continue;
+    }
     if (L->out) list_add(L, b->node[i]);
     if (L->cell_top) keep_cell(L, b->node[i], &b->cell[i]);
   }
@@ -554,31 +587,47 @@ static int sdf_is_distance(const lsdem_sdf *s)
  * B's by q = M x + t) is inside B when phi_B(q) > r (1-Lipschitz). This is how a wall
  * (unbounded: no bounding sphere) skips a grain, or a cluster, with one evaluation
  * instead of one per node. The relative margin covers round-off in phi at the nodes. */
-static int ball_clear_of(const lsdem_sdf *sdfB, const double M[9], const double t[3],
-                         const double centre[3], double r)
+static double ball_clearance(const lsdem_sdf *sdfB, const double M[9], const double t[3],
+                             const double centre[3], double r)
 {
   double q[3], g[3];
   affine3(M, t, centre, q);
   const double scale = fabs(q[0]) + fabs(q[1]) + fabs(q[2]) + r;
-  return lsdem_sdf_eval(sdfB, q, g) > r + 1e-12 * scale;
+  return lsdem_sdf_eval(sdfB, q, g) - r - 1e-12 * scale;
+}
+
+static int ball_clear_of(const lsdem_sdf *sdfB, const double M[9], const double t[3],
+                         const double centre[3], double r)
+{
+  return ball_clearance(sdfB, M, t, centre, r) > 0.0;
 }
 
 /* Node range [start, end) of cluster cl of A when it may touch B (or of all of A when
  * A has no clusters); returns 0 when the cluster's sphere is clear of B's bounding
- * sphere (cb: B's centre in A's frame; rb may include a skin) or, for a distance B, of
- * B's solid by more than `clear`. */
-static int cluster_range(const lsdem_shape *A, int cl, const lsdem_sdf *sdfB, double rb,
+ * sphere widened by `widen` (cb: B's centre in A's frame) or, for a distance B, of B's
+ * solid by more than `clear`. A cluster left out of a list being built gives the list a
+ * margin: how far it is from touching. */
+static int cluster_range(const lsdem_shape *A, int cl, const lsdem_shape *B, double widen,
                          int distance, double clear, const double cb[3], const double M[9],
-                         const double t[3], int *start, int *end)
+                         const double t[3], node_list *L, int *start, int *end)
 {
   *start = 0;
   *end = A->nnodes;
   if (!(A->nclusters > 0 && A->cluster_start && A->cluster_sphere)) return 1;
   const double *sph = &A->cluster_sphere[4 * cl];
   const double d[3] = {sph[0] - cb[0], sph[1] - cb[1], sph[2] - cb[2]};
-  const double reach = rb + sph[3];
-  if (dot3(d, d) > reach * reach) return 0;
-  if (distance && ball_clear_of(sdfB, M, t, sph, sph[3] + clear)) return 0;
+  const double reach = B->radius + widen + sph[3];
+  if (dot3(d, d) > reach * reach) {
+    if (L->out) list_margin(L, sqrt(dot3(d, d)) - B->radius - sph[3]);
+    return 0;
+  }
+  if (distance) {
+    const double gap = ball_clearance(&B->sdf, M, t, sph, sph[3]);
+    if (gap > clear) {
+      if (L->out) list_margin(L, gap);
+      return 0;
+    }
+  }
   *start = A->cluster_start[cl];
   *end = A->cluster_start[cl + 1];
   return 1;
@@ -594,23 +643,25 @@ static void contacts_of_screened_nodes(pair_ctx *restrict c, const lsdem_shape *
                                        const double t[3], int distance, node_list *L,
                                        node_batch *batch, int stride)
 {
-  const double rb = B->radius + (L->out ? L->skin : 0.0), rb2 = rb * rb;
+  const double widen = L->out ? L->skin : 0.0, rb = B->radius + widen, rb2 = rb * rb;
   const double clear = L->out && isfinite(L->reach) ? L->reach : 0.0;
   const int nclusters = A->nclusters > 0 && A->cluster_start && A->cluster_sphere
                             ? A->nclusters : 1;
+  double nearest = HUGE_VAL; /* squared distance from cb of the nearest node left out */
   for (int cl = 0; cl < nclusters; cl++) {
     int start, end;
-    if (!cluster_range(A, cl, &B->sdf, rb, distance, clear, cb, M, t, &start, &end)) continue;
+    if (!cluster_range(A, cl, B, widen, distance, clear, cb, M, t, L, &start, &end)) continue;
     int k = (start + stride - 1) / stride * stride;
     while (k < end) {
       const int left = (end - k + stride - 1) / stride, room = NODE_BATCH - batch->n;
       const int count = left < room ? left : room;
-      screen_nodes(A->nodes, k, count, stride, cb, rb2, batch);
+      screen_nodes(A->nodes, k, count, stride, cb, rb2, batch, &nearest);
       k += count * stride;
       if (batch->n == NODE_BATCH) contact_batch(c, A, B, pb, M, t, batch, (double)stride, L);
     }
   }
   contact_batch(c, A, B, pb, M, t, batch, (double)stride, L);
+  if (L->out && nearest < HUGE_VAL) list_margin(L, sqrt(nearest) - B->radius);
 }
 
 /* Only the nodes of the pair's list, in increasing order, looked up in batches. */
@@ -671,7 +722,7 @@ int lsdem_contact_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_
     contacts_of_listed_nodes(&c, A, B, pb, M, t, hist_in, &list, &batch, stride);
   else
     contacts_of_screened_nodes(&c, A, B, pb, cb, M, t, distance, &list, &batch, stride);
-  list_flush_if_built(&list);
+  list_finish(&list);
   if (list.cell_top) c.n_out = place_cells(&list, hist_out, c.n_out);
   return pair_end(&c, n_out, res);
 }

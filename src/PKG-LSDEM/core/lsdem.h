@@ -369,8 +369,10 @@ typedef struct {
  * the shear entries), and a lookup in the same cell reads those instead of the grid
  * (lsdem_grid_eval_many_cached). The contacts found are therefore the same, bit for bit,
  * as without a list; only lookups of nodes that cannot touch, and grid reads, are saved
- * (res->ntested counts the lookups made). A list built with another skin or stride is
- * not used (rebuilt). Returns the number of penetrating nodes. */
+ * (res->ntested counts the lookups made). A list is trusted up to the least distance any
+ * node it left out had to move to touch B (at least s: the distance to the widened
+ * sphere, phi / L, a left-out cluster's clearance), whatever the skin is now; one built
+ * with another stride is rebuilt. Returns the number of penetrating nodes. */
 int lsdem_contact_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
                         const lsdem_pose *pb, const lsdem_contact_params *prm, int64_t step,
                         const lsdem_node_hist *hist_in, int n_in, lsdem_node_hist *hist_out,
