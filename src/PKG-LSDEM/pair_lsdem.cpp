@@ -540,7 +540,7 @@ void PairLsdem::write_restart_settings(FILE *fp)
   fwrite(&lawi, sizeof(int), 1, fp);
   fwrite(&stride, sizeof(int), 1, fp);
   fwrite(&zcap, sizeof(int), 1, fp);
-  fwrite(&nodelist, sizeof(double), 1, fp);
+  // nodelist is not stored: it changes no result, and files of earlier versions stay readable
 }
 
 void PairLsdem::read_restart_settings(FILE *fp)
@@ -552,8 +552,7 @@ void PairLsdem::read_restart_settings(FILE *fp)
   law = (lsdem_normal_law) v[1];
   stride = v[2];
   zcap = v[3];
-  if (comm->me == 0) utils::sfread(FLERR, &nodelist, sizeof(double), 1, fp, nullptr, error);
-  MPI_Bcast(&nodelist, 1, MPI_DOUBLE, 0, world);
+  nodelist = -1.0;
 }
 
 void PairLsdem::write_restart(FILE *fp)
