@@ -273,7 +273,7 @@ static void lookup_batch(const lsdem_shape *A, const lsdem_sdf *sdfB, const doub
 
 /* ------------------------------------------------------------- node lists ---- */
 
-/* A pair's node list travels in its history (sorted by node) as entries with negative
+/* A pair's node list travels in its history as entries with negative
  * node ids, ahead of the node entries:
  *   LIST_MASK - b, b = 0 .. nb-1: the nodes b*LIST_BLOCK .. b*LIST_BLOCK + LIST_BLOCK-1,
  *     one bit each, LIST_WORD_BITS bits per double (an exact integer) of shear, normal;
