@@ -171,6 +171,16 @@ static inline double fix_norm(const double a[3])
   return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
 }
 
+/* The ellipsoid of semi-axes a sampled as a grid of spacing 1 with a 3-sample margin. */
+static inline lsdem_status fix_ellipsoid_grid(const double a[3], lsdem_sdf *grid,
+                                              lsdem_error *err)
+{
+  const lsdem_sdf ell = fix_sdf(LSDEM_SDF_ELLIPSOID, a[0], a[1], a[2]);
+  const double lo[3] = {-a[0], -a[1], -a[2]};
+  *grid = fix_sdf(LSDEM_SDF_GRID, 0, 0, 0);
+  return lsdem_grid_sample(&ell, lo, a, 1.0, 3, &grid->grid, err);
+}
+
 /* An ellipsoid grain (semi-axes a) with FIX_GRAIN_NODES Fibonacci nodes clustered by the
  * core, around the level set sdf: `clustered` and `plain` (no clusters) share the nodes. */
 enum { FIX_GRAIN_NODES = 400 };

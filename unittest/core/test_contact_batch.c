@@ -163,11 +163,10 @@ static void test_walls(fix_grain *ga)
 
 int main(void)
 {
-  const double a[3] = {10.0, 8.0, 6.0}, lo[3] = {-10, -8, -6}, hi[3] = {10, 8, 6};
-  lsdem_sdf ell = fix_sdf(LSDEM_SDF_ELLIPSOID, a[0], a[1], a[2]);
-  lsdem_sdf gsdf = fix_sdf(LSDEM_SDF_GRID, 0, 0, 0);
+  const double a[3] = {10.0, 8.0, 6.0};
+  lsdem_sdf gsdf;
   lsdem_error err;
-  CHECK(lsdem_grid_sample(&ell, lo, hi, 1.0, 3, &gsdf.grid, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(fix_ellipsoid_grid(a, &gsdf, &err) == LSDEM_OK, "%s", err.msg);
   static fix_grain ga;
   fix_make_grain(&ga, a, &gsdf);
   lsdem_shape B = fix_shape(gsdf, 0, NULL, lsdem_sdf_bound_radius(&gsdf));

@@ -271,6 +271,21 @@ static void lookup_batch(const lsdem_shape *A, const lsdem_sdf *sdfB, const doub
     lsdem_sdf_eval_many(sdfB, b->n, b->q, b->phi, b->grad);
 }
 
+/* Whether B's level set is an exact signed distance, so |phi(p) - phi(q)| <= |p - q|
+ * (also inverted). Grids are not (trilinear interpolation of samples that may be
+ * smoothed or approximate), nor is the superellipsoid's first-order distance. */
+static int sdf_is_distance(const lsdem_sdf *s)
+{
+  switch (s->kind) {
+  case LSDEM_SDF_SPHERE:
+  case LSDEM_SDF_PLANE:
+  case LSDEM_SDF_CYLINDER:
+  case LSDEM_SDF_BOX:
+  case LSDEM_SDF_ELLIPSOID: return 1;
+  default: return 0;
+  }
+}
+
 /* ------------------------------------------------------------- node lists ---- */
 
 /* A pair's node list travels in its history as entries with negative
@@ -352,7 +367,7 @@ static void entry_to_cell(const lsdem_node_hist *e, lsdem_grid_cell *c)
 }
 
 /* The kept cell of node k (nodes asked in increasing order), or none. */
-static void cell_of_listed_node(node_list *L, int k, lsdem_grid_cell *c)
+static void kept_cell_of(node_list *L, int k, lsdem_grid_cell *c)
 {
   while (L->cell_cursor < L->ncell_in && L->cell_in[L->cell_cursor].node < LIST_CELL + k)
     L->cell_cursor++;
@@ -386,27 +401,18 @@ static int place_cells(node_list *L, lsdem_node_hist *hist_out, int n_out)
 
 /* The node-list reach L s for skin s: a node looked up with phi >= L s cannot reach
  * phi < 0 by moving less than s, L bounding |grad phi| where 0 <= phi <= L s (exact
- * distances: 1; grids: lsdem_grid_outer_lipschitz, within its limit). HUGE_VAL when
- * there is no such bound: every looked-up node is listed. */
+ * distances: 1; grids that are not inverted: lsdem_grid_outer_lipschitz, within its
+ * limit). HUGE_VAL when there is no such bound: every looked-up node is listed. */
 static double list_reach(const lsdem_sdf *s, double skin)
 {
-  switch (s->kind) {
-  case LSDEM_SDF_SPHERE:
-  case LSDEM_SDF_PLANE:
-  case LSDEM_SDF_CYLINDER:
-  case LSDEM_SDF_BOX:
-  case LSDEM_SDF_ELLIPSOID: return skin;
-  case LSDEM_SDF_GRID:
-    if (s->grid.lip > 0.0 && s->grid.lip * skin < s->grid.lip_reach) return s->grid.lip * skin;
-    return HUGE_VAL;
-  default: return HUGE_VAL;
-  }
+  if (sdf_is_distance(s)) return skin;
+  /* the grid's bound holds where its own phi >= 0, not where an inverted one is */
+  const lsdem_grid *g = &s->grid;
+  if (s->kind == LSDEM_SDF_GRID && !s->inverted && g->lip > 0.0 && g->lip * skin < g->lip_reach)
+    return g->lip * skin;
+  return HUGE_VAL;
 }
 
-/* Whether hist_in starts with a list for A whose left-out nodes cannot have moved far
- * enough to touch B since it was built: |M - M0| rA + |t - t0| < r, r its validity radius
- * (at least the skin; q = M x + t, |x| <= rA). M M0^T is a rotation by some angle a:
- * |M - M0| = 2 sin(a/2) = |M - M0|_F / sqrt(2), plus a relative 1e-12 for round-off. */
 static int64_t double_bits(double x)
 {
   int64_t bits;
@@ -543,7 +549,7 @@ static void contact_batch(pair_ctx *restrict c, const lsdem_shape *A, const lsde
 {
   b->cached = L->cached;
   if (L->cached)
-    for (int i = 0; i < b->n; i++) cell_of_listed_node(L, b->node[i], &b->cell[i]);
+    for (int i = 0; i < b->n; i++) kept_cell_of(L, b->node[i], &b->cell[i]);
   lookup_batch(A, &B->sdf, M, t, b);
   const int traction = c->prm.law == LSDEM_NORMAL_TRACTION && A->node_area;
   c->sum.ntested += b->n;
@@ -566,21 +572,6 @@ static void contact_batch(pair_ctx *restrict c, const lsdem_shape *A, const lsde
     apply_contact(c, k, p, n, -b->phi[i], kscale, kstride);
   }
   b->n = 0;
-}
-
-/* Whether B's level set is an exact signed distance, so |phi(p) - phi(q)| <= |p - q|
- * (also inverted). Grids are not (trilinear interpolation of samples that may be
- * smoothed or approximate), nor is the superellipsoid's first-order distance. */
-static int sdf_is_distance(const lsdem_sdf *s)
-{
-  switch (s->kind) {
-  case LSDEM_SDF_SPHERE:
-  case LSDEM_SDF_PLANE:
-  case LSDEM_SDF_CYLINDER:
-  case LSDEM_SDF_BOX:
-  case LSDEM_SDF_ELLIPSOID: return 1;
-  default: return 0;
-  }
 }
 
 /* For a distance B: no point of the ball of radius r about centre (A's frame, mapped to

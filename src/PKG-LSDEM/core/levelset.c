@@ -202,9 +202,8 @@ void lsdem_grid_gradient_raw(const lsdem_grid *g, const double p[3], double grad
 static void cell_edges(const lsdem_grid *g, size_t i, size_t j, size_t k, float big[3],
                        float *lo, float *hi)
 {
-  const size_t sy = (size_t)g->n[0], sz = sy * (size_t)g->n[1];
-  const float *c = g->phi + i + sy * j + sz * k;
-  const float v[8] = {c[0], c[1], c[sy], c[sy + 1], c[sz], c[sz + 1], c[sz + sy], c[sz + sy + 1]};
+  float v[8];
+  load_cell(g, i + (size_t)g->n[0] * (j + (size_t)g->n[1] * k), v);
   big[0] = big[1] = big[2] = 0.0f;
   *lo = *hi = v[0];
   for (int m = 0; m < 8; m++) {
