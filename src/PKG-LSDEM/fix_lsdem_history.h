@@ -38,6 +38,7 @@ class FixLsdemHistory : public Fix {
   // per-step interface for the contact styles
   const lsdem_node_hist *find(int i, tagint partner, int &n) const;
   void prefetch(int i) const;  // start loading atom i's list (the next atom to process)
+  bool holds(int i) const { return nhist[i] > 0; }  // atom i keeps entries
   void begin_atom();
   lsdem_node_hist *reserve(int cap);
   void commit(tagint partner, int n);

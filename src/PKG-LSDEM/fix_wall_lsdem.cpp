@@ -390,11 +390,13 @@ void FixWallLsdem::post_force(int /*vflag*/)
   contact_step = step;
 
   for (int i = 0; i < nlocal; i++) {
+    const bool test = (mask[i] & groupbit) && may_touch(i);
+    if (!test && !(fix_history && fix_history->holds(i))) continue;  // far, nothing kept
     if (fix_history) {
       if (i + 1 < nlocal) fix_history->prefetch(i + 1);
       fix_history->begin_atom();
     }
-    if ((mask[i] & groupbit) && may_touch(i)) {
+    if (test) {
       lsdem_pose p;
       for (int d = 0; d < 3; d++) {
         p.x[d] = x[i][d];

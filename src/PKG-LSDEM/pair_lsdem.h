@@ -79,6 +79,7 @@ class PairLsdem : public Pair {
   lsdem_pose *pose;
   const lsdem_shape **shape;
   double *ncount;  // contacts per atom (coordination number, eq 3.15)
+  char *sphere;    // per atom: its shape is an analytic sphere (master_scale)
 
   Contact *contact;
   int ncontact, maxcontact;

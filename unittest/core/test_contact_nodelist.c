@@ -11,6 +11,7 @@
  *   - a list is not trusted under another stride, nor beyond its own validity radius
  *     when the skin changes;
  *   - against a grid the list keeps its nodes' cells: lookups in the same cell read them;
+ *   - a history in an earlier version's list layout is not read as a list;
  *   - lsdem_grid_outer_lipschitz bounds |phi(p) - phi(p')| / |p - p'| on random nearby
  *     pairs where phi >= 0, stays close to 1 for a sampled exact distance, and its reach
  *     limit is the smallest boundary sample. */
@@ -39,8 +40,8 @@ static int step_run(run_state *r, const lsdem_shape *A, const lsdem_pose *pa,
   return nout;
 }
 
-/* The shear entries (node >= 0) of a history: after the list's masks and pose, before
- * its cells. */
+/* The shear entries (node >= 0) of a history: after the list's pose, before its node
+ * entries. */
 static const lsdem_node_hist *shear_entries(const run_state *r, int *n)
 {
   const lsdem_node_hist *h = r->buf[r->cur];
@@ -260,6 +261,54 @@ static void test_outer_lipschitz(const lsdem_sdf *g)
   CHECK(ok && pairs > 1000, "%d pairs, largest slope %g against L = %g", pairs, worst, L);
 }
 
+/* A history in the layout of earlier versions (restart files written by them: masks
+ * with ids -3.., the pose at -2 and -1, cells at ids -2^30 + k whose samples are stored
+ * otherwise) is not taken for a list: the answer is the plain one and a new list is built
+ * at this step. The old entries are filled so that, read as a list, they would hold. */
+static void test_old_layout(const lsdem_shape *A, const lsdem_shape *B, const lsdem_pose *pb)
+{
+  static lsdem_node_hist old[CAP], out[CAP];
+  lsdem_contact_params prm = fix_params(50.0, 40.0, 0.5, 0.5), listed = prm;
+  listed.node_skin = 0.3;
+  lsdem_pose pa;
+  path_pose(APPROACH, 100, 11.6, &pa);
+  double M[9], t[3], dx[3], mdx[3];
+  for (int i = 0; i < 3; i++) {
+    dx[i] = pb->x[i] - pa.x[i];
+    mdx[i] = -dx[i];
+  }
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      M[3 * i + j] = pb->R[i] * pa.R[j] + pb->R[3 + i] * pa.R[3 + j] + pb->R[6 + i] * pa.R[6 + j];
+  lsdem_matT_vec(pb->R, mdx, t);
+  int n = 0;
+  old[n++] = (lsdem_node_hist){.node = -3, .stamp = 99}; /* mask: node 0 alone */
+  old[n].node = -2; /* pose M[0..5]; stamp: the validity radius (huge) */
+  const double radius = 1e9;
+  memcpy(&old[n].stamp, &radius, sizeof radius);
+  old[n + 1].node = -1; /* M[6..8], t; stamp: the stride */
+  old[n + 1].stamp = 1;
+  for (int i = 0; i < 3; i++) {
+    old[n].shear[i] = M[i];
+    old[n].normal[i] = M[3 + i];
+    old[n + 1].shear[i] = M[6 + i];
+    old[n + 1].normal[i] = t[i];
+  }
+  n += 2;
+  old[0].shear[0] = 1.0;
+  for (int k = 0; k < 4; k++) old[n++] = (lsdem_node_hist){.node = -(1 << 30) + k, .pad_ = 7};
+  lsdem_contact_result plain, res;
+  int nout = 0;
+  lsdem_contact_nodes(A, &pa, B, pb, &prm, 100, NULL, 0, NULL, NULL, &plain);
+  lsdem_contact_nodes(A, &pa, B, pb, &listed, 100, old, n, out, &nout, &res);
+  CHECK(plain.npen > 5 && res.npen == plain.npen &&
+            memcmp(res.force, plain.force, sizeof res.force) == 0,
+        "old layout: %d nodes, force %g; plain %d, %g", res.npen, res.force[2], plain.npen,
+        plain.force[2]);
+  CHECK(nout > 2 && out[0].node < 0 && out[0].stamp == 100, "old layout: no new list (%d)",
+        nout);
+}
+
 int main(void)
 {
   const double a[3] = {10.0, 8.0, 6.0};
@@ -277,6 +326,7 @@ int main(void)
   test_outer_lipschitz(&gsdf);
   test_list_settings(&ga.clustered, &plane, &pw);
   test_kept_cells(&ga.clustered, &B, &pb);
+  test_old_layout(&ga.clustered, &B, &pb);
   compare_runs("grid, friction", SLIDE, &ga.clustered, &B, &pb, 11.6, 0.5, 1, 0.3, 1);
   compare_runs("grid, no friction", SLIDE, &ga.clustered, &B, &pb, 11.6, 0.0, 1, 0.3, 1);
   compare_runs("grid, stride 2", SLIDE, &ga.plain, &B, &pb, 11.6, 0.5, 2, 0.3, 1);

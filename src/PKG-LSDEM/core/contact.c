@@ -14,6 +14,7 @@
 #include "lsdem.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <string.h>
 
@@ -70,11 +71,14 @@ typedef struct {
   lsdem_contact_result sum;
 } pair_ctx;
 
+/* All zero (assigned rather than memset: a call per pair, kept cheap). */
+static const lsdem_contact_result no_result;
+
 static void pair_begin(pair_ctx *c, const lsdem_pose *pa, const lsdem_pose *pb,
                        const lsdem_contact_params *prm, int64_t step,
                        const lsdem_node_hist *hist_in, int n_in, lsdem_node_hist *hist_out)
 {
-  memset(&c->sum, 0, sizeof c->sum);
+  c->sum = no_result;
   memcpy(c->a.x, pa->x, sizeof c->a.x);
   memcpy(c->a.v, pa->v, sizeof c->a.v);
   memcpy(c->a.omega, pa->omega, sizeof c->a.omega);
@@ -103,7 +107,7 @@ static int pair_end(const pair_ctx *c, int *n_out, lsdem_contact_result *res)
 /* An empty result: no contact, no history. */
 static int no_contact(int *n_out, lsdem_contact_result *res)
 {
-  memset(res, 0, sizeof *res);
+  *res = no_result;
   if (n_out) *n_out = 0;
   return 0;
 }
@@ -230,7 +234,8 @@ enum { NODE_BATCH = 64 };
 typedef struct {
   int n;
   int node[NODE_BATCH];
-  double q[3 * NODE_BATCH];    /* kept nodes in B's frame */
+  double x[3 * NODE_BATCH];    /* kept nodes in A's frame */
+  double q[3 * NODE_BATCH];    /* and in B's frame */
   double phi[NODE_BATCH];      /* B's level set there */
   double grad[3 * NODE_BATCH]; /* and its outward unit gradient (B's frame) */
   int cached;                  /* B is a grid whose cells come from the pair's list */
@@ -261,10 +266,10 @@ static void screen_nodes(const double *nodes, int first, int count, int stride,
 
 /* Level-set lookups of a screened batch (Algorithm 1 for a grid) at q = M node + t (B's
  * frame), the SDF kind dispatched once per batch. */
-static void lookup_batch(const lsdem_shape *A, const lsdem_sdf *sdfB, const double M[9],
-                         const double t[3], node_batch *b)
+static void lookup_batch(const lsdem_sdf *sdfB, const double M[9], const double t[3],
+                         node_batch *b)
 {
-  for (int i = 0; i < b->n; i++) affine3(M, t, &A->nodes[3 * b->node[i]], &b->q[3 * i]);
+  for (int i = 0; i < b->n; i++) affine3(M, t, &b->x[3 * i], &b->q[3 * i]);
   if (b->cached)
     lsdem_grid_eval_many_cached(&sdfB->grid, b->n, b->q, b->phi, b->grad, b->cell);
   else
@@ -288,115 +293,88 @@ static int sdf_is_distance(const lsdem_sdf *s)
 
 /* ------------------------------------------------------------- node lists ---- */
 
-/* A pair's node list travels in its history as entries with negative
- * node ids, ahead of the node entries:
- *   LIST_MASK - b, b = 0 .. nb-1: the nodes b*LIST_BLOCK .. b*LIST_BLOCK + LIST_BLOCK-1,
- *     one bit each, LIST_WORD_BITS bits per double (an exact integer) of shear, normal;
+/* A pair's node list travels in its history: two entries ahead of the shear entries,
  *   LIST_POSE_M: M[0..5] of the pose the list was built at (shear, normal); stamp: the
- *     bits of its validity radius: the least distance any left-out node had to move to
- *     touch B (at least the skin);
- *   LIST_POSE_T: M[6..8] and t (shear, normal); stamp: the node stride.
- * The masks' stamp is the step the list was built at. A list built with another stride
- * is not used. When B is a grid, the list also keeps the 8 samples of each listed
- * node's cell (where it was last looked up), so that a lookup in the same cell reads no
- * grid memory: one entry per node k, id LIST_CELL + k, after the node entries (ids >= 0):
- * samples 0-5 in shear, normal (exact as doubles), sample 6's bits in pad_, the cell's
- * index and sample 7's bits in stamp (index << 32 | bits). */
-enum { LIST_POSE_T = -1, LIST_POSE_M = -2, LIST_MASK = -3, LIST_CELL = -(1 << 30) };
-enum { LIST_WORD_BITS = 48, LIST_WORDS = 6, LIST_BLOCK = LIST_WORD_BITS * LIST_WORDS };
-
-static int list_blocks(int nnodes) { return (nnodes + LIST_BLOCK - 1) / LIST_BLOCK; }
-
-/* The double that holds word w of a list whose nb mask entries start at e. */
-static double *list_word(lsdem_node_hist *e, int nb, int w)
-{
-  lsdem_node_hist *blk = &e[nb - 1 - w / LIST_WORDS];
-  const int r = w % LIST_WORDS;
-  return r < 3 ? &blk->shear[r] : &blk->normal[r - 3];
-}
-
-static uint64_t list_word_bits(const lsdem_node_hist *e, int nb, int w)
-{
-  return (uint64_t)*list_word((lsdem_node_hist *)e, nb, w);
-}
+ *     step it was built at; pad_: the node stride;
+ *   LIST_POSE_T: M[6..8] and t (shear, normal); stamp: the bits of its validity radius,
+ *     the least distance any left-out node had to move to touch B (at least the skin);
+ *     pad_: the number of node entries;
+ * and, after the shear entries (ids >= 0), one entry per listed node k in increasing k,
+ * id LIST_NODE + k: the node in A's frame (normal; copied from A, so that a step that
+ * uses the list reads none of A's node memory) and, when B is a grid, the 8 samples of
+ * the cell the node was last looked up in (stamp and shear hold the 8 floats, pad_ the
+ * cell's index, -1: none), so that a lookup in the same cell reads no grid memory.
+ * A list built with another stride is not used; its node entries still give cells. */
+enum { LIST_POSE_M = -2, LIST_POSE_T = -1, LIST_HEAD = 2, LIST_NODE = -(1 << 29) };
 
 /* The list state of one call. */
 typedef struct {
   double skin;  /* s; 0: no list */
   double reach; /* L s: a looked-up node with phi >= reach is left out (HUGE_VAL: none) */
-  int nb;       /* mask entries */
-  int use;      /* hist_in's list holds: look up its nodes only */
-  lsdem_node_hist *out; /* hist_out's list entries being built, or NULL */
-  int word;     /* word being filled */
-  uint64_t bits;
   double lip;   /* L (reach / skin) when finite */
   double margin; /* while built: the least distance a left-out node must move to touch */
   double cap;   /* the margin may not exceed this (grids: the gradient bound's limit) */
+  int use;      /* hist_in's list holds: look up its nodes only */
   int cached;   /* B is a grid: listed nodes' cells are kept */
-  const lsdem_node_hist *cell_in; /* hist_in's cell entries (increasing node), count */
-  int ncell_in, cell_cursor;
-  lsdem_node_hist *cell_top;      /* hist_out's cell entries are written downwards from
-                                     here (moved after the node entries at the end) */
-  int ncell_out;
+  const lsdem_node_hist *node_in; /* hist_in's node entries (increasing node), count */
+  int nnode_in, node_cursor;
+  lsdem_node_hist *head;     /* hist_out's list entries, or NULL */
+  lsdem_node_hist *pose_out; /* == head while a new list is built, else NULL */
+  lsdem_node_hist *node_out; /* hist_out's node entries are written here (room after the
+                                largest set of shear entries; moved after them at the end) */
+  int nnode_out;
 } node_list;
 
-static void cell_to_entry(int k, const lsdem_grid_cell *c, lsdem_node_hist *e)
+/* The 32 bytes of an entry, stamp and shear, that hold a kept cell's 8 floats. */
+_Static_assert(offsetof(lsdem_node_hist, shear) == offsetof(lsdem_node_hist, stamp) + 8 &&
+                   sizeof(((lsdem_grid_cell *)0)->v) == 32,
+               "a node entry holds a cell's samples in stamp and shear");
+static void *cell_bytes(lsdem_node_hist *e) { return (char *)e + offsetof(lsdem_node_hist, stamp); }
+static const void *cell_bytes_in(const lsdem_node_hist *e)
 {
-  uint32_t b6, b7;
-  memcpy(&b6, &c->v[6], sizeof b6);
-  memcpy(&b7, &c->v[7], sizeof b7);
-  e->node = LIST_CELL + k;
-  e->pad_ = (int32_t)b6;
-  e->stamp = (int64_t)(((uint64_t)c->index << 32) | b7);
-  for (int i = 0; i < 3; i++) {
-    e->shear[i] = c->v[i];
-    e->normal[i] = c->v[3 + i];
-  }
+  return (const char *)e + offsetof(lsdem_node_hist, stamp);
+}
+
+static int is_node_entry(int32_t id, int nnodes)
+{
+  return id >= LIST_NODE && id < LIST_NODE + nnodes;
+}
+
+/* Entry of listed node k at x (A's frame) with its cell c (NULL or index -1: none). */
+static void node_to_entry(int k, const double x[3], const lsdem_grid_cell *c,
+                          lsdem_node_hist *e)
+{
+  const int kept = c && c->index >= 0 && c->index <= INT32_MAX;
+  e->node = LIST_NODE + k;
+  e->pad_ = kept ? (int32_t)c->index : -1;
+  if (kept)
+    memcpy(cell_bytes(e), c->v, sizeof c->v);
+  else
+    memset(cell_bytes(e), 0, sizeof c->v);
+  memcpy(e->normal, x, sizeof e->normal);
 }
 
 static void entry_to_cell(const lsdem_node_hist *e, lsdem_grid_cell *c)
 {
-  const uint32_t b6 = (uint32_t)e->pad_, b7 = (uint32_t)((uint64_t)e->stamp & 0xffffffffu);
-  c->index = (int64_t)((uint64_t)e->stamp >> 32);
-  for (int i = 0; i < 3; i++) {
-    c->v[i] = (float)e->shear[i];
-    c->v[3 + i] = (float)e->normal[i];
-  }
-  memcpy(&c->v[6], &b6, sizeof b6);
-  memcpy(&c->v[7], &b7, sizeof b7);
+  c->index = e->pad_;
+  if (e->pad_ >= 0) memcpy(c->v, cell_bytes_in(e), sizeof c->v);
 }
 
 /* The kept cell of node k (nodes asked in increasing order), or none. */
 static void kept_cell_of(node_list *L, int k, lsdem_grid_cell *c)
 {
-  while (L->cell_cursor < L->ncell_in && L->cell_in[L->cell_cursor].node < LIST_CELL + k)
-    L->cell_cursor++;
-  if (L->cell_cursor < L->ncell_in && L->cell_in[L->cell_cursor].node == LIST_CELL + k)
-    entry_to_cell(&L->cell_in[L->cell_cursor], c);
+  while (L->node_cursor < L->nnode_in && L->node_in[L->node_cursor].node < LIST_NODE + k)
+    L->node_cursor++;
+  if (L->node_cursor < L->nnode_in && L->node_in[L->node_cursor].node == LIST_NODE + k)
+    entry_to_cell(&L->node_in[L->node_cursor], c);
   else
     c->index = -1;
 }
 
-static void keep_cell(node_list *L, int k, const lsdem_grid_cell *c)
+static void keep_node(node_list *L, int k, const double x[3], const lsdem_grid_cell *c)
 {
-  if (c->index < 0) return;
-  cell_to_entry(k, c, L->cell_top - L->ncell_out);
-  L->ncell_out++;
-}
-
-/* Moves the kept cells (written downwards from cell_top, increasing node) to follow the
- * n_out entries written so far; returns the new count. */
-static int place_cells(node_list *L, lsdem_node_hist *hist_out, int n_out)
-{
-  const int n = L->ncell_out;
-  lsdem_node_hist *first = L->cell_top - (n - 1);
-  for (int a = 0, b = n - 1; a < b; a++, b--) { /* into increasing order in place */
-    const lsdem_node_hist tmp = first[a];
-    first[a] = first[b];
-    first[b] = tmp;
-  }
-  memmove(hist_out + n_out, first, sizeof *first * (size_t)n);
-  return n_out + n;
+  node_to_entry(k, x, L->cached ? c : NULL, L->node_out + L->nnode_out);
+  L->nnode_out++;
 }
 
 /* The node-list reach L s for skin s: a node looked up with phi >= L s cannot reach
@@ -427,59 +405,64 @@ static double bits_double(int64_t bits)
   return x;
 }
 
-static int list_holds(const lsdem_node_hist *h, int n, int nb, const double M[9],
-                      const double t[3], double ra, int stride)
+static int list_head_ok(const lsdem_node_hist *h, int n)
 {
-  if (n < nb + 2 || h[0].node != LIST_MASK - (nb - 1) || h[nb].node != LIST_POSE_M ||
-      h[nb + 1].node != LIST_POSE_T || h[nb + 1].stamp != stride)
-    return 0;
-  const double radius = bits_double(h[nb].stamp);
-  const double M0[9] = {h[nb].shear[0],  h[nb].shear[1],      h[nb].shear[2],
-                        h[nb].normal[0], h[nb].normal[1],     h[nb].normal[2],
-                        h[nb + 1].shear[0], h[nb + 1].shear[1], h[nb + 1].shear[2]};
+  return n >= LIST_HEAD && h[0].node == LIST_POSE_M && h[1].node == LIST_POSE_T;
+}
+
+/* Whether the list of h (its head checked) holds at pose M, t: no node of A (radius ra)
+ * can have moved by its validity radius since. */
+static int list_holds(const lsdem_node_hist *h, const double M[9], const double t[3],
+                      double ra, int stride)
+{
+  if (h[0].pad_ != stride) return 0;
+  const double radius = bits_double(h[1].stamp);
+  const double M0[9] = {h[0].shear[0],  h[0].shear[1],  h[0].shear[2],
+                        h[0].normal[0], h[0].normal[1], h[0].normal[2],
+                        h[1].shear[0],  h[1].shear[1],  h[1].shear[2]};
   double dm = 0.0, dt = 0.0;
   for (int i = 0; i < 9; i++) dm += (M[i] - M0[i]) * (M[i] - M0[i]);
-  for (int i = 0; i < 3; i++) dt += (t[i] - h[nb + 1].normal[i]) * (t[i] - h[nb + 1].normal[i]);
+  for (int i = 0; i < 3; i++) dt += (t[i] - h[1].normal[i]) * (t[i] - h[1].normal[i]);
   return (sqrt(0.5 * dm) + 1e-12) * ra + sqrt(dt) < radius * (1.0 - 1e-9);
 }
 
 /* Decides whether hist_in's list is used; when it is not and hist_out is given, starts a
- * new one there (pose M, t; empty masks). Either way hist_out's list entries are
- * reserved: the caller's history entries follow them. */
+ * new one there (pose M, t). Either way hist_out's head is reserved: the caller's shear
+ * entries follow it. */
 static void list_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
                        const lsdem_contact_params *prm, int64_t step,
                        const lsdem_node_hist *hist_in, int n_in, lsdem_node_hist *hist_out,
                        const double M[9], const double t[3])
 {
-  memset(L, 0, sizeof *L);
   L->skin = prm->node_skin > 0.0 ? prm->node_skin : 0.0;
+  L->use = L->cached = 0;
+  L->node_in = NULL;
+  L->nnode_in = L->node_cursor = L->nnode_out = 0;
+  L->head = L->pose_out = L->node_out = NULL;
   if (L->skin == 0.0) return;
   L->reach = list_reach(sdfB, L->skin);
   L->lip = isfinite(L->reach) ? L->reach / L->skin : 0.0;
   L->cap = sdfB->kind == LSDEM_SDF_GRID && L->lip > 0.0 ? sdfB->grid.lip_reach / L->lip
                                                          : HUGE_VAL;
   L->margin = HUGE_VAL;
-  L->nb = list_blocks(A->nnodes);
   L->cached = sdfB->kind == LSDEM_SDF_GRID && !sdfB->inverted;
   const int stride = prm->node_stride > 1 ? prm->node_stride : 1;
-  L->use = hist_in && list_holds(hist_in, n_in, L->nb, M, t, A->radius, stride);
-  if (L->cached && hist_in) { /* kept cells stay good when the list does not: the cell
-                                 entries are the last ones (ids below the node entries') */
-    int first = n_in;
-    while (first > 0 && hist_in[first - 1].node < LIST_MASK - L->nb) first--;
-    L->cell_in = hist_in + first;
-    L->ncell_in = n_in - first;
+  if (hist_in && list_head_ok(hist_in, n_in)) {
+    const int nn = hist_in[1].pad_;
+    if (nn > 0 && nn <= n_in - LIST_HEAD && is_node_entry(hist_in[n_in - nn].node, A->nnodes)) {
+      L->node_in = hist_in + n_in - nn;
+      L->nnode_in = nn;
+    }
+    L->use = list_holds(hist_in, M, t, A->radius, stride);
   }
   if (!hist_out) return;
-  if (L->cached) L->cell_top = hist_out + lsdem_contact_history_capacity(A) - 1;
-  const int ne = L->nb + 2;
+  L->head = hist_out;
+  L->node_out = hist_out + LIST_HEAD + A->nnodes;
   if (L->use) {
-    memcpy(hist_out, hist_in, sizeof *hist_out * (size_t)ne);
+    memcpy(hist_out, hist_in, sizeof *hist_out * LIST_HEAD);
     return;
   }
-  memset(hist_out, 0, sizeof *hist_out * (size_t)ne);
-  for (int b = 0; b < L->nb; b++) hist_out[L->nb - 1 - b].node = LIST_MASK - b;
-  lsdem_node_hist *pm = &hist_out[L->nb], *pt = &hist_out[L->nb + 1];
+  lsdem_node_hist *pm = &hist_out[0], *pt = &hist_out[1];
   pm->node = LIST_POSE_M;
   pt->node = LIST_POSE_T;
   for (int i = 0; i < 3; i++) {
@@ -488,15 +471,9 @@ static void list_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB
     pt->shear[i] = M[6 + i];
     pt->normal[i] = t[i];
   }
-  for (int b = 0; b < L->nb; b++) hist_out[b].stamp = step;
-  pt->stamp = stride; /* pm->stamp: the validity radius, when the list is finished */
-  L->out = hist_out;
-}
-
-static void list_flush(node_list *L)
-{
-  if (L->bits) *list_word(L->out, L->nb, L->word) = (double)L->bits;
-  L->bits = 0;
+  pm->stamp = step;
+  pm->pad_ = stride; /* pt->stamp: the validity radius, when the list is finished */
+  L->pose_out = hist_out;
 }
 
 /* A left-out node (or cluster) that must move by d to touch B: the list holds until d. */
@@ -505,62 +482,38 @@ static void list_margin(node_list *L, double d)
   L->margin = d < L->margin ? d : L->margin;
 }
 
-/* Writes the last mask word and the validity radius of a list being built. */
-static void list_finish(node_list *L)
+/* Finishes hist_out's list (its validity radius when built, its node entries moved to
+ * follow the n_out entries written so far); returns the new count. */
+static int list_finish(node_list *L, int n_out)
 {
-  if (!L->out) return;
-  list_flush(L);
-  const double radius = L->margin < L->cap ? L->margin : L->cap;
-  L->out[L->nb].stamp = double_bits(radius > L->skin ? radius : L->skin);
-}
-
-/* Index of the lowest set bit of a nonzero word. */
-static int ctz64(uint64_t x)
-{
-#if defined(__GNUC__)
-  return __builtin_ctzll(x);
-#else
-  int n = 0;
-  while (!(x & 1)) {
-    x >>= 1;
-    n++;
+  if (!L->head) return n_out;
+  if (L->pose_out) {
+    const double radius = L->margin < L->cap ? L->margin : L->cap;
+    L->pose_out[1].stamp = double_bits(radius > L->skin ? radius : L->skin);
   }
-  return n;
-#endif
-}
-
-/* Adds node k (nodes come in increasing order). */
-static void list_add(node_list *L, int k)
-{
-  const int w = k / LIST_WORD_BITS;
-  if (w != L->word) {
-    list_flush(L);
-    L->word = w;
-  }
-  L->bits |= (uint64_t)1 << (k % LIST_WORD_BITS);
+  L->head[1].pad_ = L->nnode_out;
+  memmove(L->head + n_out, L->node_out, sizeof *L->node_out * (size_t)L->nnode_out);
+  return n_out + L->nnode_out;
 }
 
 /* Looks the batch up, then the contacts of its penetrating nodes; empties the batch.
- * While a list is built (L->out), the nodes that may come to touch join it; the cells of
- * listed nodes are taken from and kept in the list when B is a grid. */
+ * While a list is built (L->pose_out), the nodes that may come to touch join it; the
+ * listed nodes (and their cells, when B is a grid) are kept in hist_out's list. */
 static void contact_batch(pair_ctx *restrict c, const lsdem_shape *A, const lsdem_shape *B,
                           const lsdem_pose *pb, const double M[9], const double t[3],
                           node_batch *b, double kstride, node_list *L)
 {
   b->cached = L->cached;
-  if (L->cached)
-    for (int i = 0; i < b->n; i++) kept_cell_of(L, b->node[i], &b->cell[i]);
-  lookup_batch(A, &B->sdf, M, t, b);
+  lookup_batch(&B->sdf, M, t, b);
   const int traction = c->prm.law == LSDEM_NORMAL_TRACTION && A->node_area;
   c->sum.ntested += b->n;
   for (int i = 0; i < b->n; i++) {
-    const int listed = L->use || (L->out && b->phi[i] < L->reach);
+    const int listed = L->use || (L->pose_out && b->phi[i] < L->reach);
     if (!listed) {
-      if (L->out) list_margin(L, b->phi[i] / L->lip); /* phi >= L s: L > 0 here */
+      if (L->pose_out) list_margin(L, b->phi[i] / L->lip); /* phi >= L s: L > 0 here */
       continue;
     }
-    if (L->out) list_add(L, b->node[i]);
-    if (L->cell_top) keep_cell(L, b->node[i], &b->cell[i]);
+    if (L->node_out) keep_node(L, b->node[i], &b->x[3 * i], &b->cell[i]);
   }
   for (int i = 0; i < b->n; i++) {
     if (!(b->phi[i] < 0.0)) continue;
@@ -572,6 +525,19 @@ static void contact_batch(pair_ctx *restrict c, const lsdem_shape *A, const lsde
     apply_contact(c, k, p, n, -b->phi[i], kscale, kstride);
   }
   b->n = 0;
+}
+
+/* contact_batch for screened nodes: their coordinates from A, their cells from the
+ * list's node entries where kept. */
+static void screened_batch(pair_ctx *restrict c, const lsdem_shape *A, const lsdem_shape *B,
+                           const lsdem_pose *pb, const double M[9], const double t[3],
+                           node_batch *b, double kstride, node_list *L)
+{
+  for (int i = 0; i < b->n; i++) {
+    memcpy(&b->x[3 * i], &A->nodes[3 * b->node[i]], 3 * sizeof(double));
+    if (L->cached) kept_cell_of(L, b->node[i], &b->cell[i]);
+  }
+  contact_batch(c, A, B, pb, M, t, b, kstride, L);
 }
 
 /* For a distance B: no point of the ball of radius r about centre (A's frame, mapped to
@@ -609,13 +575,13 @@ static int cluster_range(const lsdem_shape *A, int cl, const lsdem_shape *B, dou
   const double d[3] = {sph[0] - cb[0], sph[1] - cb[1], sph[2] - cb[2]};
   const double reach = B->radius + widen + sph[3];
   if (dot3(d, d) > reach * reach) {
-    if (L->out) list_margin(L, sqrt(dot3(d, d)) - B->radius - sph[3]);
+    if (L->pose_out) list_margin(L, sqrt(dot3(d, d)) - B->radius - sph[3]);
     return 0;
   }
   if (distance) {
     const double gap = ball_clearance(&B->sdf, M, t, sph, sph[3]);
     if (gap > clear) {
-      if (L->out) list_margin(L, gap);
+      if (L->pose_out) list_margin(L, gap);
       return 0;
     }
   }
@@ -634,8 +600,8 @@ static void contacts_of_screened_nodes(pair_ctx *restrict c, const lsdem_shape *
                                        const double t[3], int distance, node_list *L,
                                        node_batch *batch, int stride)
 {
-  const double widen = L->out ? L->skin : 0.0, rb = B->radius + widen, rb2 = rb * rb;
-  const double clear = L->out && isfinite(L->reach) ? L->reach : 0.0;
+  const double widen = L->pose_out ? L->skin : 0.0, rb = B->radius + widen, rb2 = rb * rb;
+  const double clear = L->pose_out && isfinite(L->reach) ? L->reach : 0.0;
   const int nclusters = A->nclusters > 0 && A->cluster_start && A->cluster_sphere
                             ? A->nclusters : 1;
   double nearest = HUGE_VAL; /* squared distance from cb of the nearest node left out */
@@ -648,28 +614,27 @@ static void contacts_of_screened_nodes(pair_ctx *restrict c, const lsdem_shape *
       const int count = left < room ? left : room;
       screen_nodes(A->nodes, k, count, stride, cb, rb2, batch, &nearest);
       k += count * stride;
-      if (batch->n == NODE_BATCH) contact_batch(c, A, B, pb, M, t, batch, (double)stride, L);
+      if (batch->n == NODE_BATCH) screened_batch(c, A, B, pb, M, t, batch, (double)stride, L);
     }
   }
-  contact_batch(c, A, B, pb, M, t, batch, (double)stride, L);
-  if (L->out && nearest < HUGE_VAL) list_margin(L, sqrt(nearest) - B->radius);
+  screened_batch(c, A, B, pb, M, t, batch, (double)stride, L);
+  if (L->pose_out && nearest < HUGE_VAL) list_margin(L, sqrt(nearest) - B->radius);
 }
 
-/* Only the nodes of the pair's list, in increasing order, looked up in batches. */
+/* Only the nodes of the pair's list, in increasing order, looked up in batches: their
+ * coordinates and cells from the list's node entries. */
 static void contacts_of_listed_nodes(pair_ctx *restrict c, const lsdem_shape *A,
                                      const lsdem_shape *B, const lsdem_pose *pb,
-                                     const double M[9], const double t[3],
-                                     const lsdem_node_hist *hist_in, node_list *L,
+                                     const double M[9], const double t[3], node_list *L,
                                      node_batch *batch, int stride)
 {
-  const int nwords = (A->nnodes + LIST_WORD_BITS - 1) / LIST_WORD_BITS;
-  for (int w = 0; w < nwords; w++) {
-    uint64_t bits = list_word_bits(hist_in, L->nb, w);
-    while (bits) {
-      batch->node[batch->n++] = w * LIST_WORD_BITS + ctz64(bits);
-      bits &= bits - 1;
-      if (batch->n == NODE_BATCH) contact_batch(c, A, B, pb, M, t, batch, (double)stride, L);
-    }
+  for (int e = 0; e < L->nnode_in; e++) {
+    const lsdem_node_hist *h = &L->node_in[e];
+    const int i = batch->n++;
+    batch->node[i] = h->node - LIST_NODE;
+    memcpy(&batch->x[3 * i], h->normal, 3 * sizeof(double));
+    if (L->cached) entry_to_cell(h, &batch->cell[i]);
+    if (batch->n == NODE_BATCH) contact_batch(c, A, B, pb, M, t, batch, (double)stride, L);
   }
   contact_batch(c, A, B, pb, M, t, batch, (double)stride, L);
 }
@@ -704,17 +669,17 @@ int lsdem_contact_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_
   pair_begin(&c, pa, pb, prm, step, hist_in, n_in, hist_out);
   node_list list;
   list_begin(&list, A, &B->sdf, prm, step, hist_in, n_in, hist_out, M, t);
-  if (hist_out && list.skin > 0.0) c.n_out = list.nb + 2;
+  if (list.head) c.n_out = LIST_HEAD;
+  if (list.node_in) c.n_in = (int)(list.node_in - hist_in); /* shear entries end there */
 
   node_batch batch;
   batch.n = 0;
   const int stride = prm->node_stride > 1 ? prm->node_stride : 1;
   if (list.use)
-    contacts_of_listed_nodes(&c, A, B, pb, M, t, hist_in, &list, &batch, stride);
+    contacts_of_listed_nodes(&c, A, B, pb, M, t, &list, &batch, stride);
   else
     contacts_of_screened_nodes(&c, A, B, pb, cb, M, t, distance, &list, &batch, stride);
-  list_finish(&list);
-  if (list.cell_top) c.n_out = place_cells(&list, hist_out, c.n_out);
+  c.n_out = list_finish(&list, c.n_out);
   return pair_end(&c, n_out, res);
 }
 
@@ -790,8 +755,8 @@ static int is_sphere(const lsdem_shape *s) { return s->sdf.kind == LSDEM_SDF_SPH
 
 int lsdem_contact_history_capacity(const lsdem_shape *A)
 {
-  /* node entries, the list's masks and pose, a cell per listed node */
-  return is_sphere(A) ? 1 : 2 * A->nnodes + list_blocks(A->nnodes) + 2;
+  /* shear entries, the list's head and an entry per listed node */
+  return is_sphere(A) ? 1 : 2 * A->nnodes + LIST_HEAD;
 }
 
 double lsdem_sphere_contact_area(double radius) { return M_PI * radius * radius; }
