@@ -34,9 +34,9 @@ static void unpack_node(int64_t v, lsdem_node_hist &h)
 /* ---------------------------------------------------------------------- */
 
 FixLsdemHistory::FixLsdemHistory(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), nmax_atom(0), nhist(nullptr), maxhist(nullptr), partner(nullptr),
-  hist(nullptr), maxcount(0), scratch(nullptr), nscratch(0), maxscratch(0), slices(nullptr),
-  nslices(0), maxslices(0)
+  Fix(lmp, narg, arg), nmax_atom(0), nhist(nullptr), maxhist(nullptr), hist(nullptr),
+  nslice(nullptr), maxslice(nullptr), slice(nullptr), maxcount(0), scratch(nullptr),
+  nscratch(0), maxscratch(0), slices(nullptr), nslices(0), maxslices(0)
 {
   if (narg != 3) error->all(FLERR, "Illegal fix LSDEM_HISTORY command (internal fix)");
 
@@ -57,13 +57,15 @@ FixLsdemHistory::~FixLsdemHistory()
   atom->delete_callback(id, Atom::GROW);
   atom->delete_callback(id, Atom::RESTART);
   for (int i = 0; i < nmax_atom; i++) {
-    memory->sfree(partner[i]);
+    memory->sfree(slice[i]);
     memory->sfree(hist[i]);
   }
-  memory->sfree(partner);
+  memory->sfree(slice);
   memory->sfree(hist);
   memory->destroy(nhist);
   memory->destroy(maxhist);
+  memory->destroy(nslice);
+  memory->destroy(maxslice);
   memory->sfree(scratch);
   memory->sfree(slices);
 }
@@ -81,11 +83,14 @@ int FixLsdemHistory::setmask()
 
 const lsdem_node_hist *FixLsdemHistory::find(int i, tagint ptag, int &n) const
 {
-  const tagint *p = partner[i];
-  const tagint *first = std::lower_bound(p, p + nhist[i], ptag);
-  const tagint *last = std::upper_bound(first, p + nhist[i], ptag);
-  n = static_cast<int>(last - first);
-  return n ? hist[i] + (first - p) : nullptr;
+  const Slice *s = slice[i];
+  for (int k = 0; k < nslice[i]; k++)  // a few partners: a scan beats a binary search
+    if (s[k].partner == ptag) {
+      n = s[k].n;
+      return hist[i] + s[k].start;
+    }
+  n = 0;
+  return nullptr;
 }
 
 /* ----------------------------------------------------------------------
@@ -97,7 +102,7 @@ void FixLsdemHistory::prefetch(int i) const
 {
   static constexpr int LINES = 64;  // up to 4 KB: a grain's usual list
   const int n = std::min(nhist[i], LINES * 64 / (int) sizeof(lsdem_node_hist));
-  __builtin_prefetch(partner[i]);
+  __builtin_prefetch(slice[i]);
   for (int k = 0; k < n; k++) __builtin_prefetch(&hist[i][k]);
 }
 
@@ -156,27 +161,32 @@ void FixLsdemHistory::end_atom(int i)
     }
     slices[b + 1] = s;
   }
-  ensure_capacity(i, nscratch);
+  ensure_capacity(i, nscratch, nslices);
   int m = 0;
   for (int s = 0; s < nslices; s++) {
     memcpy(hist[i] + m, scratch + slices[s].start, sizeof(lsdem_node_hist) * slices[s].n);
-    for (int k = 0; k < slices[s].n; k++) partner[i][m + k] = slices[s].partner;
+    slice[i][s] = {slices[s].partner, m, slices[s].n};
     m += slices[s].n;
   }
   nhist[i] = m;
+  nslice[i] = nslices;
   note_count(m);
 }
 
 /* ---------------------------------------------------------------------- */
 
-void FixLsdemHistory::ensure_capacity(int i, int n)
+void FixLsdemHistory::ensure_capacity(int i, int n, int ns)
 {
-  if (n <= maxhist[i]) return;
-  int cap = std::max(n, 2 * maxhist[i]);
-  partner[i] = (tagint *) memory->srealloc(partner[i], sizeof(tagint) * cap, "lsdem/history:partner");
-  hist[i] = (lsdem_node_hist *) memory->srealloc(hist[i], sizeof(lsdem_node_hist) * cap,
-                                                 "lsdem/history:hist");
-  maxhist[i] = cap;
+  if (n > maxhist[i]) {
+    maxhist[i] = std::max(n, 2 * maxhist[i]);
+    hist[i] = (lsdem_node_hist *) memory->srealloc(hist[i], sizeof(lsdem_node_hist) * maxhist[i],
+                                                   "lsdem/history:hist");
+  }
+  if (ns > maxslice[i]) {
+    maxslice[i] = std::max(ns, 2 * maxslice[i]);
+    slice[i] = (Slice *) memory->srealloc(slice[i], sizeof(Slice) * maxslice[i],
+                                          "lsdem/history:slice");
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -197,13 +207,15 @@ void FixLsdemHistory::grow_arrays(int nmax)
   if (nmax <= nmax_atom) return;
   memory->grow(nhist, nmax, "lsdem/history:nhist");
   memory->grow(maxhist, nmax, "lsdem/history:maxhist");
-  partner = (tagint **) memory->srealloc(partner, sizeof(tagint *) * nmax, "lsdem/history:partner");
+  memory->grow(nslice, nmax, "lsdem/history:nslice");
+  memory->grow(maxslice, nmax, "lsdem/history:maxslice");
   hist = (lsdem_node_hist **) memory->srealloc(hist, sizeof(lsdem_node_hist *) * nmax,
                                                "lsdem/history:hist");
+  slice = (Slice **) memory->srealloc(slice, sizeof(Slice *) * nmax, "lsdem/history:slice");
   for (int i = nmax_atom; i < nmax; i++) {
-    nhist[i] = maxhist[i] = 0;
-    partner[i] = nullptr;
+    nhist[i] = maxhist[i] = nslice[i] = maxslice[i] = 0;
     hist[i] = nullptr;
+    slice[i] = nullptr;
   }
   nmax_atom = nmax;
 }
@@ -219,15 +231,17 @@ void FixLsdemHistory::copy_arrays(int i, int j, int /*delflag*/)
   if (i == j) return;
   std::swap(nhist[i], nhist[j]);
   std::swap(maxhist[i], maxhist[j]);
-  std::swap(partner[i], partner[j]);
   std::swap(hist[i], hist[j]);
+  std::swap(nslice[i], nslice[j]);
+  std::swap(maxslice[i], maxslice[j]);
+  std::swap(slice[i], slice[j]);
 }
 
 /* ---------------------------------------------------------------------- */
 
 void FixLsdemHistory::set_arrays(int i)
 {
-  nhist[i] = 0;
+  nhist[i] = nslice[i] = 0;
 }
 
 /* ----------------------------------------------------------------------
@@ -238,27 +252,40 @@ int FixLsdemHistory::pack_entries(int i, double *buf) const
 {
   int m = 0;
   buf[m++] = ubuf(nhist[i]).d;
-  for (int k = 0; k < nhist[i]; k++) {
-    const lsdem_node_hist &h = hist[i][k];
-    buf[m++] = ubuf(partner[i][k]).d;
-    buf[m++] = ubuf(pack_node(h)).d;
-    buf[m++] = ubuf((int64_t) h.stamp).d;
-    for (int d = 0; d < 3; d++) buf[m++] = h.shear[d];
-    for (int d = 0; d < 3; d++) buf[m++] = h.normal[d];
+  for (int s = 0; s < nslice[i]; s++) {
+    const Slice &sl = slice[i][s];
+    for (int k = sl.start; k < sl.start + sl.n; k++) {
+      const lsdem_node_hist &h = hist[i][k];
+      buf[m++] = ubuf(sl.partner).d;
+      buf[m++] = ubuf(pack_node(h)).d;
+      buf[m++] = ubuf((int64_t) h.stamp).d;
+      for (int d = 0; d < 3; d++) buf[m++] = h.shear[d];
+      for (int d = 0; d < 3; d++) buf[m++] = h.normal[d];
+    }
   }
   return m;
 }
 
-/* ---------------------------------------------------------------------- */
+/* ----------------------------------------------------------------------
+   entries come sorted by partner: each run of one partner is a slice
+------------------------------------------------------------------------- */
 
 int FixLsdemHistory::unpack_entries(int i, const double *buf)
 {
-  int m = 0;
-  int n = (int) ubuf(buf[m++]).i;
-  ensure_capacity(i, n);
+  const int n = (int) ubuf(buf[0]).i;
+  int ns = 0;
+  for (int k = 0; k < n; k++)
+    if (k == 0 || ubuf(buf[1 + k * ENTRY_DOUBLES]).i != ubuf(buf[1 + (k - 1) * ENTRY_DOUBLES]).i)
+      ns++;
+  ensure_capacity(i, n, ns);
+  int m = 1;
+  nslice[i] = 0;
   for (int k = 0; k < n; k++) {
     lsdem_node_hist &h = hist[i][k];
-    partner[i][k] = (tagint) ubuf(buf[m++]).i;
+    const tagint ptag = (tagint) ubuf(buf[m++]).i;
+    if (nslice[i] == 0 || slice[i][nslice[i] - 1].partner != ptag)
+      slice[i][nslice[i]++] = {ptag, k, 0};
+    slice[i][nslice[i] - 1].n++;
     unpack_node(ubuf(buf[m++]).i, h);
     h.stamp = (int64_t) ubuf(buf[m++]).i;
     for (int d = 0; d < 3; d++) h.shear[d] = buf[m++];
@@ -325,9 +352,9 @@ int FixLsdemHistory::maxsize_restart()
 
 double FixLsdemHistory::memory_usage()
 {
-  double bytes = (double) nmax_atom * (2 * sizeof(int) + sizeof(tagint *) + sizeof(void *));
+  double bytes = (double) nmax_atom * (4 * sizeof(int) + 2 * sizeof(void *));
   for (int i = 0; i < nmax_atom; i++)
-    bytes += (double) maxhist[i] * (sizeof(tagint) + sizeof(lsdem_node_hist));
+    bytes += (double) maxhist[i] * sizeof(lsdem_node_hist) + (double) maxslice[i] * sizeof(Slice);
   bytes += (double) maxscratch * sizeof(lsdem_node_hist) + (double) maxslices * sizeof(Slice);
   return bytes;
 }

@@ -4,8 +4,9 @@
    An internal fix (created by pair_style lsdem and by each fix wall/lsdem, never by
    the user). Each owned grain keeps a variable-length list of the history entries of
    ITS OWN nodes that touched a partner on the last step: {partner tag, lsdem_node_hist}
-   sorted by (partner, node). The list travels with the grain (exchange) and is saved
-   in restart files. Only nodes in contact are stored.
+   sorted by (partner, node), with a header per partner (tag, first entry, count). The
+   list travels with the grain (exchange) and is saved in restart files (a partner tag
+   per entry there).
 
    Use per step, for each owned grain i:
      begin_atom();
@@ -63,8 +64,9 @@ class FixLsdemHistory : public Fix {
 
   int nmax_atom;              // length of the per-atom pointer arrays
   int *nhist, *maxhist;       // entries and capacity of each atom's list
-  tagint **partner;           // per atom: partner tag of each entry
   lsdem_node_hist **hist;     // per atom: the entries, sorted by (partner, node)
+  int *nslice, *maxslice;     // per atom: partners in the list, and capacity
+  Slice **slice;              // per atom: each partner's run of entries, by partner
   int maxcount;               // largest list seen (sizes exchange/restart buffers)
 
   // scratch for the atom being processed (reused, grows only)
@@ -73,7 +75,7 @@ class FixLsdemHistory : public Fix {
   Slice *slices;
   int nslices, maxslices;
 
-  void ensure_capacity(int i, int n);
+  void ensure_capacity(int i, int n, int nslices);
   void note_count(int n);
   int pack_entries(int i, double *buf) const;
   int unpack_entries(int i, const double *buf);
