@@ -53,10 +53,31 @@ def main():
         for label in labels:
             if label in per:
                 print("  %-30s %8.2f" % (label, per[label]))
+    stretches = by_stretch(rows, atoms)
+    if stretches:
+        print("wall time per grain-step by stretch (thermo 'cpu' column):")
+        for label, us in stretches:
+            print("  %-30s %8.3f us" % (label, us))
     print("wall time per grain-step: %.3f us (loop %.2f s; core-us per grain-step %.3f)"
           % (loop / (atoms * steps) * 1e6, loop, loop * procs / (atoms * steps) * 1e6))
     lookups = per.get("node lookups", float("nan")) * atoms * steps
     print("us_per_grain_step=%.3f node_tests_per_s=%.4g" % (loop / (atoms * steps) * 1e6, lookups / loop))
+
+
+def by_stretch(rows, atoms, settle=300):
+    """Wall time per grain-step before and after step `settle` (the reference pack rattles
+    at first: its lists are rebuilt at most steps), from the thermo rows' elapsed time."""
+    rows = [r for r in rows if "CPU" in r and "Step" in r]
+    if len(rows) < 3:
+        return []
+    first, last = rows[0], rows[-1]
+    mid = next((r for r in rows if r["Step"] >= first["Step"] + settle), None)
+    if mid is None or mid is last:
+        return []
+    def us(a, b):
+        return (b["CPU"] - a["CPU"]) / (atoms * (b["Step"] - a["Step"])) * 1e6
+    return [("steps %d-%d" % (first["Step"], mid["Step"]), us(first, mid)),
+            ("steps %d-%d" % (mid["Step"], last["Step"]), us(mid, last))]
 
 
 def tail_before(text):
