@@ -51,16 +51,20 @@ static void mat_transpose_mul(const double A[9], const double B[9], double C[9])
 
 /* ------------------------------------------------------------ pair context ---- */
 
-/* The part of a pose the contact forces need: centroid and velocities (world). */
+/* The pair's motion as the contact forces need it (world frame), with ra = p - xA the arm
+ * of a contact point p from A's centroid: the velocity of A's material point at p relative
+ * to B's is v0 + dw x ra (report eq 2.6: vA + wA x ra - vB - wB x (ra + dab) with
+ * dab = xA - xB, so v0 = vA - vB - wB x dab and dw = wA - wB), and the reaction's torque
+ * about B's centroid, (ra + dab) x (-f), sums to -(sum of ra x f) - dab x (sum of f). */
 typedef struct {
-  double x[3], v[3], omega[3];
-} motion;
+  double xa[3], dab[3], v0[3], dw[3];
+} pair_motion;
 
 /* What one pair evaluation shares between its contacts. Motions, parameters and the
  * running sums are held by value, so the contact code reads and accumulates in memory
  * that nothing else aliases (passed as restrict); pair_end() publishes the result. */
 typedef struct {
-  motion a, b;
+  pair_motion m;
   lsdem_contact_params prm;
   int64_t step;
   const lsdem_node_hist *hist_in; /* sorted by node; walked forward once (merge) */
@@ -79,12 +83,15 @@ static void pair_begin(pair_ctx *c, const lsdem_pose *pa, const lsdem_pose *pb,
                        const lsdem_node_hist *hist_in, int n_in, lsdem_node_hist *hist_out)
 {
   c->sum = no_result;
-  memcpy(c->a.x, pa->x, sizeof c->a.x);
-  memcpy(c->a.v, pa->v, sizeof c->a.v);
-  memcpy(c->a.omega, pa->omega, sizeof c->a.omega);
-  memcpy(c->b.x, pb->x, sizeof c->b.x);
-  memcpy(c->b.v, pb->v, sizeof c->b.v);
-  memcpy(c->b.omega, pb->omega, sizeof c->b.omega);
+  pair_motion *m = &c->m;
+  double wb_dab[3];
+  for (int i = 0; i < 3; i++) {
+    m->xa[i] = pa->x[i];
+    m->dab[i] = pa->x[i] - pb->x[i];
+    m->dw[i] = pa->omega[i] - pb->omega[i];
+  }
+  cross3(pb->omega, m->dab, wb_dab);
+  for (int i = 0; i < 3; i++) m->v0[i] = pa->v[i] - pb->v[i] - wb_dab[i];
   c->prm = *prm;
   c->step = step;
   c->hist_in = hist_in;
@@ -98,6 +105,9 @@ static void pair_begin(pair_ctx *c, const lsdem_pose *pa, const lsdem_pose *pb,
 static int pair_end(const pair_ctx *c, int *n_out, lsdem_contact_result *res)
 {
   *res = c->sum;
+  double dab_f[3]; /* the reaction's torque about B's centroid (see pair_motion) */
+  cross3(c->m.dab, res->force, dab_f);
+  for (int i = 0; i < 3; i++) res->torque_b[i] = -res->torque_a[i] - dab_f[i];
   if (c->weight > 0.0)
     for (int i = 0; i < 3; i++) res->point[i] /= c->weight;
   if (n_out) *n_out = c->n_out;
@@ -120,20 +130,6 @@ static const lsdem_node_hist *find_history(pair_ctx *restrict c, int node)
   if (c->cursor < c->n_in && c->hist_in[c->cursor].node == node)
     return &c->hist_in[c->cursor];
   return NULL;
-}
-
-/* Velocity of the material point p of A relative to that of B (report eq 2.6). */
-static void relative_velocity(const motion *pa, const motion *pb, const double p[3],
-                              double vrel[3])
-{
-  double ra[3], rb[3], wa[3], wb[3];
-  for (int i = 0; i < 3; i++) {
-    ra[i] = p[i] - pa->x[i];
-    rb[i] = p[i] - pb->x[i];
-  }
-  cross3(pa->omega, ra, wa);
-  cross3(pb->omega, rb, wb);
-  for (int i = 0; i < 3; i++) vrel[i] = pa->v[i] + wa[i] - pb->v[i] - wb[i];
 }
 
 /* Tangential force of one contact (report eqs 2.7, 2.8, 2.10) and its history entry.
@@ -184,9 +180,11 @@ static void apply_contact(pair_ctx *restrict c, int node, const double p[3],
 {
   const lsdem_contact_params *prm = &c->prm;
   double fn = prm->kn * kscale * d; /* eq 2.2: repulsive, along +n on A */
-  double f[3], vrel[3], vn = 0.0;
-  if (prm->cn > 0.0 || prm->mu > 0.0) {
-    relative_velocity(&c->a, &c->b, p, vrel);
+  double f[3], ra[3], vrel[3], vn = 0.0;
+  for (int i = 0; i < 3; i++) ra[i] = p[i] - c->m.xa[i];
+  if (prm->cn > 0.0 || prm->mu > 0.0) { /* eq 2.6 (see pair_motion) */
+    cross3(c->m.dw, ra, vrel);
+    for (int i = 0; i < 3; i++) vrel[i] += c->m.v0[i];
     vn = dot3(vrel, n);
   }
   if (prm->cn > 0.0) {
@@ -201,19 +199,13 @@ static void apply_contact(pair_ctx *restrict c, int node, const double p[3],
     for (int i = 0; i < 3; i++) f[i] += ft[i];
   }
 
-  /* eqs 2.14-2.16: force on A; torques on A and (of the reaction -f) on B */
-  double ra[3], rb[3], ta[3], tb[3];
-  for (int i = 0; i < 3; i++) {
-    ra[i] = p[i] - c->a.x[i];
-    rb[i] = p[i] - c->b.x[i];
-  }
+  /* eqs 2.14-2.16: force and torque on A; B's reaction torque follows in pair_end */
+  double ta[3];
   cross3(ra, f, ta);
-  cross3(f, rb, tb); /* (p - xB) x (-f) */
   lsdem_contact_result *sum = &c->sum;
   for (int i = 0; i < 3; i++) {
     sum->force[i] += f[i];
     sum->torque_a[i] += ta[i];
-    sum->torque_b[i] += tb[i];
     sum->point[i] += fn * p[i];
   }
   c->weight += fn;
