@@ -317,15 +317,11 @@ typedef struct {
   int nnode_out;
 } node_list;
 
-/* The 32 bytes of an entry, stamp and shear, that hold a kept cell's 8 floats. */
-_Static_assert(offsetof(lsdem_node_hist, shear) == offsetof(lsdem_node_hist, stamp) + 8 &&
+/* Where in a node entry a kept cell's 8 floats sit: the 32 bytes of stamp and shear. */
+#define CELL_AT offsetof(lsdem_node_hist, stamp)
+_Static_assert(offsetof(lsdem_node_hist, shear) == CELL_AT + 8 &&
                    sizeof(((lsdem_grid_cell *)0)->v) == 32,
                "a node entry holds a cell's samples in stamp and shear");
-static void *cell_bytes(lsdem_node_hist *e) { return (char *)e + offsetof(lsdem_node_hist, stamp); }
-static const void *cell_bytes_in(const lsdem_node_hist *e)
-{
-  return (const char *)e + offsetof(lsdem_node_hist, stamp);
-}
 
 static int is_node_entry(int32_t id, int nnodes)
 {
@@ -340,16 +336,16 @@ static void node_to_entry(int k, const double x[3], const lsdem_grid_cell *c,
   e->node = LIST_NODE + k;
   e->pad_ = kept ? (int32_t)c->index : -1;
   if (kept)
-    memcpy(cell_bytes(e), c->v, sizeof c->v);
+    memcpy((char *)e + CELL_AT, c->v, sizeof c->v);
   else
-    memset(cell_bytes(e), 0, sizeof c->v);
+    memset((char *)e + CELL_AT, 0, sizeof c->v);
   memcpy(e->normal, x, sizeof e->normal);
 }
 
 static void entry_to_cell(const lsdem_node_hist *e, lsdem_grid_cell *c)
 {
   c->index = e->pad_;
-  if (e->pad_ >= 0) memcpy(c->v, cell_bytes_in(e), sizeof c->v);
+  if (e->pad_ >= 0) memcpy(c->v, (const char *)e + CELL_AT, sizeof c->v);
 }
 
 /* The kept cell of node k (nodes asked in increasing order), or none. */
