@@ -197,24 +197,34 @@ void lsdem_grid_gradient_raw(const lsdem_grid *g, const double p[3], double grad
   for (int a = 0; a < 3; a++) grad[a] = du[a] * inv_h;
 }
 
-/* Largest |edge difference| of cell (i,j,k) along each axis, and its smallest and
- * largest corner. */
-static void cell_edges(const lsdem_grid *g, size_t i, size_t j, size_t k, float big[3],
-                       float *lo, float *hi)
+static inline float absdiff(float a, float b) { return a > b ? a - b : b - a; }
+
+static inline float max2f(float a, float b) { return a > b ? a : b; }
+
+/* The largest b_x^2 + b_y^2 + b_z^2 over the cells of one row of cells (j,k fixed, x
+ * varying) that have a corner with phi >= 0, b_a being the cell's largest |edge
+ * difference| along axis a; r00, r10, r01, r11 are the sample rows (j,k), (j+1,k),
+ * (j,k+1), (j+1,k+1). */
+static double row_worst_edges(const float *r00, const float *r10, const float *r01,
+                              const float *r11, int ncells)
 {
-  float v[8];
-  load_cell(g, i + (size_t)g->n[0] * (j + (size_t)g->n[1] * k), v);
-  big[0] = big[1] = big[2] = 0.0f;
-  *lo = *hi = v[0];
-  for (int m = 0; m < 8; m++) {
-    *lo = v[m] < *lo ? v[m] : *lo;
-    *hi = v[m] > *hi ? v[m] : *hi;
-    for (int a = 0; a < 3; a++) { /* corner m's neighbour along axis a: bit a of m set */
-      if (!(m & (1 << a))) continue;
-      const float d = v[m] > v[m ^ (1 << a)] ? v[m] - v[m ^ (1 << a)] : v[m ^ (1 << a)] - v[m];
-      big[a] = d > big[a] ? d : big[a];
-    }
+  double worst = 0.0;
+  for (int i = 0; i < ncells; i++) {
+    const float v000 = r00[i], v100 = r00[i + 1], v010 = r10[i], v110 = r10[i + 1];
+    const float v001 = r01[i], v101 = r01[i + 1], v011 = r11[i], v111 = r11[i + 1];
+    const float hi = max2f(max2f(max2f(v000, v100), max2f(v010, v110)),
+                           max2f(max2f(v001, v101), max2f(v011, v111)));
+    if (hi < 0.0f) continue; /* phi < 0 throughout */
+    const double bx = max2f(max2f(absdiff(v100, v000), absdiff(v110, v010)),
+                            max2f(absdiff(v101, v001), absdiff(v111, v011)));
+    const double by = max2f(max2f(absdiff(v010, v000), absdiff(v110, v100)),
+                            max2f(absdiff(v011, v001), absdiff(v111, v101)));
+    const double bz = max2f(max2f(absdiff(v001, v000), absdiff(v101, v100)),
+                            max2f(absdiff(v011, v010), absdiff(v111, v110)));
+    const double b2 = bx * bx + by * by + bz * bz;
+    worst = b2 > worst ? b2 : worst;
   }
+  return worst;
 }
 
 /* Smallest sample on the grid box's six faces. */
@@ -233,17 +243,13 @@ static double boundary_min(const lsdem_grid *g)
 
 double lsdem_grid_outer_lipschitz(const lsdem_grid *g, double *reach_limit)
 {
+  const size_t sy = (size_t)g->n[0], sz = sy * (size_t)g->n[1];
   double worst = 0.0;
   for (size_t k = 0; k + 1 < (size_t)g->n[2]; k++)
-    for (size_t j = 0; j + 1 < (size_t)g->n[1]; j++)
-      for (size_t i = 0; i + 1 < (size_t)g->n[0]; i++) {
-        float big[3], lo, hi;
-        cell_edges(g, i, j, k, big, &lo, &hi);
-        if (hi < 0.0f) continue; /* phi < 0 throughout */
-        const double b2 = (double)big[0] * big[0] + (double)big[1] * big[1] +
-                          (double)big[2] * big[2];
-        worst = fmax(worst, b2);
-      }
+    for (size_t j = 0; j + 1 < (size_t)g->n[1]; j++) {
+      const float *r00 = g->phi + j * sy + k * sz;
+      worst = fmax(worst, row_worst_edges(r00, r00 + sy, r00 + sz, r00 + sz + sy, g->n[0] - 1));
+    }
   const double edge = boundary_min(g);
   *reach_limit = edge > 0.0 ? edge : 0.0;
   return sqrt(worst) / g->h;
