@@ -42,7 +42,8 @@ PairLsdem::PairLsdem(LAMMPS *lmp) :
   params(nullptr),
   onerad(nullptr), maxrad(nullptr), kn_max(0.0), avec(nullptr), fix_history(nullptr),
   nmax_atom(0), pose(nullptr), shape(nullptr), ncount(nullptr), sphere(nullptr),
-  contact(nullptr), ncontact(0), maxcontact(0), contact_step(-1), ntested_pairs(0), ntested_nodes(0), npen_nodes(0)
+  master_built(0), nmax_master(0), maxmaster(0), master_first(nullptr), master_num(nullptr),
+  master_j(nullptr), master_scale_of(nullptr), contact(nullptr), ncontact(0), maxcontact(0), contact_step(-1), ntested_pairs(0), ntested_nodes(0), npen_nodes(0)
 {
   single_enable = 0;
   finitecutflag = 1;
@@ -75,6 +76,10 @@ PairLsdem::~PairLsdem()
   memory->destroy(ncount);
   memory->destroy(sphere);
   memory->sfree(contact);
+  memory->destroy(master_first);
+  memory->destroy(master_num);
+  memory->destroy(master_j);
+  memory->destroy(master_scale_of);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -269,28 +274,25 @@ void PairLsdem::compute(int eflag, int vflag)
   ntested_pairs = ntested_nodes = npen_nodes = 0;
   contact_step = update->ntimestep;
 
+  if (neighbor->ago == 0 || !master_built) build_master_pairs();  // the list was just built
   const int inum = list->inum;
   const int *ilist = list->ilist;
-  const int *numneigh = list->numneigh;
-  int **firstneigh = list->firstneigh;
-
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
-    const int *jlist = firstneigh[i];
     if (fix_history) {
       if (ii + 1 < inum) fix_history->prefetch(ilist[ii + 1]);
       fix_history->begin_atom();
     }
-    for (int jj = 0; jj < numneigh[i]; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      const double scale = master_scale(i, j);
-      if (scale == 0.0) continue;
+    const int *js = master_j + master_first[i];
+    const double *scales = master_scale_of + master_first[i];
+    for (int k = 0; k < master_num[i]; k++) {
+      const int j = js[k];
       // bounding-sphere rejection (report eq 2.1)
       double d[3] = {pose[i].x[0] - pose[j].x[0], pose[i].x[1] - pose[j].x[1],
                      pose[i].x[2] - pose[j].x[2]};
       double rsum = atom->radius[i] + atom->radius[j];
       if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= rsum * rsum) continue;
-      test_pair(i, j, scale, contact_step);
+      test_pair(i, j, scales[k], contact_step);
     }
     if (fix_history) fix_history->end_atom(i);
   }
@@ -330,6 +332,49 @@ void PairLsdem::update_poses()
     shape[i] = avec->shape_of(i);
     sphere[i] = shape[i]->sdf.kind == LSDEM_SDF_SPHERE;
   }
+}
+
+/* ----------------------------------------------------------------------
+   the neighbor list's pairs in which i is master (master_scale > 0), per local atom i,
+   kept until the list is rebuilt (tags, shapes and atom indices stay put till then)
+------------------------------------------------------------------------- */
+
+void PairLsdem::build_master_pairs()
+{
+  const int inum = list->inum;
+  const int *ilist = list->ilist, *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  if (atom->nlocal > nmax_master) {
+    nmax_master = atom->nmax;
+    memory->destroy(master_first);
+    memory->destroy(master_num);
+    memory->create(master_first, nmax_master, "pair:master_first");
+    memory->create(master_num, nmax_master, "pair:master_num");
+  }
+  for (int i = 0; i < atom->nlocal; i++) master_first[i] = master_num[i] = 0;
+  int n = 0;
+  for (int ii = 0; ii < inum; ii++) n += numneigh[ilist[ii]];
+  if (n > maxmaster) {
+    maxmaster = n;
+    memory->destroy(master_j);
+    memory->destroy(master_scale_of);
+    memory->create(master_j, maxmaster, "pair:master_j");
+    memory->create(master_scale_of, maxmaster, "pair:master_scale");
+  }
+  n = 0;
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    master_first[i] = n;
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int j = firstneigh[i][jj] & NEIGHMASK;
+      const double scale = master_scale(i, j);
+      if (scale == 0.0) continue;
+      master_j[n] = j;
+      master_scale_of[n++] = scale;
+    }
+    master_num[i] = n - master_first[i];
+  }
+  master_built = 1;
 }
 
 /* ----------------------------------------------------------------------
@@ -613,5 +658,6 @@ double PairLsdem::memory_usage()
 {
   double bytes = (double) nmax_atom * (sizeof(lsdem_pose) + sizeof(lsdem_shape *) + sizeof(double));
   bytes += (double) maxcontact * sizeof(Contact);
+  bytes += (double) nmax_master * 2 * sizeof(int) + (double) maxmaster * (sizeof(int) + sizeof(double));
   return bytes;
 }

@@ -81,6 +81,14 @@ class PairLsdem : public Pair {
   double *ncount;  // contacts per atom (coordination number, eq 3.15)
   char *sphere;    // per atom: its shape is an analytic sphere (master_scale)
 
+  // the neighbor list's pairs (i, j) in which i is master, with their scale; rebuilt in
+  // the force call that follows each neighbor list build (neighbor->ago == 0)
+  int master_built;
+  int nmax_master, maxmaster;
+  int *master_first, *master_num;  // per local atom: its run in master_j / master_scale
+  int *master_j;
+  double *master_scale_of;
+
   Contact *contact;
   int ncontact, maxcontact;
   bigint contact_step;
@@ -89,6 +97,7 @@ class PairLsdem : public Pair {
   void allocate();
   void update_poses();
   double master_scale(int, int) const;
+  void build_master_pairs();
   void test_pair(int, int, double, bigint);
   void add_contact(int, int, double, const lsdem_contact_result &);
   void apply_contacts();

@@ -209,7 +209,7 @@ static void apply_contact(pair_ctx *restrict c, int node, const double p[3],
     sum->point[i] += fn * p[i];
   }
   c->weight += fn;
-  if (d > sum->max_depth) sum->max_depth = d;
+  sum->max_depth = d > sum->max_depth ? d : sum->max_depth; /* a max, not a branch */
   sum->npen++;
 }
 
