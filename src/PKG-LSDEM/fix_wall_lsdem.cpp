@@ -355,13 +355,14 @@ bool FixWallLsdem::may_touch(int i) const
 {
   const double *x = atom->x[i];
   const double r = atom->radius[i];
-  double rel[3] = {x[0] - wpose.x[0], x[1] - wpose.x[1], x[2] - wpose.x[2]};
-  double along[3];  // components in the wall frame: rel . column k of R
-  for (int k = 0; k < 3; k++)
-    along[k] = rel[0] * wpose.R[k] + rel[1] * wpose.R[3 + k] + rel[2] * wpose.R[6 + k];
-  if (wallstyle == PLANE) return along[2] < r;
-  double rperp = sqrt(along[0] * along[0] + along[1] * along[1]);
-  return wall.sdf.a[0] - rperp < r;
+  const double rel[3] = {x[0] - wpose.x[0], x[1] - wpose.x[1], x[2] - wpose.x[2]};
+  // rel . column k of R: its component along the wall frame's axis k
+  auto along = [&](int k) {
+    return rel[0] * wpose.R[k] + rel[1] * wpose.R[3 + k] + rel[2] * wpose.R[6 + k];
+  };
+  if (wallstyle == PLANE) return along(2) < r;
+  const double a0 = along(0), a1 = along(1);
+  return wall.sdf.a[0] - sqrt(a0 * a0 + a1 * a1) < r;
 }
 
 /* ---------------------------------------------------------------------- */
