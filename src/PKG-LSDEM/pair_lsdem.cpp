@@ -43,7 +43,8 @@ PairLsdem::PairLsdem(LAMMPS *lmp) :
   onerad(nullptr), maxrad(nullptr), kn_max(0.0), avec(nullptr), fix_history(nullptr),
   nmax_atom(0), pose(nullptr), shape(nullptr), ncount(nullptr), sphere(nullptr),
   master_built(0), nmax_master(0), maxmaster(0), master_first(nullptr), master_num(nullptr),
-  master_j(nullptr), master_scale_of(nullptr), contact(nullptr), ncontact(0), maxcontact(0), contact_step(-1), ntested_pairs(0), ntested_nodes(0), npen_nodes(0)
+  master_j(nullptr), master_scale_of(nullptr), contact(nullptr), ncontact(0), maxcontact(0),
+  contact_step(-1), ntested_pairs(0), ntested_nodes(0), npen_nodes(0)
 {
   single_enable = 0;
   finitecutflag = 1;
@@ -658,6 +659,7 @@ double PairLsdem::memory_usage()
 {
   double bytes = (double) nmax_atom * (sizeof(lsdem_pose) + sizeof(lsdem_shape *) + sizeof(double));
   bytes += (double) maxcontact * sizeof(Contact);
-  bytes += (double) nmax_master * 2 * sizeof(int) + (double) maxmaster * (sizeof(int) + sizeof(double));
+  bytes += (double) nmax_master * 2 * sizeof(int);
+  bytes += (double) maxmaster * (sizeof(int) + sizeof(double));
   return bytes;
 }
