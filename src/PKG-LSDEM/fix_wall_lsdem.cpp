@@ -40,7 +40,8 @@ static constexpr tagint WALL_PARTNER = -1;
 
 FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), axis(2), fix_history(nullptr), avec(nullptr), fall_valid(0),
-  moving(false), nodelist(-1.0), pivot(false), pivot_h(0.0), pivot_inertia(0.0), pivot_damping(0.0),
+  moving(false), nodelist(-1.0), pivot(false), pivot_h(0.0), pivot_inertia(0.0),
+  pivot_damping(0.0),
   contact(nullptr), ncontact(0), maxcontact(0), contact_step(-1)
 {
   for (int d = 0; d < 3; d++) {

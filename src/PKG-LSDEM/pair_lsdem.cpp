@@ -41,7 +41,7 @@ PairLsdem::PairLsdem(LAMMPS *lmp) :
   Pair(lmp), mode(ONEWAY), law(LSDEM_NORMAL_PER_NODE), stride(1), zcap(0), nodelist(-1.0),
   params(nullptr),
   onerad(nullptr), maxrad(nullptr), kn_max(0.0), avec(nullptr), fix_history(nullptr),
-  nmax_atom(0), pose(nullptr), shape(nullptr), ncount(nullptr), sphere(nullptr),
+  nmax_atom(0), pose(nullptr), shape(nullptr), ncount(nullptr),
   master_built(0), nmax_master(0), maxmaster(0), master_first(nullptr), master_num(nullptr),
   master_j(nullptr), master_scale_of(nullptr), contact(nullptr), ncontact(0), maxcontact(0),
   contact_step(-1), ntested_pairs(0), ntested_nodes(0), npen_nodes(0)
@@ -75,7 +75,6 @@ PairLsdem::~PairLsdem()
   memory->sfree(pose);
   memory->sfree(shape);
   memory->destroy(ncount);
-  memory->destroy(sphere);
   memory->sfree(contact);
   memory->destroy(master_first);
   memory->destroy(master_num);
@@ -317,8 +316,6 @@ void PairLsdem::update_poses()
                                                     "pair:shape");
     memory->destroy(ncount);
     memory->create(ncount, nmax_atom, "pair:ncount");
-    memory->destroy(sphere);
-    memory->create(sphere, nmax_atom, "pair:sphere");
   }
   const int nall = atom->nlocal + atom->nghost;
   double **x = atom->x, **v = atom->v, **omega = atom->omega, **quat = avec->quat;
@@ -331,7 +328,6 @@ void PairLsdem::update_poses()
     }
     lsdem_quat_to_matrix(quat[i], p.R);
     shape[i] = avec->shape_of(i);
-    sphere[i] = shape[i]->sdf.kind == LSDEM_SDF_SPHERE;
   }
 }
 
@@ -390,7 +386,8 @@ double PairLsdem::master_scale(int i, int j) const
 {
   const tagint *tag = atom->tag;
   if (tag[i] == tag[j]) return 0.0;
-  const bool si = sphere[i], sj = sphere[j];
+  const bool si = shape[i]->sdf.kind == LSDEM_SDF_SPHERE;
+  const bool sj = shape[j]->sdf.kind == LSDEM_SDF_SPHERE;
   if (si != sj) return si ? 1.0 : 0.0;
   if (!si && mode == TWOWAY) return 0.5;
   return tag[i] < tag[j] ? 1.0 : 0.0;

@@ -79,7 +79,6 @@ class PairLsdem : public Pair {
   lsdem_pose *pose;
   const lsdem_shape **shape;
   double *ncount;  // contacts per atom (coordination number, eq 3.15)
-  char *sphere;    // per atom: its shape is an analytic sphere (master_scale)
 
   // the neighbor list's pairs (i, j) in which i is master, with their scale; rebuilt in
   // the force call that follows each neighbor list build (neighbor->ago == 0)

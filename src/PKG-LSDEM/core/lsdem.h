@@ -366,8 +366,8 @@ typedef struct {
  * node is left out when it is farther than rB + s from B's centre or, when B's level set
  * has a known gradient bound L (exact distances: 1; grids: lsdem_grid_outer_lipschitz), when
  * phi_B >= L s there: it cannot reach phi < 0 before the list is rebuilt. Against a grid
- * each listed node's entry also keeps its cell (the 8 samples), and a lookup in the same cell reads those instead of the grid
- * (lsdem_grid_eval_many_cached). The contacts found are therefore the same, bit for bit,
+ * each listed node's entry also keeps its cell (the 8 samples), and a lookup in the same
+ * cell reads those instead of the grid (lsdem_grid_eval_many_cached). The contacts found are therefore the same, bit for bit,
  * as without a list; only lookups of nodes that cannot touch, and grid reads, are saved
  * (res->ntested counts the lookups made). A list is trusted up to the least distance any
  * node it left out had to move to touch B (at least s: the distance to the widened
