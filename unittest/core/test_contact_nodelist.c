@@ -10,6 +10,8 @@
  *     at random poses near a plane and a round grid, used after random moves towards B;
  *   - a list is not trusted under another stride, nor beyond its own validity radius
  *     when the skin changes;
+ *   - a pair that rattles gets a wider list (rebuilt far less often), and the base skin's
+ *     list back once it rests;
  *   - against a grid the list keeps its nodes' cells: lookups in the same cell read them;
  *   - a history in an earlier version's list layout is not read as a list;
  *   - lsdem_grid_outer_lipschitz bounds |phi(p) - phi(p')| / |p - p'| on random nearby
@@ -118,6 +120,49 @@ static void compare_runs(const char *what, int path, const lsdem_shape *A,
         what, reused, rebuilt);
   CHECK(tested_fast < tested_plain / 2, "%s: %ld lookups with lists, %ld without", what,
         tested_fast, tested_plain);
+}
+
+/* A rattling pair gets a wider list, a settled one the base skin back: A shakes by 0.4
+ * (more than the skin 0.3) at every step for 200 steps, then rests. Results stay those
+ * of the plain run; the shaking rebuilds the list only now and then (with the base skin
+ * alone it would be rebuilt at every step); at rest the list ends up as the base skin's:
+ * as many lookups per step as a fresh list built there. */
+static void rattle_pose(int s, lsdem_pose *pa)
+{
+  const double shake = s < 200 && s % 2 ? 0.4 : 0.0;
+  *pa = fix_pose(0.3 + shake, -0.2, 11.7);
+  fix_rotation_about(1.0, 0.3, 0.2, 0.4, pa->R);
+}
+
+static void test_rattle_widens(const lsdem_shape *A, const lsdem_shape *B, const lsdem_pose *pb)
+{
+  lsdem_contact_params prm = fix_params(50.0, 40.0, 0.5, 0.5), listed = prm;
+  listed.node_skin = 0.3;
+  static run_state plain, fast, fresh;
+  memset(&plain, 0, sizeof plain);
+  memset(&fast, 0, sizeof fast);
+  memset(&fresh, 0, sizeof fresh);
+  int same = 1, rebuilt_shaking = 0;
+  lsdem_contact_result rp, rf, r0;
+  for (int s = 0; s < STEPS; s++) {
+    lsdem_pose pa;
+    rattle_pose(s, &pa);
+    step_run(&plain, A, &pa, B, pb, &prm, s, &rp);
+    step_run(&fast, A, &pa, B, pb, &listed, s, &rf);
+    same &= memcmp(rp.force, rf.force, sizeof rp.force) == 0 && rp.npen == rf.npen;
+    if (s > 0 && s < 200)
+      rebuilt_shaking += fast.buf[fast.cur][0].node < 0 && fast.buf[fast.cur][0].stamp == s;
+  }
+  lsdem_pose rest;
+  rattle_pose(STEPS, &rest);
+  step_run(&fresh, A, &rest, B, pb, &listed, 0, &r0);
+  step_run(&fresh, A, &rest, B, pb, &listed, 1, &r0);
+  CHECK(same && rp.npen > 5, "rattle: results differ with node lists (%d nodes)", rp.npen);
+  CHECK(rebuilt_shaking < 30, "rattle: list rebuilt at %d of 199 shaking steps",
+        rebuilt_shaking);
+  CHECK(rf.ntested == r0.ntested && rf.ntested < rp.ntested,
+        "rattle: %d lookups at rest, %d with a fresh list, %d without", rf.ntested,
+        r0.ntested, rp.ntested);
 }
 
 /* A list holds only as far as it was proven: built with skin 0.1, it must not be trusted
@@ -327,6 +372,7 @@ int main(void)
   test_list_settings(&ga.clustered, &plane, &pw);
   test_kept_cells(&ga.clustered, &B, &pb);
   test_old_layout(&ga.clustered, &B, &pb);
+  test_rattle_widens(&ga.clustered, &B, &pb);
   compare_runs("grid, friction", SLIDE, &ga.clustered, &B, &pb, 11.6, 0.5, 1, 0.3, 1);
   compare_runs("grid, no friction", SLIDE, &ga.clustered, &B, &pb, 11.6, 0.0, 1, 0.3, 1);
   compare_runs("grid, stride 2", SLIDE, &ga.plain, &B, &pb, 11.6, 0.5, 2, 0.3, 1);

@@ -398,20 +398,45 @@ static int list_head_ok(const lsdem_node_hist *h, int n)
   return n >= LIST_HEAD && h[0].node == LIST_POSE_M && h[1].node == LIST_POSE_T;
 }
 
-/* Whether the list of h (its head checked) holds at pose M, t: no node of A (radius ra)
- * can have moved by its validity radius since. */
-static int list_holds(const lsdem_node_hist *h, const double M[9], const double t[3],
-                      double ra, int stride)
+/* How far any node of A (radius ra) may have moved relative to B since the list of h
+ * (its head checked) was built at M0, t0: |M - M0| ra + |t - t0|, the rotation part
+ * exact for rotations as |M - M0|_F / sqrt(2). */
+static double list_motion(const lsdem_node_hist *h, const double M[9], const double t[3],
+                          double ra)
 {
-  if (h[0].pad_ != stride) return 0;
-  const double radius = bits_double(h[1].stamp);
   const double M0[9] = {h[0].shear[0],  h[0].shear[1],  h[0].shear[2],
                         h[0].normal[0], h[0].normal[1], h[0].normal[2],
                         h[1].shear[0],  h[1].shear[1],  h[1].shear[2]};
   double dm = 0.0, dt = 0.0;
   for (int i = 0; i < 9; i++) dm += (M[i] - M0[i]) * (M[i] - M0[i]);
   for (int i = 0; i < 3; i++) dt += (t[i] - h[1].normal[i]) * (t[i] - h[1].normal[i]);
-  return (sqrt(0.5 * dm) + 1e-12) * ra + sqrt(dt) < radius * (1.0 - 1e-9);
+  return (sqrt(0.5 * dm) + 1e-12) * ra + sqrt(dt);
+}
+
+/* Skin of a list built now, for the base skin s: a list that lasted fewer than
+ * LIST_LIFETIME steps (the pair rattles) is followed by one wide enough to last that long
+ * at the pair's rate of motion since, within [s, LIST_SKIN_GROWTH s]; otherwise s, which
+ * costs the fewest lookups per step. */
+enum { LIST_LIFETIME = 8, LIST_SKIN_GROWTH = 4 };
+
+static double adapted_skin(double skin, const lsdem_node_hist *h, double motion, int64_t step)
+{
+  const int64_t age = step - h[0].stamp;
+  if (age <= 0 || age >= LIST_LIFETIME) return skin;
+  const double want = LIST_LIFETIME * motion / (double)age;
+  return want < skin ? skin : want > LIST_SKIN_GROWTH * skin ? LIST_SKIN_GROWTH * skin : want;
+}
+
+/* Whether the list of h holds: built with this stride, no node moved by its validity
+ * radius, and not a wide list (radius above LIST_SKIN_GROWTH / 2 times the base skin)
+ * older than 4 LIST_LIFETIME steps: a pair that has settled gets the base skin back. */
+static int list_holds(const lsdem_node_hist *h, double motion, double skin, int64_t step,
+                      int stride)
+{
+  const double radius = bits_double(h[1].stamp);
+  const int wide = radius > 0.5 * LIST_SKIN_GROWTH * skin;
+  if (wide && step - h[0].stamp > 4 * LIST_LIFETIME) return 0;
+  return h[0].pad_ == stride && motion < radius * (1.0 - 1e-9);
 }
 
 /* Decides whether hist_in's list is used; when it is not and hist_out is given, starts a
@@ -428,10 +453,6 @@ static void list_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB
   L->nnode_in = L->node_cursor = L->nnode_out = 0;
   L->head = L->pose_out = L->node_out = NULL;
   if (L->skin == 0.0) return;
-  L->reach = list_reach(sdfB, L->skin);
-  L->lip = isfinite(L->reach) ? L->reach / L->skin : 0.0;
-  L->cap = sdfB->kind == LSDEM_SDF_GRID && L->lip > 0.0 ? sdfB->grid.lip_reach / L->lip
-                                                         : HUGE_VAL;
   L->margin = HUGE_VAL;
   L->cached = sdfB->kind == LSDEM_SDF_GRID && !sdfB->inverted;
   const int stride = prm->node_stride > 1 ? prm->node_stride : 1;
@@ -441,8 +462,14 @@ static void list_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB
       L->node_in = hist_in + n_in - nn;
       L->nnode_in = nn;
     }
-    L->use = list_holds(hist_in, M, t, A->radius, stride);
+    const double motion = list_motion(hist_in, M, t, A->radius);
+    L->use = list_holds(hist_in, motion, L->skin, step, stride);
+    if (!L->use) L->skin = adapted_skin(L->skin, hist_in, motion, step);
   }
+  L->reach = list_reach(sdfB, L->skin);
+  L->lip = isfinite(L->reach) ? L->reach / L->skin : 0.0;
+  L->cap = sdfB->kind == LSDEM_SDF_GRID && L->lip > 0.0 ? sdfB->grid.lip_reach / L->lip
+                                                         : HUGE_VAL;
   if (!hist_out) return;
   L->head = hist_out;
   L->node_out = hist_out + LIST_HEAD + A->nnodes;
