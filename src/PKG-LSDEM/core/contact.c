@@ -10,7 +10,7 @@
  *
  * The per-contact physics (normal spring and damping, the shear spring with its
  * history, the Coulomb cap, the accumulation into a result) lives in one function,
- * apply_contact(), shared by the node loop and by the sphere paths. */
+ * apply_contacts(), shared by the node loop and by the sphere paths. */
 #include "lsdem.h"
 
 #include <math.h>
@@ -132,85 +132,141 @@ static const lsdem_node_hist *find_history(pair_ctx *restrict c, int node)
   return NULL;
 }
 
-/* Tangential force of one contact (report eqs 2.7, 2.8, 2.10) and its history entry.
- * shear spring: Z s_old - ks dt v_t (new contact: s_old = 0; an entry stamped with
- * this step is reused without advancing); applied force ft = s - ct v_t, capped at
- * mu fn, with the spring reset so that spring + damping equals the capped force. */
-static void tangential_force(pair_ctx *restrict c, int node, const double n[3],
-                             const double vt[3], double fn, double ks, double ct,
-                             double ft[3])
+/* The contacts of one batch of penetrating nodes, as apply_contacts() takes them: node k,
+ * world point p, B's outward unit normal n, depth d > 0, and kscale (multiplies kn and
+ * ks: the node stride, times the node area under the traction law). */
+enum { NODE_BATCH = 64 };
+
+typedef struct {
+  int n;
+  int node[NODE_BATCH];
+  double p[3 * NODE_BATCH], nrm[3 * NODE_BATCH];
+  double depth[NODE_BATCH], kscale[NODE_BATCH];
+} contact_set;
+
+/* Normal force (eq 2.2, with damping) of each contact, and the quantities the shear and
+ * the torques need: the arm ra = p - xA, the relative tangential velocity vt (eq 2.6,
+ * see pair_motion), fn n in f. */
+static void normal_forces(const pair_ctx *restrict c, const contact_set *restrict cs,
+                          double cscale, double *restrict fn_out, double *restrict ra,
+                          double *restrict vt, double *restrict f)
 {
-  const lsdem_node_hist *h = find_history(c, node);
-  double s[3];
-  if (h && h->stamp == c->step) {
-    for (int i = 0; i < 3; i++) s[i] = h->shear[i];
-  } else {
-    double s_old[3] = {0.0, 0.0, 0.0};
-    if (h) lsdem_rotate_between(h->shear, h->normal, n, s_old); /* eq 2.8: Z */
-    for (int i = 0; i < 3; i++) s[i] = s_old[i] - ks * c->prm.dt * vt[i]; /* eqs 2.7-2.8 */
-  }
-  for (int i = 0; i < 3; i++) ft[i] = s[i] - ct * vt[i];
-
-  const double cap = c->prm.mu * fn; /* eq 2.10 */
-  const double ft2 = dot3(ft, ft);
-  if (ft2 > cap * cap) {
-    const double scale = cap / sqrt(ft2);
-    for (int i = 0; i < 3; i++) {
-      ft[i] *= scale;
-      s[i] = ft[i] + ct * vt[i];
+  const lsdem_contact_params *prm = &c->prm;
+  for (int m = 0; m < cs->n; m++) {
+    const double *p = &cs->p[3 * m], *n = &cs->nrm[3 * m];
+    double *r = &ra[3 * m];
+    double fn = prm->kn * cs->kscale[m] * cs->depth[m]; /* eq 2.2: repulsive, +n on A */
+    double vrel[3] = {0.0, 0.0, 0.0}, vn = 0.0;
+    for (int i = 0; i < 3; i++) r[i] = p[i] - c->m.xa[i];
+    if (prm->cn > 0.0 || prm->mu > 0.0) { /* eq 2.6 (see pair_motion) */
+      cross3(c->m.dw, r, vrel);
+      for (int i = 0; i < 3; i++) vrel[i] += c->m.v0[i];
+      vn = dot3(vrel, n);
     }
-  }
-
-  if (!c->hist_out) return;
-  lsdem_node_hist *out = &c->hist_out[c->n_out++];
-  out->node = node;
-  out->pad_ = 0;
-  out->stamp = c->step;
-  for (int i = 0; i < 3; i++) {
-    out->shear[i] = s[i];
-    out->normal[i] = n[i];
+    if (prm->cn > 0.0) {
+      fn -= prm->cn * cscale * vn;
+      if (fn < 0.0) fn = 0.0; /* a penalty contact pushes, never pulls */
+    }
+    fn_out[m] = fn;
+    for (int i = 0; i < 3; i++) {
+      f[3 * m + i] = fn * n[i];
+      vt[3 * m + i] = vrel[i] - vn * n[i];
+    }
   }
 }
 
-/* One penetrating contact: world point p, B's outward unit normal n, depth d > 0.
- * kscale multiplies kn and ks (node stride, times the node area under the traction
- * law), cscale multiplies cn and ct (node stride). Accumulates into the pair sums. */
-static void apply_contact(pair_ctx *restrict c, int node, const double p[3],
-                          const double n[3], double d, double kscale, double cscale)
+/* Shear springs carried over (report eq 2.8): Z s_old, the stored spring rotated from
+ * its normal to the current one; 0 for a new contact. An entry stamped with this step
+ * was already advanced: it is taken as is and *fresh is 0 for it. */
+static void carried_shear(pair_ctx *restrict c, const contact_set *restrict cs,
+                          double *restrict s, int *restrict fresh)
+{
+  for (int m = 0; m < cs->n; m++) {
+    const lsdem_node_hist *h = find_history(c, cs->node[m]);
+    double *sm = &s[3 * m];
+    fresh[m] = !(h && h->stamp == c->step);
+    if (!h) {
+      sm[0] = sm[1] = sm[2] = 0.0;
+    } else if (!fresh[m]) {
+      for (int i = 0; i < 3; i++) sm[i] = h->shear[i];
+    } else {
+      lsdem_rotate_between(h->shear, h->normal, &cs->nrm[3 * m], sm); /* eq 2.8: Z */
+    }
+  }
+}
+
+/* Tangential forces (report eqs 2.7, 2.8, 2.10) added to f, and their history entries:
+ * shear spring s = Z s_old - ks dt v_t (kept as is for an entry already advanced this
+ * step); applied force ft = s - ct v_t, capped at mu fn, with the spring reset so that
+ * spring + damping equals the capped force. */
+static void tangential_forces(pair_ctx *restrict c, const contact_set *restrict cs,
+                              double cscale, const double *restrict fn,
+                              const double *restrict vt, double *restrict s,
+                              const int *restrict fresh, double *restrict f)
 {
   const lsdem_contact_params *prm = &c->prm;
-  double fn = prm->kn * kscale * d; /* eq 2.2: repulsive, along +n on A */
-  double f[3], ra[3], vrel[3], vn = 0.0;
-  for (int i = 0; i < 3; i++) ra[i] = p[i] - c->m.xa[i];
-  if (prm->cn > 0.0 || prm->mu > 0.0) { /* eq 2.6 (see pair_motion) */
-    cross3(c->m.dw, ra, vrel);
-    for (int i = 0; i < 3; i++) vrel[i] += c->m.v0[i];
-    vn = dot3(vrel, n);
+  const double ct = prm->ct * cscale;
+  for (int m = 0; m < cs->n; m++) {
+    const double *v = &vt[3 * m];
+    double *sm = &s[3 * m], ft[3];
+    if (fresh[m]) {
+      const double ks = prm->ks * cs->kscale[m];
+      for (int i = 0; i < 3; i++) sm[i] = sm[i] - ks * prm->dt * v[i]; /* eqs 2.7-2.8 */
+    }
+    for (int i = 0; i < 3; i++) ft[i] = sm[i] - ct * v[i];
+    const double cap = prm->mu * fn[m]; /* eq 2.10 */
+    const double ft2 = dot3(ft, ft);
+    if (ft2 > cap * cap) {
+      const double scale = cap / sqrt(ft2);
+      for (int i = 0; i < 3; i++) {
+        ft[i] *= scale;
+        sm[i] = ft[i] + ct * v[i];
+      }
+    }
+    for (int i = 0; i < 3; i++) f[3 * m + i] += ft[i];
+    if (!c->hist_out) continue;
+    lsdem_node_hist *out = &c->hist_out[c->n_out++];
+    out->node = cs->node[m];
+    out->pad_ = 0;
+    out->stamp = c->step;
+    for (int i = 0; i < 3; i++) {
+      out->shear[i] = sm[i];
+      out->normal[i] = cs->nrm[3 * m + i];
+    }
   }
-  if (prm->cn > 0.0) {
-    fn -= prm->cn * cscale * vn;
-    if (fn < 0.0) fn = 0.0; /* a penalty contact pushes, never pulls */
-  }
-  for (int i = 0; i < 3; i++) f[i] = fn * n[i];
-  if (prm->mu > 0.0) {
-    double vt[3], ft[3];
-    for (int i = 0; i < 3; i++) vt[i] = vrel[i] - vn * n[i];
-    tangential_force(c, node, n, vt, fn, prm->ks * kscale, prm->ct * cscale, ft);
-    for (int i = 0; i < 3; i++) f[i] += ft[i];
-  }
+}
 
-  /* eqs 2.14-2.16: force and torque on A; B's reaction torque follows in pair_end */
-  double ta[3];
-  cross3(ra, f, ta);
-  lsdem_contact_result *sum = &c->sum;
-  for (int i = 0; i < 3; i++) {
-    sum->force[i] += f[i];
-    sum->torque_a[i] += ta[i];
-    sum->point[i] += fn * p[i];
+/* The contacts of cs (cscale multiplies cn and ct: the node stride), accumulated into the
+ * pair sums in node order. Done a step at a time over all of them, each step a short loop
+ * whose iterations are independent, so that the contacts' long chains of dependent
+ * arithmetic (a division in Z, the cap's square root) overlap. */
+static void apply_contacts(pair_ctx *restrict c, const contact_set *restrict cs,
+                           double cscale)
+{
+  double fn[NODE_BATCH], ra[3 * NODE_BATCH], vt[3 * NODE_BATCH], f[3 * NODE_BATCH];
+  normal_forces(c, cs, cscale, fn, ra, vt, f);
+  if (c->prm.mu > 0.0) {
+    double s[3 * NODE_BATCH];
+    int fresh[NODE_BATCH];
+    carried_shear(c, cs, s, fresh);
+    tangential_forces(c, cs, cscale, fn, vt, s, fresh, f);
   }
-  c->weight += fn;
-  sum->max_depth = d > sum->max_depth ? d : sum->max_depth; /* a max, not a branch */
-  sum->npen++;
+  /* eqs 2.14-2.16: force and torque on A; B's reaction torque follows in pair_end */
+  lsdem_contact_result *sum = &c->sum;
+  for (int m = 0; m < cs->n; m++) {
+    const double *fm = &f[3 * m], *p = &cs->p[3 * m];
+    double ta[3];
+    cross3(&ra[3 * m], fm, ta);
+    for (int i = 0; i < 3; i++) {
+      sum->force[i] += fm[i];
+      sum->torque_a[i] += ta[i];
+      sum->point[i] += fn[m] * p[i];
+    }
+    c->weight += fn[m];
+    const double d = cs->depth[m];
+    sum->max_depth = d > sum->max_depth ? d : sum->max_depth; /* a max, not a branch */
+  }
+  sum->npen += cs->n;
 }
 
 /* ------------------------------------------------------------ node contact ---- */
@@ -221,8 +277,6 @@ static void apply_contact(pair_ctx *restrict c, int node, const double p[3],
  * the indices of nodes inside B's bounding sphere, a batch at a time, and only those
  * are mapped to B's frame and looked up, all lookups of a batch together (their cache
  * misses overlap: lsdem_grid_eval_many). */
-enum { NODE_BATCH = 64 };
-
 typedef struct {
   int n;
   int node[NODE_BATCH];
@@ -530,15 +584,18 @@ static void contact_batch(pair_ctx *restrict c, const lsdem_shape *A, const lsde
     }
     if (L->node_out) keep_node(L, b->node[i], &b->x[3 * i], &b->cell[i]);
   }
+  contact_set cs;
+  cs.n = 0;
   for (int i = 0; i < b->n; i++) {
     if (!(b->phi[i] < 0.0)) continue;
-    const int k = b->node[i];
-    double p[3], n[3];
-    affine3(pb->R, pb->x, &b->q[3 * i], p); /* world position of the node */
-    lsdem_mat_vec(pb->R, &b->grad[3 * i], n); /* world normal, outward from B */
-    const double kscale = traction ? kstride * A->node_area[k] : kstride;
-    apply_contact(c, k, p, n, -b->phi[i], kscale, kstride);
+    const int k = b->node[i], m = cs.n++;
+    cs.node[m] = k;
+    affine3(pb->R, pb->x, &b->q[3 * i], &cs.p[3 * m]); /* world position of the node */
+    lsdem_mat_vec(pb->R, &b->grad[3 * i], &cs.nrm[3 * m]); /* world normal, outward from B */
+    cs.depth[m] = -b->phi[i];
+    cs.kscale[m] = traction ? kstride * A->node_area[k] : kstride;
   }
+  apply_contacts(c, &cs, kstride);
   b->n = 0;
 }
 
@@ -712,10 +769,16 @@ static int sphere_contact(double radius, double area, const double n[3], double 
   pair_ctx c;
   pair_begin(&c, pa, pb, prm, step, hist_in, n_in, hist_out);
   c.sum.ntested = 1;
-  double p[3];
-  for (int i = 0; i < 3; i++) p[i] = pa->x[i] - (radius - 0.5 * d) * n[i];
-  const double kscale = prm->law == LSDEM_NORMAL_TRACTION ? area : 1.0;
-  apply_contact(&c, 0, p, n, d, kscale, 1.0);
+  contact_set cs;
+  cs.n = 1;
+  cs.node[0] = 0;
+  for (int i = 0; i < 3; i++) {
+    cs.p[i] = pa->x[i] - (radius - 0.5 * d) * n[i];
+    cs.nrm[i] = n[i];
+  }
+  cs.depth[0] = d;
+  cs.kscale[0] = prm->law == LSDEM_NORMAL_TRACTION ? area : 1.0;
+  apply_contacts(&c, &cs, 1.0);
   return pair_end(&c, n_out, res);
 }
 
