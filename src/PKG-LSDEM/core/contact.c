@@ -585,10 +585,14 @@ static void contact_batch(pair_ctx *restrict c, const lsdem_shape *A, const lsde
     if (L->node_out) keep_node(L, b->node[i], &b->x[3 * i], &b->cell[i]);
   }
   contact_set cs;
+  int at[NODE_BATCH]; /* the penetrating ones, gathered without a branch per node */
   cs.n = 0;
   for (int i = 0; i < b->n; i++) {
-    if (!(b->phi[i] < 0.0)) continue;
-    const int k = b->node[i], m = cs.n++;
+    at[cs.n] = i;
+    cs.n += b->phi[i] < 0.0;
+  }
+  for (int m = 0; m < cs.n; m++) {
+    const int i = at[m], k = b->node[i];
     cs.node[m] = k;
     affine3(pb->R, pb->x, &b->q[3 * i], &cs.p[3 * m]); /* world position of the node */
     lsdem_mat_vec(pb->R, &b->grad[3 * i], &cs.nrm[3 * m]); /* world normal, outward from B */
