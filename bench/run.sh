@@ -2,6 +2,7 @@
 # Benchmark LSDEM on a scene in the Kawamoto/Tan layout (the report code's input format).
 #
 #   bench/run.sh [SCENE_DIR] [--steps N] [--np N] [--mode oneway|twoway] [--instructions]
+#                [--compare OTHER_LMP [--pairs K]]
 #
 # Without SCENE_DIR it generates the reference scene of ../shared/bench (2,197 ellipsoids,
 # 250 nodes each) into a temporary folder. Prints the LAMMPS time split (pair, neighbour,
@@ -12,15 +13,23 @@
 # difference divided by N * grains.
 # A figure that does not depend on machine load (it leaves out memory stalls), for
 # comparing code changes; last line `instructions_per_grain_step=<x>`. Needs valgrind.
+# --compare OTHER_LMP: time this build's lmp (A) against another lmp binary (B, say one built
+# from an earlier commit) under the same conditions: K pairs (default 3) of runs, each pair
+# running A and B at once, one per core, then again with the cores swapped; prints B's time
+# over A's per pair and their mean, last line `time_ratio_B_over_A=<x>`. (One run after the
+# other varies by up to +-15 % on a shared machine; two at once see the same conditions.)
+# Needs 2 cores and taskset (Debian: util-linux); one rank each.
 # Environment: LSDEM_LMP (lmp binary), LSDEM_BUILD_DIR (for lsdem-import-tan).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 build=${LSDEM_BUILD_DIR:-$here/../build}
 lmp=${LSDEM_LMP:-$build/lmp}
-scene="" steps=500 np=1 mode=oneway instructions=0
+scene="" steps=500 np=1 mode=oneway instructions=0 other="" pairs=3
 while [ $# -gt 0 ]; do
   case "$1" in
     --steps) steps=$2; shift 2 ;;
+    --compare) other=$2; shift 2 ;;
+    --pairs) pairs=$2; shift 2 ;;
     --np) np=$2; shift 2 ;;
     --mode) mode=$2; shift 2 ;;
     --instructions) instructions=1; shift ;;
@@ -52,6 +61,29 @@ if [ "$instructions" = 1 ]; then
   grains=$(awk '/ atoms$/ { print $1; exit }' scene.data)
   echo "instructions: $i1 for $n steps, $i2 for $((2 * n)) steps, $grains grains, mode $mode"
   echo "instructions_per_grain_step=$(( (i2 - i1) / (n * grains) ))"
+  exit 0
+fi
+if [ -n "$other" ]; then
+  [ -x "$other" ] || { echo "--compare: $other is not an executable" >&2; exit 2; }
+  [ "$(nproc)" -ge 2 ] || { echo "--compare needs 2 cores" >&2; exit 2; }
+  command -v taskset >/dev/null || { echo "--compare needs taskset (apt-get install util-linux)" >&2; exit 2; }
+  loop_time() { # binary core log: pinned run, prints its loop time
+    taskset -c "$2" "$1" -in "$here/in.bench" -var steps "$steps" -var mode "$mode" \
+      -var seed 2197 -log "$3" -screen none >/dev/null
+    awk '/^Loop time/ { t = $4 } END { print t }' "$3"
+  }
+  ratios=()
+  for k in $(seq "$pairs"); do
+    loop_time "$lmp" 0 a0.log >a0.t & loop_time "$other" 1 b1.log >b1.t; wait
+    loop_time "$other" 0 b0.log >b0.t & loop_time "$lmp" 1 a1.log >a1.t; wait
+    r=$(awk -v a0="$(cat a0.t)" -v a1="$(cat a1.t)" -v b0="$(cat b0.t)" -v b1="$(cat b1.t)" \
+      'BEGIN { printf "%.4f", (b0 + b1) / (a0 + a1) }')
+    echo "pair $k: A $(cat a0.t) $(cat a1.t) s, B $(cat b0.t) $(cat b1.t) s, B/A $r"
+    ratios+=("$r")
+  done
+  echo "A: $lmp"
+  echo "B: $other"
+  echo "time_ratio_B_over_A=$(printf '%s\n' "${ratios[@]}" | awk '{ s += $1 } END { printf "%.4f", s / NR }')"
   exit 0
 fi
 mpi=()
