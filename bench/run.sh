@@ -38,6 +38,11 @@ while [ $# -gt 0 ]; do
   esac
 done
 
+if [ -n "$other" ]; then
+  [ -x "$other" ] || { echo "--compare: $other is not an executable" >&2; exit 2; }
+  [ "$(nproc)" -ge 2 ] || { echo "--compare needs 2 cores" >&2; exit 2; }
+  command -v taskset >/dev/null || { echo "--compare needs taskset (apt-get install util-linux)" >&2; exit 2; }
+fi
 work=$(mktemp -d /tmp/lsdem-bench.XXXXXX)
 if [ -z "$scene" ]; then
   gen=$here/../../shared/bench/gen_morph.py
@@ -64,9 +69,6 @@ if [ "$instructions" = 1 ]; then
   exit 0
 fi
 if [ -n "$other" ]; then
-  [ -x "$other" ] || { echo "--compare: $other is not an executable" >&2; exit 2; }
-  [ "$(nproc)" -ge 2 ] || { echo "--compare needs 2 cores" >&2; exit 2; }
-  command -v taskset >/dev/null || { echo "--compare needs taskset (apt-get install util-linux)" >&2; exit 2; }
   loop_time() { # binary core log: pinned run, prints its loop time
     taskset -c "$2" "$1" -in "$here/in.bench" -var steps "$steps" -var mode "$mode" \
       -var seed 2197 -log "$3" -screen none >/dev/null
