@@ -11,7 +11,7 @@
  *   - a list is not trusted under another stride, nor beyond its own validity radius
  *     when the skin changes;
  *   - a pair that rattles gets a wider list (rebuilt far less often), and the base skin's
- *     list back once it rests;
+ *     list back once it rests; never wider than B's gradient bound covers;
  *   - against a grid the list keeps its nodes' cells: lookups in the same cell read them;
  *   - a history in an earlier version's list layout is not read as a list;
  *   - lsdem_grid_outer_lipschitz bounds |phi(p) - phi(p')| / |p - p'| on random nearby
@@ -163,6 +163,35 @@ static void test_rattle_widens(const lsdem_shape *A, const lsdem_shape *B, const
   CHECK(rf.ntested == r0.ntested && rf.ntested < rp.ntested,
         "rattle: %d lookups at rest, %d with a fresh list, %d without", rf.ntested,
         r0.ntested, rp.ntested);
+}
+
+/* The widening stops where B's gradient bound stops: against a grid whose bound holds only
+ * up to 0.5 L (so for the skin 0.3, not for 4 x 0.3), the shaking pair keeps lists that
+ * leave nodes out (a list past the bound would list every node it looks up). */
+static void test_rattle_bound_limits(const lsdem_shape *A, const lsdem_shape *B,
+                                     const lsdem_pose *pb)
+{
+  lsdem_shape tight = *B;
+  tight.sdf.grid.lip_reach = 0.5 * tight.sdf.grid.lip;
+  lsdem_contact_params prm = fix_params(50.0, 40.0, 0.5, 0.5), listed = prm;
+  listed.node_skin = 0.3;
+  static run_state plain, fast;
+  memset(&plain, 0, sizeof plain);
+  memset(&fast, 0, sizeof fast);
+  int same = 1;
+  lsdem_contact_result rp, rf;
+  for (int s = 0; s < 200; s++) {
+    lsdem_pose pa;
+    rattle_pose(s, &pa);
+    step_run(&plain, A, &pa, &tight, pb, &prm, s, &rp);
+    step_run(&fast, A, &pa, &tight, pb, &listed, s, &rf);
+    same &= memcmp(rp.force, rf.force, sizeof rp.force) == 0 && rp.npen == rf.npen;
+  }
+  int listed_nodes = 0; /* node entries: ids below the list's two pose entries */
+  for (int k = 0; k < fast.n; k++) listed_nodes += fast.buf[fast.cur][k].node < -2;
+  CHECK(same && rp.npen > 5, "rattle, tight bound: results differ (%d nodes)", rp.npen);
+  CHECK(listed_nodes > 0 && listed_nodes < rf.ntested,
+        "rattle, tight bound: %d nodes listed of %d looked up", listed_nodes, rf.ntested);
 }
 
 /* A list holds only as far as it was proven: built with skin 0.1, it must not be trusted
@@ -373,6 +402,7 @@ int main(void)
   test_kept_cells(&ga.clustered, &B, &pb);
   test_old_layout(&ga.clustered, &B, &pb);
   test_rattle_widens(&ga.clustered, &B, &pb);
+  test_rattle_bound_limits(&ga.clustered, &B, &pb);
   compare_runs("grid, friction", SLIDE, &ga.clustered, &B, &pb, 11.6, 0.5, 1, 0.3, 1);
   compare_runs("grid, no friction", SLIDE, &ga.clustered, &B, &pb, 11.6, 0.0, 1, 0.3, 1);
   compare_runs("grid, stride 2", SLIDE, &ga.plain, &B, &pb, 11.6, 0.5, 2, 0.3, 1);

@@ -518,7 +518,11 @@ static void list_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB
     }
     const double motion = list_motion(hist_in, M, t, A->radius);
     L->use = list_holds(hist_in, motion, L->skin, step, stride);
-    if (!L->use) L->skin = adapted_skin(L->skin, hist_in, motion, step);
+    if (!L->use) { /* widened, unless B's gradient bound stops covering the wider skin */
+      const double wide = adapted_skin(L->skin, hist_in, motion, step);
+      if (isfinite(list_reach(sdfB, wide)) || !isfinite(list_reach(sdfB, L->skin)))
+        L->skin = wide;
+    }
   }
   L->reach = list_reach(sdfB, L->skin);
   L->lip = isfinite(L->reach) ? L->reach / L->skin : 0.0;

@@ -374,8 +374,9 @@ typedef struct {
  * least its skin: the distance to the widened sphere, phi / L, a left-out cluster's
  * clearance), whatever the skin is now; one built with another stride is rebuilt. The skin
  * adapts per pair: a list outlived within 8 steps is followed by one wide enough to last 8
- * steps at the pair's rate of motion (at most 4 s), and a wide list (validity radius
- * above 2 s) is rebuilt after 32 steps. Returns the number of penetrating nodes. */
+ * steps at the pair's rate of motion (at most 4 s, and within B's gradient bound), and a
+ * wide list (validity radius above 2 s) is rebuilt after 32 steps. Returns the number of
+ * penetrating nodes. */
 int lsdem_contact_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
                         const lsdem_pose *pb, const lsdem_contact_params *prm, int64_t step,
                         const lsdem_node_hist *hist_in, int n_in, lsdem_node_hist *hist_out,
