@@ -43,6 +43,8 @@ if [ -n "$other" ]; then
   [ "$(nproc)" -ge 2 ] || { echo "--compare needs 2 cores" >&2; exit 2; }
   command -v taskset >/dev/null || { echo "--compare needs taskset (apt-get install util-linux)" >&2; exit 2; }
 fi
+# the deck's command-line arguments for a run of $1 steps, in the array `deck`
+deck_args() { deck=(-in "$here/in.bench" -var steps "$1" -var mode "$mode" -var seed 2197); }
 work=$(mktemp -d /tmp/lsdem-bench.XXXXXX)
 if [ -z "$scene" ]; then
   gen=$here/../../shared/bench/gen_morph.py
@@ -57,8 +59,9 @@ cd "$work"
 if [ "$instructions" = 1 ]; then
   command -v valgrind >/dev/null || { echo "--instructions needs valgrind (Debian: apt-get install valgrind)" >&2; exit 2; }
   count() { # instructions of a run of $1 steps
-    valgrind --tool=callgrind --callgrind-out-file=/dev/null "$lmp" -in "$here/in.bench" \
-      -var steps "$1" -var mode "$mode" -var seed 2197 -log none -screen none 2>&1 |
+    deck_args "$1"
+    valgrind --tool=callgrind --callgrind-out-file=/dev/null "$lmp" "${deck[@]}" \
+      -log none -screen none 2>&1 |
       awk '/refs:/ { gsub(",", "", $NF); print $NF }'
   }
   n=$((steps < 20 ? steps : 20))
@@ -70,10 +73,10 @@ if [ "$instructions" = 1 ]; then
 fi
 if [ -n "$other" ]; then
   loop_time() { # binary core log: pinned run, prints its loop time
-    taskset -c "$2" "$1" -in "$here/in.bench" -var steps "$steps" -var mode "$mode" \
-      -var seed 2197 -log "$3" -screen none >/dev/null
+    taskset -c "$2" "$1" "${deck[@]}" -log "$3" -screen none >/dev/null
     awk '/^Loop time/ { t = $4 } END { print t }' "$3"
   }
+  deck_args "$steps"
   ratios=()
   for k in $(seq "$pairs"); do
     loop_time "$lmp" 0 a0.log >a0.t & loop_time "$other" 1 b1.log >b1.t; wait
@@ -90,6 +93,6 @@ if [ -n "$other" ]; then
 fi
 mpi=()
 [ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
-"${mpi[@]}" "$lmp" -in "$here/in.bench" -var steps "$steps" -var mode "$mode" -var seed 2197 \
-  -log log.bench -screen none
+deck_args "$steps"
+"${mpi[@]}" "$lmp" "${deck[@]}" -log log.bench -screen none
 /usr/bin/python3 "$here/report.py" log.bench --np "$np" --mode "$mode"

@@ -132,11 +132,12 @@ static const lsdem_node_hist *find_history(pair_ctx *restrict c, int node)
   return NULL;
 }
 
+/* Nodes looked up together, and contacts computed together, at most. */
+enum { NODE_BATCH = 64 };
+
 /* The contacts of one batch of penetrating nodes, as apply_contacts() takes them: node k,
  * world point p, B's outward unit normal n, depth d > 0, and kscale (multiplies kn and
  * ks: the node stride, times the node area under the traction law). */
-enum { NODE_BATCH = 64 };
-
 typedef struct {
   int n;
   int node[NODE_BATCH];
@@ -467,18 +468,24 @@ static double list_motion(const lsdem_node_hist *h, const double M[9], const dou
   return (sqrt(0.5 * dm) + 1e-12) * ra + sqrt(dt);
 }
 
-/* Skin of a list built now, for the base skin s: a list that lasted fewer than
+/* Skin of a list built now against B, for the base skin s: a list that lasted fewer than
  * LIST_LIFETIME steps (the pair rattles) is followed by one wide enough to last that long
- * at the pair's rate of motion since, within [s, LIST_SKIN_GROWTH s]; otherwise s, which
- * costs the fewest lookups per step. */
+ * at the pair's rate of motion since, within [s, LIST_SKIN_GROWTH s], unless B's gradient
+ * bound covers s but not the wider skin (every looked-up node would then be listed);
+ * otherwise s, which costs the fewest lookups per step. */
 enum { LIST_LIFETIME = 8, LIST_SKIN_GROWTH = 4 };
 
-static double adapted_skin(double skin, const lsdem_node_hist *h, double motion, int64_t step)
+static double adapted_skin(double skin, const lsdem_sdf *sdfB, const lsdem_node_hist *h,
+                           double motion, int64_t step)
 {
   const int64_t age = step - h[0].stamp;
   if (age <= 0 || age >= LIST_LIFETIME) return skin;
   const double want = LIST_LIFETIME * motion / (double)age;
-  return want < skin ? skin : want > LIST_SKIN_GROWTH * skin ? LIST_SKIN_GROWTH * skin : want;
+  const double wide = want < skin                      ? skin
+                      : want > LIST_SKIN_GROWTH * skin ? LIST_SKIN_GROWTH * skin
+                                                       : want;
+  const int bound_lost = !isfinite(list_reach(sdfB, wide)) && isfinite(list_reach(sdfB, skin));
+  return bound_lost ? skin : wide;
 }
 
 /* Whether the list of h holds: built with this stride, no node moved by its validity
@@ -518,11 +525,7 @@ static void list_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB
     }
     const double motion = list_motion(hist_in, M, t, A->radius);
     L->use = list_holds(hist_in, motion, L->skin, step, stride);
-    if (!L->use) { /* widened, unless B's gradient bound stops covering the wider skin */
-      const double wide = adapted_skin(L->skin, hist_in, motion, step);
-      if (isfinite(list_reach(sdfB, wide)) || !isfinite(list_reach(sdfB, L->skin)))
-        L->skin = wide;
-    }
+    if (!L->use) L->skin = adapted_skin(L->skin, sdfB, hist_in, motion, step);
   }
   L->reach = list_reach(sdfB, L->skin);
   L->lip = isfinite(L->reach) ? L->reach / L->skin : 0.0;
