@@ -34,9 +34,8 @@ static void unpack_node(int64_t v, lsdem_node_hist &h)
 /* ---------------------------------------------------------------------- */
 
 FixLsdemHistory::FixLsdemHistory(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), nmax_atom(0), nhist(nullptr), maxhist(nullptr), hist(nullptr),
-  nslice(nullptr), maxslice(nullptr), slice(nullptr), maxcount(0), scratch(nullptr),
-  nscratch(0), maxscratch(0), slices(nullptr), nslices(0), maxslices(0)
+  Fix(lmp, narg, arg), cur(0), nmax_atom(0), first(nullptr), nhist(nullptr), sfirst(nullptr),
+  nslice(nullptr), visited(nullptr), generation(0), atom_entry(0), atom_slice(0), maxcount(0)
 {
   if (narg != 3) error->all(FLERR, "Illegal fix LSDEM_HISTORY command (internal fix)");
 
@@ -44,6 +43,7 @@ FixLsdemHistory::FixLsdemHistory(LAMMPS *lmp, int narg, char **arg) :
   create_attribute = 1;
   maxexchange_dynamic = 1;
   maxexchange = 1;
+  for (Pool &p : pool) p = {nullptr, 0, 0, nullptr, 0, 0};
 
   FixLsdemHistory::grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
@@ -56,18 +56,15 @@ FixLsdemHistory::~FixLsdemHistory()
 {
   atom->delete_callback(id, Atom::GROW);
   atom->delete_callback(id, Atom::RESTART);
-  for (int i = 0; i < nmax_atom; i++) {
-    memory->sfree(slice[i]);
-    memory->sfree(hist[i]);
+  for (Pool &p : pool) {
+    memory->sfree(p.entry);
+    memory->sfree(p.slice);
   }
-  memory->sfree(slice);
-  memory->sfree(hist);
+  memory->destroy(first);
   memory->destroy(nhist);
-  memory->destroy(maxhist);
+  memory->destroy(sfirst);
   memory->destroy(nslice);
-  memory->destroy(maxslice);
-  memory->sfree(scratch);
-  memory->sfree(slices);
+  memory->destroy(visited);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -78,40 +75,53 @@ int FixLsdemHistory::setmask()
 }
 
 /* ----------------------------------------------------------------------
+   room in pool p for n more entries and ns more slice headers (grows by doubling)
+------------------------------------------------------------------------- */
+
+void FixLsdemHistory::pool_room(Pool &p, int n, int ns)
+{
+  if (p.n + n > p.max) {
+    p.max = std::max(2 * p.max, p.n + n);
+    p.entry = (lsdem_node_hist *) memory->srealloc(p.entry, sizeof(lsdem_node_hist) * p.max,
+                                                   "lsdem/history:entries");
+  }
+  if (p.ns + ns > p.maxs) {
+    p.maxs = std::max({16, 2 * p.maxs, p.ns + ns});
+    p.slice = (Slice *) memory->srealloc(p.slice, sizeof(Slice) * p.maxs, "lsdem/history:slices");
+  }
+}
+
+/* ----------------------------------------------------------------------
    slice of atom i's list against one partner (sorted by node), n entries
 ------------------------------------------------------------------------- */
 
 const lsdem_node_hist *FixLsdemHistory::find(int i, tagint ptag, int &n) const
 {
-  const Slice *s = slice[i];
+  const Slice *s = pool[cur].slice + sfirst[i];
   for (int k = 0; k < nslice[i]; k++)  // a few partners: a scan beats a binary search
     if (s[k].partner == ptag) {
       n = s[k].n;
-      return hist[i] + s[k].start;
+      return pool[cur].entry + first[i] + s[k].start;
     }
   n = 0;
   return nullptr;
 }
 
-/* ----------------------------------------------------------------------
-   the lists are touched once per step, so they are out of cache when an atom's
-   turn comes: the styles ask for the next atom's list while they work on one
-------------------------------------------------------------------------- */
+/* ---------------------------------------------------------------------- */
 
-void FixLsdemHistory::prefetch(int i) const
+void FixLsdemHistory::begin_step()
 {
-  static constexpr int LINES = 64;  // up to 4 KB: a grain's usual list
-  const int n = std::min(nhist[i], LINES * 64 / (int) sizeof(lsdem_node_hist));
-  __builtin_prefetch(slice[i]);
-  for (int k = 0; k < n; k++) __builtin_prefetch(&hist[i][k]);
+  Pool &next = pool[1 - cur];
+  next.n = next.ns = 0;
+  generation++;
 }
 
 /* ---------------------------------------------------------------------- */
 
 void FixLsdemHistory::begin_atom()
 {
-  nscratch = 0;
-  nslices = 0;
+  atom_entry = pool[1 - cur].n;
+  atom_slice = pool[1 - cur].ns;
 }
 
 /* ----------------------------------------------------------------------
@@ -120,12 +130,9 @@ void FixLsdemHistory::begin_atom()
 
 lsdem_node_hist *FixLsdemHistory::reserve(int cap)
 {
-  if (nscratch + cap > maxscratch) {
-    maxscratch = std::max(2 * maxscratch, nscratch + cap);
-    scratch = (lsdem_node_hist *) memory->srealloc(scratch, sizeof(lsdem_node_hist) * maxscratch,
-                                                   "lsdem/history:scratch");
-  }
-  return scratch + nscratch;
+  Pool &next = pool[1 - cur];
+  pool_room(next, cap, 1);
+  return next.entry + next.n;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -133,60 +140,50 @@ lsdem_node_hist *FixLsdemHistory::reserve(int cap)
 void FixLsdemHistory::commit(tagint ptag, int n)
 {
   if (n <= 0) return;
-  if (nslices == maxslices) {
-    maxslices = std::max(16, 2 * maxslices);
-    slices = (Slice *) memory->srealloc(slices, sizeof(Slice) * maxslices, "lsdem/history:slices");
-  }
-  slices[nslices].partner = ptag;
-  slices[nslices].start = nscratch;
-  slices[nslices].n = n;
-  nslices++;
-  nscratch += n;
+  Pool &next = pool[1 - cur];
+  pool_room(next, 0, 1);
+  next.slice[next.ns++] = {ptag, next.n - atom_entry, n};
+  next.n += n;
 }
 
 /* ----------------------------------------------------------------------
-   replace atom i's list by the committed slices, ordered by partner tag
+   atom i's list := the committed slices, headers ordered by partner tag
    (each slice is already sorted by node: the kernel writes it that way)
 ------------------------------------------------------------------------- */
 
 void FixLsdemHistory::end_atom(int i)
 {
-  // few partners per grain: insertion sort of the slice headers
-  for (int a = 1; a < nslices; a++) {
-    Slice s = slices[a];
+  Pool &next = pool[1 - cur];
+  Slice *s = next.slice + atom_slice;
+  const int ns = next.ns - atom_slice;
+  for (int a = 1; a < ns; a++) {  // few partners per grain: insertion sort
+    Slice t = s[a];
     int b = a - 1;
-    while (b >= 0 && slices[b].partner > s.partner) {
-      slices[b + 1] = slices[b];
+    while (b >= 0 && s[b].partner > t.partner) {
+      s[b + 1] = s[b];
       b--;
     }
-    slices[b + 1] = s;
+    s[b + 1] = t;
   }
-  ensure_capacity(i, nscratch, nslices);
-  int m = 0;
-  for (int s = 0; s < nslices; s++) {
-    memcpy(hist[i] + m, scratch + slices[s].start, sizeof(lsdem_node_hist) * slices[s].n);
-    slice[i][s] = {slices[s].partner, m, slices[s].n};
-    m += slices[s].n;
-  }
-  nhist[i] = m;
-  nslice[i] = nslices;
-  note_count(m);
+  first[i] = atom_entry;
+  nhist[i] = next.n - atom_entry;
+  sfirst[i] = atom_slice;
+  nslice[i] = ns;
+  visited[i] = generation;
+  note_count(nhist[i]);
 }
 
-/* ---------------------------------------------------------------------- */
+/* ----------------------------------------------------------------------
+   the written pool becomes the current one; owned atoms the step did not visit have
+   nothing in it
+------------------------------------------------------------------------- */
 
-void FixLsdemHistory::ensure_capacity(int i, int n, int ns)
+void FixLsdemHistory::end_step()
 {
-  if (n > maxhist[i]) {
-    maxhist[i] = std::max(n, 2 * maxhist[i]);
-    hist[i] = (lsdem_node_hist *) memory->srealloc(hist[i], sizeof(lsdem_node_hist) * maxhist[i],
-                                                   "lsdem/history:hist");
-  }
-  if (ns > maxslice[i]) {
-    maxslice[i] = std::max(ns, 2 * maxslice[i]);
-    slice[i] = (Slice *) memory->srealloc(slice[i], sizeof(Slice) * maxslice[i],
-                                          "lsdem/history:slice");
-  }
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++)
+    if (visited[i] != generation) nhist[i] = nslice[i] = 0;
+  cur = 1 - cur;
 }
 
 /* ----------------------------------------------------------------------
@@ -205,36 +202,27 @@ void FixLsdemHistory::note_count(int n)
 void FixLsdemHistory::grow_arrays(int nmax)
 {
   if (nmax <= nmax_atom) return;
+  memory->grow(first, nmax, "lsdem/history:first");
   memory->grow(nhist, nmax, "lsdem/history:nhist");
-  memory->grow(maxhist, nmax, "lsdem/history:maxhist");
+  memory->grow(sfirst, nmax, "lsdem/history:sfirst");
   memory->grow(nslice, nmax, "lsdem/history:nslice");
-  memory->grow(maxslice, nmax, "lsdem/history:maxslice");
-  hist = (lsdem_node_hist **) memory->srealloc(hist, sizeof(lsdem_node_hist *) * nmax,
-                                               "lsdem/history:hist");
-  slice = (Slice **) memory->srealloc(slice, sizeof(Slice *) * nmax, "lsdem/history:slice");
-  for (int i = nmax_atom; i < nmax; i++) {
-    nhist[i] = maxhist[i] = nslice[i] = maxslice[i] = 0;
-    hist[i] = nullptr;
-    slice[i] = nullptr;
-  }
+  memory->grow(visited, nmax, "lsdem/history:visited");
+  for (int i = nmax_atom; i < nmax; i++) first[i] = nhist[i] = sfirst[i] = nslice[i] = visited[i] = 0;
   nmax_atom = nmax;
 }
 
 /* ----------------------------------------------------------------------
-   atom j takes over atom i's list. LAMMPS never reads atom i again after
-   copy(i,j) (deletion, sorting), so the two buffers are swapped rather than
-   copied: no allocation, and every buffer keeps exactly one owner.
+   atom j takes over atom i's list (its place in the pool: lists are never written in
+   place, so two atoms may share one until the next step rewrites the pool)
 ------------------------------------------------------------------------- */
 
 void FixLsdemHistory::copy_arrays(int i, int j, int /*delflag*/)
 {
-  if (i == j) return;
-  std::swap(nhist[i], nhist[j]);
-  std::swap(maxhist[i], maxhist[j]);
-  std::swap(hist[i], hist[j]);
-  std::swap(nslice[i], nslice[j]);
-  std::swap(maxslice[i], maxslice[j]);
-  std::swap(slice[i], slice[j]);
+  first[j] = first[i];
+  nhist[j] = nhist[i];
+  sfirst[j] = sfirst[i];
+  nslice[j] = nslice[i];
+  visited[j] = visited[i];
 }
 
 /* ---------------------------------------------------------------------- */
@@ -252,10 +240,11 @@ int FixLsdemHistory::pack_entries(int i, double *buf) const
 {
   int m = 0;
   buf[m++] = ubuf(nhist[i]).d;
+  const Pool &p = pool[cur];
   for (int s = 0; s < nslice[i]; s++) {
-    const Slice &sl = slice[i][s];
+    const Slice &sl = p.slice[sfirst[i] + s];
     for (int k = sl.start; k < sl.start + sl.n; k++) {
-      const lsdem_node_hist &h = hist[i][k];
+      const lsdem_node_hist &h = p.entry[first[i] + k];
       buf[m++] = ubuf(sl.partner).d;
       buf[m++] = ubuf(pack_node(h)).d;
       buf[m++] = ubuf((int64_t) h.stamp).d;
@@ -267,7 +256,8 @@ int FixLsdemHistory::pack_entries(int i, double *buf) const
 }
 
 /* ----------------------------------------------------------------------
-   entries come sorted by partner: each run of one partner is a slice
+   entries come grouped by partner: each run of one partner is a slice. They are
+   appended to the current pool (the next step rewrites it without the dropped ones).
 ------------------------------------------------------------------------- */
 
 int FixLsdemHistory::unpack_entries(int i, const double *buf)
@@ -277,21 +267,24 @@ int FixLsdemHistory::unpack_entries(int i, const double *buf)
   for (int k = 0; k < n; k++)
     if (k == 0 || ubuf(buf[1 + k * ENTRY_DOUBLES]).i != ubuf(buf[1 + (k - 1) * ENTRY_DOUBLES]).i)
       ns++;
-  ensure_capacity(i, n, ns);
+  Pool &p = pool[cur];
+  pool_room(p, n, ns);
+  first[i] = p.n;
+  sfirst[i] = p.ns;
   int m = 1;
-  nslice[i] = 0;
   for (int k = 0; k < n; k++) {
-    lsdem_node_hist &h = hist[i][k];
+    lsdem_node_hist &h = p.entry[p.n + k];
     const tagint ptag = (tagint) ubuf(buf[m++]).i;
-    if (nslice[i] == 0 || slice[i][nslice[i] - 1].partner != ptag)
-      slice[i][nslice[i]++] = {ptag, k, 0};
-    slice[i][nslice[i] - 1].n++;
+    if (p.ns == sfirst[i] || p.slice[p.ns - 1].partner != ptag) p.slice[p.ns++] = {ptag, k, 0};
+    p.slice[p.ns - 1].n++;
     unpack_node(ubuf(buf[m++]).i, h);
     h.stamp = (int64_t) ubuf(buf[m++]).i;
     for (int d = 0; d < 3; d++) h.shear[d] = buf[m++];
     for (int d = 0; d < 3; d++) h.normal[d] = buf[m++];
   }
+  p.n += n;
   nhist[i] = n;
+  nslice[i] = p.ns - sfirst[i];
   note_count(n);
   return m;
 }
@@ -352,9 +345,8 @@ int FixLsdemHistory::maxsize_restart()
 
 double FixLsdemHistory::memory_usage()
 {
-  double bytes = (double) nmax_atom * (4 * sizeof(int) + 2 * sizeof(void *));
-  for (int i = 0; i < nmax_atom; i++)
-    bytes += (double) maxhist[i] * sizeof(lsdem_node_hist) + (double) maxslice[i] * sizeof(Slice);
-  bytes += (double) maxscratch * sizeof(lsdem_node_hist) + (double) maxslices * sizeof(Slice);
+  double bytes = (double) nmax_atom * 5 * sizeof(int);
+  for (const Pool &p : pool)
+    bytes += (double) p.max * sizeof(lsdem_node_hist) + (double) p.maxs * sizeof(Slice);
   return bytes;
 }

@@ -21,6 +21,7 @@
 #include "math_const.h"
 #include "memory.h"
 #include "modify.h"
+#include "neighbor.h"
 #include "update.h"
 #include "variable.h"
 
@@ -42,6 +43,7 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), axis(2), fix_history(nullptr), avec(nullptr), fall_valid(0),
   moving(false), nodelist(-1.0), pivot(false), pivot_h(0.0), pivot_inertia(0.0),
   pivot_damping(0.0),
+  cand(nullptr), ncand(0), maxcand(0), cand_nlocal(0), cand_built(-1),
   contact(nullptr), ncontact(0), maxcontact(0), contact_step(-1)
 {
   for (int d = 0; d < 3; d++) {
@@ -193,6 +195,7 @@ FixWallLsdem::~FixWallLsdem()
   for (int d = 0; d < 3; d++) delete[] vstr[d];
   delete[] extlist;
   memory->destroy(contact);
+  memory->destroy(cand);
   if (fix_history && modify) {
     int ifix = modify->find_fix(history_id);
     if (ifix >= 0) modify->delete_fix(ifix);
@@ -285,6 +288,7 @@ void FixWallLsdem::reset_dt()
 
 void FixWallLsdem::setup(int vflag)
 {
+  cand_built = -1;  // atoms may have been added, removed or reordered between runs
   update_velocity();
   post_force(vflag);
 }
@@ -349,13 +353,14 @@ void FixWallLsdem::reduce_pivot_load()
 }
 
 /* ----------------------------------------------------------------------
-   cheap rejection: the grain's bounding sphere does not reach the wall
+   cheap rejection: the grain's bounding sphere, widened by margin, does not reach the
+   wall
 ------------------------------------------------------------------------- */
 
-bool FixWallLsdem::may_touch(int i) const
+bool FixWallLsdem::may_touch(int i, double margin) const
 {
   const double *x = atom->x[i];
-  const double r = atom->radius[i];
+  const double r = atom->radius[i] + margin;
   const double rel[3] = {x[0] - wpose.x[0], x[1] - wpose.x[1], x[2] - wpose.x[2]};
   // rel . column k of R: its component along the wall frame's axis k
   auto along = [&](int k) {
@@ -366,6 +371,47 @@ bool FixWallLsdem::may_touch(int i) const
   return wall.sdf.a[0] - sqrt(a0 * a0 + a1 * a1) < r;
 }
 
+/* ----------------------------------------------------------------------
+   the candidates found at the last reneighbouring still cover every grain that can
+   touch: since then no grain moved more than half the neighbour skin (LAMMPS's distance
+   check) and the wall translated by at most as much (a tilting platen is not covered)
+------------------------------------------------------------------------- */
+
+bool FixWallLsdem::candidates_hold() const
+{
+  if (cand_built < 0 || cand_built != neighbor->lastcall || cand_nlocal != atom->nlocal)
+    return false;
+  double moved2 = 0.0;
+  for (int d = 0; d < 3; d++) moved2 += (wpose.x[d] - cand_wall_x[d]) * (wpose.x[d] - cand_wall_x[d]);
+  const double half = 0.5 * neighbor->skin;
+  return moved2 <= half * half;
+}
+
+/* ----------------------------------------------------------------------
+   grains to visit: within reach of the wall, or keeping history with it (group
+   membership is tested at the visit: groups may be dynamic); the reach is widened by the neighbour skin when the list can be kept until the
+   next reneighbouring (distance-checked neighbour lists), else the list is for this step
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::find_candidates()
+{
+  const int nlocal = atom->nlocal;
+  if (nlocal > maxcand) {
+    maxcand = atom->nmax;
+    memory->destroy(cand);
+    memory->create(cand, maxcand, "wall/lsdem:cand");
+  }
+  const bool keep = neighbor->dist_check && neighbor->skin > 0.0 && !pivot;
+  const double margin = keep ? neighbor->skin : 0.0;
+  ncand = 0;
+  for (int i = 0; i < nlocal; i++)
+    if (may_touch(i, margin) || (fix_history && fix_history->holds(i)))
+      cand[ncand++] = i;
+  cand_built = keep ? neighbor->lastcall : -1;
+  cand_nlocal = nlocal;
+  for (int d = 0; d < 3; d++) cand_wall_x[d] = wpose.x[d];
+}
+
 /* ---------------------------------------------------------------------- */
 
 void FixWallLsdem::post_force(int /*vflag*/)
@@ -373,7 +419,6 @@ void FixWallLsdem::post_force(int /*vflag*/)
   double **x = atom->x, **v = atom->v, **omega = atom->omega;
   double **f = atom->f, **torque = atom->torque;
   const int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
   const bigint step = update->ntimestep;
 
   flocal[0] = flocal[1] = flocal[2] = 0.0;
@@ -391,13 +436,13 @@ void FixWallLsdem::post_force(int /*vflag*/)
   ncontact = 0;
   contact_step = step;
 
-  for (int i = 0; i < nlocal; i++) {
-    const bool test = (mask[i] & groupbit) && may_touch(i);
+  if (!candidates_hold()) find_candidates();
+  if (fix_history) fix_history->begin_step();
+  for (int c = 0; c < ncand; c++) {
+    const int i = cand[c];
+    const bool test = (mask[i] & groupbit) && may_touch(i, 0.0);
     if (!test && !(fix_history && fix_history->holds(i))) continue;  // far, nothing kept
-    if (fix_history) {
-      if (i + 1 < nlocal) fix_history->prefetch(i + 1);
-      fix_history->begin_atom();
-    }
+    if (fix_history) fix_history->begin_atom();
     if (test) {
       lsdem_pose p;
       for (int d = 0; d < 3; d++) {
@@ -429,6 +474,7 @@ void FixWallLsdem::post_force(int /*vflag*/)
     }
     if (fix_history) fix_history->end_atom(i);
   }
+  if (fix_history) fix_history->end_step();
   if (pivot) reduce_pivot_load();
 }
 

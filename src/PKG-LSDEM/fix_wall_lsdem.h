@@ -78,7 +78,15 @@ class FixWallLsdem : public Fix {
   double tlocal[3];            // torque of the grains on the wall about wpose.x, this rank
   double pivot_torque[3];      // torque about P, all ranks, of the last force call
 
+  // grains that may touch the wall until the next reneighbouring (local indices), built
+  // with the neighbour skin as margin; rebuilt every step when that does not hold
+  int *cand;
+  int ncand, maxcand, cand_nlocal;
+  bigint cand_built;           // neighbor->lastcall when cand was built; -1: stale
+  double cand_wall_x[3];       // the wall's point then
   void add_contact(int, const lsdem_contact_result &);
+  bool candidates_hold() const;
+  void find_candidates();
   int parse_pivot(int, int, char **);
   void start_pivot();
   void step_pivot();
@@ -87,7 +95,7 @@ class FixWallLsdem : public Fix {
   void update_velocity();
   void check_plane_in_box() const;
 
-  bool may_touch(int) const;
+  bool may_touch(int, double margin) const;
   void set_plane_frame(const double n[3]);
   void set_axis_frame();
 };

@@ -277,12 +277,10 @@ void PairLsdem::compute(int eflag, int vflag)
   if (neighbor->ago == 0 || !master_built) build_master_pairs();  // the list was just built
   const int inum = list->inum;
   const int *ilist = list->ilist;
+  if (fix_history) fix_history->begin_step();
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
-    if (fix_history) {
-      if (ii + 1 < inum) fix_history->prefetch(ilist[ii + 1]);
-      fix_history->begin_atom();
-    }
+    if (fix_history) fix_history->begin_atom();
     const int *js = master_j + master_first[i];
     const double *scales = master_scale_of + master_first[i];
     for (int k = 0; k < master_num[i]; k++) {
@@ -296,6 +294,7 @@ void PairLsdem::compute(int eflag, int vflag)
     }
     if (fix_history) fix_history->end_atom(i);
   }
+  if (fix_history) fix_history->end_step();
 
   apply_contacts();
   tally_workload();

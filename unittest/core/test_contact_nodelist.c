@@ -42,8 +42,7 @@ static int step_run(run_state *r, const lsdem_shape *A, const lsdem_pose *pa,
   return nout;
 }
 
-/* The shear entries (node >= 0) of a history: after the list's pose, before its node
- * entries. */
+/* The shear entries (node >= 0) of a history: after the list's pose and node entries. */
 static const lsdem_node_hist *shear_entries(const run_state *r, int *n)
 {
   const lsdem_node_hist *h = r->buf[r->cur];

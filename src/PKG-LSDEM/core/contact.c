@@ -340,18 +340,21 @@ static int sdf_is_distance(const lsdem_sdf *s)
 
 /* ------------------------------------------------------------- node lists ---- */
 
-/* A pair's node list travels in its history: two entries ahead of the shear entries,
+/* A pair's node list travels in its history: two entries first,
  *   LIST_POSE_M: M[0..5] of the pose the list was built at (shear, normal); stamp: the
  *     step it was built at; pad_: the node stride;
  *   LIST_POSE_T: M[6..8] and t (shear, normal); stamp: the bits of its validity radius,
  *     the least distance any left-out node had to move to touch B (at least the skin);
  *     pad_: the number of node entries;
- * and, after the shear entries (ids >= 0), one entry per listed node k in increasing k,
- * id LIST_NODE + k: the node in A's frame (normal; copied from A, so that a step that
+ * then one entry per listed node k in increasing k, id LIST_NODE + k: the node in A's frame (normal; copied from A, so that a step that
  * uses the list reads none of A's node memory) and, when B is a grid, the 8 samples of
  * the cell the node was last looked up in (stamp and shear hold the 8 floats, pad_ the
  * cell's index, -1: none), so that a lookup in the same cell reads no grid memory.
- * A list built with another stride is not used; its node entries still give cells. */
+ * and after them the shear entries (ids >= 0). A step that uses the list knows how many
+ * node entries it writes, so its whole history goes out in order, where it is kept (no
+ * entry moved). A list built with another stride is not used; its node entries still
+ * give cells. (Histories of the earlier layout, shear entries ahead of the node entries,
+ * are not taken for a list: rebuilt, shear kept.) */
 enum { LIST_POSE_M = -2, LIST_POSE_T = -1, LIST_HEAD = 2, LIST_NODE = -(1 << 29) };
 
 /* The list state of one call. */
@@ -367,9 +370,11 @@ typedef struct {
   int nnode_in, node_cursor;
   lsdem_node_hist *head;     /* hist_out's list entries, or NULL */
   lsdem_node_hist *pose_out; /* == head while a new list is built, else NULL */
-  lsdem_node_hist *node_out; /* hist_out's node entries are written here (room after the
-                                largest set of shear entries; moved after them at the end) */
+  lsdem_node_hist *node_out; /* hist_out's node entries (after the head) */
   int nnode_out;
+  int shear_at; /* hist_out's shear entries are written from here: after the listed nodes
+                   when their count is known, else after the largest node set (moved
+                   down to follow the node entries at the end) */
 } node_list;
 
 /* Where in a node entry a kept cell's 8 floats sit: the 32 bytes of stamp and shear. */
@@ -513,14 +518,18 @@ static void list_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB
   L->node_in = NULL;
   L->nnode_in = L->node_cursor = L->nnode_out = 0;
   L->head = L->pose_out = L->node_out = NULL;
+  L->shear_at = 0;
   if (L->skin == 0.0) return;
   L->margin = HUGE_VAL;
   L->cached = sdfB->kind == LSDEM_SDF_GRID && !sdfB->inverted;
   const int stride = prm->node_stride > 1 ? prm->node_stride : 1;
   if (hist_in && list_head_ok(hist_in, n_in)) {
     const int nn = hist_in[1].pad_;
-    if (nn > 0 && nn <= n_in - LIST_HEAD && is_node_entry(hist_in[n_in - nn].node, A->nnodes)) {
-      L->node_in = hist_in + n_in - nn;
+    const lsdem_node_hist *nodes = hist_in + LIST_HEAD;
+    if (nn > 0 && nn <= n_in - LIST_HEAD && is_node_entry(nodes[0].node, A->nnodes) &&
+        is_node_entry(nodes[nn - 1].node, A->nnodes) &&
+        (nn == n_in - LIST_HEAD || nodes[nn].node >= 0)) {
+      L->node_in = nodes;
       L->nnode_in = nn;
     }
     const double motion = list_motion(hist_in, M, t, A->radius);
@@ -533,7 +542,8 @@ static void list_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB
                                                          : HUGE_VAL;
   if (!hist_out) return;
   L->head = hist_out;
-  L->node_out = hist_out + LIST_HEAD + A->nnodes;
+  L->node_out = hist_out + LIST_HEAD;
+  L->shear_at = LIST_HEAD + (L->use ? L->nnode_in : A->nnodes);
   if (L->use) {
     memcpy(hist_out, hist_in, sizeof *hist_out * LIST_HEAD);
     return;
@@ -568,8 +578,10 @@ static int list_finish(node_list *L, int n_out)
     L->pose_out[1].stamp = double_bits(radius > L->skin ? radius : L->skin);
   }
   L->head[1].pad_ = L->nnode_out;
-  memmove(L->head + n_out, L->node_out, sizeof *L->node_out * (size_t)L->nnode_out);
-  return n_out + L->nnode_out;
+  const int nodes_end = LIST_HEAD + L->nnode_out, nshear = n_out - L->shear_at;
+  if (nodes_end != L->shear_at)
+    memmove(L->head + nodes_end, L->head + L->shear_at, sizeof *L->head * (size_t)nshear);
+  return nodes_end + nshear;
 }
 
 /* Looks the batch up, then the contacts of its penetrating nodes; empties the batch.
@@ -752,8 +764,11 @@ int lsdem_contact_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_
   pair_begin(&c, pa, pb, prm, step, hist_in, n_in, hist_out);
   node_list list;
   list_begin(&list, A, &B->sdf, prm, step, hist_in, n_in, hist_out, M, t);
-  if (list.head) c.n_out = LIST_HEAD;
-  if (list.node_in) c.n_in = (int)(list.node_in - hist_in); /* shear entries end there */
+  if (list.head) c.n_out = list.shear_at;
+  if (list.node_in) { /* the shear entries follow the node entries */
+    c.hist_in = list.node_in + list.nnode_in;
+    c.n_in = n_in - (int)(c.hist_in - hist_in);
+  }
 
   node_batch batch;
   batch.n = 0;
