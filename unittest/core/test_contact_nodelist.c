@@ -13,7 +13,8 @@
  *   - a pair that rattles gets a wider list (rebuilt far less often), and the base skin's
  *     list back once it rests; never wider than B's gradient bound covers;
  *   - against a grid the list keeps its nodes' cells: lookups in the same cell read them;
- *   - a history in an earlier version's list layout is not read as a list;
+ *   - a history in an earlier version's list layout is not read as a list; a damaged node
+ *     entry in a list is skipped (never used as a node index);
  *   - lsdem_grid_outer_lipschitz bounds |phi(p) - phi(p')| / |p - p'| on random nearby
  *     pairs where phi >= 0, stays close to 1 for a sampled exact distance, and its reach
  *     limit is the smallest boundary sample. */
@@ -23,6 +24,8 @@
 #include <stdlib.h>
 
 enum { STEPS = 400, CAP = 2 * FIX_GRAIN_NODES + 8 };
+/* a node id past every node of A (ids of listed nodes are -(1 << 29) + k) */
+#define LSDEM_TEST_BAD_NODE_ID (-(1 << 29) + 1000000)
 
 /* One run: its own history, swapped between steps. */
 typedef struct {
@@ -258,6 +261,26 @@ static void test_kept_cells(const lsdem_shape *A, const lsdem_shape *B, const ls
   free(shifted);
 }
 
+/* A list whose middle node entry is damaged (an id that is no node of A, as a corrupted
+ * restart file could hold) is used without that entry: one lookup fewer, and no node
+ * index out of A's range is ever read (the ASan build of this test would report it). */
+static void test_damaged_entry(const lsdem_shape *A, const lsdem_shape *B, const lsdem_pose *pb)
+{
+  static lsdem_node_hist h0[CAP], h1[CAP];
+  lsdem_contact_params listed = fix_params(50.0, 0.0, 0.0, 0.5);
+  listed.node_skin = 0.3;
+  lsdem_pose pa;
+  path_pose(APPROACH, 100, 11.6, &pa);
+  int n0 = 0, n1 = 0;
+  lsdem_contact_result r0, r1;
+  lsdem_contact_nodes(A, &pa, B, pb, &listed, 0, NULL, 0, h0, &n0, &r0);
+  const int nn = h0[1].pad_; /* node entries follow the two head entries */
+  CHECK(nn > 4 && r0.ntested >= nn, "%d listed of %d looked up", nn, r0.ntested);
+  h0[2 + nn / 2].node = LSDEM_TEST_BAD_NODE_ID;
+  lsdem_contact_nodes(A, &pa, B, pb, &listed, 1, h0, n0, h1, &n1, &r1);
+  CHECK(r1.ntested == nn - 1, "damaged list: %d lookups, want %d", r1.ntested, nn - 1);
+}
+
 /* Lists are trusted only as far as the nodes they leave out are from touching: lists
  * built at random poses (grain near B, small and wide skins) and then used after random
  * moves towards B, of up to four skins, give the plain answer every time, while many of
@@ -400,6 +423,7 @@ int main(void)
   test_list_settings(&ga.clustered, &plane, &pw);
   test_kept_cells(&ga.clustered, &B, &pb);
   test_old_layout(&ga.clustered, &B, &pb);
+  test_damaged_entry(&ga.clustered, &B, &pb);
   test_rattle_widens(&ga.clustered, &B, &pb);
   test_rattle_bound_limits(&ga.clustered, &B, &pb);
   compare_runs("grid, friction", SLIDE, &ga.clustered, &B, &pb, 11.6, 0.5, 1, 0.3, 1);

@@ -525,10 +525,11 @@ static void list_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB
   const int stride = prm->node_stride > 1 ? prm->node_stride : 1;
   if (hist_in && list_head_ok(hist_in, n_in)) {
     const int nn = hist_in[1].pad_;
+    /* the first node entry tells this layout from the earlier one (a shear entry there);
+     * the others are checked as they are read (reading the last one now would wait for
+     * memory the sequential reads bring in later) */
     const lsdem_node_hist *nodes = hist_in + LIST_HEAD;
-    if (nn > 0 && nn <= n_in - LIST_HEAD && is_node_entry(nodes[0].node, A->nnodes) &&
-        is_node_entry(nodes[nn - 1].node, A->nnodes) &&
-        (nn == n_in - LIST_HEAD || nodes[nn].node >= 0)) {
+    if (nn > 0 && nn <= n_in - LIST_HEAD && is_node_entry(nodes[0].node, A->nnodes)) {
       L->node_in = nodes;
       L->nnode_in = nn;
     }
@@ -725,6 +726,7 @@ static void contacts_of_listed_nodes(pair_ctx *restrict c, const lsdem_shape *A,
 {
   for (int e = 0; e < L->nnode_in; e++) {
     const lsdem_node_hist *h = &L->node_in[e];
+    if (!is_node_entry(h->node, A->nnodes)) continue; /* a damaged history: not a node */
     const int i = batch->n++;
     batch->node[i] = h->node - LIST_NODE;
     memcpy(&batch->x[3 * i], h->normal, 3 * sizeof(double));
