@@ -18,14 +18,13 @@ void lsdem_step_translation(double x[3], double v[3], const double f[3], double 
 }
 
 /* dt * angular acceleration from Euler's equations with damping (eq 2.20), evaluated
- * at the body-frame angular velocity w: the bracket of eqs 2.22 and 2.24. dt_I = dt / I
- * (formed once per step: the predictor and corrector then wait on no division). */
+ * at the body-frame angular velocity w: the bracket of eqs 2.22 and 2.24. */
 static void euler_increment(const double w[3], const double torque[3],
-                            const double I[3], const double dt_I[3], double xi, double dw[3])
+                            const double I[3], double xi, double dt, double dw[3])
 {
-  dw[0] = dt_I[0] * (torque[0] + w[1] * w[2] * (I[1] - I[2]) - xi * I[0] * w[0]);
-  dw[1] = dt_I[1] * (torque[1] + w[2] * w[0] * (I[2] - I[0]) - xi * I[1] * w[1]);
-  dw[2] = dt_I[2] * (torque[2] + w[0] * w[1] * (I[0] - I[1]) - xi * I[2] * w[2]);
+  dw[0] = dt * (torque[0] + w[1] * w[2] * (I[1] - I[2]) - xi * I[0] * w[0]) / I[0];
+  dw[1] = dt * (torque[1] + w[2] * w[0] * (I[2] - I[0]) - xi * I[1] * w[1]) / I[1];
+  dw[2] = dt * (torque[2] + w[0] * w[1] * (I[0] - I[1]) - xi * I[2] * w[2]) / I[2];
 }
 
 /* Predictor-corrector for Euler's equations (eqs 2.21-2.25). Eq 2.25 as printed adds
@@ -36,11 +35,10 @@ void lsdem_step_rotation(double omega[3], double dw_prev[3], const double torque
                          const double inertia[3], double xi, double dt)
 {
   double w_est[3], dw_pred[3], w_n[3], dw[3];
-  const double dt_I[3] = {dt / inertia[0], dt / inertia[1], dt / inertia[2]};
   for (int i = 0; i < 3; i++) w_est[i] = omega[i] + 0.5 * dw_prev[i]; /* eq 2.21 */
-  euler_increment(w_est, torque, inertia, dt_I, xi, dw_pred);         /* eq 2.22 */
+  euler_increment(w_est, torque, inertia, xi, dt, dw_pred);           /* eq 2.22 */
   for (int i = 0; i < 3; i++) w_n[i] = omega[i] + 0.5 * dw_pred[i];   /* eq 2.23 */
-  euler_increment(w_n, torque, inertia, dt_I, xi, dw);                /* eq 2.24 */
+  euler_increment(w_n, torque, inertia, xi, dt, dw);                  /* eq 2.24 */
   for (int i = 0; i < 3; i++) {
     omega[i] += dw[i]; /* eq 2.25, full increment */
     dw_prev[i] = dw[i];

@@ -131,28 +131,14 @@ void lsdem_quat_rotate_inv(const double q[4], const double v[3], double out[3])
 /* Report eq 2.28 solved exactly for constant body-frame omega over dt:
  * dq/dt = q (0, omega)/2  =>  q(t+dt) = q(t) exp((0, omega) dt/2), and
  * exp((0, a)) = (cos|a|, sin|a| a/|a|). sin(x)/x uses its Taylor series near 0. */
-/* cos th and sin(th) / th. Below th = 0.05 (a grain turning less than 0.1 rad per step:
- * always, in a stable run) from their series in th^2 up to th^8: the first term left out
- * is below 3e-19 there, under the rounding of a double near 1. Else from libm. */
-static void cos_sinc(double th2, double *c, double *sinc)
-{
-  if (th2 < 0.05 * 0.05) {
-    *c = 1.0 - th2 / 2.0 * (1.0 - th2 / 12.0 * (1.0 - th2 / 30.0 * (1.0 - th2 / 56.0)));
-    *sinc = 1.0 - th2 / 6.0 * (1.0 - th2 / 20.0 * (1.0 - th2 / 42.0 * (1.0 - th2 / 72.0)));
-    return;
-  }
-  const double th = sqrt(th2);
-  *c = cos(th);
-  *sinc = sin(th) / th;
-}
-
 void lsdem_quat_advance(double q[4], const double omega_body[3], double dt)
 {
   const double half = 0.5 * dt;
   const double a[3] = {omega_body[0] * half, omega_body[1] * half, omega_body[2] * half};
-  double c, sinc;
-  cos_sinc(dot3(a, a), &c, &sinc);
-  const double e[4] = {c, sinc * a[0], sinc * a[1], sinc * a[2]};
+  const double th2 = dot3(a, a);
+  const double th = sqrt(th2);
+  const double sinc = th < 1e-4 ? 1.0 - th2 / 6.0 : sin(th) / th;
+  const double e[4] = {cos(th), sinc * a[0], sinc * a[1], sinc * a[2]};
   double r[4];
   lsdem_quat_multiply(q, e, r);
   for (int i = 0; i < 4; i++) q[i] = r[i];
