@@ -12,6 +12,7 @@
 #include "memory.h"
 
 #include <algorithm>
+#include <climits>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -113,7 +114,7 @@ void FixLsdemHistory::begin_step()
 {
   Pool &next = pool[1 - cur];
   next.n = next.ns = 0;
-  generation++;
+  generation = generation < INT_MAX ? generation + 1 : 1;  // wraps, never to 0 (new atoms)
 }
 
 /* ---------------------------------------------------------------------- */
