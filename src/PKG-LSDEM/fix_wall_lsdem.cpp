@@ -372,9 +372,23 @@ bool FixWallLsdem::may_touch(int i, double margin) const
 }
 
 /* ----------------------------------------------------------------------
+   whether candidates found with the neighbour skin as margin cover every grain that can
+   touch until the next reneighbouring: LAMMPS rebuilds the lists as soon as a grain has
+   moved half the skin only with distance checks at every step (neigh_modify delay 0
+   every 1 check yes, not once yes); a tilting platen's far points move more than its
+   point, so it is not covered
+------------------------------------------------------------------------- */
+
+bool FixWallLsdem::candidates_can_last() const
+{
+  return neighbor->dist_check && neighbor->every == 1 && neighbor->delay == 0 &&
+      !neighbor->build_once && neighbor->skin > 0.0 && !pivot;
+}
+
+/* ----------------------------------------------------------------------
    the candidates found at the last reneighbouring still cover every grain that can
-   touch: since then no grain moved more than half the neighbour skin (LAMMPS's distance
-   check) and the wall translated by at most as much (a tilting platen is not covered)
+   touch: since then no grain moved more than half the neighbour skin and the wall
+   translated by at most as much
 ------------------------------------------------------------------------- */
 
 bool FixWallLsdem::candidates_hold() const
@@ -389,8 +403,9 @@ bool FixWallLsdem::candidates_hold() const
 
 /* ----------------------------------------------------------------------
    grains to visit: within reach of the wall, or keeping history with it (group
-   membership is tested at the visit: groups may be dynamic); the reach is widened by the neighbour skin when the list can be kept until the
-   next reneighbouring (distance-checked neighbour lists), else the list is for this step
+   membership is tested at the visit: groups may be dynamic); the reach is widened by
+   the neighbour skin when the list can last until the next reneighbouring, else the
+   list is for this step
 ------------------------------------------------------------------------- */
 
 void FixWallLsdem::find_candidates()
@@ -401,7 +416,7 @@ void FixWallLsdem::find_candidates()
     memory->destroy(cand);
     memory->create(cand, maxcand, "wall/lsdem:cand");
   }
-  const bool keep = neighbor->dist_check && neighbor->skin > 0.0 && !pivot;
+  const bool keep = candidates_can_last();
   const double margin = keep ? neighbor->skin : 0.0;
   ncand = 0;
   for (int i = 0; i < nlocal; i++)

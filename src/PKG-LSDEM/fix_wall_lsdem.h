@@ -85,6 +85,7 @@ class FixWallLsdem : public Fix {
   bigint cand_built;           // neighbor->lastcall when cand was built; -1: stale
   double cand_wall_x[3];       // the wall's point then
   void add_contact(int, const lsdem_contact_result &);
+  bool candidates_can_last() const;
   bool candidates_hold() const;
   void find_candidates();
   int parse_pivot(int, int, char **);

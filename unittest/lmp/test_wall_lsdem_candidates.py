@@ -6,7 +6,9 @@ margin. The two runs must give the same wall forces and kinetic energy at every 
 Two scenes: cubes flying at a plane and a cylinder wall (crossing the skin between
 reneighbourings) and settling on a floor with friction; and cubes at rest (nothing
 reneighbours) under a lid that comes down fast from far above, so that only the wall's
-own motion since the list was made can renew it."""
+own motion since the list was made can renew it. A third scene runs with lists built once
+per run (`neigh_modify once yes`): nothing then bounds how far a grain moves between
+builds, so the wall must find its candidates at every step; a lone cube flies at it."""
 import math
 import os
 import re
@@ -28,7 +30,7 @@ SCENES = {
         Grain((-2.0, 2.0, 1.0), q=quat_axis_angle((-1, -1, 2), math.pi / 2), v=(-2.5, 2.5, 0.0)),
     ], """fix side all wall/lsdem plane 4 0 0 -1 0 0 2000 1500 0.4
 fix can all wall/lsdem cylinder 0 0 5.0 2000 1500 0.4 axis z
-""", ("f_floor[3]", "f_side[1]", "f_can[1]")),
+""", ("f_floor[3]", "f_side[1]", "f_can[1]"), "check yes"),
     # cubes at rest on the floor (no reneighbouring) and a lid coming down fast from far
     # above, stopped just after it touches: only the lid's own motion renews its list
     "lid": ([
@@ -36,14 +38,21 @@ fix can all wall/lsdem cylinder 0 0 5.0 2000 1500 0.4 axis z
         Grain((2.0, 1.0, -4.45), q=quat_axis_angle((0, 0, 1), 0.3)),
     ], """variable vz equal -5.0*(step<596)
 fix lid all wall/lsdem plane 0 0 -1.0 0 0 -1 2000 1500 0.4 velocity 0 0 v_vz
-""", ("f_floor[3]", "f_lid[3]")),
+""", ("f_floor[3]", "f_lid[3]"), "check yes"),
+    # a lone cube flying at a wall with lists built once per run (neigh_modify once yes):
+    # LAMMPS never rebuilds them, so the wall may keep no candidates across steps
+    "once": ([
+        Grain((2.0, 0.0, 0.0), q=quat_axis_angle((0, 1, -1), math.acos(1 / math.sqrt(3))),
+              v=(6.0, 0.0, 0.0)),
+    ], """fix side all wall/lsdem plane 4 0 0 -1 0 0 2000 1500 0.4
+""", ("f_side[1]",), "check yes once yes"),
 }
 
 DECK = """
 pair_style lsdem
 pair_coeff * * 2000 1500 0.5
 neighbor 0.3 bin
-neigh_modify delay 0 every 1 check ${check}
+neigh_modify delay 0 every 1 %s
 fix floor all wall/lsdem plane 0 0 -5 0 0 1 2000 1500 0.6
 %s
 fix grav all gravity 1.0 vector 0 0 -1
@@ -56,13 +65,13 @@ timestep 1e-3
 run 650
 """
 
-for name, (grains, walls, cols) in SCENES.items():
+for name, (grains, walls, cols, kept_neigh) in SCENES.items():
     write_data(name + ".data", (-6, 6, -6, 6, -6, 6), grains)
-    deck = head(lib, name + ".data", boundary="f f f", extra="atom_modify sort 0 0.0") + \
-        DECK % (walls, " ".join(cols), THERMO_FULL)
     runs = {}
-    for mode in ("yes", "no"):
-        rc, log = run_lmp(deck, vars={"check": mode}, cwd=os.path.abspath(name + "_" + mode))
+    for mode, neigh in (("yes", kept_neigh), ("no", "check no")):
+        deck = head(lib, name + ".data", boundary="f f f", extra="atom_modify sort 0 0.0") + \
+            DECK % (neigh, walls, " ".join(cols), THERMO_FULL)
+        rc, log = run_lmp(deck, cwd=os.path.abspath(name + "_" + mode))
         builds = re.search(r"Neighbor list builds = (\d+)", log)
         runs[mode] = (thermo(log), int(builds.group(1)) if builds else -1)
     kept, fresh = runs["yes"][0], runs["no"][0]
@@ -71,7 +80,7 @@ for name, (grains, walls, cols) in SCENES.items():
         continue
     # the lists were kept for many steps in one run and made at every step in the other
     check(runs["yes"][1] < 200 and runs["no"][1] >= 650,
-          "%s: neighbour list builds: %d (check yes), %d (check no)"
+          "%s: neighbour list builds: %d (kept), %d (check no)"
           % (name, runs["yes"][1], runs["no"][1]))
     # every wall was touched, so each one's candidates were put to the test
     for col in cols:

@@ -346,15 +346,16 @@ static int sdf_is_distance(const lsdem_sdf *s)
  *   LIST_POSE_T: M[6..8] and t (shear, normal); stamp: the bits of its validity radius,
  *     the least distance any left-out node had to move to touch B (at least the skin);
  *     pad_: the number of node entries;
- * then one entry per listed node k in increasing k, id LIST_NODE + k: the node in A's frame (normal; copied from A, so that a step that
- * uses the list reads none of A's node memory) and, when B is a grid, the 8 samples of
- * the cell the node was last looked up in (stamp and shear hold the 8 floats, pad_ the
- * cell's index, -1: none), so that a lookup in the same cell reads no grid memory.
- * and after them the shear entries (ids >= 0). A step that uses the list knows how many
- * node entries it writes, so its whole history goes out in order, where it is kept (no
- * entry moved). A list built with another stride is not used; its node entries still
- * give cells. (Histories of the earlier layout, shear entries ahead of the node entries,
- * are not taken for a list: rebuilt, shear kept.) */
+ * then one entry per listed node k in increasing k, id LIST_NODE + k: the node in A's
+ * frame (normal; copied from A, so that a step that uses the list reads none of A's node
+ * memory) and, when B is a grid, the 8 samples of the cell the node was last looked up
+ * in (stamp and shear hold the 8 floats, pad_ the cell's index, -1: none), so that a
+ * lookup in the same cell reads no grid memory; and after them the shear entries
+ * (ids >= 0). A step that uses the list knows how many node entries it writes, so its
+ * whole history goes out in order, where it is kept (no entry moved). A list built with
+ * another stride is not used; its node entries still give cells. (Histories of the
+ * earlier layout, shear entries ahead of the node entries, are not taken for a list:
+ * rebuilt, shear kept.) */
 enum { LIST_POSE_M = -2, LIST_POSE_T = -1, LIST_HEAD = 2, LIST_NODE = -(1 << 29) };
 
 /* The list state of one call. */

@@ -360,12 +360,12 @@ typedef struct {
  * Node list (node_skin = s > 0; a Verlet list of nodes): the history also carries, in
  * entries with negative node ids, the pose of B relative to A (two entries placed first)
  * and the nodes of A that may touch B found at that pose (one entry per node, between
- * those two and the shear entries, holding the node's coordinates). While no node has moved by s relative to
- * B since then (bound |M - M0| rA + |t - t0| on the change of q = M x + t), only those
- * nodes are looked up; otherwise every node is screened again and the list rebuilt. A
- * node is left out when it is farther than rB + s from B's centre or, when B's level set
- * has a known gradient bound L (exact distances: 1; grids: lsdem_grid_outer_lipschitz), when
- * phi_B >= L s there: it cannot reach phi < 0 before the list is rebuilt. Against a grid
+ * those two and the shear entries, holding the node's coordinates). While no node has
+ * moved by s relative to B since then (bound |M - M0| rA + |t - t0| on the change of
+ * q = M x + t), only those nodes are looked up; otherwise every node is screened again
+ * and the list rebuilt. A node is left out when it is farther than rB + s from B's centre
+ * or, when B's level set has a known gradient bound L (exact distances: 1; grids:
+ * lsdem_grid_outer_lipschitz), when phi_B >= L s there: it cannot reach phi < 0 before the list is rebuilt. Against a grid
  * each listed node's entry also keeps its cell (the 8 samples), and a lookup in the same
  * cell reads those instead of the grid (lsdem_grid_eval_many_cached). The contacts found
  * are therefore the same, bit for bit, as without a list; only lookups of nodes that
