@@ -13,9 +13,9 @@ Independent expectations, from the apparatus rather than from an earlier run:
 4. the unload-reload stage (a small specimen, UNLOAD_AT=0.03, EPSMAX=0.05): unloading
    starts at 3% axial strain and stops at the first check (every 10 steps; the log shows
    the axial deviator qz at each) where qz has fallen to unload_q = 0.3 of its value there,
-   at a smaller axial strain; reloading ends at EPSMAX. (qz falls by up to half the target
-   between two checks, so how far below the target it stops depends on round-off: the test
-   checks that no earlier check was below it, not the value.)"""
+   at a smaller axial strain; reloading ends at EPSMAX. (qz falls by up to 0.8 of the
+   target between two checks, so how far below the target it stops depends on round-off:
+   the test checks that no earlier check was below it, not the value.)"""
 import csv
 import math
 import os

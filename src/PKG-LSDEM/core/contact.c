@@ -9,8 +9,8 @@
  * Torques are taken about each grain's centroid.
  *
  * The per-contact physics (normal spring and damping, the shear spring with its
- * history, the Coulomb cap, the accumulation into a result) lives in one function,
- * apply_contacts(), shared by the node loop and by the sphere paths. */
+ * history, the Coulomb cap, the accumulation into a result) lives in apply_contacts() and
+ * the functions it calls, shared by the node loop and by the sphere paths. */
 #include "lsdem.h"
 
 #include <math.h>

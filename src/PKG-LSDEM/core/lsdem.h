@@ -362,21 +362,21 @@ typedef struct {
  * and the nodes of A that may touch B found at that pose (one entry per node, between
  * those two and the shear entries, holding the node's coordinates). While no node has
  * moved by s relative to B since then (bound |M - M0| rA + |t - t0| on the change of
- * q = M x + t), only those nodes are looked up; otherwise every node is screened again
- * and the list rebuilt. A node is left out when it is farther than rB + s from B's centre
- * or, when B's level set has a known gradient bound L (exact distances: 1; grids:
- * lsdem_grid_outer_lipschitz), when phi_B >= L s there: it cannot reach phi < 0 before the list is rebuilt. Against a grid
- * each listed node's entry also keeps its cell (the 8 samples), and a lookup in the same
- * cell reads those instead of the grid (lsdem_grid_eval_many_cached). The contacts found
- * are therefore the same, bit for bit, as without a list; only lookups of nodes that
- * cannot touch, and grid reads, are saved (res->ntested counts the lookups made). A list
- * is trusted up to the least distance any node it left out had to move to touch B (at
- * least its skin: the distance to the widened sphere, phi / L, a left-out cluster's
- * clearance), whatever the skin is now; one built with another stride is rebuilt. The skin
- * adapts per pair: a list outlived within 8 steps is followed by one wide enough to last 8
- * steps at the pair's rate of motion (at most 4 s, and within B's gradient bound), and a
- * wide list (validity radius above 2 s) is rebuilt after 32 steps. Returns the number of
- * penetrating nodes. */
+ * q = M x + t), only those nodes are looked up; otherwise every node is screened again and
+ * the list rebuilt. A node is left out when it is farther than rB + s from B's centre or,
+ * when B's level set has a known gradient bound L (exact distances: 1; grids:
+ * lsdem_grid_outer_lipschitz), when phi_B >= L s there: it cannot reach phi < 0 before the
+ * list is rebuilt. Against a grid each listed node's entry also keeps its cell (the 8
+ * samples), and a lookup in the same cell reads those instead of the grid
+ * (lsdem_grid_eval_many_cached). The contacts found are therefore the same, bit for bit,
+ * as without a list; only lookups of nodes that cannot touch, and grid reads, are saved
+ * (res->ntested counts the lookups made). A list is trusted up to the least distance any
+ * node it left out had to move to touch B (at least its skin: the distance to the widened
+ * sphere, phi / L, a left-out cluster's clearance), whatever the skin is now; one built
+ * with another stride is rebuilt. The skin adapts per pair: a list outlived within 8 steps
+ * is followed by one wide enough to last 8 steps at the pair's rate of motion (at most
+ * 4 s, and within B's gradient bound), and a wide list (validity radius above 2 s) is
+ * rebuilt after 32 steps. Returns the number of penetrating nodes. */
 int lsdem_contact_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
                         const lsdem_pose *pb, const lsdem_contact_params *prm, int64_t step,
                         const lsdem_node_hist *hist_in, int n_in, lsdem_node_hist *hist_out,
