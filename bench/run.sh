@@ -2,11 +2,14 @@
 # Benchmark LSDEM on a scene in the Kawamoto/Tan layout (the report code's input format).
 #
 #   bench/run.sh [SCENE_DIR] [--steps N] [--np N] [--mode oneway|twoway] [--instructions]
-#                [--compare OTHER_LMP [--pairs K]]
+#                [--compare OTHER_LMP [--pairs K]] [--keep]
 #
-# Without SCENE_DIR it generates the reference scene of ../shared/bench (2,197 ellipsoids,
-# 250 nodes each) into a temporary folder. Prints the LAMMPS time split (pair, neighbour,
-# comm, modify), the workload per grain-step, and as its last line
+# Without SCENE_DIR it uses the reference scene of ../shared/bench (2,197 ellipsoids, 250
+# nodes each), generated once (about 30 s) and kept in $LSDEM_HOME/bench (default
+# ~/.cache/lsdem/bench) for later runs. The run's files (shape library, data file, logs) go
+# to a temporary folder under $TMPDIR (default /tmp), removed at the end unless --keep is
+# given. Prints the LAMMPS time split (pair, neighbour, comm, modify), the workload per
+# grain-step, and as its last line
 #   us_per_grain_step=<x> node_tests_per_s=<y>
 # --instructions: instead of timing, count the CPU instructions of one grain-step under
 # valgrind (callgrind): runs of N and 2N steps (N = --steps, at most 20), one rank, the
@@ -24,7 +27,7 @@ set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 build=${LSDEM_BUILD_DIR:-$here/../build}
 lmp=${LSDEM_LMP:-$build/lmp}
-scene="" steps=500 np=1 mode=oneway instructions=0 other="" pairs=3
+scene="" steps=500 np=1 mode=oneway instructions=0 other="" pairs=3 keep=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --steps) steps=$2; shift 2 ;;
@@ -33,6 +36,7 @@ while [ $# -gt 0 ]; do
     --np) np=$2; shift 2 ;;
     --mode) mode=$2; shift 2 ;;
     --instructions) instructions=1; shift ;;
+    --keep) keep=1; shift ;;
     -*) echo "unknown option $1" >&2; exit 2 ;;
     *) scene=$1; shift ;;
   esac
@@ -45,13 +49,24 @@ if [ -n "$other" ]; then
 fi
 # the deck's command-line arguments for a run of $1 steps, in the array `deck`
 deck_args() { deck=(-in "$here/in.bench" -var steps "$1" -var mode "$mode" -var seed 2197); }
-work=$(mktemp -d /tmp/lsdem-bench.XXXXXX)
+work=$(mktemp -d "${TMPDIR:-/tmp}/lsdem-bench.XXXXXX")
+if [ "$keep" = 1 ]; then
+  trap 'echo "files of this run kept in $work" >&2' EXIT
+else
+  trap 'rm -rf "$work"' EXIT
+fi
 if [ -z "$scene" ]; then
   gen=$here/../../shared/bench/gen_morph.py
   [ -f "$gen" ] || { echo "no SCENE_DIR given and no $gen to make the reference scene" >&2; exit 2; }
-  echo "generating the reference scene (2197 grains) in $work/ref ..."
-  /usr/bin/python3 "$gen" --n 2197 --test sc2197 --spacing 19 --seed 2197 --root "$work/ref" >/dev/null
-  scene=$work/ref/sc2197
+  # kept per version of the generator; made in the run's folder, then moved in whole
+  cache=${LSDEM_HOME:-$HOME/.cache/lsdem}/bench/sc2197-$(sha256sum "$gen" | cut -c1-12)
+  if [ ! -d "$cache" ]; then
+    echo "generating the reference scene (2197 grains, about 30 s) into $cache ..."
+    /usr/bin/python3 "$gen" --n 2197 --test sc2197 --spacing 19 --seed 2197 --root "$work/ref" >/dev/null
+    mkdir -p "$(dirname "$cache")"
+    mv "$work/ref/sc2197" "$cache.$$" && mv -T "$cache.$$" "$cache" 2>/dev/null || rm -rf "$cache.$$"
+  fi
+  scene=$cache
 fi
 # density 2650 kg/m^3 at 0.1 um per voxel: rho k^3 (report Table 3.1)
 "$build/lsdem-import-tan" "$scene" "$work/scene" --density 2.65e-18

@@ -1,0 +1,73 @@
+"""bench/run.sh on a small scene folder in the Kawamoto/Tan layout (the benchmark a user points
+at their own data). Independent expectations: its last line's us_per_grain_step is the run's
+'Loop time' divided by steps x grains and node_tests_per_s the thermo rows' mean node lookups
+(c_work[3]) times steps over the loop time, both recomputed here from the kept log; the run
+leaves nothing in $TMPDIR unless --keep is given, and then says where its files are."""
+import os
+import re
+import shutil
+import subprocess
+
+from lsdemtest import LMP, SHAPE_TOOL, check, finish, near, shape_tool, thermo
+
+RUN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "bench", "run.sh")
+STEPS, GRAINS = 40, 8
+
+# eight grains (two shapes) on a 2x2x2 lattice of spacing 10 in a 20^3 box (voxel units):
+# neighbours and walls overlap them at the start
+shape_tool("analytic", "a.lslib", "ellipsoid", 6, 5, 4, "--spacing", 1, "--nodes", 100)
+shape_tool("analytic", "b.lslib", "sphere", 5, "--spacing", 1, "--nodes", 100)
+os.makedirs("scene/Morphologies", exist_ok=True)
+os.makedirs("scene/InitState", exist_ok=True)
+shape_tool("to-morph", "a.lslib", 0, "scene/Morphologies/morph_1.dat")
+shape_tool("to-morph", "b.lslib", 0, "scene/Morphologies/morph_2.dat")
+for i in range(3, GRAINS + 1):
+    link = "scene/Morphologies/morph_%d.dat" % i
+    if not os.path.lexists(link):
+        os.symlink("morph_%d.dat" % (1 + i % 2), link)
+with open("scene/InitState/positions_t.dat", "w") as f:
+    for k in range(GRAINS):
+        f.write("%g %g %g\n" % (5 + 10 * (k % 2), 5 + 10 * (k // 2 % 2), 5 + 10 * (k // 4)))
+with open("scene/InitState/rotations_t.dat", "w") as f:  # x y z w
+    f.write("0 0 0 1\n0.6 0 0 0.8\n0 0.6 0 0.8\n0 0 0.6 0.8\n" * 2)
+with open("scene/geometry.txt", "w") as f:
+    f.write("box_x 20\nbox_y 20\nbox_z 20\n")
+
+shutil.rmtree("tmp", ignore_errors=True)  # an earlier run's kept files
+os.makedirs("tmp")
+env = dict(os.environ, TMPDIR=os.path.abspath("tmp"), LSDEM_LMP=LMP,
+           LSDEM_BUILD_DIR=os.path.dirname(SHAPE_TOOL))
+
+
+def bench(*extra):
+    p = subprocess.run(["bash", RUN, "scene", "--steps", str(STEPS)] + list(extra), env=env,
+                       stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=300)
+    check(p.returncode == 0, "bench/run.sh %s failed (%d): %s%s"
+          % (" ".join(extra), p.returncode, p.stdout[-2000:], p.stderr[-2000:]))
+    return p
+
+
+p = bench()
+check(os.listdir("tmp") == [], "a run without --keep leaves nothing in $TMPDIR: %s"
+      % os.listdir("tmp"))
+
+p = bench("--keep")
+last = p.stdout.strip().splitlines()[-1]
+m = re.fullmatch(r"us_per_grain_step=([\d.]+) node_tests_per_s=([\d.eE+-]+)", last)
+check(m is not None, "last line is the headline figures: %r" % last)
+k = re.search(r"files of this run kept in (\S+)", p.stderr)
+check(k is not None and os.path.isdir(k.group(1)), "--keep says where the files are: %r"
+      % p.stderr)
+if m and k:
+    log = open(os.path.join(k.group(1), "log.bench")).read()
+    loop = re.findall(r"Loop time of ([\d.eE+-]+) on 1 procs for (\d+) steps with (\d+) atoms",
+                      log)[-1]
+    check(int(loop[1]) == STEPS and int(loop[2]) == GRAINS, "the run: %s" % (loop,))
+    near(float(m.group(1)), float(loop[0]) / (STEPS * GRAINS) * 1e6, atol=0.0015,
+         msg="us_per_grain_step = loop time / (steps x grains)")
+    rows = thermo(log)
+    lookups = sum(r["c_work[3]"] for r in rows) / len(rows)
+    check(lookups > 0, "the scene's grains touch: %g node lookups per step" % lookups)
+    near(float(m.group(2)), lookups * STEPS / float(loop[0]), rtol=1e-3,
+         msg="node_tests_per_s = mean lookups per step x steps / loop time")
+finish()
