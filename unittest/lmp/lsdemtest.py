@@ -68,6 +68,32 @@ def shape_tool(*args, cwd=None):
     return p.stdout
 
 
+def tan_scene(root, which, positions, rotations, box=None):
+    """A scene folder in the Kawamoto/Tan layout (what lsdem-import-tan and bench/run.sh
+    read) from two analytic shapes in voxel units, a = ellipsoid 6 5 4 and b = sphere 5
+    (100 nodes each): grain i's Morphologies/morph_<i>.dat links to shapes/<which[i-1]>.dat,
+    positions and rotations (unit quaternions in the file's x y z w order) go to InitState,
+    and box (X, Y, Z), when given, to geometry.txt."""
+    shape_tool("analytic", "a.lslib", "ellipsoid", 6, 5, 4, "--spacing", 1, "--nodes", 100)
+    shape_tool("analytic", "b.lslib", "sphere", 5, "--spacing", 1, "--nodes", 100)
+    os.makedirs(os.path.join(root, "Morphologies", "shapes"), exist_ok=True)
+    os.makedirs(os.path.join(root, "InitState"), exist_ok=True)
+    for w in "ab":
+        shape_tool("to-morph", w + ".lslib", 0, os.path.join(root, "Morphologies", "shapes",
+                                                              w + ".dat"))
+    for i, w in enumerate(which):
+        link = os.path.join(root, "Morphologies", "morph_%d.dat" % (i + 1))
+        if not os.path.lexists(link):
+            os.symlink("shapes/%s.dat" % w, link)
+    with open(os.path.join(root, "InitState", "positions_t.dat"), "w") as f:
+        f.write("".join("%r %r %r\n" % tuple(p) for p in positions))
+    with open(os.path.join(root, "InitState", "rotations_t.dat"), "w") as f:
+        f.write("".join("%r %r %r %r\n" % tuple(q) for q in rotations))
+    if box:
+        with open(os.path.join(root, "geometry.txt"), "w") as f:
+            f.write("box_x %r\nbox_y %r\nbox_z %r\n" % tuple(box))
+
+
 def thermo(log_text, run_index=-1):
     """Thermo rows of one run (default: the last) as a list of dicts of floats."""
     runs = []

@@ -8,30 +8,17 @@ import re
 import shutil
 import subprocess
 
-from lsdemtest import LMP, SHAPE_TOOL, check, finish, near, shape_tool, thermo
+from lsdemtest import LMP, SHAPE_TOOL, check, finish, near, tan_scene, thermo
 
 RUN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "bench", "run.sh")
 STEPS, GRAINS = 40, 8
 
 # eight grains (two shapes) on a 2x2x2 lattice of spacing 10 in a 20^3 box (voxel units):
 # neighbours and walls overlap them at the start
-shape_tool("analytic", "a.lslib", "ellipsoid", 6, 5, 4, "--spacing", 1, "--nodes", 100)
-shape_tool("analytic", "b.lslib", "sphere", 5, "--spacing", 1, "--nodes", 100)
-os.makedirs("scene/Morphologies", exist_ok=True)
-os.makedirs("scene/InitState", exist_ok=True)
-shape_tool("to-morph", "a.lslib", 0, "scene/Morphologies/morph_1.dat")
-shape_tool("to-morph", "b.lslib", 0, "scene/Morphologies/morph_2.dat")
-for i in range(3, GRAINS + 1):
-    link = "scene/Morphologies/morph_%d.dat" % i
-    if not os.path.lexists(link):
-        os.symlink("morph_%d.dat" % (1 + i % 2), link)
-with open("scene/InitState/positions_t.dat", "w") as f:
-    for k in range(GRAINS):
-        f.write("%g %g %g\n" % (5 + 10 * (k % 2), 5 + 10 * (k // 2 % 2), 5 + 10 * (k // 4)))
-with open("scene/InitState/rotations_t.dat", "w") as f:  # x y z w
-    f.write("0 0 0 1\n0.6 0 0 0.8\n0 0.6 0 0.8\n0 0 0.6 0.8\n" * 2)
-with open("scene/geometry.txt", "w") as f:
-    f.write("box_x 20\nbox_y 20\nbox_z 20\n")
+tan_scene("scene", "ab" * (GRAINS // 2),
+          [(5 + 10 * (k % 2), 5 + 10 * (k // 2 % 2), 5 + 10 * (k // 4)) for k in range(GRAINS)],
+          [(0, 0, 0, 1), (0.6, 0, 0, 0.8), (0, 0.6, 0, 0.8), (0, 0, 0.6, 0.8)] * 2,
+          box=(20, 20, 20))
 
 shutil.rmtree("tmp", ignore_errors=True)  # an earlier run's kept files
 os.makedirs("tmp")

@@ -6,7 +6,7 @@ import math
 import os
 import subprocess
 
-from lsdemtest import SHAPE_TOOL, check, finish, near, run_lmp, shape_tool
+from lsdemtest import SHAPE_TOOL, check, finish, near, run_lmp, tan_scene
 
 IMPORT = os.path.join(os.path.dirname(SHAPE_TOOL), "lsdem-import-tan")
 
@@ -26,18 +26,8 @@ def textbook(w, x, y, z):
             [2*(x*z - w*y), 2*(y*z + w*x), 1 - 2*(x*x + y*y)]]
 
 
-# two morphology files (voxel units) from analytic shapes
-shape_tool("analytic", "a.lslib", "ellipsoid", 6, 5, 4, "--spacing", 1, "--nodes", 100)
-shape_tool("analytic", "b.lslib", "sphere", 5, "--spacing", 1, "--nodes", 100)
-os.makedirs("scene/Morphologies/shapes", exist_ok=True)
-os.makedirs("scene/InitState", exist_ok=True)
-shape_tool("to-morph", "a.lslib", 0, "scene/Morphologies/shapes/a.dat")
-shape_tool("to-morph", "b.lslib", 0, "scene/Morphologies/shapes/b.dat")
-which = ["a", "b", "a", "a"]            # grains 1, 3, 4 share one file
-for i, w in enumerate(which):
-    link = "scene/Morphologies/morph_%d.dat" % (i + 1)
-    if not os.path.lexists(link):
-        os.symlink("shapes/%s.dat" % w, link)
+# grains 1, 3, 4 share one morphology file (a: an ellipsoid), grain 2 has the other (a sphere)
+which = ["a", "b", "a", "a"]
 pos = [(15.0, 15.0, 15.0), (35.0, 15.0, 15.0), (15.0, 35.0, 15.0), (35.0, 35.0, 35.0)]
 rots = []
 for i in range(4):                      # unit quaternions in the file's (x y z w) order
@@ -45,10 +35,7 @@ for i in range(4):                      # unit quaternions in the file's (x y z 
     v = (math.sin(a) * math.cos(b), math.sin(a) * math.sin(b), math.cos(a))
     h = 0.4 + 0.5 * i
     rots.append((v[0] * math.sin(h), v[1] * math.sin(h), v[2] * math.sin(h), math.cos(h)))
-with open("scene/InitState/positions_t.dat", "w") as f:
-    f.write("".join("%r %r %r\n" % p for p in pos))
-with open("scene/InitState/rotations_t.dat", "w") as f:
-    f.write("".join("%.15f %.15f %.15f %.15f\n" % q for q in rots))
+tan_scene("scene", which, pos, rots)
 
 p = subprocess.run([IMPORT, "scene", "out", "--density", "2.0", "--box", "50", "50", "50"],
                    stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
