@@ -93,9 +93,11 @@ double ComputeInertialLsdem::compute_scalar()
   MPI_Allreduce(&mass, &mass_all, 1, MPI_DOUBLE, MPI_SUM, world);
   if (all[0] == 0.0) return scalar = 0.0;
 
-  scalar = lsdem_inertial_number(value_of(rate), all[1] / all[0], value_of(pressure),
-                                 mass_all / all[2]);
-  if (scalar > limit && !warned) {
+  // unconfined (pressure <= 0, e.g. a ramp still at zero): I is infinite, and says nothing
+  // about the shearing rate, so it warns of nothing
+  const double p = value_of(pressure);
+  scalar = lsdem_inertial_number(value_of(rate), all[1] / all[0], p, mass_all / all[2]);
+  if (p > 0.0 && scalar > limit && !warned) {
     warned = true;
     if (comm->me == 0)
       error->warning(FLERR, "Inertial number {:.3g} > {:.3g} at step {}: shearing is not "

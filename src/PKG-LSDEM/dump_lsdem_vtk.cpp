@@ -21,6 +21,7 @@
 #include "error.h"
 #include "update.h"
 
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 
@@ -90,9 +91,16 @@ void DumpLsdemVtk::openfile()
   if (!filewriter) return;
   const std::string name = step_file(update->ntimestep);
   fp = fopen(name.c_str(), "w");
-  if (!fp)
+  if (!fp) {
+    // like every LAMMPS dump, this one makes no folders: say so when one is missing
+    const bool nofile = errno == ENOENT;
+    const std::string folder = name.substr(0, name.rfind('/'));
+    const bool nofolder = nofile && folder != name;
+    const std::string hint =
+        nofolder ? fmt::format(" (create its folder first, e.g. 'shell mkdir {}')", folder) : "";
     AtomVecLsdem::error_one_flushed(error, FLERR, fmt::format("Dump lsdem/vtk cannot open "
-                                    "{}: {}", name, utils::getsyserror()));
+                                    "{}: {}{}", name, utils::getsyserror(), hint));
+  }
 }
 
 /* ----------------------------------------------------------------------

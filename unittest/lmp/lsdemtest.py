@@ -95,7 +95,8 @@ def tan_scene(root, which, positions, rotations, box=None):
 
 
 def thermo(log_text, run_index=-1):
-    """Thermo rows of one run (default: the last) as a list of dicts of floats."""
+    """Thermo rows of one run (default: the last) as a list of dicts of floats; warnings
+    printed between rows are passed over."""
     runs = []
     lines = log_text.splitlines()
     i = 0
@@ -106,6 +107,9 @@ def thermo(log_text, run_index=-1):
             i += 1
             while i < len(lines):
                 parts = lines[i].split()
+                if parts[:1] == ["WARNING:"]:
+                    i += 1
+                    continue
                 if len(parts) != len(header):
                     break
                 try:

@@ -163,6 +163,10 @@ check(0.15 * t1 < t2 < 0.4 * t1 and set(a2["id"]) == {g["id"] for g in GRAINS},
 rc, log = run_lmp("units lj\natom_style lsdem library %s\nread_data grains.data\n"
                   "dump v all lsdem/vtk 10 out/g*\n" % LIB, expect_fail=True)
 check("without * or %" in log, "prefix with * not rejected: %s" % log[-300:])
+rc, log = run_lmp("units lj\natom_style lsdem library %s\nread_data grains.data\n"
+                  "dump v all lsdem/vtk 10 nofolder/g\nrun 0\n" % LIB, expect_fail=True)
+check("cannot open nofolder/g_0.vtp" in log and "shell mkdir nofolder" in log,
+      "missing dump folder not named: %s" % log[-300:])
 rc, log = run_lmp("units lj\natom_style sphere\nregion b block 0 1 0 1 0 1\ncreate_box 1 b\n"
                   "dump v all lsdem/vtk 10 g\n", expect_fail=True)
 check("requires atom_style lsdem" in log, "atom style not checked: %s" % log[-300:])

@@ -15,6 +15,8 @@
 4. A plane platen that leaves the whole box on its solid side is refused, naming the point
    and the range of n.p that cuts the box.
 5. compute dilatancy/lsdem on prescribed strain histories (eq 3.10 by hand).
+6. compute inertial/lsdem of one grain (eq 3.5 by hand from its mass and density): inf and no
+   warning while the pressure is 0, then the formula, and one warning above LIMIT.
 """
 import math
 import os
@@ -179,5 +181,33 @@ if check(set(rows5) >= {0, 10, 20, 30, 40}, "dilatancy: thermo rows missing"):
         near(rows5[n], math.degrees(math.asin(1.0 / 3.0)), atol=1e-9, msg="psi at step %d" % n)
     for n in (30, 40):
         near(rows5[n], -90.0, atol=1e-6, msg="psi at step %d" % n)
+
+# 6. inertial number of one grain of density 1: V = m / rho, d = (6 V / pi)^(1/3),
+#    I = rate d / sqrt(p / rho); p ramps from 0, so step 0 is unconfined (inf, no warning)
+deck6 = head("s.lslib", "one.data", boundary="p p f") + """
+pair_style zero 1.0
+pair_coeff * *
+fix nve all nve/lsdem
+variable p equal 0.01*step
+variable m atom mass
+compute m all reduce sum v_m
+compute inert all inertial/lsdem 0.5 v_p warn 1e-6
+thermo_style custom step v_p c_m c_inert
+thermo_modify format float %.17g
+thermo 10
+run 30
+"""
+rc, log = run_lmp(deck6, cwd=os.path.abspath("inertial"))
+rows6 = {int(r["Step"]): r for r in thermo(log)}
+if check(set(rows6) >= {0, 10, 20, 30}, "inertial: thermo rows missing"):
+    check(math.isinf(float(rows6[0]["c_inert"])), "unconfined: I = inf, got %s"
+          % rows6[0]["c_inert"])
+    for n in (10, 20, 30):
+        d = (6.0 * float(rows6[n]["c_m"]) / 1.0 / math.pi) ** (1.0 / 3.0)
+        near(float(rows6[n]["c_inert"]), 0.5 * d / math.sqrt(float(rows6[n]["v_p"]) / 1.0),
+             rtol=1e-12, msg="inertial number at step %d" % n)
+warnings = [l for l in log.splitlines() if "not quasi-static" in l]
+check(len(warnings) == 1 and "at step 10" in warnings[0],
+      "one quasi-static warning, at the first confined step: %s" % warnings)
 
 finish()
