@@ -30,6 +30,9 @@
 using namespace LAMMPS_NS;
 
 static constexpr int NVALUES = 10;
+// smallest rotation (radians) that flags a grain: far above the ~1e-16 of quaternion
+// round-off, far below any rotation that marks a shear band
+static constexpr double ROTATION_FLOOR = 1e-9;
 
 /* ---------------------------------------------------------------------- */
 
@@ -104,7 +107,8 @@ void ComputeFabricLsdem::rotation_stats(double &mean, double &sd, double &nflag)
   MPI_Allreduce(sum, all, 3, MPI_DOUBLE, MPI_SUM, world);
   mean = all[0] > 0.0 ? all[1] / all[0] : 0.0;
   sd = all[0] > 0.0 ? sqrt(std::max(0.0, all[2] / all[0] - mean * mean)) : 0.0;
-  const double cut = mean + 2.0 * sd;
+  // at least ROTATION_FLOOR: before any grain has turned, round-off alone must flag none
+  const double cut = std::max(mean + 2.0 * sd, ROTATION_FLOOR);
   double nlocal_flag = 0.0;
   for (int i = 0; i < atom->nlocal; i++)
     if ((mask[i] & groupbit) && rot[i][0] > cut) {

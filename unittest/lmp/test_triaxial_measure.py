@@ -17,6 +17,8 @@
 5. compute dilatancy/lsdem on prescribed strain histories (eq 3.10 by hand).
 6. compute inertial/lsdem of one grain (eq 3.5 by hand from its mass and density): inf and no
    warning while the pressure is 0, then the formula, and one warning above LIMIT.
+7. compute fabric/lsdem rotations: none flagged at rest (round-off alone), and of 27 grains
+   the one spun at w about z for t is flagged, with mean and sd of the angles from w t.
 """
 import math
 import os
@@ -209,5 +211,36 @@ if check(set(rows6) >= {0, 10, 20, 30}, "inertial: thermo rows missing"):
 warnings = [l for l in log.splitlines() if "not quasi-static" in l]
 check(len(warnings) == 1 and "at step 10" in warnings[0],
       "one quasi-static warning, at the first confined step: %s" % warnings)
+
+# 7. rotation angles of compute fabric/lsdem: grain 1 (a sphere, no contacts) spins at w
+#    about z, so its angle is w t and the other 26 stay at 0: mean = w t / 27,
+#    sd = w t sqrt(26) / 27, and only grain 1 lies above mean + 2 sd
+W = 2.0
+spin = [Grain(g.x, q=g.q, shape=g.shape, w=(0.0, 0.0, W if k == 0 else 0.0))
+        for k, g in enumerate(grains)]
+write_data("spin.data", (0, L, 0, L, -1, 6), spin)
+deck7 = head("g.lslib", "spin.data", boundary="p p f") + """
+pair_style lsdem
+pair_coeff * * 1000 900 0.3
+fix nve all nve/lsdem
+compute fab all fabric/lsdem
+thermo_style custom step time c_fab[8] c_fab[9] c_fab[10]
+thermo_modify format float %.17g
+thermo 10
+run 20
+"""
+rc, log = run_lmp(deck7.replace("run 20", "run 0"), cwd=os.path.abspath("fabric"))
+rows7 = thermo(log)
+check(rows7 and rows7[0]["c_fab[10]"] == 0 and rows7[0]["c_fab[8]"] < 1e-15,
+      "at rest: no grain flagged, angles at round-off: %s" % rows7)
+rc, log = run_lmp(deck7, cwd=os.path.abspath("fabric"))
+rows7 = {int(r["Step"]): r for r in thermo(log)}
+if check(set(rows7) >= {10, 20}, "fabric: thermo rows missing"):
+    for n in (10, 20):
+        th = W * rows7[n]["Time"]
+        near(rows7[n]["c_fab[8]"], th / 27, rtol=1e-9, msg="mean rotation at step %d" % n)
+        near(rows7[n]["c_fab[9]"], th * math.sqrt(26) / 27, rtol=1e-9,
+             msg="sd of the rotations at step %d" % n)
+        check(rows7[n]["c_fab[10]"] == 1, "one grain flagged at step %d" % n)
 
 finish()
