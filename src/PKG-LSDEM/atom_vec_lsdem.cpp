@@ -120,20 +120,6 @@ void AtomVecLsdem::register_peratom(const char *name, void *address, int datatyp
   atom->add_peratom(name, address, datatype, cols);
 }
 
-/* ---------------------------------------------------------------------- */
-
-void AtomVecLsdem::error_one_flushed(Error *error, const std::string &file, int line,
-                                     const std::string &mesg)
-{
-  fflush(nullptr);
-  try {
-    error->one(file, line, mesg);
-  } catch (...) {
-    fflush(nullptr);
-    throw;
-  }
-}
-
 /* ----------------------------------------------------------------------
    atom_style lsdem library <file>
 ------------------------------------------------------------------------- */
@@ -286,19 +272,19 @@ void AtomVecLsdem::data_atom_post(int ilocal)
   const int n = lsdem_library_count(lib);
   const int s = shape[ilocal] - 1;
   if (s < 0 || s >= n)
-    error_one_flushed(error, FLERR, fmt::format("Atom {} in Atoms section has shape-ID {}; "
+    error->one(FLERR, fmt::format("Atom {} in Atoms section has shape-ID {}; "
                       "the shape library has shapes 1 to {}", id, shape[ilocal], n));
   shape[ilocal] = s;
 
   const double density = rmass[ilocal];
   if (!(density > 0.0) || !std::isfinite(density))
-    error_one_flushed(error, FLERR, fmt::format("Atom {} in Atoms section has invalid "
+    error->one(FLERR, fmt::format("Atom {} in Atoms section has invalid "
                       "density {}", id, density));
 
   double *q = quat[ilocal];
   const double qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
   if (!(qq > 0.0) || !std::isfinite(qq))
-    error_one_flushed(error, FLERR, fmt::format("Atom {} in Atoms section has invalid "
+    error->one(FLERR, fmt::format("Atom {} in Atoms section has invalid "
                       "quaternion {} {} {} {}", id, q[0], q[1], q[2], q[3]));
   // a quaternion already unit to round-off is kept bit for bit, so that a data file
   // written by write_data reads back identically

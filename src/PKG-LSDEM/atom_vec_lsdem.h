@@ -63,12 +63,6 @@ class AtomVecLsdem : public AtomVec {
   static double parse_node_skin(const char *, class LAMMPS *);
   double node_skin(double setting) const;
 
-  // error->one that first flushes every open output stream and flushes again after the
-  // message is logged: with LAMMPS_EXCEPTIONS the stand-alone lmp ends an error->one in
-  // MPI_Abort, which discards buffered output (log lines, dump frames, the message itself)
-  [[noreturn]] static void error_one_flushed(class Error *, const std::string &, int,
-                                             const std::string &);
-
  private:
   Storage *store;
   lsdem_library *lib;

@@ -98,7 +98,7 @@ void DumpLsdemVtk::openfile()
     const bool nofolder = nofile && folder != name;
     const std::string hint =
         nofolder ? fmt::format(" (create its folder first, e.g. 'shell mkdir {}')", folder) : "";
-    AtomVecLsdem::error_one_flushed(error, FLERR, fmt::format("Dump lsdem/vtk cannot open "
+    error->one(FLERR, fmt::format("Dump lsdem/vtk cannot open "
                                     "{}: {}{}", name, utils::getsyserror(), hint));
   }
 }
@@ -158,7 +158,7 @@ const lsdem_mesh &DumpLsdemVtk::shape_mesh(int s)
     lsdem_error err;
     if (lsdem_mesh_extract(&shape->sdf, spacing_factor == 1.0 ? 0.0 : spacing_factor * h,
                            &meshes[s], &err) != LSDEM_OK)
-      AtomVecLsdem::error_one_flushed(error, FLERR, fmt::format("Dump lsdem/vtk: surface "
+      error->one(FLERR, fmt::format("Dump lsdem/vtk: surface "
                                       "of shape {}: {}", s + 1, err.msg));
     mesh_ready[s] = 1;
   }
@@ -232,7 +232,7 @@ void DumpLsdemVtk::write_vtp()
   }
   fputs("</DataArray>\n</CellData>\n</Piece>\n</PolyData>\n</VTKFile>\n", fp);
   if (fflush(fp) != 0 || ferror(fp))
-    AtomVecLsdem::error_one_flushed(error, FLERR, fmt::format("Dump lsdem/vtk: writing {} "
+    error->one(FLERR, fmt::format("Dump lsdem/vtk: writing {} "
                                     "failed", step_file(update->ntimestep)));
 }
 
@@ -254,7 +254,7 @@ void DumpLsdemVtk::write_pvd()
   const std::string pvd = prefix + ".pvd", tmp = pvd + ".tmp";
   FILE *f = fopen(tmp.c_str(), "w");
   if (!f)
-    AtomVecLsdem::error_one_flushed(error, FLERR, fmt::format("Dump lsdem/vtk cannot open "
+    error->one(FLERR, fmt::format("Dump lsdem/vtk cannot open "
                                     "{}: {}", tmp, utils::getsyserror()));
   fputs("<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" "
         "byte_order=\"LittleEndian\">\n<Collection>\n", f);
@@ -264,6 +264,6 @@ void DumpLsdemVtk::write_pvd()
   fputs("</Collection>\n</VTKFile>\n", f);
   const bool bad = ferror(f) != 0;
   if (fclose(f) != 0 || bad || rename(tmp.c_str(), pvd.c_str()) != 0)
-    AtomVecLsdem::error_one_flushed(error, FLERR, fmt::format("Dump lsdem/vtk: writing {} "
+    error->one(FLERR, fmt::format("Dump lsdem/vtk: writing {} "
                                     "failed", pvd));
 }

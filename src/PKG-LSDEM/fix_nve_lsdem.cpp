@@ -179,5 +179,5 @@ void FixNVELsdem::fail_unstable(int i, double dt, const char *what)
       w[0], w[1], w[2], q[0], q[1], q[2], q[3], fi[0], fi[1], fi[2], t[0], t[1], t[2],
       speed * dt, 0.5 * atom->radius[i]);
 
-  AtomVecLsdem::error_one_flushed(error, FLERR, mesg);
+  error->one(FLERR, mesg);
 }

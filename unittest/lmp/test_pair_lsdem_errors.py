@@ -1,5 +1,7 @@
 """pair_style lsdem, fix wall/lsdem, compute contact/lsdem: wrong setups stop with a
-message that says what to add or fix."""
+message that says what to add or fix. And an error raised on one rank by LAMMPS itself
+(error->one, which ends in MPI_Abort) still reaches the log file, with the log lines before
+it (src/PKG-LSDEM/abort_flush.cpp)."""
 import os
 
 from lsdemtest import run_lmp, check, finish
@@ -29,5 +31,18 @@ for name, deck, expect in CASES:
     rc, log = run_lmp(deck, cwd=os.path.abspath(name), expect_fail=True)
     check(rc != 0 and expect in log, "%s: expected an error containing %r, got rc %d:\n%s"
           % (name, expect, rc, log[-800:]))
+
+# a word where the data file wants a density: LAMMPS's own reader stops in error->one
+good_data = open("one.data").read()
+with open("bad.data", "w") as f:
+    f.write(good_data.replace("\n1 1 1 1.0 ", "\n1 1 1 abc "))
+check(open("bad.data").read() != good_data, "the density field of atom 1 was replaced")
+deck = head(lib, "bad.data", boundary="f f f").replace(
+    "read_data", 'print "before the data file"\nread_data')
+rc, _ = run_lmp(deck, cwd=os.path.abspath("one_rank"), expect_fail=True)
+logged = open(os.path.join("one_rank", "log.lammps")).read()
+check(rc != 0 and "before the data file" in logged
+      and "Expected floating point parameter instead of 'abc'" in logged,
+      "error->one of LAMMPS itself lost from the log: rc %d, log:\n%s" % (rc, logged[-600:]))
 
 finish()
