@@ -142,6 +142,7 @@ void AtomVecLsdem::open_library(const char *path)
   err.msg[0] = '\0';
   lsdem_library_close(lib);
   lib = nullptr;
+  libpath = path;
   if (lsdem_library_open(path, &lib, &err) != LSDEM_OK)
     error->all(FLERR, "atom_style lsdem: cannot open shape library {}: {}", path, err.msg);
   if (lsdem_library_count(lib) <= 0)
@@ -298,6 +299,28 @@ void AtomVecLsdem::data_atom_post(int ilocal)
     omega[ilocal][k] = 0.0;
     dwprev[ilocal][k] = 0.0;
   }
+}
+
+/* ----------------------------------------------------------------------
+   read_restart opens the library at the path the restart names, as it is now: each grain's
+   shape must be there and be the shape it was written with (its bounding radius is copied
+   from the shape, so a changed or reordered library shows in it)
+------------------------------------------------------------------------- */
+
+void AtomVecLsdem::unpack_restart_init(int ilocal)
+{
+  const int n = lsdem_library_count(lib);
+  const int s = shape[ilocal];
+  if (s < 0 || s >= n)
+    error->one(FLERR, "read_restart: atom {} has shape-ID {}, but the shape library {} has "
+               "shapes 1 to {}: the restart was written with another library",
+               atom->tag[ilocal], s + 1, libpath, n);
+  const double r = lsdem_library_shape(lib, s)->radius;
+  if (radius[ilocal] != r)
+    error->one(FLERR, "read_restart: atom {} has bounding radius {} but its shape {} in the "
+               "shape library {} has radius {}: the restart was written with another library "
+               "(or the library file changed since)", atom->tag[ilocal], radius[ilocal], s + 1,
+               libpath, r);
 }
 
 /* ----------------------------------------------------------------------

@@ -17,6 +17,8 @@ AtomStyle(lsdem,AtomVecLsdem);
 #include "atom_vec.h"
 #include "lsdem.h"
 
+#include <string>
+
 namespace LAMMPS_NS {
 
 class AtomVecLsdem : public AtomVec {
@@ -40,6 +42,7 @@ class AtomVecLsdem : public AtomVec {
   void data_atom_post(int) override;
   void pack_data_pre(int) override;
   void pack_data_post(int) override;
+  void unpack_restart_init(int) override;
 
   int property_atom(char *) override;
   void pack_property_atom(int, double *, int, int) override;
@@ -66,6 +69,7 @@ class AtomVecLsdem : public AtomVec {
  private:
   Storage *store;
   lsdem_library *lib;
+  std::string libpath;
   double maxradius;
   double min_grain_radius;  // smallest bounding radius of a non-sphere shape (HUGE_VAL: none)
   double *radius, *rmass;

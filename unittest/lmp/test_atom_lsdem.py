@@ -162,6 +162,20 @@ gd.write_data("badshape.data", bad)
 rc, log = run_lmp(HEAD + "read_data badshape.data\n", expect_fail=True)
 check(rc != 0 and "Atom 2 in Atoms section has shape-ID 4; the shape library has shapes 1 to 3"
       in log, "out-of-range shape-ID error:\n" + log[-600:])
+
+# a restart re-opens its library by path: one that lost shapes, or whose shapes were
+# reordered (ball, box, ellipsoid), is refused naming the atom, instead of a crash
+shape_tool("merge", "swap.lslib", "ell.lslib", "ball.lslib", "box.lslib")
+run_lmp(HEAD.replace(LIB, "swap.lslib") + "read_data grains.data\n" + RUN
+        + "run 10\nwrite_restart swap.restart\n")
+for parts, expect in ((["ell.lslib"], "atom 2 has shape-ID 2, but the shape library "
+                       "swap.lslib has shapes 1 to 1"),
+                      (["ball.lslib", "box.lslib", "ell.lslib"], "atom 1 has bounding radius")):
+    shape_tool("merge", "swap.lslib", *parts)
+    rc, log = run_lmp("read_restart swap.restart\n" + RUN + "run 10\n", expect_fail=True)
+    check(rc != 0 and expect in log and "written with another library" in log,
+          "restart with library %s: expected %r:\n%s" % (parts, expect, log[-600:]))
+
 bad = [dict(g) for g in GRAINS]
 bad[2]["q"] = (0.0, 0.0, 0.0, 0.0)
 gd.write_data("badquat.data", bad)
