@@ -263,6 +263,16 @@ void PairLsdem::reset_dt()
     for (int j = 1; j <= atom->ntypes; j++) params[i][j].dt = update->dt;
 }
 
+/* bounding-sphere rejection (report eq 2.1) */
+
+inline bool PairLsdem::bounding_spheres_overlap(int i, int j) const
+{
+  const double d[3] = {pose[i].x[0] - pose[j].x[0], pose[i].x[1] - pose[j].x[1],
+                       pose[i].x[2] - pose[j].x[2]};
+  const double rsum = atom->radius[i] + atom->radius[j];
+  return d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < rsum * rsum;
+}
+
 /* ---------------------------------------------------------------------- */
 
 void PairLsdem::compute(int eflag, int vflag)
@@ -285,12 +295,7 @@ void PairLsdem::compute(int eflag, int vflag)
     const double *scales = master_scale_of + master_first[i];
     for (int k = 0; k < master_num[i]; k++) {
       const int j = js[k];
-      // bounding-sphere rejection (report eq 2.1)
-      double d[3] = {pose[i].x[0] - pose[j].x[0], pose[i].x[1] - pose[j].x[1],
-                     pose[i].x[2] - pose[j].x[2]};
-      double rsum = atom->radius[i] + atom->radius[j];
-      if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= rsum * rsum) continue;
-      test_pair(i, j, scales[k], contact_step);
+      if (bounding_spheres_overlap(i, j)) test_pair(i, j, scales[k], contact_step);
     }
     if (fix_history) fix_history->end_atom(i);
   }
@@ -506,39 +511,71 @@ static double equivalent_radius(const lsdem_shape *s)
   return cbrt(3.0 * s->volume / (4.0 * MY_PI));
 }
 
+/* the deepest node of slave j's nodes in master i's level set: the test one-way contact
+   (mode oneway) does not make, run at setup only, without history or forces */
+double PairLsdem::reverse_depth(int i, int j) const
+{
+  lsdem_contact_params prm = params[atom->type[i]][atom->type[j]];
+  prm.mu = 0.0;
+  prm.node_skin = 0.0;
+  lsdem_contact_result res;
+  lsdem_contact_grain(shape[j], &pose[j], shape[i], &pose[i], &prm, update->ntimestep, nullptr,
+                      0, nullptr, nullptr, &res);
+  return res.npen > 0 ? res.max_depth : 0.0;
+}
+
 void PairLsdem::report_overlaps()
 {
   struct {
     double ratio;
     int rank;
   } mine = {0.0, comm->me}, worst;
-  double info[4] = {0.0, 0.0, 0.0, 0.0};  // tag i, tag j, depth, radius
+  double info[5] = {0.0, 0.0, 0.0, 0.0, 0.0};  // tag i, tag j, depth, radius, reverse only
   bigint nover = 0, nover_all = 0;
-  for (int c = 0; c < ncontact; c++) {
-    const Contact &k = contact[c];
-    double req = std::min(equivalent_radius(shape[k.i]), equivalent_radius(shape[k.j]));
-    double ratio = k.res.max_depth / req;
+  auto consider = [&](int i, int j, double depth, bool reverse) {
+    const double req = std::min(equivalent_radius(shape[i]), equivalent_radius(shape[j]));
+    const double ratio = depth / req;
     if (ratio > OVERLAP_WARN) nover++;
-    if (ratio > mine.ratio) {
-      mine.ratio = ratio;
-      info[0] = (double) atom->tag[k.i];
-      info[1] = (double) atom->tag[k.j];
-      info[2] = k.res.max_depth;
-      info[3] = req;
+    if (ratio <= mine.ratio) return;
+    mine.ratio = ratio;
+    info[0] = (double) atom->tag[i];
+    info[1] = (double) atom->tag[j];
+    info[2] = depth;
+    info[3] = req;
+    info[4] = reverse ? 1.0 : 0.0;
+  };
+  for (int c = 0; c < ncontact; c++)
+    consider(contact[c].i, contact[c].j, contact[c].res.max_depth, false);
+  // mode oneway tests the master's nodes only: a slave deep in (or wholly inside) its master
+  // shows only in the reverse test
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    for (int k = master_first[i]; k < master_first[i] + master_num[i]; k++) {
+      const int j = master_j[k];
+      if (master_scale_of[k] != 1.0 || !bounding_spheres_overlap(i, j)) continue;
+      const double depth = reverse_depth(i, j);
+      if (depth > 0.0) consider(i, j, depth, true);
     }
   }
   MPI_Allreduce(&mine, &worst, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
   if (worst.ratio <= OVERLAP_WARN) return;
   MPI_Allreduce(&nover, &nover_all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
-  MPI_Bcast(info, 4, MPI_DOUBLE, worst.rank, world);
+  MPI_Bcast(info, 5, MPI_DOUBLE, worst.rank, world);
   if (comm->me == 0)
     error->warning(FLERR,
                    "pair lsdem: {} contact tests find a node deeper than {:.0f}% of the smaller "
                    "grain's equivalent radius; deepest: grains {} and {}, depth {:.4g} = {:.1f}% "
-                   "of {:.4g}. Large repulsive forces follow: separate the grains first (e.g. "
-                   "a short run with a small time step, or a lower kn)",
+                   "of {:.4g}. {}",
                    nover_all, 100.0 * OVERLAP_WARN, (tagint) info[0], (tagint) info[1], info[2],
-                   100.0 * worst.ratio, info[3]);
+                   100.0 * worst.ratio, info[3],
+                   info[4] != 0.0
+                       ? fmt::format("These are nodes of grain {} inside grain {}, which mode "
+                                     "oneway does not test (it tests grain {}'s nodes): this "
+                                     "overlap may exert little or no force. Separate the grains "
+                                     "first, or use mode twoway", (tagint) info[1],
+                                     (tagint) info[0], (tagint) info[0])
+                       : std::string("Large repulsive forces follow: separate the grains first "
+                                     "(e.g. a short run with a small time step, or a lower kn)"));
 }
 
 /* ---------------------------------------------------------------------- */

@@ -101,6 +101,8 @@ class PairLsdem : public Pair {
   void add_contact(int, int, double, const lsdem_contact_result &);
   void apply_contacts();
   void tally_workload();
+  bool bounding_spheres_overlap(int, int) const;
+  double reverse_depth(int, int) const;
   void report_overlaps();
   double stiffest_node_spring() const;
 };
