@@ -12,6 +12,7 @@
 #include "atom.h"
 #include "atom_vec_lsdem.h"
 #include "comm.h"
+#include "domain.h"
 #include "error.h"
 #include "fix_lsdem_history.h"
 #include "force.h"
@@ -194,6 +195,7 @@ void PairLsdem::init_style()
   for (int i = 0; i < atom->nlocal; i++)
     onerad[atom->type[i]] = std::max(onerad[atom->type[i]], atom->radius[i]);
   MPI_Allreduce(&onerad[1], &maxrad[1], ntypes, MPI_DOUBLE, MPI_MAX, world);
+  check_periodic_length();
   kn_max = stiffest_node_spring();
 
   // history where friction is on or node lists are kept; none at all when mu == 0
@@ -211,6 +213,22 @@ void PairLsdem::init_style()
     fix_history = dynamic_cast<FixLsdemHistory *>(fix);
     if (!fix_history) error->all(FLERR, "Fix ID {} is reserved for pair lsdem", HISTORY_ID);
   }
+}
+
+/* ----------------------------------------------------------------------
+   a grain must not touch two periodic images of the same partner: each periodic box
+   length must exceed twice the largest bounding radius
+------------------------------------------------------------------------- */
+
+void PairLsdem::check_periodic_length() const
+{
+  const double rmax = *std::max_element(&maxrad[1], &maxrad[1] + atom->ntypes);
+  const int periodic[3] = {domain->xperiodic, domain->yperiodic, domain->zperiodic};
+  for (int d = 0; d < 3; d++)
+    if (periodic[d] && domain->prd[d] <= 2.0 * rmax)
+      error->all(FLERR, "pair lsdem: the periodic box is {:.6g} long in {}, not longer than "
+                 "twice the largest grain bounding radius ({:.6g}): a grain would touch two "
+                 "images of one partner; enlarge the box", domain->prd[d], "xyz"[d], 2.0 * rmax);
 }
 
 /* ---------------------------------------------------------------------- */

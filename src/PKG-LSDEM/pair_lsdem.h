@@ -101,6 +101,7 @@ class PairLsdem : public Pair {
   void add_contact(int, int, double, const lsdem_contact_result &);
   void apply_contacts();
   void tally_workload();
+  void check_periodic_length() const;
   bool bounding_spheres_overlap(int, int) const;
   double reverse_depth(int, int) const;
   void report_overlaps();

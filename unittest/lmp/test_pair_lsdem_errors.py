@@ -10,6 +10,7 @@ from contact_decks import Grain, box_library, write_data, head
 lib = box_library("cube.lslib", 0.5, 0.05, 600)
 write_data("one.data", (-3, 3, -3, 3, -3, 3), [Grain((0, 0, 0))])
 good = head(lib, "one.data", boundary="f f f")
+write_data("narrow.data", (-0.7, 0.7, -3, 3, -3, 3), [Grain((0, 0, 0))])  # cube R = 0.87
 
 CASES = [
     ("newton", good.replace("newton on", "newton off") +
@@ -23,6 +24,8 @@ CASES = [
      "unknown wall sphere"),
     ("wallaxis", good + "fix w all wall/lsdem plane 0 0 0 0 0 1 1 1 0 axis x\n",
      "axis is for cylinder walls"),
+    ("periodic", head(lib, "narrow.data", boundary="p f f") +
+     "pair_style lsdem\npair_coeff * * 1 1 0\nrun 0\n", "periodic box is 1.4 long in x"),
     ("compute", good + "pair_style zero 1.0\npair_coeff * *\n"
      "compute c all contact/lsdem\ndump d all custom 1 d.dump id c_c\nrun 0\n",
      "requires pair_style lsdem"),
