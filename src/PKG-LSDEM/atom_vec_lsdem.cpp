@@ -13,6 +13,7 @@
 
 #include "atom.h"
 #include "comm.h"
+#include "domain.h"
 #include "error.h"
 
 #include <algorithm>
@@ -134,6 +135,18 @@ void AtomVecLsdem::process_args(int narg, char **arg)
   setup_fields();
 }
 
+/* ----------------------------------------------------------------------
+   grains are 3d bodies (level sets, quaternions, Euler's equations)
+------------------------------------------------------------------------- */
+
+void AtomVecLsdem::init()
+{
+  AtomVec::init();
+  if (domain->dimension != 3)
+    error->all(FLERR, "atom_style lsdem needs a 3d simulation (remove 'dimension {}')",
+               domain->dimension);
+}
+
 /* ---------------------------------------------------------------------- */
 
 void AtomVecLsdem::open_library(const char *path)
@@ -169,6 +182,14 @@ double AtomVecLsdem::parse_node_skin(const char *val, LAMMPS *lmp)
   if (!(skin > 0.0))
     lmp->error->all(FLERR, "nodelist must be auto, off or a skin length > 0, not {}", val);
   return skin;
+}
+
+void AtomVecLsdem::check_contact_law(const lsdem_contact_params &p, const char *who,
+                                     LAMMPS *lmp)
+{
+  if (!(p.kn > 0.0) || !(p.ks >= 0.0) || !(p.mu >= 0.0) || !(p.cn >= 0.0) || !(p.ct >= 0.0))
+    lmp->error->all(FLERR, "{}: need kn > 0 and ks, mu, cn, ct >= 0; got kn = {}, ks = {}, "
+                    "mu = {}, cn = {}, ct = {}", who, p.kn, p.ks, p.mu, p.cn, p.ct);
 }
 
 double AtomVecLsdem::node_skin(double setting) const

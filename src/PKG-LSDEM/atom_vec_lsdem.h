@@ -36,6 +36,7 @@ class AtomVecLsdem : public AtomVec {
   AtomVecLsdem(class LAMMPS *);
   ~AtomVecLsdem() override;
   void process_args(int, char **) override;
+  void init() override;
 
   void grow_pointers() override;
   void create_atom_post(int) override;
@@ -64,6 +65,8 @@ class AtomVecLsdem : public AtomVec {
   // (not a sphere: spheres have no nodes)
   static constexpr double NODE_SKIN_AUTO = 0.02;
   static double parse_node_skin(const char *, class LAMMPS *);
+  // the contact law of pair_coeff and fix wall/lsdem: kn > 0; ks, mu, cn, ct >= 0
+  static void check_contact_law(const lsdem_contact_params &, const char *who, class LAMMPS *);
   double node_skin(double setting) const;
 
  private:

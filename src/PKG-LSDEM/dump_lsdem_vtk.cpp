@@ -160,6 +160,10 @@ const lsdem_mesh &DumpLsdemVtk::shape_mesh(int s)
                            &meshes[s], &err) != LSDEM_OK)
       error->one(FLERR, fmt::format("Dump lsdem/vtk: surface "
                                       "of shape {}: {}", s + 1, err.msg));
+    if (meshes[s].ntris == 0)
+      error->warning(FLERR, "Dump lsdem/vtk: shape {} has no surface triangles at spacing {} "
+                     "(its grains are left out of the files): lower the spacing keyword", s + 1,
+                     spacing_factor);
     mesh_ready[s] = 1;
   }
   return meshes[s];

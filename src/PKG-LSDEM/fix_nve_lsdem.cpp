@@ -173,7 +173,8 @@ void FixNVELsdem::fail_unstable(int i, double dt, const char *what)
       "omega = ({:.6g} {:.6g} {:.6g}), quat = ({:.6g} {:.6g} {:.6g} {:.6g}), "
       "force = ({:.6g} {:.6g} {:.6g}), torque = ({:.6g} {:.6g} {:.6g}); "
       "|v|*dt = {:.6g} vs half the bounding radius {:.6g}. Likely causes: initial overlap "
-      "between grains, a time step too large for the contact stiffness kn (reduce the "
+      "between grains (or a grain starting behind a wall or outside its container), a time "
+      "step too large for the contact stiffness kn (reduce the "
       "timestep or kn), or a stiffness/force far too large",
       atom->tag[i], update->ntimestep, what, x[0], x[1], x[2], v[0], v[1], v[2],
       w[0], w[1], w[2], q[0], q[1], q[2], q[3], fi[0], fi[1], fi[2], t[0], t[1], t[2],

@@ -119,8 +119,7 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
     } else error->all(FLERR, "fix wall/lsdem: unknown keyword {}", key);
     iarg += 1 + nval;
   }
-  if (prm.kn <= 0.0 || prm.ks < 0.0 || prm.mu < 0.0 || prm.cn < 0.0 || prm.ct < 0.0)
-    error->all(FLERR, "fix wall/lsdem: need kn > 0 and ks, mu, cn, ct >= 0");
+  AtomVecLsdem::check_contact_law(prm, "fix wall/lsdem", lmp);
 
   if (wallstyle == PLANE) {
     double len = sqrt(geom[3] * geom[3] + geom[4] * geom[4] + geom[5] * geom[5]);

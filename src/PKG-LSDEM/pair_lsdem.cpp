@@ -159,8 +159,7 @@ void PairLsdem::coeff(int narg, char **arg)
     else if (strcmp(arg[iarg], "ct") == 0) p.ct = value;
     else error->all(FLERR, "pair_coeff for lsdem: unknown keyword {}", arg[iarg]);
   }
-  if (p.kn <= 0.0 || p.ks < 0.0 || p.mu < 0.0 || p.cn < 0.0 || p.ct < 0.0)
-    error->all(FLERR, "pair_coeff for lsdem: need kn > 0 and ks, mu, cn, ct >= 0");
+  AtomVecLsdem::check_contact_law(p, "pair_coeff for lsdem", lmp);
 
   int count = 0;
   for (int i = ilo; i <= ihi; i++)

@@ -158,6 +158,15 @@ n2, t2, pts2, a2 = read_vtp("out/grains_0.vtp")
 t1 = sum(ntri[g["shape"]] for g in GRAINS)
 check(0.15 * t1 < t2 < 0.4 * t1 and set(a2["id"]) == {g["id"] for g in GRAINS},
       "spacing 2: %d triangles vs %d at spacing 1" % (t2, t1))
+check("no surface triangles" not in open("log.lammps").read(), "spacing 2: no shape lost")
+
+# spacing 30: the ball's lattice (radius / 20 x 30) is coarser than the ball, which has no
+# triangles left; its grain is left out of the files, and a warning says so
+run_lmp(deck().replace("out/grains\n", "out/grains spacing 30\n"))
+n30, t30, pts30, a30 = read_vtp("out/grains_0.vtp")
+logged = open("log.lammps").read()
+check(2 not in set(a30["id"]) and "shape 2 has no surface triangles at spacing 30" in logged,
+      "spacing 30: grain 2 missing (%s) without the warning" % sorted(set(a30["id"])))
 
 # input errors
 rc, log = run_lmp("units lj\natom_style lsdem library %s\nread_data grains.data\n"

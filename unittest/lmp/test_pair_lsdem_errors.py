@@ -20,6 +20,13 @@ CASES = [
     ("mode", good + "pair_style lsdem mode both\n", "mode must be oneway or twoway"),
     ("keyword", good + "pair_style lsdem damping 2\n", "unknown keyword damping"),
     ("coeff", good + "pair_style lsdem\npair_coeff * * -1 1 0\n", "need kn > 0"),
+    ("coeffvalue", good + "pair_style lsdem\npair_coeff * * 1 1 0.5 ct -2\n",
+     "got kn = 1, ks = 1, mu = 0.5, cn = 0, ct = -2"),
+    ("wallvalue", good + "fix w all wall/lsdem plane 0 0 0 0 0 1 1 1 -0.1\n",
+     "fix wall/lsdem: need kn > 0 and ks, mu, cn, ct >= 0; got kn = 1, ks = 1, mu = -0.1"),
+    ("dimension", good.replace("units lj", "units lj\ndimension 2").replace(
+        "boundary f f f", "boundary f f p") + "pair_style lsdem\npair_coeff * * 1 1 0\nrun 0\n",
+     "atom_style lsdem needs a 3d simulation"),
     ("wallkind", good + "fix w all wall/lsdem sphere 0 0 0 1 1 1 0\n",
      "unknown wall sphere"),
     ("wallaxis", good + "fix w all wall/lsdem plane 0 0 0 0 0 1 1 1 0 axis x\n",
