@@ -160,6 +160,12 @@ void AtomVecLsdem::open_library(const char *path)
     error->all(FLERR, "atom_style lsdem: cannot open shape library {}: {}", path, err.msg);
   if (lsdem_library_count(lib) <= 0)
     error->all(FLERR, "atom_style lsdem: shape library {} holds no shapes", path);
+  // open reads no section (grids, nodes): rank 0 checks their checksums and values once
+  int bad = comm->me == 0 && lsdem_library_verify(lib, -1, &err) != LSDEM_OK;
+  MPI_Bcast(&bad, 1, MPI_INT, 0, world);
+  if (bad)
+    error->all(FLERR, "atom_style lsdem: shape library {} is damaged: {} (lsdem-shape verify "
+               "lists every bad shape)", path, err.msg);
 
   maxradius = 0.0;
   min_grain_radius = HUGE_VAL;

@@ -185,6 +185,14 @@ check(rc != 0 and "Atom 3 in Atoms section has invalid quaternion" in log,
 rc, log = run_lmp("atom_style lsdem library no-such-file.lslib\n", expect_fail=True)
 check(rc != 0 and "cannot open shape library no-such-file.lslib" in log,
       "missing library error:\n" + log[-600:])
+# a byte changed inside a shape's section (the header and its checksum intact): open alone
+# would not see it, the atom style's check of every section does
+raw = bytearray(open(LIB, "rb").read())
+raw[len(raw) // 2] ^= 0x40
+open("damaged.lslib", "wb").write(bytes(raw))
+rc, log = run_lmp("atom_style lsdem library damaged.lslib\n", expect_fail=True)
+check(rc != 0 and "shape library damaged.lslib is damaged" in log
+      and "section checksum mismatch" in log, "damaged library section:\n" + log[-600:])
 rc, log = run_lmp("atom_style lsdem grains.lslib\n", expect_fail=True)
 check(rc != 0 and "Illegal atom_style lsdem command" in log, "bad syntax error")
 
