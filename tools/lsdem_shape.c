@@ -375,7 +375,9 @@ static int parse_options(int argc, char **argv, analytic_options *o)
     else if (!strcmp(argv[i], "--name") && has) o->name = argv[++i];
     else ok = 0;
     if (!ok) {
-      fprintf(stderr, "lsdem-shape: analytic: bad option or value near '%s'\n", argv[i]);
+      fprintf(stderr, "lsdem-shape: analytic: bad option or value near '%s' (options: "
+              "--spacing H > 0, --nodes 1..1000000, --margin 1..100, --seed >= 0, --name S, "
+              "--analytic)\n", argv[i]);
       return 0;
     }
   }
@@ -420,6 +422,16 @@ static lsdem_status build_analytic(const analytic_shape *a, const analytic_optio
   return LSDEM_OK;
 }
 
+/* More default nodes than this is a flat or thin shape (a sphere gets 388): asked for. */
+enum { DEFAULT_NODES_MAX = 10000 };
+
+static int explicit_nodes(int argc, char **argv)
+{
+  for (int i = 0; i < argc; i++)
+    if (!strcmp(argv[i], "--nodes")) return 1;
+  return 0;
+}
+
 static int cmd_analytic(int argc, char **argv)
 {
   if (argc < 3) return usage();
@@ -428,6 +440,12 @@ static int cmd_analytic(int argc, char **argv)
   analytic_options o;
   if (!used || !parse_options(argc - 1 - used, argv + 1 + used, &o)) return 1;
   if (o.nodes == 0) o.nodes = default_node_count(&a);
+  if (o.nodes > DEFAULT_NODES_MAX && !explicit_nodes(argc, argv)) {
+    fprintf(stderr, "lsdem-shape: analytic: this shape is so flat or thin that the default "
+            "node spacing (0.09 x its equivalent diameter) gives %ld nodes; give --nodes N "
+            "(placing N nodes takes time growing as N^2: about a minute for 20000)\n", o.nodes);
+    return 1;
+  }
   if (o.keep_analytic && a.sdf.kind != LSDEM_SDF_SPHERE) {
     fprintf(stderr, "lsdem-shape: analytic: --analytic is only for spheres\n");
     return 1;

@@ -22,6 +22,14 @@ run(0 to-morph m.lslib 0 x.dat)          # analytic sphere: no grid
 run(0 to-morph m.lslib 2 x.dat)          # no such index
 run(0 list missing.lslib)
 run(0 analytic x.lslib cube 1)
+# a flat box: the default node count (0.09 d spacing) would be 74468 nodes, minutes of
+# placing; refused with the count, and built at once when --nodes is given
+run(0 analytic x.lslib box 1 1 1e-4 --spacing 0.05)
+expect_in("${err}" "gives 74468 nodes; give --nodes N")
+run(1 analytic flat.lslib box 1 1 1e-4 --spacing 0.05 --nodes 100)
+expect_in("${out}" "100 nodes")
+run(0 analytic x.lslib sphere 1 --nodes 0)
+expect_in("${err}" "--nodes 1..1000000")
 run(0 from-morph x.lslib s.lslib)        # a library is not a morphology file
 # superellipsoid, random grains, packing (shape_random.c, shape_pack.c): the count the
 # tool reports is the number of Atoms lines it wrote
