@@ -5,6 +5,7 @@
 #include "lsdem_shape_cmds.h"
 #include "shape_common.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -86,6 +87,12 @@ static int read_image(const char *path, const labels_options *o, lsdem_label_ima
 {
   lsdem_error err;
   lsdem_status st;
+  FILE *f = fopen(path, "rb");
+  if (!f) {
+    fprintf(stderr, "lsdem-shape: from-labels: cannot open %s: %s\n", path, strerror(errno));
+    return 1;
+  }
+  fclose(f);
   if (lsdem_image_is_tiff(path)) {
     if (o->raw)
       fprintf(stderr, "lsdem-shape: from-labels: %s is a TIFF file: --raw ignored\n", path);

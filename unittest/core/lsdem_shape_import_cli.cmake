@@ -58,6 +58,10 @@ run(0 from-labels labels.raw bad.lslib --raw 12 6 7 u8)
 expect_in("${err}" "wrong dimensions or type")
 run(0 from-labels labels.raw bad.lslib)
 expect_in("${err}" "is not a TIFF file")
+run(0 from-labels no-such.tif bad.lslib)              # a missing file is named as such
+expect_in("${err}" "cannot open no-such.tif")
+run(0 from-mesh . bad.lslib)                          # a folder is not a mesh file
+expect_in("${err}" "not a regular file")
 
 # ---- from-mesh: a 2 x 2 x 2 OBJ cube (volume 8), the same without one face (open), and
 # two overlapping cubes (self-intersecting).

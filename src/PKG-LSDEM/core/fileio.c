@@ -1,9 +1,11 @@
 /* fileio.c -- reading a whole file into memory, shared by the binary and text readers
  * (TIFF images, STL/OBJ meshes). */
+#define _POSIX_C_SOURCE 200809L /* fileno, fstat */
 #include "lsdem.h"
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <sys/stat.h>
 
 lsdem_status lsdem_read_file(const char *path, size_t max_bytes, unsigned char **data,
                              size_t *size, lsdem_error *err)
@@ -12,6 +14,11 @@ lsdem_status lsdem_read_file(const char *path, size_t max_bytes, unsigned char *
   *size = 0;
   FILE *f = fopen(path, "rb");
   if (!f) return lsdem_fail(err, LSDEM_ERR_IO, "%s: cannot open", path);
+  struct stat sb;
+  if (fstat(fileno(f), &sb) == 0 && !S_ISREG(sb.st_mode)) {
+    fclose(f);
+    return lsdem_fail(err, LSDEM_ERR_IO, "%s: not a regular file (a folder?)", path);
+  }
   long long n = -1;
   if (fseek(f, 0, SEEK_END) == 0) n = ftell(f);
   lsdem_status st = LSDEM_OK;
