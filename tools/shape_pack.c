@@ -35,7 +35,10 @@ static int parse_pack(int argc, char **argv, pack_options *o)
     if (!strcmp(a, "--strict")) o->strict = 1;
     else if (!strcmp(a, "--count") && i + 1 < argc)
       ok = parse_count(argv[++i], 1, 100000000, &o->count);
-    else if (!strcmp(a, "--box") && i + 3 < argc) {
+    else if ((!strcmp(a, "--box") || !strcmp(a, "--cylinder")) && o->have_box) {
+      fprintf(stderr, "lsdem-shape: pack: give --box or --cylinder once, not both\n");
+      return 0;
+    } else if (!strcmp(a, "--box") && i + 3 < argc) {
       o->box.kind = LSDEM_CONTAINER_BOX, o->have_box = 1;
       for (int k = 0; k < 3; k++) ok = ok && parse_number(argv[++i], 1, &o->box.size[k]);
     } else if (!strcmp(a, "--cylinder") && i + 2 < argc) {

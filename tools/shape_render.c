@@ -77,7 +77,7 @@ static int make_grain(const char *id, const char *shape, char *const x[3], char 
   for (int k = 0; k < 4; k++)
     if (!parse_number(q[k], 0, &g->q[k])) return 0;
   const double n2 = g->q[0] * g->q[0] + g->q[1] * g->q[1] + g->q[2] * g->q[2] + g->q[3] * g->q[3];
-  if (!(n2 > 0.25 && n2 < 4.0)) return 0; /* a quaternion, up to printing precision */
+  if (!(n2 > 0.0) || !isfinite(n2)) return 0; /* normalised below, as read_data does */
   lsdem_quat_normalize(g->q);
   return 1;
 }
@@ -110,7 +110,7 @@ static int read_data_file(FILE *f, const char *path, int nshapes, grain_list *L)
     lsdem_render_grain g;
     if (!make_grain(tok[0], tok[2], tok + 4, tok + 7, nshapes, &g) || !add_grain(L, &g)) {
       fprintf(stderr, "lsdem-shape: render: %s:%d: bad grain (id, shape-ID in 1..%d, "
-              "numbers, a unit quaternion expected)\n", path, lineno, nshapes);
+              "numbers, a non-zero quaternion expected)\n", path, lineno, nshapes);
       return 0;
     }
   }
@@ -195,7 +195,7 @@ static int read_dump_file(FILE *f, const char *path, int nshapes, long frame, gr
         if (nt <= maxcol || !make_grain(tok[col[0]], tok[col[4] + 4], x, q, nshapes, &g) ||
             !add_grain(L, &g)) {
           fprintf(stderr, "lsdem-shape: render: %s:%ld: bad or missing atom line (shape in "
-                  "1..%d, a unit quaternion expected)\n", path, lineno, nshapes);
+                  "1..%d, a non-zero quaternion expected)\n", path, lineno, nshapes);
           return 0;
         }
       }

@@ -40,6 +40,13 @@ run(1 random r.lslib --count 2 --size 1.0 --seed 5 --elongation 0.7 --flatness 0
 expect_in("${out}" "2 random grains" "elongation 0.700 (asked 0.700)" "flatness 0.900 (asked 0.900)")
 run(1 pack e.lslib p.data --count 5 --box 20 20 20 --seed 3)
 expect_in("${out}" "5 of 5 grains placed")
+run(0 pack e.lslib x.data --count 5 --box 20 20 20 --cylinder 3 10)   # which container?
+expect_in("${err}" "not both")
+# render takes any non-zero quaternion, normalised as read_data does it
+file(WRITE ${WORK}/q2.data "LAMMPS data file\n\n1 atoms\n1 atom types\n\n-5 5 xlo xhi\n"
+  "-5 5 ylo yhi\n-5 5 zlo zhi\n\nAtoms # lsdem\n\n1 1 1 1.0 0 0 0 2 0 0 0\n")
+run(1 render e.lslib q2.data q2.png --size 64 48)
+expect_in("${out}" "1 grains")
 file(STRINGS ${WORK}/p.data atoms REGEX "^[0-9]+ 1 1 ")
 list(LENGTH atoms natoms)
 if(NOT natoms EQUAL 5)
