@@ -122,9 +122,13 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   AtomVecLsdem::check_contact_law(prm, "fix wall/lsdem", lmp);
 
   if (wallstyle == PLANE) {
-    double len = sqrt(geom[3] * geom[3] + geom[4] * geom[4] + geom[5] * geom[5]);
-    if (len == 0.0) error->all(FLERR, "fix wall/lsdem: plane normal must not be zero");
-    double n[3] = {geom[3] / len, geom[4] / len, geom[5] / len};
+    // scaled by its largest component first, so that no square overflows or underflows
+    const double big = std::max({fabs(geom[3]), fabs(geom[4]), fabs(geom[5])});
+    if (!(big > 0.0) || !std::isfinite(big))
+      error->all(FLERR, "fix wall/lsdem: plane normal must be finite and not zero");
+    double n[3] = {geom[3] / big, geom[4] / big, geom[5] / big};
+    const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int d = 0; d < 3; d++) n[d] /= len;
     for (int d = 0; d < 3; d++) wpose.x[d] = geom[d];
     wall.sdf.kind = LSDEM_SDF_PLANE;
     set_plane_frame(n);

@@ -4,7 +4,7 @@ message that says what to add or fix. And an error raised on one rank by LAMMPS 
 it (src/PKG-LSDEM/abort_flush.cpp)."""
 import os
 
-from lsdemtest import run_lmp, check, finish
+from lsdemtest import run_lmp, check, finish, near, thermo
 from contact_decks import Grain, box_library, write_data, head
 
 lib = box_library("cube.lslib", 0.5, 0.05, 600)
@@ -22,6 +22,8 @@ CASES = [
     ("coeff", good + "pair_style lsdem\npair_coeff * * -1 1 0\n", "need kn > 0"),
     ("coeffvalue", good + "pair_style lsdem\npair_coeff * * 1 1 0.5 ct -2\n",
      "got kn = 1, ks = 1, mu = 0.5, cn = 0, ct = -2"),
+    ("wallzero", good + "fix w all wall/lsdem plane 0 0 0 0 0 0 1 1 0\n",
+     "plane normal must be finite and not zero"),
     ("wallvalue", good + "fix w all wall/lsdem plane 0 0 0 0 0 1 1 1 -0.1\n",
      "fix wall/lsdem: need kn > 0 and ks, mu, cn, ct >= 0; got kn = 1, ks = 1, mu = -0.1"),
     ("dimension", good.replace("units lj", "units lj\ndimension 2").replace(
@@ -41,6 +43,15 @@ for name, deck, expect in CASES:
     rc, log = run_lmp(deck, cwd=os.path.abspath(name), expect_fail=True)
     check(rc != 0 and expect in log, "%s: expected an error containing %r, got rc %d:\n%s"
           % (name, expect, rc, log[-800:]))
+
+# a plane normal given with huge components is normalised without overflow: (0, 1, 1)/sqrt 2
+rc, log = run_lmp(good + "fix w all wall/lsdem plane 0 0 -2 0 1e200 1e200 1 1 0\n"
+                  "thermo_style custom step f_w[7] f_w[8] f_w[9]\n"
+                  "thermo_modify format float %.17g\nrun 0\n", cwd=os.path.abspath("wallhuge"))
+rows = thermo(log)
+if check(len(rows) == 1, "huge normal: one thermo row"):
+    for k, want in ((7, 0.0), (8, 0.5 ** 0.5), (9, 0.5 ** 0.5)):
+        near(rows[0]["f_w[%d]" % k], want, atol=1e-15, msg="huge normal component %d" % (k - 6))
 
 # a word where the data file wants a density: LAMMPS's own reader stops in error->one
 good_data = open("one.data").read()
