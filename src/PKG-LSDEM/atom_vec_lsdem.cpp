@@ -300,20 +300,19 @@ void AtomVecLsdem::data_atom_post(int ilocal)
   const int n = lsdem_library_count(lib);
   const int s = shape[ilocal] - 1;
   if (s < 0 || s >= n)
-    error->one(FLERR, fmt::format("Atom {} in Atoms section has shape-ID {}; "
-                      "the shape library has shapes 1 to {}", id, shape[ilocal], n));
+    error->one(FLERR, "Atom {} in Atoms section has shape-ID {}; the shape library has "
+               "shapes 1 to {}", id, shape[ilocal], n);
   shape[ilocal] = s;
 
   const double density = rmass[ilocal];
   if (!(density > 0.0) || !std::isfinite(density))
-    error->one(FLERR, fmt::format("Atom {} in Atoms section has invalid "
-                      "density {}", id, density));
+    error->one(FLERR, "Atom {} in Atoms section has invalid density {}", id, density);
 
   double *q = quat[ilocal];
   const double qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
   if (!(qq > 0.0) || !std::isfinite(qq))
-    error->one(FLERR, fmt::format("Atom {} in Atoms section has invalid "
-                      "quaternion {} {} {} {}", id, q[0], q[1], q[2], q[3]));
+    error->one(FLERR, "Atom {} in Atoms section has invalid quaternion {} {} {} {}", id,
+               q[0], q[1], q[2], q[3]);
   // a quaternion already unit to round-off is kept bit for bit, so that a data file
   // written by write_data reads back identically
   if (std::fabs(qq - 1.0) > 4.0 * DBL_EPSILON) lsdem_quat_normalize(q);

@@ -98,8 +98,7 @@ void DumpLsdemVtk::openfile()
     const bool nofolder = nofile && folder != name;
     const std::string hint =
         nofolder ? fmt::format(" (create its folder first, e.g. 'shell mkdir {}')", folder) : "";
-    error->one(FLERR, fmt::format("Dump lsdem/vtk cannot open "
-                                    "{}: {}{}", name, utils::getsyserror(), hint));
+    error->one(FLERR, "Dump lsdem/vtk cannot open {}: {}{}", name, utils::getsyserror(), hint);
   }
 }
 
@@ -158,8 +157,7 @@ const lsdem_mesh &DumpLsdemVtk::shape_mesh(int s)
     lsdem_error err;
     if (lsdem_mesh_extract(&shape->sdf, spacing_factor == 1.0 ? 0.0 : spacing_factor * h,
                            &meshes[s], &err) != LSDEM_OK)
-      error->one(FLERR, fmt::format("Dump lsdem/vtk: surface "
-                                      "of shape {}: {}", s + 1, err.msg));
+      error->one(FLERR, "Dump lsdem/vtk: surface of shape {}: {}", s + 1, err.msg);
     if (meshes[s].ntris == 0)
       error->warning(FLERR, "Dump lsdem/vtk: shape {} has no surface triangles at spacing {} "
                      "(its grains are left out of the files): lower the spacing keyword", s + 1,
@@ -236,8 +234,7 @@ void DumpLsdemVtk::write_vtp()
   }
   fputs("</DataArray>\n</CellData>\n</Piece>\n</PolyData>\n</VTKFile>\n", fp);
   if (fflush(fp) != 0 || ferror(fp))
-    error->one(FLERR, fmt::format("Dump lsdem/vtk: writing {} "
-                                    "failed", step_file(update->ntimestep)));
+    error->one(FLERR, "Dump lsdem/vtk: writing {} failed", step_file(update->ntimestep));
 }
 
 /* ----------------------------------------------------------------------
@@ -258,8 +255,7 @@ void DumpLsdemVtk::write_pvd()
   const std::string pvd = prefix + ".pvd", tmp = pvd + ".tmp";
   FILE *f = fopen(tmp.c_str(), "w");
   if (!f)
-    error->one(FLERR, fmt::format("Dump lsdem/vtk cannot open "
-                                    "{}: {}", tmp, utils::getsyserror()));
+    error->one(FLERR, "Dump lsdem/vtk cannot open {}: {}", tmp, utils::getsyserror());
   fputs("<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" "
         "byte_order=\"LittleEndian\">\n<Collection>\n", f);
   for (const auto &entry : series)
@@ -268,6 +264,5 @@ void DumpLsdemVtk::write_pvd()
   fputs("</Collection>\n</VTKFile>\n", f);
   const bool bad = ferror(f) != 0;
   if (fclose(f) != 0 || bad || rename(tmp.c_str(), pvd.c_str()) != 0)
-    error->one(FLERR, fmt::format("Dump lsdem/vtk: writing {} "
-                                    "failed", pvd));
+    error->one(FLERR, "Dump lsdem/vtk: writing {} failed", pvd);
 }
