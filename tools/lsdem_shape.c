@@ -425,13 +425,6 @@ static lsdem_status build_analytic(const analytic_shape *a, const analytic_optio
 /* More default nodes than this is a flat or thin shape (a sphere gets 388): asked for. */
 enum { DEFAULT_NODES_MAX = 10000 };
 
-static int explicit_nodes(int argc, char **argv)
-{
-  for (int i = 0; i < argc; i++)
-    if (!strcmp(argv[i], "--nodes")) return 1;
-  return 0;
-}
-
 static int cmd_analytic(int argc, char **argv)
 {
   if (argc < 3) return usage();
@@ -439,8 +432,7 @@ static int cmd_analytic(int argc, char **argv)
   const int used = parse_analytic(argc - 1, argv + 1, &a);
   analytic_options o;
   if (!used || !parse_options(argc - 1 - used, argv + 1 + used, &o)) return 1;
-  if (o.nodes == 0) o.nodes = default_node_count(&a);
-  if (o.nodes > DEFAULT_NODES_MAX && !explicit_nodes(argc, argv)) {
+  if (o.nodes == 0 && (o.nodes = default_node_count(&a)) > DEFAULT_NODES_MAX) {
     fprintf(stderr, "lsdem-shape: analytic: this shape is so flat or thin that the default "
             "node spacing (0.09 x its equivalent diameter) gives %ld nodes; give --nodes N "
             "(placing N nodes takes time growing as N^2: about a minute for 20000)\n", o.nodes);

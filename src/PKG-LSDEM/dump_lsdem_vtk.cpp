@@ -93,9 +93,9 @@ void DumpLsdemVtk::openfile()
   fp = fopen(name.c_str(), "w");
   if (!fp) {
     // like every LAMMPS dump, this one makes no folders: say so when one is missing
-    const bool nofile = errno == ENOENT;
+    const bool missing = errno == ENOENT;  // read before anything else can set it
     const std::string folder = name.substr(0, name.rfind('/'));
-    const bool nofolder = nofile && folder != name;
+    const bool nofolder = missing && folder != name;
     const std::string hint =
         nofolder ? fmt::format(" (create its folder first, e.g. 'shell mkdir {}')", folder) : "";
     error->one(FLERR, "Dump lsdem/vtk cannot open {}: {}{}", name, utils::getsyserror(), hint);

@@ -563,8 +563,8 @@ void PairLsdem::report_overlaps()
   };
   for (int c = 0; c < ncontact; c++)
     consider(contact[c].i, contact[c].j, contact[c].res.max_depth, false);
-  // mode oneway tests the master's nodes only: a slave deep in (or wholly inside) its master
-  // shows only in the reverse test
+  // a pair tested one way only (scale 1: mode oneway, or a sphere master) sees the master's
+  // nodes only: a slave deep in (or wholly inside) its master shows in the reverse test
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
     for (int k = master_first[i]; k < master_first[i] + master_num[i]; k++) {
