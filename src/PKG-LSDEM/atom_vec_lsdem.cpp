@@ -46,6 +46,16 @@ double equivalent_radius(double volume)
   return std::cbrt(3.0 * volume / (4.0 * M_PI));
 }
 
+// Line-buffered from now on (glibc: setvbuf with no buffer only sets the mode, also on a
+// stream already written to). Used for rank 0's log and screen: an error->one on another
+// rank kills rank 0 at once through MPI_Abort, and its buffered lines were lost with it.
+void line_buffered(FILE *f)
+{
+  if (!f) return;
+  fflush(f);
+  setvbuf(f, nullptr, _IOLBF, 0);
+}
+
 // names accepted by compute property/atom, in property index order
 const char *const property_names[] = {"qw", "qx", "qy", "qz", "shape",
                                       "inertia1", "inertia2", "inertia3"};
@@ -130,6 +140,8 @@ void AtomVecLsdem::process_args(int narg, char **arg)
   if (narg != 2 || strcmp(arg[0], "library") != 0)
     error->all(FLERR, "Illegal atom_style lsdem command: expected 'atom_style lsdem "
                "library <file.lslib>'");
+  line_buffered(lmp->logfile);
+  line_buffered(lmp->screen);
   open_library(arg[1]);
   if (comm->me == 0) report_library();
   setup_fields();
@@ -196,6 +208,22 @@ void AtomVecLsdem::check_contact_law(const lsdem_contact_params &p, const char *
   if (!(p.kn > 0.0) || !(p.ks >= 0.0) || !(p.mu >= 0.0) || !(p.cn >= 0.0) || !(p.ct >= 0.0))
     lmp->error->all(FLERR, "{}: need kn > 0 and ks, mu, cn, ct >= 0; got kn = {}, ks = {}, "
                     "mu = {}, cn = {}, ct = {}", who, p.kn, p.ks, p.mu, p.cn, p.ct);
+}
+
+void AtomVecLsdem::stop_if_any_rank(LAMMPS *lmp, const char *file, int line,
+                                    const std::string &mesg)
+{
+  const int me = lmp->comm->me, nprocs = lmp->comm->nprocs;
+  const int mine = mesg.empty() ? nprocs : me;
+  int first;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, lmp->world);
+  if (first == nprocs) return;
+  int len = me == first ? (int) mesg.size() : 0;
+  MPI_Bcast(&len, 1, MPI_INT, first, lmp->world);
+  std::string text = me == first ? mesg : std::string(len, ' ');
+  MPI_Bcast(&text[0], len, MPI_CHAR, first, lmp->world);
+  if (nprocs > 1) text += fmt::format(" (found on rank {})", first);
+  lmp->error->all(file, line, text);
 }
 
 double AtomVecLsdem::node_skin(double setting) const

@@ -68,6 +68,14 @@ class AtomVecLsdem : public AtomVec {
   // the contact law of pair_coeff and fix wall/lsdem: kn > 0; ks, mu, cn, ct >= 0
   static void check_contact_law(const lsdem_contact_params &, const char *who, class LAMMPS *);
   double node_skin(double setting) const;
+  // An error that per-step code finds on some ranks, reported by all: every rank calls
+  // this at the same point with its own message ("" when it found nothing). When any rank
+  // has one, all stop through error->all with the message of the lowest such rank, so that
+  // rank 0 writes it to the log and every rank exits normally (an error->one on rank > 0
+  // kills rank 0 with its log unwritten, and with -screen none the message is lost too).
+  // Costs one MPI_Allreduce of an int when nothing is wrong. file, line: FLERR of the caller.
+  static void stop_if_any_rank(class LAMMPS *, const char *file, int line,
+                               const std::string &mesg);
 
  private:
   Storage *store;

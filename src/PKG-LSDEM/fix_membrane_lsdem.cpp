@@ -14,6 +14,7 @@
 #include "fix_membrane_lsdem.h"
 
 #include "atom.h"
+#include "atom_vec_lsdem.h"
 #include "bond_lsdem_membrane.h"
 #include "comm.h"
 #include "domain.h"
@@ -378,44 +379,34 @@ void FixMembraneLsdem::check_apparatus(double p)
 }
 
 /* ----------------------------------------------------------------------
-   local index of a triangle's vertex (closest image to the owner vertex)
+   local index of a triangle's vertex (closest image to the owner vertex), or -1 with the
+   error kept in `missing`, which the caller reports on all ranks (stop_if_any_rank)
 ------------------------------------------------------------------------- */
 
 int FixMembraneLsdem::vertex(tagint tag, int owner, int itri)
 {
   int j = atom->map(tag);
-  if (j < 0)
-    fail_one(fmt::format("fix membrane/lsdem: vertex {} of triangle {} ({} {} {}) is neither "
-                         "owned nor a ghost on rank {}: the ghost cutoff is shorter than a "
-                         "triangle edge (comm_modify cutoff) or the membrane tore apart", tag,
-                         itri + 1, tri[3 * itri], tri[3 * itri + 1], tri[3 * itri + 2], comm->me));
-  return domain->closest_image(owner, j);
-}
-
-/* An error seen by one rank: written and flushed first, since with LAMMPS exceptions
-   error->one's own output may still be buffered when the run aborts. */
-void FixMembraneLsdem::fail_one(const std::string &msg)
-{
-  if (screen) {
-    fprintf(screen, "ERROR on proc %d: %s\n", comm->me, msg.c_str());
-    fflush(screen);
-  }
-  if (logfile) {
-    fprintf(logfile, "ERROR on proc %d: %s\n", comm->me, msg.c_str());
-    fflush(logfile);
-  }
-  error->one(FLERR, msg);
+  if (j >= 0) return domain->closest_image(owner, j);
+  if (missing.empty())
+    missing = fmt::format("fix membrane/lsdem: vertex {} of triangle {} ({} {} {}) is neither "
+                          "owned nor a ghost on rank {}: the ghost cutoff is shorter than a "
+                          "triangle edge (comm_modify cutoff) or the membrane tore apart", tag,
+                          itri + 1, tri[3 * itri], tri[3 * itri + 1], tri[3 * itri + 2],
+                          comm->me);
+  return -1;
 }
 
 /* Triangle t is computed by the rank owning its lowest-ID vertex: true on that rank, with
-   the local indices of its vertices (owned or ghost, closest images) in v. */
+   the local indices of its vertices (owned or ghost, closest images) in v; false when a
+   vertex is missing (see vertex()). */
 bool FixMembraneLsdem::owned_triangle(int t, int v[3])
 {
   const tagint *tg = &tri[3 * t];
   int low = tg[0] < tg[1] ? (tg[0] < tg[2] ? 0 : 2) : (tg[1] < tg[2] ? 1 : 2);
   int owner = atom->map(tg[low]);
   if (owner < 0 || owner >= atom->nlocal) return false;
-  for (int k = 0; k < 3; k++) v[k] = k == low ? owner : vertex(tg[k], owner, t);
+  for (int k = 0; k < 3; k++)
+    if ((v[k] = k == low ? owner : vertex(tg[k], owner, t)) < 0) return false;
   return true;
 }
 
@@ -472,6 +463,7 @@ void FixMembraneLsdem::apply_pressure(double p)
       fp[3] += share;
     }
   }
+  AtomVecLsdem::stop_if_any_rank(lmp, FLERR, missing);
   comm->reverse_comm_fix(this);
   double **fa = atom->f;
   for (int i = 0; i < nlocal; i++) {
@@ -554,9 +546,12 @@ void FixMembraneLsdem::compute_geometry()
     int owner = atom->map(a < b ? a : b);
     if (owner < 0 || owner >= nlocal) continue;
     int ja = atom->map(a), jb = atom->map(b);
-    if (ja < 0 || jb < 0)
-      fail_one(fmt::format("fix membrane/lsdem: cap edge {} {} has a missing vertex on rank {}",
-                           a, b, comm->me));
+    if (ja < 0 || jb < 0) {
+      if (missing.empty())
+        missing = fmt::format("fix membrane/lsdem: cap edge {} {} has a missing vertex on "
+                              "rank {}", a, b, comm->me);
+      continue;
+    }
     int ia = a < b ? owner : domain->closest_image(owner, ja);
     int ib = a < b ? domain->closest_image(owner, jb) : owner;
     double pa[3], pb[3];
@@ -568,6 +563,7 @@ void FixMembraneLsdem::compute_geometry()
   }
   loc[4 + 28] = contact_radial;
   loc[4 + 29] = middle_area;
+  AtomVecLsdem::stop_if_any_rank(lmp, FLERR, missing);
   double all[34];
   MPI_Allreduce(loc, all, 34, MPI_DOUBLE, MPI_SUM, world);
   double vol[2] = {all[0], all[1]}, zc[2][2] = {{0, 0}, {0, 0}};

@@ -71,7 +71,7 @@ class FixMembraneLsdem : public Fix {
   class BondLsdemMembrane *bond;
 
   std::string read_file();  // "" or what is wrong
-  void fail_one(const std::string &msg);
+  std::string missing;       // this rank's first missing-vertex error, "" when none
   void bcast_file();
   void current_pressure();
   void check_apparatus(double p);

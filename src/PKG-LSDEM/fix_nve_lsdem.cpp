@@ -115,6 +115,8 @@ void FixNVELsdem::initial_integrate(int /*vflag*/)
 
   const double dt = update->dt;
   const double ftm2v = force->ftm2v;
+  int bad = -1;  // the first grain of this rank found unstable, and how
+  const char *what = nullptr;
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
@@ -136,38 +138,43 @@ void FixNVELsdem::initial_integrate(int /*vflag*/)
       lsdem_step_body(x[i], v[i], q, wbody, avec->dwprev[i], fs, ts, rmass[i],
                       avec->inertia[i], xi, dt, omega[i]);
     }
-    check_grain(i, dt);
+    if (bad < 0 && (what = grain_problem(i, dt))) bad = i;
   }
+  // all ranks stop together, so that the message and everything written reach the files
+  AtomVecLsdem::stop_if_any_rank(lmp, FLERR,
+                                 bad < 0 ? std::string() : unstable_message(bad, dt, what));
 }
 
 /* ----------------------------------------------------------------------
-   stop on a non-finite state or a grain that moves more than half its bounding
-   radius in one step: the run has gone unstable and every later step is garbage
+   what is wrong with grain i after its step, or nullptr: a non-finite state, or a move of
+   more than half its bounding radius in one step (the run has gone unstable and every
+   later step is garbage)
 ------------------------------------------------------------------------- */
 
-void FixNVELsdem::check_grain(int i, double dt)
+const char *FixNVELsdem::grain_problem(int i, double dt) const
 {
   const double *x = atom->x[i], *v = atom->v[i], *w = atom->omega[i];
   const double *q = avec->quat[i];
   double sum = 0.0;
   for (int k = 0; k < 3; k++) sum += x[k] + v[k] + w[k];
   sum += q[0] + q[1] + q[2] + q[3];
-  if (!std::isfinite(sum)) fail_unstable(i, dt, "a non-finite (NaN/inf) state");
+  if (!std::isfinite(sum)) return "a non-finite (NaN/inf) state";
 
   const double v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
   const double rlim = 0.5 * atom->radius[i];
-  if (v2 * dt * dt > rlim * rlim) fail_unstable(i, dt, "a runaway speed");
+  if (v2 * dt * dt > rlim * rlim) return "a runaway speed";
+  return nullptr;
 }
 
 /* ---------------------------------------------------------------------- */
 
-void FixNVELsdem::fail_unstable(int i, double dt, const char *what)
+std::string FixNVELsdem::unstable_message(int i, double dt, const char *what) const
 {
   const double *x = atom->x[i], *v = atom->v[i], *w = atom->omega[i];
   const double *q = avec->quat[i];
   const double *fi = atom->f[i], *t = atom->torque[i];
   const double speed = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  std::string mesg = fmt::format(
+  return fmt::format(
       "Fix nve/lsdem: grain {} became unstable at step {} with {}: "
       "x = ({:.6g} {:.6g} {:.6g}), v = ({:.6g} {:.6g} {:.6g}), "
       "omega = ({:.6g} {:.6g} {:.6g}), quat = ({:.6g} {:.6g} {:.6g} {:.6g}), "
@@ -179,6 +186,4 @@ void FixNVELsdem::fail_unstable(int i, double dt, const char *what)
       atom->tag[i], update->ntimestep, what, x[0], x[1], x[2], v[0], v[1], v[2],
       w[0], w[1], w[2], q[0], q[1], q[2], q[3], fi[0], fi[1], fi[2], t[0], t[1], t[2],
       speed * dt, 0.5 * atom->radius[i]);
-
-  error->one(FLERR, mesg);
 }

@@ -15,6 +15,8 @@ FixStyle(nve/lsdem,FixNVELsdem);
 
 #include "fix.h"
 
+#include <string>
+
 namespace LAMMPS_NS {
 
 class FixNVELsdem : public Fix {
@@ -29,8 +31,8 @@ class FixNVELsdem : public Fix {
   class AtomVecLsdem *avec;
 
   void check_timestep();
-  void check_grain(int, double);
-  [[noreturn]] void fail_unstable(int, double, const char *);
+  const char *grain_problem(int, double) const;
+  std::string unstable_message(int, double, const char *) const;
 };
 
 }    // namespace LAMMPS_NS

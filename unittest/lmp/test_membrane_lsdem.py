@@ -393,6 +393,18 @@ check(rc != 0 and "cannot open triangles file nofile.tri" in log, "missing file 
 rc, log = run_lmp(HEAD % ("empty", "empty", KNB) + "group some id 1:10\nfix conf some "
                   "membrane/lsdem pressure 1 triangles empty.tri\nrun 0\n", expect_fail=True)
 check(rc != 0 and "membrane spheres are not in fix group some" in log, "group message")
+# a membrane torn across ranks: sphere 21 (y = -3.39, rank 0 of the 1 by 2 by 1 grid) moved to
+# y = 0.5 (rank 1; still a ghost of rank 0): the triangles it is lowest of are rank 1's, and
+# their other vertices are out of rank 1's reach. Rank 1 alone finds it; all ranks stop, and
+# rank 0's log carries the message (it was lost with an error->one on rank 1 alone).
+rc, log = run_lmp("processors 1 2 1\n" + HEAD % ("empty", "empty", KNB) +
+                  "thermo_modify lost/bond ignore\nset atom 21 y 0.5\n"
+                  "fix conf membrane membrane/lsdem pressure 1 triangles empty.tri\nrun 0\n",
+                  np=2, log="torn.log", expect_fail=True)
+torn = open("torn.log").read()
+check(rc != 0 and "is neither owned nor a ghost on rank 1" in torn
+      and "(found on rank 1)" in torn and "MPI_ABORT" not in log,
+      "torn membrane on rank 1: message in rank 0's log, no abort:\n" + log[-800:])
 # generator input errors
 def tool_fails(*args):
     p = subprocess.run([SHAPE_TOOL, "membrane"] + [str(a) for a in args], stdout=subprocess.PIPE,
