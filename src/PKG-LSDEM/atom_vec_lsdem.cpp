@@ -157,6 +157,40 @@ void AtomVecLsdem::init()
   if (domain->dimension != 3)
     error->all(FLERR, "atom_style lsdem needs a 3d simulation (remove 'dimension {}')",
                domain->dimension);
+  std::string bad;
+  for (int i = 0; i < atom->nlocal && bad.empty(); i++) bad = body_mismatch(i);
+  stop_if_any_rank(lmp, FLERR, bad);
+}
+
+/* ----------------------------------------------------------------------
+   what is wrong with atom i's radius, mass and moments, or "": they come from its shape
+   (bounding radius; density times volume and times the unit moments), and LAMMPS's set
+   diameter, set mass and set density (which uses a sphere's volume) would change them
+   apart. The moments are compared as I/m with the shape's J/V (relative 1e-9: a density
+   read back from a data file may differ from the written one in its last bit).
+------------------------------------------------------------------------- */
+
+std::string AtomVecLsdem::body_mismatch(int i) const
+{
+  const lsdem_shape *sh = shape_of(i);
+  const tagint id = atom->tag[i];
+  const char *fix = "the radius, mass and moments of a grain come from its shape and the "
+                    "density given in the data file (set diameter, set mass and set density do "
+                    "not apply to atom_style lsdem)";
+  if (radius[i] != sh->radius)
+    return fmt::format("atom_style lsdem: atom {} has radius {} but its shape {} has bounding "
+                       "radius {}; {}", id, radius[i], shape[i] + 1, sh->radius, fix);
+  const double *I = inertia[i];
+  bool same = rmass[i] > 0.0 && std::isfinite(rmass[i]);
+  for (int k = 0; k < 3 && same; k++)
+    same = std::fabs(I[k] / rmass[i] - sh->inertia[k] / sh->volume) <=
+           1e-9 * (sh->inertia[k] / sh->volume);
+  if (!same)
+    return fmt::format("atom_style lsdem: atom {} has mass {} but moments of inertia {} {} {} "
+                       "(its shape {} gives mass/moments in the ratio {} : {} {} {}); {}", id,
+                       rmass[i], I[0], I[1], I[2], shape[i] + 1, sh->volume, sh->inertia[0],
+                       sh->inertia[1], sh->inertia[2], fix);
+  return std::string();
 }
 
 /* ---------------------------------------------------------------------- */

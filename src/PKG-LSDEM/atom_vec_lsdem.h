@@ -88,6 +88,7 @@ class AtomVecLsdem : public AtomVec {
   double rmass_one;  // saved by pack_data_pre for pack_data_post
 
   void register_peratom(const char *, void *, int, int);
+  std::string body_mismatch(int) const;
   void open_library(const char *);
   void report_library();
 };

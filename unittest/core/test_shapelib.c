@@ -396,6 +396,14 @@ static void test_writer_rejects(void)
   s.volume = NAN;
   CHECK(lsdem_library_write(BAD, &s, NULL, 1, &err) == LSDEM_ERR_ARG, "NaN volume");
   s = shapes[0];
+  s.volume = 0.0;
+  CHECK(lsdem_library_write(BAD, &s, NULL, 1, &err) == LSDEM_ERR_ARG &&
+            strstr(err.msg, "volume (finite, > 0)"), "zero volume: %s", err.msg);
+  s = shapes[0];
+  s.inertia[2] = 0.0;
+  CHECK(lsdem_library_write(BAD, &s, NULL, 1, &err) == LSDEM_ERR_ARG &&
+            strstr(err.msg, "inertia"), "zero moment: %s", err.msg);
+  s = shapes[0];
   s.sdf.grid.n[1] = 1;
   CHECK(lsdem_library_write(BAD, &s, NULL, 1, &err) == LSDEM_ERR_ARG && strstr(err.msg, "dims"),
         "flat grid: %s", err.msg);

@@ -193,6 +193,22 @@ open("damaged.lslib", "wb").write(bytes(raw))
 rc, log = run_lmp("atom_style lsdem library damaged.lslib\n", expect_fail=True)
 check(rc != 0 and "shape library damaged.lslib is damaged" in log
       and "section checksum mismatch" in log, "damaged library section:\n" + log[-600:])
+# LAMMPS's set diameter/mass/density would change a grain's radius or mass apart from its
+# shape and moments: refused at the run, naming the atom, on all ranks (atom 4, at x = 8, is
+# rank 1's on a 2 by 1 by 1 grid)
+for cmd, expect in (("set atom 4 diameter 3.0", "atom 4 has radius 1.5 but its shape 1 has "
+                     "bounding radius"),
+                    ("set atom 4 mass 5.0", "atom 4 has mass 5 but moments of inertia"),
+                    ("set atom 4 density 5.0", "atom 4 has mass ")):
+    for np in (1, 2):
+        rc, log = run_lmp(HEAD + "processors %d 1 1\nread_data grains.data\n" % np + cmd
+                          + "\n" + RUN + "run 0\n", np=np, log="set.log", expect_fail=True)
+        log = open("set.log").read()
+        check(rc != 0 and expect in log and "set diameter, set mass and set density do not "
+              "apply" in log and ("(found on rank 1)" in log) == (np == 2),
+              "%s, np %d: expected %r:\n%s" % (cmd, np, expect, log[-600:]))
+rc, log = run_lmp(HEAD + "read_data grains.data\nset atom 4 type 1\n" + RUN + "run 0\n")
+check(rc == 0, "other set commands still work")
 rc, log = run_lmp("atom_style lsdem grains.lslib\n", expect_fail=True)
 check(rc != 0 and "Illegal atom_style lsdem command" in log, "bad syntax error")
 

@@ -177,8 +177,11 @@ static const char *bad_scalar_field(const lsdem_shape *s)
   if (s->nclusters < 0 || s->nclusters > s->nnodes || (s->nnodes > 0) != (s->nclusters > 0))
     return "nclusters (1..nnodes, or 0 without nodes)";
   if (!(s->radius >= 0.0) || !isfinite(s->radius)) return "radius (finite, >= 0)";
-  if (!(s->volume >= 0.0) || !isfinite(s->volume)) return "volume (finite, >= 0)";
-  if (!all_finite(s->inertia, 3)) return "inertia (not finite)";
+  /* a grain's mass and moments are the density times these: zero gives a NaN step */
+  if (!(s->volume > 0.0) || !isfinite(s->volume)) return "volume (finite, > 0)";
+  for (int k = 0; k < 3; k++)
+    if (!(s->inertia[k] > 0.0) || !isfinite(s->inertia[k]))
+      return "inertia (principal moments finite, > 0)";
   return NULL;
 }
 
