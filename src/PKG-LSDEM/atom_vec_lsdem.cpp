@@ -47,13 +47,21 @@ double equivalent_radius(double volume)
 }
 
 // Line-buffered from now on (glibc: setvbuf with no buffer only sets the mode, also on a
-// stream already written to). Used for rank 0's log and screen: an error->one on another
-// rank kills rank 0 at once through MPI_Abort, and its buffered lines were lost with it.
+// stream already written to).
 void line_buffered(FILE *f)
 {
   if (!f) return;
   fflush(f);
   setvbuf(f, nullptr, _IOLBF, 0);
+}
+
+// The log and screen line-buffered (at atom_style, and at each run for a new 'log' file): an
+// error->one on another rank kills rank 0 at once through MPI_Abort, and rank 0's buffered
+// lines were lost with it. Also lets a long run's progress be followed (tail -f).
+void line_buffered_output(LAMMPS *lmp)
+{
+  line_buffered(lmp->logfile);
+  line_buffered(lmp->screen);
 }
 
 // names accepted by compute property/atom, in property index order
@@ -140,8 +148,7 @@ void AtomVecLsdem::process_args(int narg, char **arg)
   if (narg != 2 || strcmp(arg[0], "library") != 0)
     error->all(FLERR, "Illegal atom_style lsdem command: expected 'atom_style lsdem "
                "library <file.lslib>'");
-  line_buffered(lmp->logfile);
-  line_buffered(lmp->screen);
+  line_buffered_output(lmp);
   open_library(arg[1]);
   if (comm->me == 0) report_library();
   setup_fields();
@@ -157,6 +164,7 @@ void AtomVecLsdem::init()
   if (domain->dimension != 3)
     error->all(FLERR, "atom_style lsdem needs a 3d simulation (remove 'dimension {}')",
                domain->dimension);
+  line_buffered_output(lmp);
   std::string bad;
   for (int i = 0; i < atom->nlocal && bad.empty(); i++) bad = body_mismatch(i);
   stop_if_any_rank(lmp, FLERR, bad);

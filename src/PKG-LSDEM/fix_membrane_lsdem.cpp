@@ -443,6 +443,7 @@ double FixMembraneLsdem::specimen_area_share(const double *a, const double *b, c
 
 void FixMembraneLsdem::apply_pressure(double p)
 {
+  missing.clear();
   int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
   double **x = atom->x;
   for (int i = 0; i < nall; i++) fpress[i][0] = fpress[i][1] = fpress[i][2] = fpress[i][3] = 0.0;
@@ -521,6 +522,7 @@ void FixMembraneLsdem::post_force(int /*vflag*/)
 
 void FixMembraneLsdem::compute_geometry()
 {
+  missing.clear();
   int nlocal = atom->nlocal;
   double **x = atom->x;
   const double origin[3] = {axis[0], axis[1], 0.0};

@@ -7,7 +7,8 @@ before it reach rank 0's log, and dumps stay complete.
    with dump_modify flush no); no MPI_Abort. With 1 rank the same message, without the rank.
 2. A stock LAMMPS error->one on rank 1 alone (a division by zero in an atom-style variable,
    evaluated for rank 1's grain only): rank 1 aborts at once; rank 0's log still has every
-   line written before (it is line-buffered; it used to come out empty).
+   line written before (it is line-buffered, also a log opened later by the log command; it
+   used to come out empty).
 (fix membrane/lsdem's torn-membrane stop is tested in test_membrane_lsdem.py.)"""
 import contact_decks as cd
 from lsdemtest import check, finish, run_lmp, thermo
@@ -54,10 +55,14 @@ for np in (1, 2):
           "np %d: dump complete to step 50: %s" % (np, dump_steps("grains.dump")))
 
 # ---- 2. a stock error->one on rank 1 alone -------------------------------------------------
-rc, out = run_lmp(DECK % DIVIDE, np=2, log="divide.log", expect_fail=True)
-log = open("divide.log").read()
-check(rc != 0, "division by zero on rank 1 fails the run")
-check([int(r["Step"]) for r in thermo(log)] == list(range(0, 41, 10)),
-      "rank 0's log keeps the rows written before rank 1 aborted:\n" + log[-800:])
+# (also when the run writes to a log file opened after atom_style, by the 'log' command)
+for name, switch in (("divide.log", ""), ("switched.log", "log switched.log\n")):
+    rc, out = run_lmp((DECK % DIVIDE).replace("run 100", switch + "run 100"), np=2,
+                      log="divide.log", expect_fail=True)
+    log = open(name).read()
+    check(rc != 0, "%s: division by zero on rank 1 fails the run" % name)
+    check([int(r["Step"]) for r in thermo(log)] == list(range(0, 41, 10)),
+          "%s: rank 0's log keeps the rows written before rank 1 aborted:\n%s"
+          % (name, log[-800:]))
 
 finish()
