@@ -10,6 +10,7 @@
 ------------------------------------------------------------------------- */
 
 #include "atom_vec_lsdem.h"
+#include "abort_flush.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -57,11 +58,13 @@ void line_buffered(FILE *f)
 
 // The log and screen line-buffered (at atom_style, and at each run for a new 'log' file): an
 // error->one on another rank kills rank 0 at once through MPI_Abort, and rank 0's buffered
-// lines were lost with it. Also lets a long run's progress be followed (tail -f).
+// lines were lost with it. Also lets a long run's progress be followed (tail -f). And a rank
+// with neither (ranks > 0 under -screen none) has its aborting errors go to stderr.
 void line_buffered_output(LAMMPS *lmp)
 {
   line_buffered(lmp->logfile);
   line_buffered(lmp->screen);
+  lsdem_note_error_output(lmp->screen || lmp->logfile);
 }
 
 // names accepted by compute property/atom, in property index order
