@@ -15,9 +15,9 @@ import contact_decks as cd
 from lsdemtest import check, finish, run_lmp, thermo
 
 lib = cd.sphere_library("ball.lslib", 0.5, 0.05, 200)
-# two grains far apart along x (the longest box side: a 2 by 1 by 1 grid), grain 2 on rank 1
+# two grains far apart along x, split by a 2 by 1 by 1 grid: grain 2 is rank 1's
 cd.write_data("two.data", (-4, 4, -2, 2, -2, 2), [cd.Grain((-2, 0, 0)), cd.Grain((2, 0, 0))])
-DECK = cd.head(lib, "two.data", boundary="f f f") + """
+DECK = cd.head(lib, "two.data", boundary="f f f", extra="processors * 1 1") + """
 pair_style lsdem
 pair_coeff * * 1e4 1e4 0.5
 fix nve all nve/lsdem
