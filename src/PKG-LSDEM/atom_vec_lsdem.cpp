@@ -267,7 +267,7 @@ void AtomVecLsdem::stop_if_any_rank(LAMMPS *lmp, const char *file, int line,
   MPI_Bcast(&len, 1, MPI_INT, first, lmp->world);
   std::string text = me == first ? mesg : std::string(len, ' ');
   MPI_Bcast(&text[0], len, MPI_CHAR, first, lmp->world);
-  if (nprocs > 1) text += fmt::format(" (found on rank {})", first);
+  if (first > 0) text += fmt::format(" (found on rank {})", first);
   lmp->error->all(file, line, text);
 }
 

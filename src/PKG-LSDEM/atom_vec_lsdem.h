@@ -70,10 +70,11 @@ class AtomVecLsdem : public AtomVec {
   double node_skin(double setting) const;
   // An error that per-step code finds on some ranks, reported by all: every rank calls
   // this at the same point with its own message ("" when it found nothing). When any rank
-  // has one, all stop through error->all with the message of the lowest such rank, so that
-  // rank 0 writes it to the log and every rank exits normally (an error->one on rank > 0
-  // kills rank 0 with its log unwritten, and with -screen none the message is lost too).
-  // Costs one MPI_Allreduce of an int when nothing is wrong. file, line: FLERR of the caller.
+  // has one, all stop through error->all with the message of the lowest such rank (and
+  // "(found on rank N)" when N > 0), so that rank 0 writes it to the log and every rank
+  // exits normally (an error->one on rank > 0 kills rank 0 with its log unwritten, and with
+  // -screen none the message is lost too). Costs one MPI_Allreduce of an int when nothing
+  // is wrong. file, line: FLERR of the caller.
   static void stop_if_any_rank(class LAMMPS *, const char *file, int line,
                                const std::string &mesg);
 

@@ -91,17 +91,11 @@ FixMembraneLsdem::FixMembraneLsdem(LAMMPS *lmp, int narg, char **arg) :
     } else error->all(FLERR, "Illegal fix membrane/lsdem keyword {}: {}", arg[iarg], usage);
   }
 
-  // rank 0 reads; a failure is reported by all ranks (error->one output can be lost when
-  // LAMMPS aborts through an exception with buffered output)
+  // rank 0 reads; a failure stops all ranks
   std::string failure;
-  if (comm->me == 0) failure = read_file();
-  int len = (int) failure.size();
-  MPI_Bcast(&len, 1, MPI_INT, 0, world);
-  if (len) {
-    failure.resize(len);
-    MPI_Bcast(&failure[0], len, MPI_CHAR, 0, world);
-    error->all(FLERR, "fix membrane/lsdem: {}", failure);
-  }
+  if (comm->me == 0 && !(failure = read_file()).empty())
+    failure = "fix membrane/lsdem: " + failure;
+  AtomVecLsdem::stop_if_any_rank(lmp, FLERR, failure);
   bcast_file();
   if (weight[0] < 0.0) {
     weight[0] = nlayers == 2 ? 0.8 : 1.0;  // report §3.3.2: 80% inner, 20% outer
