@@ -56,11 +56,12 @@ void line_buffered(FILE *f)
   setvbuf(f, nullptr, _IOLBF, 0);
 }
 
-// The log and screen line-buffered (at atom_style, and at each run for a new 'log' file): an
-// error->one on another rank kills rank 0 at once through MPI_Abort, and rank 0's buffered
-// lines were lost with it. Also lets a long run's progress be followed (tail -f). And a rank
-// with neither (ranks > 0 under -screen none) has its aborting errors go to stderr.
-void line_buffered_output(LAMMPS *lmp)
+// Output kept when another rank aborts (at atom_style, and at each run for a new 'log'
+// file): the log and screen line-buffered, since an error->one on another rank kills rank 0
+// at once through MPI_Abort and rank 0's buffered lines were lost with it (this also lets a
+// long run's progress be followed, tail -f); and a rank with neither (ranks > 0 under
+// -screen none) sends its aborting errors to stderr.
+void keep_output_on_abort(LAMMPS *lmp)
 {
   line_buffered(lmp->logfile);
   line_buffered(lmp->screen);
@@ -151,7 +152,7 @@ void AtomVecLsdem::process_args(int narg, char **arg)
   if (narg != 2 || strcmp(arg[0], "library") != 0)
     error->all(FLERR, "Illegal atom_style lsdem command: expected 'atom_style lsdem "
                "library <file.lslib>'");
-  line_buffered_output(lmp);
+  keep_output_on_abort(lmp);
   open_library(arg[1]);
   if (comm->me == 0) report_library();
   setup_fields();
@@ -167,7 +168,7 @@ void AtomVecLsdem::init()
   if (domain->dimension != 3)
     error->all(FLERR, "atom_style lsdem needs a 3d simulation (remove 'dimension {}')",
                domain->dimension);
-  line_buffered_output(lmp);
+  keep_output_on_abort(lmp);
   std::string bad;
   for (int i = 0; i < atom->nlocal && bad.empty(); i++) bad = body_mismatch(i);
   stop_if_any_rank(lmp, FLERR, bad);
@@ -218,11 +219,11 @@ void AtomVecLsdem::open_library(const char *path)
   if (lsdem_library_count(lib) <= 0)
     error->all(FLERR, "atom_style lsdem: shape library {} holds no shapes", path);
   // open reads no section (grids, nodes): rank 0 checks their checksums and values once
-  int bad = comm->me == 0 && lsdem_library_verify(lib, -1, &err) != LSDEM_OK;
-  MPI_Bcast(&bad, 1, MPI_INT, 0, world);
-  if (bad)
-    error->all(FLERR, "atom_style lsdem: shape library {} is damaged: {} (lsdem-shape verify "
-               "lists every bad shape)", path, err.msg);
+  std::string damaged;
+  if (comm->me == 0 && lsdem_library_verify(lib, -1, &err) != LSDEM_OK)
+    damaged = fmt::format("atom_style lsdem: shape library {} is damaged: {} (lsdem-shape "
+                          "verify lists every bad shape)", path, err.msg);
+  stop_if_any_rank(lmp, FLERR, damaged);
 
   maxradius = 0.0;
   min_grain_radius = HUGE_VAL;
