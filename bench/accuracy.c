@@ -11,14 +11,15 @@
  * e the unit vector from B's centre to A's, depth_B = R - |x - xB|, n_B = (x - xB)/|x - xB|
  * (B's outward normal). With x at polar angle t on A measured from -e (towards B),
  * |x - xB|^2 = R^2 + D^2 - 2 R D cos t and (x - xB).e = D - R cos t, D = 2R - delta; A's
- * surface is inside B for cos t > D / (2R). The integral over t is done by Gauss-Legendre
- * quadrature (exact to round-off here). The per-node law (kn d per node, the report's
- * default) is the same sum with every area replaced by 1, so its error against the same
- * limit scaled by N / (4 pi R^2) is this one when the node areas are equal.
+ * surface is inside B for cos t > D / (2R). The integral over u = cos t is done by
+ * Gauss-Legendre quadrature (exact to round-off here). The per-node law (kn d per node,
+ * the report's default) is the same sum with every area replaced by 1, so its error
+ * against the same limit scaled by N / (4 pi R^2) is this one when the node areas are
+ * equal.
  *
  * Printed per (h, N, delta): the exact force, the mean offset of the grid's surface from
- * the exact sphere (surface_offset), the mean and largest relative error of the force along e
- * and the largest sideways force (|F - (F.e) e| / |F|, 0 for spheres) over the
+ * the exact sphere (surface_offset), the mean and largest relative error of the force
+ * along e and the largest sideways force (|F - (F.e) e| / |F|, 0 for spheres) over the
  * orientations, and the time of one contact test without node lists (every node
  * screened: the cost of a test that builds its list; a test that uses one looks up only
  * the listed nodes). One CSV row each on standard output. */
@@ -30,7 +31,7 @@
 #include <string.h>
 #include <time.h>
 
-enum { ORIENTATIONS = 12 };
+enum { ORIENTATIONS = 32 };
 
 static double now_seconds(void)
 {
@@ -69,14 +70,11 @@ static double exact_force(double r, double d)
   return sum;
 }
 
-/* A uniformly random rotation (Shoemake's method), as a matrix. */
-static void random_rotation(unsigned *state, double R[9])
+/* A uniformly random rotation, as a matrix. */
+static void random_rotation(uint64_t *rng, double R[9])
 {
-  double u[3];
-  for (int i = 0; i < 3; i++) u[i] = (double)rand_r(state) / RAND_MAX;
-  const double a = sqrt(1.0 - u[0]), b = sqrt(u[0]);
-  const double q[4] = {b * cos(2.0 * M_PI * u[2]), a * sin(2.0 * M_PI * u[1]),
-                       a * cos(2.0 * M_PI * u[1]), b * sin(2.0 * M_PI * u[2])};
+  double q[4];
+  lsdem_random_quat(rng, q);
   lsdem_quat_to_matrix(q, R);
 }
 
@@ -99,7 +97,7 @@ static double surface_offset(const lsdem_shape *s)
 }
 
 /* The errors over the orientations and the time per test for shape s at overlap delta. */
-static result measure(const lsdem_shape *s, double delta, unsigned seed)
+static result measure(const lsdem_shape *s, double delta, uint64_t seed)
 {
   lsdem_contact_params prm;
   memset(&prm, 0, sizeof prm);
@@ -196,13 +194,15 @@ int main(int argc, char **argv)
       return 2;
     }
   }
-  printf("R_over_h,nodes,overlap_over_R,force_exact,surface_offset_over_R,err_mean,err_max,sideways_max,ns_per_test\n");
+  printf("R_over_h,nodes,overlap_over_R,force_exact,surface_offset_over_R,err_mean,err_max,"
+         "sideways_max,ns_per_test\n");
   for (int i = 0; i < nh; i++)
     for (int j = 0; j < nn; j++) {
       lsdem_built_shape b;
       if (!sphere_shape(1.0 / inv_h[i], (int)nodes[j], &b)) return 1;
       for (int k = 0; k < nd; k++) {
-        const result r = measure(&b.shape, overlaps[k], 1000u + (unsigned)(100 * i + 10 * j + k));
+        const uint64_t seed = (uint64_t)(1000 + 100 * i + 10 * j + k);
+        const result r = measure(&b.shape, overlaps[k], seed);
         printf("%g,%d,%g,%.10g,%.3g,%.6g,%.6g,%.6g,%.1f\n", inv_h[i], r.nodes, overlaps[k],
                r.exact, r.surface, r.err_mean, r.err_max, r.side_max, r.ns_per_test);
         fflush(stdout);

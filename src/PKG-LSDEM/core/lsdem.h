@@ -794,6 +794,8 @@ lsdem_status lsdem_png_write(const char *path, int width, int height, const unsi
 /* splitmix64 (Steele, Lea, Flood 2014): the generators' reproducible random stream. */
 uint64_t lsdem_splitmix64(uint64_t *state);
 double lsdem_uniform01(uint64_t *state); /* uniform in (0, 1] */
+/* A uniformly distributed random rotation (Shoemake 1992) from the stream (packing.c). */
+void lsdem_random_quat(uint64_t *state, double q[4]);
 
 /* Real orthonormal spherical harmonics Y_lm(u) for l = 0..L, m = -l..l, at index
  * l*l + l + m (Condon-Shortley phase dropped; m > 0 ~ cos(m phi), m < 0 ~ sin(|m| phi)).

@@ -314,8 +314,7 @@ static int random_position(const lsdem_container *c, double inset, uint64_t *rng
   return 1;
 }
 
-/* Uniform random rotation (Shoemake 1992). */
-static void random_quat(uint64_t *rng, double q[4])
+void lsdem_random_quat(uint64_t *rng, double q[4])
 {
   const double u1 = lsdem_uniform01(rng), u2 = lsdem_uniform01(rng), u3 = lsdem_uniform01(rng);
   const double a = sqrt(1.0 - u1), b = sqrt(u1);
@@ -410,7 +409,7 @@ lsdem_status lsdem_pack(const lsdem_shape *shapes, int nshapes, const lsdem_cont
     const double inset = probes[g->shape].rin + p->gap;
     for (long t = 0; t < p->max_tries; t++) {
       if (!random_position(c, inset, &rng, g->x)) break;
-      random_quat(&rng, g->q);
+      lsdem_random_quat(&rng, g->q);
       if (fits(&P, g)) {
         cells_add(&cells, g->x, n++);
         break;
