@@ -169,14 +169,21 @@ static int sphere_shape(double h, int n, lsdem_built_shape *b)
   return 1;
 }
 
-static int parse_list(const char *arg, double *out, int max)
+/* A comma-separated list of at most max numbers in (lo, hi] into out; its count, or 0 when
+ * an entry is not such a number. */
+static int parse_list(const char *arg, double lo, double hi, double *out, int max)
 {
   int n = 0;
-  char *copy = strdup(arg), *save = NULL;
-  for (char *tok = strtok_r(copy, ",", &save); tok && n < max; tok = strtok_r(NULL, ",", &save))
-    out[n++] = atof(tok);
-  free(copy);
-  return n;
+  const char *p = arg;
+  while (n < max) {
+    char *end;
+    const double v = strtod(p, &end);
+    if (end == p || !(v > lo && v <= hi) || (*end != ',' && *end != '\0')) return 0;
+    out[n++] = v;
+    if (*end == '\0') return n;
+    p = end + 1;
+  }
+  return 0; /* more than max entries */
 }
 
 int main(int argc, char **argv)
@@ -184,13 +191,19 @@ int main(int argc, char **argv)
   double inv_h[16] = {4, 6, 8, 12, 16, 24, 32}, nodes[16] = {64, 250, 1000, 4000};
   double overlaps[16] = {0.01, 0.03, 0.1};
   int nh = 7, nn = 4, nd = 3;
-  for (int a = 1; a + 1 < argc; a += 2) {
-    if (!strcmp(argv[a], "--grids")) nh = parse_list(argv[a + 1], inv_h, 16);
-    else if (!strcmp(argv[a], "--nodes")) nn = parse_list(argv[a + 1], nodes, 16);
-    else if (!strcmp(argv[a], "--overlaps")) nd = parse_list(argv[a + 1], overlaps, 16);
-    else {
-      fprintf(stderr, "usage: lsdem-bench-accuracy [--grids R/h,...] [--nodes N,...] "
-                      "[--overlaps delta/R,...]\n");
+  for (int a = 1; a < argc; a += 2) {
+    const char *val = a + 1 < argc ? argv[a + 1] : "";
+    int ok = 0;
+    if (!strcmp(argv[a], "--grids")) ok = (nh = parse_list(val, 1.0, 1e3, inv_h, 16)) > 0;
+    if (!strcmp(argv[a], "--nodes"))
+      ok = (nn = parse_list(val, 0.0, LSDEM_LIBRARY_MAX_NODES, nodes, 16)) > 0;
+    if (!strcmp(argv[a], "--overlaps")) ok = (nd = parse_list(val, 0.0, 1.0, overlaps, 16)) > 0;
+    if (!ok) {
+      fprintf(stderr, "lsdem-bench-accuracy: bad option '%s %s'\n"
+                      "usage: lsdem-bench-accuracy [--grids R/h,...] [--nodes N,...] "
+                      "[--overlaps delta/R,...]\n  (at most 16 values each; R/h in (1, 1000], "
+                      "N in (0, %d], delta/R in (0, 1])\n",
+              argv[a], val, LSDEM_LIBRARY_MAX_NODES);
       return 2;
     }
   }

@@ -3,7 +3,8 @@ bench/README.md). Independent expectations: the exact force at overlap 0.01 R is
 small-overlap limit pi R delta^2 / 2 (kn = 1) to 1 %; the grid's surface offset is second
 order in h (halving h divides it by about 4); with 4,000 nodes the measured error is what the
 offset alone predicts, the overlap seen being delta + 2 offset and the force going as its
-square; the finest grid is within 2 % at overlap 0.1 R; the plot is written."""
+square; the finest grid is within 2 % at overlap 0.1 R; the plot is written; a bad value
+is refused."""
 import csv
 import math
 import os
@@ -36,4 +37,11 @@ check(row[(32, 0.1)]["err_mean"] < 0.02, "R/32, 4000 nodes, overlap 0.1 R: error
       % row[(32, 0.1)]["err_mean"])
 check(all(r["ns_per_test"] > 0 for r in rows), "a time per test in every row")
 check(os.path.getsize("out/accuracy.png") > 10000, "the plot is written")
+
+# a bad value stops the script (no plot of a half-empty CSV) and names the option
+bad = subprocess.run(["bash", RUN, "bad", "--grids", "8,0"], env=env, stdout=subprocess.PIPE,
+                     stderr=subprocess.PIPE, text=True, timeout=60)
+check(bad.returncode != 0 and "bad option '--grids 8,0'" in bad.stderr
+      and not os.path.exists("bad/accuracy.png"),
+      "a grid resolution of 0 is refused: %d %s" % (bad.returncode, bad.stderr[-500:]))
 finish()
