@@ -8,13 +8,16 @@ writes OUTDIR/comparison.csv and OUTDIR/comparison.png, and prints last
   collision_max_rel_diff=<a> settle_zcm_rel_diff=<b> us_per_grain_step_lsdem=<c> us_per_grain_step_liggghts=<d>
 
 Independent references: each collision is integrated here from the contact law alone, with
-time steps 50 times shorter than the codes' (reference_collision; the elastic case must give e = 1, the
-sliding oblique one an impulse ratio close to mu); the vertical force on the walls (floor and sides) of the bed at rest must equal its
-weight."""
+time steps 50 times shorter than the codes' (reference_collision; the elastic case must give
+e = 1, the sliding oblique one an impulse ratio close to mu); the vertical force on the walls
+(floor and sides) of the bed at rest must equal its weight."""
 import csv
 import math
 import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from figures import save_panels  # noqa: E402  (bench/figures.py)
 
 CODES = ("lsdem", "liggghts")
 
@@ -184,11 +187,7 @@ def plot(outdir, series, params):
     ax[0].set(xlabel="time (s)", ylabel="kinetic energy (J)", title="settling: kinetic energy")
     ax[1].set(xlabel="time (s)", ylabel="centre of mass height (mm)",
               title="settling: centre of mass")
-    for a in ax:
-        a.grid(alpha=0.3)
-        a.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(outdir, "comparison.png"), dpi=110)
+    save_panels(fig, ax, os.path.join(outdir, "comparison.png"))
 
 
 def main(outdir):

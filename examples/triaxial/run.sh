@@ -7,7 +7,8 @@
 #   EPSMAX (final axial strain); UNLOAD_AT (axial strain of an unload-reload cycle, default
 #   none; UNLOAD_Q the fraction of the axial deviator to unload to, default 0.3); KM, KM_OUTER
 #   (membrane springs); PIVOT=1 (the top platen pivots about the ram contact point, report
-#   §3.2.1; OUT default out/pivot)
+#   §3.2.1; OUT default out/pivot); STRIDE=N (grain contacts test every N-th node, forces
+#   times N, report §3.4.1; default 1)
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 lmp=${LSDEM_LMP:-$here/../../build/lmp}
@@ -75,6 +76,7 @@ sed '/^Velocities/,$d' sample.data > sample_grains.data   # grains at rest
 echo "running lmp on $np rank(s): $kind grains, mu $mu (progress in $out/log.lammps)"
 "${mpi[@]}" "$lmp" -in "$here/in.triaxial" -var lib all.lslib -var data mem.data \
   -var memin mem.in -var memtri mem.tri -var mu "$mu" -var pivot "$pivot" -var rho "$rho" -var R "$R" \
+  -var stride "${STRIDE:-1}" \
   ${EPSMAX:+-var epsmax $EPSMAX} \
   ${UNLOAD_AT:+-var unload_at $UNLOAD_AT} ${UNLOAD_Q:+-var unload_q $UNLOAD_Q} \
   -log log.lammps -echo none -screen none

@@ -143,6 +143,15 @@ def near(a, b, rtol=0.0, atol=0.0, msg=""):
                  % (msg, a, b, abs(a - b) if math.isfinite(a - b) else float("nan"), rtol, atol))
 
 
+def script_refuses(script, args, env, message, outdir):
+    """A benchmark script given bad `args` stops with exit code 2, says `message` on standard
+    error and writes nothing (no `outdir`)."""
+    p = subprocess.run(["bash", script, outdir] + list(args), env=env, stdout=subprocess.PIPE,
+                       stderr=subprocess.PIPE, text=True, timeout=60)
+    check(p.returncode == 2 and message in p.stderr and not os.path.exists(outdir),
+          "%s refused: exit %d, %s" % (" ".join(args), p.returncode, p.stderr[-500:]))
+
+
 def finish():
     print("%d passed, %d failed" % (_passed, _failed))
     sys.exit(1 if _failed else 0)

@@ -11,7 +11,7 @@ import csv
 import os
 import subprocess
 
-from lsdemtest import SHAPE_TOOL, check, finish, near, thermo
+from lsdemtest import SHAPE_TOOL, check, finish, near, script_refuses, thermo
 
 RUN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "bench", "liggghts",
                    "run.sh")
@@ -55,8 +55,5 @@ check(os.path.getsize("out/comparison.png") > 10000, "the plot is written")
 check(p.stdout.strip().splitlines()[-1].startswith("collision_max_rel_diff="),
       "the last line gives the headline figures")
 
-bad = subprocess.run(["bash", RUN, "bad", "--grains", "0"], env=env, stdout=subprocess.PIPE,
-                     stderr=subprocess.PIPE, text=True, timeout=60)
-check(bad.returncode == 2 and "--grains must be a positive integer" in bad.stderr
-      and not os.path.exists("bad"), "--grains 0 is refused: %d %s" % (bad.returncode, bad.stderr))
+script_refuses(RUN, ["--grains", "0"], env, "--grains must be a positive integer", "bad")
 finish()
