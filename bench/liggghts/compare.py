@@ -66,8 +66,8 @@ def reference_collision(p, c, substeps=50):
     kn d - cn v_n never attractive, tangential spring decremented by ks v_t h, turned into
     each new tangent plane with its length kept and capped at mu times the normal force;
     semi-implicit Euler with `substeps` steps per time step of the codes' collision runs
-    (10,000 per contact), so its own time error is negligible against theirs. Sphere 1 starts at (-R, 0) with
-    velocity (vn, vt) / 2, sphere 2 opposite (scenes.py)."""
+    (10,000 per contact), so its own time error is negligible against theirs. Sphere 1
+    starts at (-R, 0) with velocity (vn, vt) / 2, sphere 2 opposite (scenes.py)."""
     R, m = 1.0e-3, p["mass1"]
     h = p["dt_collide"] / substeps
     rx, ry = 2 * R, 0.0  # x2 - x1
