@@ -4,8 +4,8 @@
 # N (pair_style lsdem stride N). Usage: bench/node_stride.sh [OUTDIR] [--strides 1,2,3,4]
 # Writes OUTDIR/strideN/ (each run's example output), OUTDIR/node_stride.csv and
 # OUTDIR/node_stride.png, and prints the table (default OUTDIR: bench-node-stride).
-# Environment: LSDEM_BUILD_DIR (default ../build), NP (ranks, default 2), NGRAINS, EPSMAX as
-# for examples/triaxial/run.sh. About 2 minutes per stride on 2 cores.
+# Environment: LSDEM_BUILD_DIR (default ../build), NP (ranks, default 2), NGRAINS, EPSMAX,
+# NPREP as for examples/triaxial/run.sh. About 40 s per stride on 2 cores (2026-11-23).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 build=${LSDEM_BUILD_DIR:-$here/../build}

@@ -23,6 +23,7 @@ while [ $# -gt 0 ]; do
 done
 case "$grains" in ''|*[!0-9]*|0) echo "run.sh: --grains must be a positive integer, not '$grains'" >&2; exit 2 ;; esac
 awk -v t="$time" 'BEGIN { exit !(t + 0 > 0) }' || { echo "run.sh: --time must be > 0, not '$time'" >&2; exit 2; }
+case "$seed" in ''|*[!0-9]*) echo "run.sh: --seed must be a non-negative integer, not '$seed'" >&2; exit 2 ;; esac
 
 lmp=$build/lmp tool=$build/lsdem-shape
 for f in "$lmp" "$tool"; do
@@ -41,14 +42,22 @@ out=$(cd "$out" && pwd)
 /usr/bin/python3 "$here/scenes.py" "$out" "$tool" --grains "$grains" --seed "$seed"
 param() { awk -v k="$1" '$1 == k { print $2 }' "$out/params.txt"; }
 common=(-var kn "$(param kn)" -var ks "$(param ks)" -log none -screen none)
+# in_out LOG CMD...: run CMD in $out; when it fails, say so with the end of its log
+in_out() {
+  local log=$1; shift
+  (cd "$out" && "$@" -log "$log") && return 0
+  echo "run.sh: $(basename "$1") failed; the end of $out/$log:" >&2
+  tail -n 15 "$out/$log" >&2 2>/dev/null || echo "(no log written)" >&2
+  exit 1
+}
 # run_both DECK STEM DATA LGDATA -var ...: in.DECK.lsdem on DATA and in.DECK.liggghts on LGDATA,
 # logs STEM.lsdem.log and STEM.liggghts.log
 run_both() {
   local deck=$1 stem=$2 data=$3 lgdata=$4; shift 4
-  (cd "$out" && "$lmp" -in "$here/in.$deck.lsdem" -var lib spheres.lslib -var data "$data" \
-     "${common[@]}" "$@" -log "$stem.lsdem.log")
-  (cd "$out" && "$liggghts" -in "$here/in.$deck.liggghts" -var data "$lgdata" \
-     "${common[@]}" "$@" -log "$stem.liggghts.log")
+  in_out "$stem.lsdem.log" "$lmp" -in "$here/in.$deck.lsdem" -var lib spheres.lslib \
+    -var data "$data" "${common[@]}" "$@"
+  in_out "$stem.liggghts.log" "$liggghts" -in "$here/in.$deck.liggghts" -var data "$lgdata" \
+    "${common[@]}" "$@"
 }
 # binary collisions: 4,000 steps of dt_collide (a contact lasts about 200)
 while read -r _ case cn mu _; do

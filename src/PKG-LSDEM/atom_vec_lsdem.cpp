@@ -269,6 +269,10 @@ void AtomVecLsdem::stop_if_any_rank(LAMMPS *lmp, const char *file, int line,
   std::string text = me == first ? mesg : std::string(len, ' ');
   MPI_Bcast(&text[0], len, MPI_CHAR, first, lmp->world);
   if (first > 0) text += fmt::format(" (found on rank {})", first);
+  // Buffered output (dumps with flush no) reaches its files now: after error->all, main()
+  // meets the other ranks at a barrier and exits, and a rank that exits first can have
+  // mpirun kill rank 0 before exit() would have flushed it.
+  fflush(nullptr);
   lmp->error->all(file, line, text);
 }
 

@@ -73,8 +73,8 @@ class AtomVecLsdem : public AtomVec {
   // has one, all stop through error->all with the message of the lowest such rank (and
   // "(found on rank N)" when N > 0), so that rank 0 writes it to the log and every rank
   // exits normally (an error->one on rank > 0 kills rank 0 with its log unwritten, and with
-  // -screen none the message is lost too). Costs one MPI_Allreduce of an int when nothing
-  // is wrong. file, line: FLERR of the caller.
+  // -screen none the message is lost too); every rank flushes its stdio streams first.
+  // Costs one MPI_Allreduce of an int when nothing is wrong. file, line: FLERR of the caller.
   static void stop_if_any_rank(class LAMMPS *, const char *file, int line,
                                const std::string &mesg);
 
