@@ -18,6 +18,7 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from figures import save_panels  # noqa: E402  (bench/figures.py)
+from scenes import RADII  # noqa: E402  (the radii the scenes were written with)
 
 CODES = ("lsdem", "liggghts")
 
@@ -68,7 +69,7 @@ def reference_collision(p, c, substeps=50):
     semi-implicit Euler with `substeps` steps per time step of the codes' collision runs
     (10,000 per contact), so its own time error is negligible against theirs. Sphere 1
     starts at (-R, 0) with velocity (vn, vt) / 2, sphere 2 opposite (scenes.py)."""
-    R, m = 1.0e-3, p["mass1"]
+    R, m = RADII[0], p["mass1"]
     h = p["dt_collide"] / substeps
     rx, ry = 2 * R, 0.0  # x2 - x1
     ux, uy = -c["vn"], -c["vt"]  # v2 - v1
@@ -128,7 +129,7 @@ def collision_measures(rows, c):
     tangential to the normal impulse in the frame of the mean of the first and last normal
     (the normal turns while the spheres slide)."""
     first, last = rows[0], rows[-1]
-    n = contact_normal_at_end(rows, 1.0e-3)
+    n = contact_normal_at_end(rows, RADII[0])
     rel = (last["v2x"] - last["v1x"], last["v2y"] - last["v1y"])
     out = {"restitution": (rel[0] * n[0] + rel[1] * n[1]) / c["vn"]}
     if c["mu"] > 0:
@@ -157,7 +158,6 @@ def collision_figures(outdir, params, cases):
 
 def total_weight(data_path, params):
     """Weight of the settling spheres (from the LSDEM data file's shape-IDs and densities)."""
-    radii = (1.0e-3, 1.25e-3, 1.5e-3)
     w, atoms = 0.0, False
     for line in open(data_path):
         s = line.split()
@@ -167,7 +167,7 @@ def total_weight(data_path, params):
         if atoms and line.startswith("Velocities"):
             break
         if atoms and len(s) == 11:
-            r = radii[int(s[2]) - 1]
+            r = RADII[int(s[2]) - 1]
             w += float(s[3]) * 4.0 / 3.0 * math.pi * r ** 3 * params["gravity"]
     return w
 
