@@ -15,7 +15,7 @@ AtomStyle(lsdem,AtomVecLsdem);
 #define LMP_ATOM_VEC_LSDEM_H
 
 #include "atom_vec.h"
-#include "lsdem.h"
+#include "lsdem_kernel.h"
 
 #include <string>
 

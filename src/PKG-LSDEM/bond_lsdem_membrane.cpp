@@ -19,7 +19,7 @@
 #include "memory.h"
 #include "neighbor.h"
 
-#include "lsdem.h"
+#include "lsdem_kernel.h"
 
 #include <cmath>
 #include <cstring>

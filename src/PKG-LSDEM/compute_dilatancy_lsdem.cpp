@@ -12,7 +12,7 @@
 
 #include "error.h"
 #include "input.h"
-#include "lsdem.h"
+#include "lsdem_kernel.h"
 #include "math_const.h"
 #include "update.h"
 #include "variable.h"

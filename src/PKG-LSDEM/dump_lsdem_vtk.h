@@ -15,7 +15,7 @@ DumpStyle(lsdem/vtk,DumpLsdemVtk);
 #define LMP_DUMP_LSDEM_VTK_H
 
 #include "dump.h"
-#include "lsdem.h"
+#include "lsdem_kernel.h"
 
 #include <string>
 #include <utility>

@@ -32,7 +32,7 @@ FixStyle(LSDEM_HISTORY,FixLsdemHistory);
 #define LMP_FIX_LSDEM_HISTORY_H
 
 #include "fix.h"
-#include "lsdem.h"
+#include "lsdem_kernel.h"
 
 namespace LAMMPS_NS {
 

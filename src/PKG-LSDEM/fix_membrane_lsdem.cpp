@@ -29,7 +29,7 @@
 #include "update.h"
 #include "variable.h"
 
-#include "lsdem.h"
+#include "lsdem_kernel.h"
 
 #include <cmath>
 #include <cstdio>

@@ -17,7 +17,7 @@ FixStyle(wall/lsdem,FixWallLsdem);
 #define LMP_FIX_WALL_LSDEM_H
 
 #include "fix.h"
-#include "lsdem.h"
+#include "lsdem_kernel.h"
 
 #include <string>
 

@@ -18,7 +18,7 @@ PairStyle(lsdem,PairLsdem);
 #define LMP_PAIR_LSDEM_H
 
 #include "pair.h"
-#include "lsdem.h"
+#include "lsdem_kernel.h"
 
 namespace LAMMPS_NS {
 

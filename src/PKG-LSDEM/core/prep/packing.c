@@ -1,7 +1,7 @@
 /* packing.c -- a packed sample from a shape library: random sequential addition of grains
  * at random positions and orientations in a box or a cylinder, without overlap by the
  * contact kernel's node test (see lsdem.h). World frame; lengths of the shapes. */
-#include "lsdem.h"
+#include "lsdem_prep.h"
 
 #include <math.h>
 #include <stdlib.h>

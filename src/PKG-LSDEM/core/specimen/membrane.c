@@ -2,23 +2,11 @@
  * generation, confining-pressure forces, enclosed volume (eq 2.30) and the bond force.
  * Conventions in lsdem.h ("flexible membrane"). Lengths in the caller's units; the axis is
  * parallel to z. */
-#include "lsdem.h"
+#include "lsdem_specimen.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-static void cross3(const double a[3], const double b[3], double c[3])
-{
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static double dot3(const double a[3], const double b[3])
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 /* ------------------------------------------------------------- geometry ---- */
 
@@ -168,8 +156,8 @@ static void bond_kind_rest(lsdem_membrane *m, const lsdem_membrane_params *p)
     const double *xi = m->x + 3 * m->bond[2 * b], *xj = m->x + 3 * m->bond[2 * b + 1];
     double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]}, t[3];
     midpoint_hoop(xi, xj, p->centre, t);
-    m->kind_r0[kind] = sqrt(dot3(d, d));
-    m->kind_rest[2 * kind] = dot3(d, t);
+    m->kind_r0[kind] = sqrt(lsdem_dot3(d, d));
+    m->kind_rest[2 * kind] = lsdem_dot3(d, t);
     m->kind_rest[2 * kind + 1] = d[2];
   }
 }
@@ -276,7 +264,7 @@ void lsdem_triangle_area_vector(const double a[3], const double b[3], const doub
 {
   double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
   double ac[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  cross3(ab, ac, S);
+  lsdem_cross3(ab, ac, S);
   for (int k = 0; k < 3; k++) S[k] *= 0.5;
 }
 
@@ -292,14 +280,14 @@ double lsdem_triangle_volume_term(const double a[3], const double b[3], const do
   double S[3], g[3];
   lsdem_triangle_area_vector(a, b, c, S);
   for (int k = 0; k < 3; k++) g[k] = (a[k] + b[k] + c[k]) / 3.0;
-  return dot3(g, S) / 3.0;
+  return lsdem_dot3(g, S) / 3.0;
 }
 
 void lsdem_cap_edge_accumulate(const double vi[3], const double vj[3], double sum_v[3],
                                double sum_s[3])
 {
   double c[3];
-  cross3(vi, vj, c);
+  lsdem_cross3(vi, vj, c);
   for (int k = 0; k < 3; k++) {
     sum_v[k] += vi[k];
     sum_s[k] += 0.5 * c[k];
@@ -311,7 +299,7 @@ double lsdem_cap_volume_term(const double sum_v[3], int n, const double sum_s[3]
 {
   if (n <= 0) return 0.0;
   double g[3] = {sum_v[0] / n, sum_v[1] / n, sum_v[2] / n};
-  return dot3(g, sum_s) / 3.0;
+  return lsdem_dot3(g, sum_s) / 3.0;
 }
 
 double lsdem_membrane_volume(const lsdem_membrane *m, const double *x, int layer)
@@ -342,19 +330,19 @@ double lsdem_membrane_bond_force(const double xi[3], const double xj[3], const d
                                  double fj[3])
 {
   double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
-  double len = sqrt(dot3(d, d));
+  double len = sqrt(lsdem_dot3(d, d));
   fj[0] = fj[1] = fj[2] = 0.0;
   if (len <= 0.0) return 0.0;
   double u[3] = {d[0] / len, d[1] / len, d[2] / len};
   double t[3];
   midpoint_hoop(xi, xj, axis, t);
-  double et = dot3(d, t) - rest[0], ez = d[2] - rest[1];
+  double et = lsdem_dot3(d, t) - rest[0], ez = d[2] - rest[1];
   double e[3] = {et * t[0], et * t[1], et * t[2] + ez};
-  double eu = dot3(e, u);
+  double eu = lsdem_dot3(e, u);
   double delta[3] = {e[0] - eu * u[0], e[1] - eu * u[1], e[2] - eu * u[2]};
   double stretch = len - r0;
   for (int k = 0; k < 3; k++) fj[k] = -kn * stretch * u[k] - ks * delta[k];
-  return 0.5 * kn * stretch * stretch + 0.5 * ks * dot3(delta, delta);
+  return 0.5 * kn * stretch * stretch + 0.5 * ks * lsdem_dot3(delta, delta);
 }
 
 double lsdem_membrane_inset_volume(double V, double A, double H, double rb)

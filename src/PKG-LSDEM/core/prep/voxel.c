@@ -6,7 +6,7 @@
  * the three axes, O(n)). The surface is taken midway between label and non-label voxel
  * centres: phi = d_out - 1/2 voxel outside, 1/2 voxel - d_in inside, so a flat face sits
  * exactly on the voxel faces. Scan frame: voxel (i,j,k) is centred at s*(i,j,k). */
-#include "lsdem.h"
+#include "lsdem_prep.h"
 
 #include <math.h>
 #include <stdlib.h>

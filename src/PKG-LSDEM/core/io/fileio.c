@@ -1,7 +1,7 @@
 /* fileio.c -- reading a whole file into memory, shared by the binary and text readers
  * (TIFF images, STL/OBJ meshes). */
 #define _POSIX_C_SOURCE 200809L /* fileno, fstat */
-#include "lsdem.h"
+#include "lsdem_io.h"
 
 #include <stdio.h>
 #include <stdlib.h>

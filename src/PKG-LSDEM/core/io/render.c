@@ -6,7 +6,7 @@
  * Camera: forward f = view / |view|, right r = f x up / |f x up|, image up u = r x f.
  * Pixel (col, row) looks along f through centre + (col + 1/2 - W/2) s r
  * + (H/2 - row - 1/2) s u, s = the pixel size; row 0 is the top of the image. */
-#include "lsdem.h"
+#include "lsdem_io.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -19,21 +19,9 @@ static const double HIT_EPS = 1e-3; /* hit when phi < HIT_EPS * grain radius */
 static const int MAX_STEPS = 400;
 static const double AMBIENT = 0.3;
 
-static double dot3(const double a[3], const double b[3])
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void cross3(const double a[3], const double b[3], double out[3])
-{
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 static int normalise3(double v[3])
 {
-  const double n = sqrt(dot3(v, v));
+  const double n = sqrt(lsdem_dot3(v, v));
   if (!(n > 0.0) || !isfinite(n)) return 0;
   for (int k = 0; k < 3; k++) v[k] /= n;
   return 1;
@@ -59,8 +47,8 @@ static void frame_scene(const lsdem_shape *const *shapes, const lsdem_render_gra
     const double rad = shapes[g[i].shape]->radius;
     double d[3];
     for (int k = 0; k < 3; k++) d[k] = g[i].x[k] - mid[k];
-    reach = fmax(reach, sqrt(dot3(d, d)) + rad);
-    const double pu = dot3(g[i].x, c->r), pv = dot3(g[i].x, c->u);
+    reach = fmax(reach, sqrt(lsdem_dot3(d, d)) + rad);
+    const double pu = lsdem_dot3(g[i].x, c->r), pv = lsdem_dot3(g[i].x, c->u);
     lo[0] = fmin(lo[0], pu - rad), hi[0] = fmax(hi[0], pu + rad);
     lo[1] = fmin(lo[1], pv - rad), hi[1] = fmax(hi[1], pv + rad);
   }
@@ -69,13 +57,13 @@ static void frame_scene(const lsdem_shape *const *shapes, const lsdem_render_gra
     c->pixel = v->pixel;
   } else {
     const double a = 0.5 * (lo[0] + hi[0]), b = 0.5 * (lo[1] + hi[1]);
-    const double fc = dot3(mid, c->f);
+    const double fc = lsdem_dot3(mid, c->f);
     for (int k = 0; k < 3; k++) c->centre[k] = a * c->r[k] + b * c->u[k] + fc * c->f[k];
     c->pixel = 1.1 * fmax((hi[0] - lo[0]) / c->w, (hi[1] - lo[1]) / c->h);
   }
   double d[3];
   for (int k = 0; k < 3; k++) d[k] = mid[k] - c->centre[k];
-  c->back = fabs(dot3(d, c->f)) + reach + 1.0 * c->pixel;
+  c->back = fabs(lsdem_dot3(d, c->f)) + reach + 1.0 * c->pixel;
 }
 
 /* A lower bound of the distance from p to the shape (shape frame): phi itself, except
@@ -124,7 +112,7 @@ static int sphere_interval(const lsdem_shape *s, const lsdem_render_grain *g, co
 {
   double rel[3];
   for (int k = 0; k < 3; k++) rel[k] = g->x[k] - o[k];
-  const double tc = dot3(rel, d), q = dot3(rel, rel) - tc * tc, r2 = s->radius * s->radius;
+  const double tc = lsdem_dot3(rel, d), q = lsdem_dot3(rel, rel) - tc * tc, r2 = s->radius * s->radius;
   if (q > r2) return 0;
   const double half = sqrt(r2 - q);
   *t0 = fmax(tc - half, 0.0);
@@ -157,8 +145,8 @@ static void disc_bins(const camera *c, const lsdem_shape *s, const lsdem_render_
 {
   double d[3];
   for (int k = 0; k < 3; k++) d[k] = g->x[k] - c->centre[k];
-  const double col = dot3(d, c->r) / c->pixel + 0.5 * c->w;
-  const double row = 0.5 * c->h - dot3(d, c->u) / c->pixel;
+  const double col = lsdem_dot3(d, c->r) / c->pixel + 0.5 * c->w;
+  const double row = 0.5 * c->h - lsdem_dot3(d, c->u) / c->pixel;
   const double rp = s->radius / c->pixel + 1.0;
   range[0] = (int)fmax(0.0, floor((col - rp) / BIN));
   range[1] = (int)fmin(nbx - 1.0, floor((col + rp) / BIN));
@@ -233,7 +221,7 @@ static void shade_pixel(const camera *c, const lsdem_shape *const *shapes,
   double light[3], rgb[3];
   for (int k = 0; k < 3; k++) light[k] = -c->f[k] + 0.5 * c->u[k] - 0.4 * c->r[k];
   normalise3(light);
-  const double shade = AMBIENT + (1.0 - AMBIENT) * fmax(0.0, dot3(normal, light));
+  const double shade = AMBIENT + (1.0 - AMBIENT) * fmax(0.0, lsdem_dot3(normal, light));
   grain_colour(&g[hit], by_shape, rgb);
   for (int k = 0; k < 3; k++) px[k] = (unsigned char)lround(fmin(rgb[k] * shade, 254.0));
 }
@@ -262,10 +250,10 @@ lsdem_status lsdem_render(const lsdem_shape *const *shapes, int nshapes,
   camera c;
   c.w = view->width, c.h = view->height;
   memcpy(c.f, view->view, sizeof c.f);
-  cross3(c.f, view->up, c.r);
+  lsdem_cross3(c.f, view->up, c.r);
   if (!normalise3(c.f) || !normalise3(c.r))
     return lsdem_fail(err, LSDEM_ERR_ARG, "render: view direction is zero or parallel to up");
-  cross3(c.r, c.f, c.u);
+  lsdem_cross3(c.r, c.f, c.u);
   const size_t npx = (size_t)c.w * c.h;
   if (ngrains == 0) {
     memset(rgb, LSDEM_RENDER_BACKGROUND, 3 * npx);

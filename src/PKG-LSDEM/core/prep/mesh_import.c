@@ -1,4 +1,4 @@
-/* mesh.c -- triangle meshes (STL, OBJ) to signed-distance grids, with the checks a mesh
+/* mesh_import.c -- triangle meshes (STL, OBJ) to signed-distance grids, with the checks a mesh
  * must pass first: closed and consistently oriented (every edge shared by exactly two
  * triangles traversing it in opposite directions) and free of self-intersections.
  *
@@ -7,7 +7,7 @@
  * the angle-weighted pseudonormal of that region (Baerentzen & Aanaes, IEEE TVCG 11(3),
  * 2005): face normal, sum of the two face normals for an edge, angle-weighted sum for a
  * vertex. The sign is exact for a closed, consistently oriented mesh. */
-#include "lsdem.h"
+#include "lsdem_prep.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -17,27 +17,7 @@
 
 #define MESH_MAX_FILE_BYTES (1L << 30)
 
-void lsdem_mesh_free(lsdem_mesh *m)
-{
-  if (!m) return;
-  free(m->verts);
-  free(m->tris);
-  memset(m, 0, sizeof *m);
-}
-
 /* ------------------------------------------------------------ small vectors ---- */
-
-static void sub3(const double *a, const double *b, double *o)
-{
-  o[0] = a[0] - b[0], o[1] = a[1] - b[1], o[2] = a[2] - b[2];
-}
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static void cross3(const double *a, const double *b, double *o)
-{
-  o[0] = a[1] * b[2] - a[2] * b[1];
-  o[1] = a[2] * b[0] - a[0] * b[2];
-  o[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 static const double *vert(const lsdem_mesh *m, int t, int c) { return m->verts + 3 * m->tris[3 * t + c]; }
 
@@ -45,9 +25,9 @@ static const double *vert(const lsdem_mesh *m, int t, int c) { return m->verts +
 static void tri_normal(const lsdem_mesh *m, int t, double n[3])
 {
   double e1[3], e2[3];
-  sub3(vert(m, t, 1), vert(m, t, 0), e1);
-  sub3(vert(m, t, 2), vert(m, t, 0), e2);
-  cross3(e1, e2, n);
+  lsdem_sub3(vert(m, t, 1), vert(m, t, 0), e1);
+  lsdem_sub3(vert(m, t, 2), vert(m, t, 0), e2);
+  lsdem_cross3(e1, e2, n);
 }
 
 double lsdem_mesh_volume(const lsdem_mesh *m)
@@ -55,8 +35,8 @@ double lsdem_mesh_volume(const lsdem_mesh *m)
   double v = 0.0;
   for (int t = 0; t < m->ntris; t++) {
     double bc[3];
-    cross3(vert(m, t, 1), vert(m, t, 2), bc);
-    v += dot3(vert(m, t, 0), bc) / 6.0;
+    lsdem_cross3(vert(m, t, 1), vert(m, t, 2), bc);
+    v += lsdem_dot3(vert(m, t, 0), bc) / 6.0;
   }
   return v;
 }
@@ -432,7 +412,7 @@ static lsdem_status analyse_edges(const lsdem_mesh *m, lsdem_mesh_topology *topo
     const int *v = m->tris + 3 * t;
     double n[3];
     tri_normal(m, t, n);
-    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0] || dot3(n, n) == 0.0) {
+    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0] || lsdem_dot3(n, n) == 0.0) {
       topo->degenerate_tris++;
       note_where(topo, &found, vert(m, t, 0), vert(m, t, 1));
     }
@@ -569,19 +549,19 @@ static int segment_hits_triangle(const double *p, const double *q, const double 
                                  const double *b, const double *c)
 {
   double d[3], e1[3], e2[3], pv[3], tv[3], qv[3];
-  sub3(q, p, d), sub3(b, a, e1), sub3(c, a, e2);
-  cross3(d, e2, pv);
-  const double det = dot3(e1, pv);
-  const double scale = sqrt(dot3(e1, e1) * dot3(e2, e2) * dot3(d, d));
+  lsdem_sub3(q, p, d), lsdem_sub3(b, a, e1), lsdem_sub3(c, a, e2);
+  lsdem_cross3(d, e2, pv);
+  const double det = lsdem_dot3(e1, pv);
+  const double scale = sqrt(lsdem_dot3(e1, e1) * lsdem_dot3(e2, e2) * lsdem_dot3(d, d));
   if (fabs(det) <= 1e-12 * scale) return 0; /* parallel: coplanar contacts are not tested */
   const double inv = 1.0 / det;
-  sub3(p, a, tv);
-  const double u = dot3(tv, pv) * inv;
+  lsdem_sub3(p, a, tv);
+  const double u = lsdem_dot3(tv, pv) * inv;
   if (u < 0.0 || u > 1.0) return 0;
-  cross3(tv, e1, qv);
-  const double v = dot3(d, qv) * inv;
+  lsdem_cross3(tv, e1, qv);
+  const double v = lsdem_dot3(d, qv) * inv;
   if (v < 0.0 || u + v > 1.0) return 0;
-  const double t = dot3(e2, qv) * inv;
+  const double t = lsdem_dot3(e2, qv) * inv;
   return t >= 0.0 && t <= 1.0;
 }
 
@@ -659,11 +639,11 @@ static void closest_on_triangle(const double *p, const double *a, const double *
                                 const double *c, double *out, int *feat)
 {
   double ab[3], ac[3], ap[3], bp[3], cp[3];
-  sub3(b, a, ab), sub3(c, a, ac), sub3(p, a, ap);
-  const double d1 = dot3(ab, ap), d2 = dot3(ac, ap);
+  lsdem_sub3(b, a, ab), lsdem_sub3(c, a, ac), lsdem_sub3(p, a, ap);
+  const double d1 = lsdem_dot3(ab, ap), d2 = lsdem_dot3(ac, ap);
   if (d1 <= 0.0 && d2 <= 0.0) { memcpy(out, a, 3 * sizeof(double)); *feat = FEAT_VERTEX; return; }
-  sub3(p, b, bp);
-  const double d3 = dot3(ab, bp), d4 = dot3(ac, bp);
+  lsdem_sub3(p, b, bp);
+  const double d3 = lsdem_dot3(ab, bp), d4 = lsdem_dot3(ac, bp);
   if (d3 >= 0.0 && d4 <= d3) { memcpy(out, b, 3 * sizeof(double)); *feat = FEAT_VERTEX + 1; return; }
   const double vc = d1 * d4 - d3 * d2;
   if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
@@ -672,8 +652,8 @@ static void closest_on_triangle(const double *p, const double *a, const double *
     *feat = FEAT_EDGE + 0;
     return;
   }
-  sub3(p, c, cp);
-  const double d5 = dot3(ab, cp), d6 = dot3(ac, cp);
+  lsdem_sub3(p, c, cp);
+  const double d5 = lsdem_dot3(ab, cp), d6 = lsdem_dot3(ac, cp);
   if (d6 >= 0.0 && d5 <= d6) { memcpy(out, c, 3 * sizeof(double)); *feat = FEAT_VERTEX + 2; return; }
   const double vb = d5 * d2 - d1 * d6;
   if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
@@ -713,14 +693,14 @@ static lsdem_status build_pseudonormals(const lsdem_mesh *m, pseudonormals *pn, 
   for (int t = 0; t < m->ntris; t++) {
     double *n = pn->face + 3 * t;
     tri_normal(m, t, n);
-    const double len = sqrt(dot3(n, n));
+    const double len = sqrt(lsdem_dot3(n, n));
     for (int k = 0; k < 3; k++) n[k] = len > 0.0 ? n[k] / len : 0.0;
     for (int c = 0; c < 3; c++) { /* interior angle at corner c */
       double u[3], w[3];
-      sub3(vert(m, t, (c + 1) % 3), vert(m, t, c), u);
-      sub3(vert(m, t, (c + 2) % 3), vert(m, t, c), w);
-      const double nu = sqrt(dot3(u, u)), nw = sqrt(dot3(w, w));
-      const double angle = nu > 0.0 && nw > 0.0 ? acos(fmax(-1.0, fmin(1.0, dot3(u, w) / (nu * nw)))) : 0.0;
+      lsdem_sub3(vert(m, t, (c + 1) % 3), vert(m, t, c), u);
+      lsdem_sub3(vert(m, t, (c + 2) % 3), vert(m, t, c), w);
+      const double nu = sqrt(lsdem_dot3(u, u)), nw = sqrt(lsdem_dot3(w, w));
+      const double angle = nu > 0.0 && nw > 0.0 ? acos(fmax(-1.0, fmin(1.0, lsdem_dot3(u, w) / (nu * nw)))) : 0.0;
       double *vn = pn->vertex + 3 * m->tris[3 * t + c];
       for (int k = 0; k < 3; k++) vn[k] += angle * n[k];
     }
@@ -751,10 +731,10 @@ static double signed_distance_to(const lsdem_mesh *m, const pseudonormals *pn, c
   double q[3], d[3], n[3];
   int feat;
   closest_on_triangle(p, vert(m, t, 0), vert(m, t, 1), vert(m, t, 2), q, &feat);
-  sub3(p, q, d);
+  lsdem_sub3(p, q, d);
   feature_normal(m, pn, t, feat, n);
-  const double dist = sqrt(dot3(d, d));
-  return dot3(d, n) < 0.0 ? -dist : dist;
+  const double dist = sqrt(lsdem_dot3(d, d));
+  return lsdem_dot3(d, n) < 0.0 ? -dist : dist;
 }
 
 /* The sampler's state: per sample the smallest |distance| found, its triangle (-1: none

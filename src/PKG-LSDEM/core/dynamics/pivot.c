@@ -2,7 +2,7 @@
  * about the pivot, the centred-difference step of its two tilt degrees of freedom and the
  * pose the contact kernel sees. World frame throughout; quaternions scalar-first,
  * body -> world (rotation.c). */
-#include "lsdem.h"
+#include "lsdem_dynamics.h"
 
 #include <math.h>
 

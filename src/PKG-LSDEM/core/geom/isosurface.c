@@ -1,5 +1,5 @@
-/* surface.c -- triangle meshes of a shape's zero level set (marching tetrahedra) and
- * writers for legacy VTK polydata and PLY.
+/* isosurface.c -- triangle meshes of a shape's zero level set (marching tetrahedra),
+ * written to files by io/surface_io.c.
  *
  * The SDF is sampled on a lattice of spacing h (for a grid shape at its own spacing, the
  * lattice is the grid itself). Every lattice cube is cut into the six Kuhn tetrahedra
@@ -11,7 +11,7 @@
  * the outer lattice layer is forced outside, so the mesh is always closed. A vertex that
  * falls on a sample with phi == 0 exactly is keyed by that sample (one vertex, not one per
  * edge), and triangles it makes degenerate (a repeated vertex) are dropped. */
-#include "lsdem.h"
+#include "lsdem_geom.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -228,6 +228,14 @@ lsdem_status lsdem_mesh_extract(const lsdem_sdf *s, double h, lsdem_mesh *m, lsd
   return LSDEM_OK;
 }
 
+void lsdem_mesh_free(lsdem_mesh *m)
+{
+  if (!m) return;
+  free(m->verts);
+  free(m->tris);
+  memset(m, 0, sizeof *m);
+}
+
 /* Triangle t's corners. */
 static void tri_points(const lsdem_mesh *m, int t, const double *p[3])
 {
@@ -247,43 +255,4 @@ double lsdem_mesh_area(const lsdem_mesh *m)
     area += 0.5 * sqrt(cx * cx + cy * cy + cz * cz);
   }
   return area;
-}
-
-/* --------------------------------------------------------------- writers ---- */
-
-static lsdem_status finish_file(FILE *f, const char *path, lsdem_error *err)
-{
-  const int bad = ferror(f);
-  if (fclose(f) != 0 || bad)
-    return lsdem_fail(err, LSDEM_ERR_IO, "%s: write failed", path);
-  return LSDEM_OK;
-}
-
-lsdem_status lsdem_mesh_write_vtk(const char *path, const lsdem_mesh *m, lsdem_error *err)
-{
-  FILE *f = fopen(path, "w");
-  if (!f) return lsdem_fail(err, LSDEM_ERR_IO, "%s: cannot open for writing", path);
-  fprintf(f, "# vtk DataFile Version 3.0\nLSDEM level-set surface\nASCII\nDATASET POLYDATA\n");
-  fprintf(f, "POINTS %d double\n", m->nverts);
-  for (int v = 0; v < m->nverts; v++)
-    fprintf(f, "%.9g %.9g %.9g\n", m->verts[3 * v], m->verts[3 * v + 1], m->verts[3 * v + 2]);
-  fprintf(f, "POLYGONS %d %d\n", m->ntris, 4 * m->ntris);
-  for (int t = 0; t < m->ntris; t++)
-    fprintf(f, "3 %d %d %d\n", m->tris[3 * t], m->tris[3 * t + 1], m->tris[3 * t + 2]);
-  return finish_file(f, path, err);
-}
-
-lsdem_status lsdem_mesh_write_ply(const char *path, const lsdem_mesh *m, lsdem_error *err)
-{
-  FILE *f = fopen(path, "w");
-  if (!f) return lsdem_fail(err, LSDEM_ERR_IO, "%s: cannot open for writing", path);
-  fprintf(f, "ply\nformat ascii 1.0\ncomment LSDEM level-set surface\n"
-          "element vertex %d\nproperty double x\nproperty double y\nproperty double z\n"
-          "element face %d\nproperty list uchar int vertex_indices\nend_header\n",
-          m->nverts, m->ntris);
-  for (int v = 0; v < m->nverts; v++)
-    fprintf(f, "%.9g %.9g %.9g\n", m->verts[3 * v], m->verts[3 * v + 1], m->verts[3 * v + 2]);
-  for (int t = 0; t < m->ntris; t++)
-    fprintf(f, "3 %d %d %d\n", m->tris[3 * t], m->tris[3 * t + 1], m->tris[3 * t + 2]);
-  return finish_file(f, path, err);
 }

@@ -4,7 +4,7 @@
  *
  * Quaternions are scalar-first (w, x, y, z) and rotate body-frame vectors into the world
  * frame: v_world = R(q) v_body = q v_body q*. Matrices are row-major double[9]. */
-#include "lsdem.h"
+#include "lsdem_base.h"
 
 #include <math.h>
 
@@ -92,32 +92,14 @@ void lsdem_matrix_to_quat(const double R[9], double q[4])
   lsdem_quat_normalize(q);
 }
 
-static inline void cross3(const double a[3], const double b[3], double out[3])
-{
-  const double x = a[1] * b[2] - a[2] * b[1];
-  const double y = a[2] * b[0] - a[0] * b[2];
-  const double z = a[0] * b[1] - a[1] * b[0];
-  out[0] = x;
-  out[1] = y;
-  out[2] = z;
-}
-
-/* the public entry (other core files); calls here inline the static one */
-void lsdem_cross3(const double a[3], const double b[3], double out[3]) { cross3(a, b, out); }
-
-static double dot3(const double a[3], const double b[3])
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* R v without forming R: v + 2 u x (u x v + w v), u = (x, y, z). */
 void lsdem_quat_rotate(const double q[4], const double v[3], double out[3])
 {
   const double *u = q + 1;
   double t[3], c[3];
-  cross3(u, v, t);
+  lsdem_cross3(u, v, t);
   for (int i = 0; i < 3; i++) t[i] += q[0] * v[i];
-  cross3(u, t, c);
+  lsdem_cross3(u, t, c);
   for (int i = 0; i < 3; i++) out[i] = v[i] + 2.0 * c[i];
 }
 
@@ -135,7 +117,7 @@ void lsdem_quat_advance(double q[4], const double omega_body[3], double dt)
 {
   const double half = 0.5 * dt;
   const double a[3] = {omega_body[0] * half, omega_body[1] * half, omega_body[2] * half};
-  const double th2 = dot3(a, a);
+  const double th2 = lsdem_dot3(a, a);
   const double th = sqrt(th2);
   const double sinc = th < 1e-4 ? 1.0 - th2 / 6.0 : sin(th) / th;
   const double e[4] = {cos(th), sinc * a[0], sinc * a[1], sinc * a[2]};
@@ -152,9 +134,9 @@ void lsdem_quat_advance(double q[4], const double omega_body[3], double dt)
 void lsdem_rodrigues(const double v[3], const double k[3], double theta, double out[3])
 {
   const double c = cos(theta), s = sin(theta);
-  const double kv = dot3(k, v);
+  const double kv = lsdem_dot3(k, v);
   double kxv[3];
-  cross3(k, v, kxv);
+  lsdem_cross3(k, v, kxv);
   for (int i = 0; i < 3; i++) out[i] = v[i] * c + (1.0 - c) * kv * k[i] + s * kxv[i];
 }
 
@@ -166,11 +148,11 @@ void lsdem_rodrigues(const double v[3], const double k[3], double theta, double 
 static void rotate_minimal(const double v[3], const double a[3], const double b[3],
                            double out[3])
 {
-  const double c = dot3(a, b);
+  const double c = lsdem_dot3(a, b);
   double k[3], kxv[3];
-  cross3(a, b, k);
-  cross3(k, v, kxv);
-  const double f = dot3(k, v) / (1.0 + c);
+  lsdem_cross3(a, b, k);
+  lsdem_cross3(k, v, kxv);
+  const double f = lsdem_dot3(k, v) / (1.0 + c);
   for (int i = 0; i < 3; i++) out[i] = c * v[i] + kxv[i] + f * k[i];
 }
 
@@ -179,22 +161,22 @@ static void perpendicular_unit(const double a[3], double u[3])
   /* cross a with the coordinate axis it is least aligned with */
   const double ax = fabs(a[0]), ay = fabs(a[1]), az = fabs(a[2]);
   const double e[3] = {ax <= ay && ax <= az, ay < ax && ay <= az, az < ax && az < ay};
-  cross3(a, e, u);
-  const double n = sqrt(dot3(u, u));
+  lsdem_cross3(a, e, u);
+  const double n = sqrt(lsdem_dot3(u, u));
   for (int i = 0; i < 3; i++) u[i] /= n;
 }
 
 void lsdem_rotate_between(const double v[3], const double n_old[3], const double n_new[3],
                           double out[3])
 {
-  const double c = dot3(n_old, n_new);
+  const double c = lsdem_dot3(n_old, n_new);
   if (1.0 + c > 1e-6) {
     rotate_minimal(v, n_old, n_new, out);
     return;
   }
   double u[3], w[3];
   perpendicular_unit(n_old, u);
-  const double uv = dot3(u, v);
+  const double uv = lsdem_dot3(u, v);
   for (int i = 0; i < 3; i++) w[i] = 2.0 * uv * u[i] - v[i]; /* half-turn about u */
   const double m[3] = {-n_old[0], -n_old[1], -n_old[2]};
   rotate_minimal(w, m, n_new, out);
@@ -233,28 +215,6 @@ void lsdem_tan_matrix_eq226(const double qtan[4], double R[9])
   R[6] = 2.0 * (q2 * q3 - q1 * q4);
   R[7] = -2.0 * (q1 * q3 + q2 * q4);
   R[8] = -q1 * q1 - q2 * q2 + q3 * q3 + q4 * q4;
-}
-
-/* ------------------------------------------------------------ 3x3 helpers ---- */
-
-void lsdem_mat_vec(const double R[9], const double v[3], double out[3])
-{
-  const double x = R[0] * v[0] + R[1] * v[1] + R[2] * v[2];
-  const double y = R[3] * v[0] + R[4] * v[1] + R[5] * v[2];
-  const double z = R[6] * v[0] + R[7] * v[1] + R[8] * v[2];
-  out[0] = x;
-  out[1] = y;
-  out[2] = z;
-}
-
-void lsdem_matT_vec(const double R[9], const double v[3], double out[3])
-{
-  const double x = R[0] * v[0] + R[3] * v[1] + R[6] * v[2];
-  const double y = R[1] * v[0] + R[4] * v[1] + R[7] * v[2];
-  const double z = R[2] * v[0] + R[5] * v[1] + R[8] * v[2];
-  out[0] = x;
-  out[1] = y;
-  out[2] = z;
 }
 
 /* One Jacobi rotation in the (p, r) plane that zeroes A[p][r] (Golub & Van Loan 8.4),

@@ -1,7 +1,7 @@
 /* randgrain.c -- random sand-like grains: a star-shaped radius from random spherical
  * harmonics with a prescribed spectrum, an affine map to the requested Zingg ratios and
  * size, and shape statistics (see lsdem.h for the model). */
-#include "lsdem.h"
+#include "lsdem_prep.h"
 
 #include <math.h>
 #include <string.h>

@@ -3,7 +3,7 @@
  * Time levels: positions and orientations live at whole steps n, velocities at half
  * steps n+1/2 (leapfrog). Translation is world-frame; rotation is integrated in the
  * body (principal) frame, where the inertia tensor is diagonal. */
-#include "lsdem.h"
+#include "lsdem_dynamics.h"
 
 /* Centred-difference translation with global damping (eqs 2.18-2.19). */
 void lsdem_step_translation(double x[3], double v[3], const double f[3], double mass,

@@ -6,7 +6,7 @@
  * Taylor model of phi about the sample (with sub = 1: the sample itself). Each
  * sub-voxel contributes volume H(-phi) (h/sub)^3, with H a smoothed Heaviside of
  * half-width eps = h (one spacing). */
-#include "lsdem.h"
+#include "lsdem_prep.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -1,6 +1,6 @@
 /* nodes.c -- surface nodes of a grain: seeding on the zero level set, the surface area
  * of a grid, and clustering into groups with bounding spheres for cheap rejection. */
-#include "lsdem.h"
+#include "lsdem_prep.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -2,7 +2,7 @@
  * bounding radius, mass properties), and the quality checks every shape source runs
  * (issue 4: grid spacing vs size, node spacing, closed level set, volume and inertia
  * consistency between grid and nodes). */
-#include "lsdem.h"
+#include "lsdem_prep.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -11,7 +11,7 @@
  * The per-contact physics (normal spring and damping, the shear spring with its
  * history, the Coulomb cap, the accumulation into a result) lives in apply_contacts() and
  * the functions it calls, shared by the node loop and by the sphere paths. */
-#include "lsdem.h"
+#include "lsdem_contact.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -19,35 +19,6 @@
 #include <string.h>
 
 /* --------------------------------------------------------- small vector ops ---- */
-
-static inline double dot3(const double a[3], const double b[3])
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static inline void cross3(const double a[3], const double b[3], double out[3])
-{
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-/* out = M v + t */
-static inline void affine3(const double M[9], const double t[3], const double v[3],
-                           double out[3])
-{
-  out[0] = M[0] * v[0] + M[1] * v[1] + M[2] * v[2] + t[0];
-  out[1] = M[3] * v[0] + M[4] * v[1] + M[5] * v[2] + t[1];
-  out[2] = M[6] * v[0] + M[7] * v[1] + M[8] * v[2] + t[2];
-}
-
-/* C = A^T B for row-major 3x3 matrices. */
-static void mat_transpose_mul(const double A[9], const double B[9], double C[9])
-{
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++)
-      C[3 * i + j] = A[i] * B[j] + A[3 + i] * B[3 + j] + A[6 + i] * B[6 + j];
-}
 
 /* ------------------------------------------------------------ pair context ---- */
 
@@ -90,7 +61,7 @@ static void pair_begin(pair_ctx *c, const lsdem_pose *pa, const lsdem_pose *pb,
     m->dab[i] = pa->x[i] - pb->x[i];
     m->dw[i] = pa->omega[i] - pb->omega[i];
   }
-  cross3(pb->omega, m->dab, wb_dab);
+  lsdem_cross3(pb->omega, m->dab, wb_dab);
   for (int i = 0; i < 3; i++) m->v0[i] = pa->v[i] - pb->v[i] - wb_dab[i];
   c->prm = *prm;
   c->step = step;
@@ -106,7 +77,7 @@ static int pair_end(const pair_ctx *c, int *n_out, lsdem_contact_result *res)
 {
   *res = c->sum;
   double dab_f[3]; /* the reaction's torque about B's centroid (see pair_motion) */
-  cross3(c->m.dab, res->force, dab_f);
+  lsdem_cross3(c->m.dab, res->force, dab_f);
   for (int i = 0; i < 3; i++) res->torque_b[i] = -res->torque_a[i] - dab_f[i];
   if (c->weight > 0.0)
     for (int i = 0; i < 3; i++) res->point[i] /= c->weight;
@@ -160,9 +131,9 @@ static void normal_forces(const pair_ctx *restrict c, const contact_set *restric
     double vrel[3] = {0.0, 0.0, 0.0}, vn = 0.0;
     for (int i = 0; i < 3; i++) r[i] = p[i] - c->m.xa[i];
     if (prm->cn > 0.0 || prm->mu > 0.0) { /* eq 2.6 (see pair_motion) */
-      cross3(c->m.dw, r, vrel);
+      lsdem_cross3(c->m.dw, r, vrel);
       for (int i = 0; i < 3; i++) vrel[i] += c->m.v0[i];
-      vn = dot3(vrel, n);
+      vn = lsdem_dot3(vrel, n);
     }
     if (prm->cn > 0.0) {
       fn -= prm->cn * cscale * vn;
@@ -216,7 +187,7 @@ static void tangential_forces(pair_ctx *restrict c, const contact_set *restrict 
     }
     for (int i = 0; i < 3; i++) ft[i] = sm[i] - ct * v[i];
     const double cap = prm->mu * fn[m]; /* eq 2.10 */
-    const double ft2 = dot3(ft, ft);
+    const double ft2 = lsdem_dot3(ft, ft);
     if (ft2 > cap * cap) {
       const double scale = cap / sqrt(ft2);
       for (int i = 0; i < 3; i++) {
@@ -257,7 +228,7 @@ static void apply_contacts(pair_ctx *restrict c, const contact_set *restrict cs,
   for (int m = 0; m < cs->n; m++) {
     const double *fm = &f[3 * m], *p = &cs->p[3 * m];
     double ta[3];
-    cross3(&ra[3 * m], fm, ta);
+    lsdem_cross3(&ra[3 * m], fm, ta);
     for (int i = 0; i < 3; i++) {
       sum->force[i] += fm[i];
       sum->torque_a[i] += ta[i];
@@ -316,7 +287,7 @@ static void screen_nodes(const double *nodes, int first, int count, int stride,
 static void lookup_batch(const lsdem_sdf *sdfB, const double M[9], const double t[3],
                          node_batch *b)
 {
-  for (int i = 0; i < b->n; i++) affine3(M, t, &b->x[3 * i], &b->q[3 * i]);
+  for (int i = 0; i < b->n; i++) lsdem_affine3(M, t, &b->x[3 * i], &b->q[3 * i]);
   if (b->cached)
     lsdem_grid_eval_many_cached(&sdfB->grid, b->n, b->q, b->phi, b->grad, b->cell);
   else
@@ -615,7 +586,7 @@ static void contact_batch(pair_ctx *restrict c, const lsdem_shape *A, const lsde
   for (int m = 0; m < cs.n; m++) {
     const int i = at[m], k = b->node[i];
     cs.node[m] = k;
-    affine3(pb->R, pb->x, &b->q[3 * i], &cs.p[3 * m]); /* world position of the node */
+    lsdem_affine3(pb->R, pb->x, &b->q[3 * i], &cs.p[3 * m]); /* world position of the node */
     lsdem_mat_vec(pb->R, &b->grad[3 * i], &cs.nrm[3 * m]); /* world normal, outward from B */
     cs.depth[m] = -b->phi[i];
     cs.kscale[m] = traction ? kstride * A->node_area[k] : kstride;
@@ -645,7 +616,7 @@ static double ball_clearance(const lsdem_sdf *sdfB, const double M[9], const dou
                              const double centre[3], double r)
 {
   double q[3], g[3];
-  affine3(M, t, centre, q);
+  lsdem_affine3(M, t, centre, q);
   const double scale = fabs(q[0]) + fabs(q[1]) + fabs(q[2]) + r;
   return lsdem_sdf_eval(sdfB, q, g) - r - 1e-12 * scale;
 }
@@ -671,8 +642,8 @@ static int cluster_range(const lsdem_shape *A, int cl, const lsdem_shape *B, dou
   const double *sph = &A->cluster_sphere[4 * cl];
   const double d[3] = {sph[0] - cb[0], sph[1] - cb[1], sph[2] - cb[2]};
   const double reach = B->radius + widen + sph[3];
-  if (dot3(d, d) > reach * reach) {
-    if (L->pose_out) list_margin(L, sqrt(dot3(d, d)) - B->radius - sph[3]);
+  if (lsdem_dot3(d, d) > reach * reach) {
+    if (L->pose_out) list_margin(L, sqrt(lsdem_dot3(d, d)) - B->radius - sph[3]);
     return 0;
   }
   if (distance) {
@@ -746,13 +717,13 @@ int lsdem_contact_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_
   double dx[3];
   for (int i = 0; i < 3; i++) dx[i] = pb->x[i] - pa->x[i];
   const double rb = B->radius, rab = A->radius + rb;
-  if (dot3(dx, dx) > rab * rab) return no_contact(n_out, res);
+  if (lsdem_dot3(dx, dx) > rab * rab) return no_contact(n_out, res);
 
   /* cb: B's centre in A's frame (for screening). A's frame -> B's frame:
    * q = M node + t with M = RB^T RA, t = RB^T (xA - xB). */
   double cb[3], M[9], t[3], mdx[3] = {-dx[0], -dx[1], -dx[2]};
   lsdem_matT_vec(pa->R, dx, cb);
-  mat_transpose_mul(pb->R, pa->R, M);
+  lsdem_matT_mul(pb->R, pa->R, M);
   lsdem_matT_vec(pb->R, mdx, t);
 
   /* an unbounded distance B (a wall) has no bounding sphere to screen with: reject A's
@@ -821,7 +792,7 @@ int lsdem_contact_sphere_shape(double radius, double area, const lsdem_pose *pa,
   double dx[3];
   for (int i = 0; i < 3; i++) dx[i] = pa->x[i] - pb->x[i];
   const double reach = radius + B->radius;
-  if (dot3(dx, dx) > reach * reach) return no_contact(n_out, res);
+  if (lsdem_dot3(dx, dx) > reach * reach) return no_contact(n_out, res);
 
   /* report §2.3.5: one level-set lookup of the sphere centre in B's frame */
   double q[3], g[3], n[3];
@@ -845,7 +816,7 @@ int lsdem_contact_sphere_sphere(double ra, double area, const lsdem_pose *pa, do
 {
   double dx[3];
   for (int i = 0; i < 3; i++) dx[i] = pa->x[i] - pb->x[i];
-  const double reach = ra + rb, dist2 = dot3(dx, dx);
+  const double reach = ra + rb, dist2 = lsdem_dot3(dx, dx);
   if (!(dist2 < reach * reach)) return no_contact(n_out, res);
 
   const double dist = sqrt(dist2);

@@ -1,7 +1,7 @@
 /* surfsdf.c -- star-shaped solids given by a radius function r(u): mass properties by
  * quadrature over directions, bounding boxes, and a true signed-distance grid from a dense
  * sampling of the surface (superellipsoids, random grains). */
-#include "lsdem.h"
+#include "lsdem_prep.h"
 
 #include <math.h>
 #include <stdlib.h>

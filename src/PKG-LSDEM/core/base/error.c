@@ -1,5 +1,5 @@
 /* error.c -- status names and the error-message buffer. */
-#include "lsdem.h"
+#include "lsdem_base.h"
 
 #include <stdarg.h>
 #include <stdio.h>

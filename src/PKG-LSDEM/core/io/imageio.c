@@ -4,7 +4,7 @@
  * it is used, every offset before it is dereferenced, and every failure names the file
  * and what was wrong. The TIFF reader implements the baseline subset a segmentation
  * export uses (uncompressed strips of 8/16/32-bit unsigned grey, one page per z slice). */
-#include "lsdem.h"
+#include "lsdem_io.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -6,7 +6,7 @@
  * range before use; sizes are capped before anything is allocated and arrays grow as
  * values arrive, so a short file claiming a huge grid costs nothing. Every error names
  * the file, the line and what was expected. */
-#include "lsdem.h"
+#include "lsdem_prep.h"
 
 #include <errno.h>
 #include <math.h>

@@ -1,7 +1,7 @@
 /* sdf.c -- signed distance functions behind one interface: sampled grids and analytic
  * shapes (sphere, half-space, cylinder, box, ellipsoid, superellipsoid). phi < 0 inside,
  * gradients point outward and have unit length. All in the shape's own frame. */
-#include "lsdem.h"
+#include "lsdem_geom.h"
 
 #include <float.h>
 #include <math.h>

@@ -4,7 +4,7 @@
  * of grain long axes (§3.5.4) and grain rotation angles (§3.5.3).
  *
  * Sign convention (soil mechanics): stresses and strains are COMPRESSION POSITIVE. */
-#include "lsdem.h"
+#include "lsdem_specimen.h"
 
 #include <math.h>
 

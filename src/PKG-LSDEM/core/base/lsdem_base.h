@@ -1,0 +1,75 @@
+/* lsdem_base.h -- base of the LSDEM core: status codes and error messages, quaternions and 3x3 rotations.
+ *
+ * Part of the kernel (core/base). See lsdem.h for the conventions used throughout. */
+#ifndef LSDEM_BASE_H
+#define LSDEM_BASE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "lsdem_vec3.h" /* dot, cross, 3x3 products: inline, one copy */
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------- errors ---- */
+
+typedef enum {
+  LSDEM_OK = 0,
+  LSDEM_ERR_ARG,     /* a bad argument (NULL, negative size, out of range) */
+  LSDEM_ERR_IO,      /* a file could not be opened, read, written or mapped */
+  LSDEM_ERR_FORMAT,  /* a file's content is malformed, truncated or corrupt */
+  LSDEM_ERR_NOMEM,   /* an allocation failed or a size would overflow */
+  LSDEM_ERR_NUMERIC  /* NaN/inf or a degenerate quantity (zero volume, ...) */
+} lsdem_status;
+
+typedef struct {
+  char msg[512];
+} lsdem_error;
+
+/* Human-readable name of a status code ("format error", ...). */
+const char *lsdem_status_name(lsdem_status s);
+
+/* Record a printf-style message in err (if not NULL) and return s. */
+lsdem_status lsdem_fail(lsdem_error *err, lsdem_status s, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* ------------------------------------------------- quaternions, rotations ---- */
+
+void lsdem_quat_normalize(double q[4]);
+void lsdem_quat_multiply(const double a[4], const double b[4], double out[4]); /* a*b */
+void lsdem_quat_conjugate(const double q[4], double out[4]);
+void lsdem_quat_to_matrix(const double q[4], double R[9]);          /* body -> world */
+void lsdem_matrix_to_quat(const double R[9], double q[4]);          /* proper rotation */
+void lsdem_quat_rotate(const double q[4], const double v[3], double out[3]);     /* R v */
+void lsdem_quat_rotate_inv(const double q[4], const double v[3], double out[3]); /* R^T v */
+/* q <- q * exp(omega_body * dt / 2): exact update for a body-frame angular velocity
+ * held constant over dt (solution of the quaternion rate equation, report eq 2.28). */
+void lsdem_quat_advance(double q[4], const double omega_body[3], double dt);
+/* Rodrigues' formula (report eq 2.9): rotate v about the unit axis k by angle theta. */
+void lsdem_rodrigues(const double v[3], const double k[3], double theta, double out[3]);
+/* Rotate v by the rotation that takes unit vector n_old onto unit vector n_new
+ * (the operator Z of report eq 2.8). Identity when n_old == n_new. */
+void lsdem_rotate_between(const double v[3], const double n_old[3], const double n_new[3],
+                          double out[3]);
+
+/* Kawamoto/Tan rotation files store (q0 q1 q2 q3) = their code's quaternion, w last.
+ * Their rotation matrix (report eq 2.26 with Evans' q1..q4 = file q0..q3) equals the
+ * textbook body->world matrix of the scalar-first quaternion (q3, -q1, q0, -q2). */
+void lsdem_quat_from_tan(const double qtan[4], double q[4]);
+void lsdem_quat_to_tan(const double q[4], double qtan[4]);
+/* Eq 2.26 exactly as printed, with Evans' (q1, q2, q3, q4) = qtan[0..3]. */
+void lsdem_tan_matrix_eq226(const double qtan[4], double R[9]);
+
+/* Symmetric 3x3 eigen-decomposition (Jacobi). Eigenvalues ascending in w; column k of V
+ * (V[3*i+k]) is the unit eigenvector of w[k]; V is a proper rotation (det +1). */
+void lsdem_sym_eigen(const double A[9], double w[3], double V[9]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* LSDEM_BASE_H */

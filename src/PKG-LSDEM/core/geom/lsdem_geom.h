@@ -1,0 +1,189 @@
+/* lsdem_geom.h -- geometry of the LSDEM kernel: level-set grids (Algorithm 1), analytic
+ * signed distances, grain shapes, the shape library (read side) and the zero level set as
+ * a triangle mesh (for output). */
+#ifndef LSDEM_GEOM_H
+#define LSDEM_GEOM_H
+
+#include "../base/lsdem_base.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ----------------------------------------------------------- level sets ---- */
+
+/* A signed-distance grid: n[0]*n[1]*n[2] float samples, x fastest, then y, then z.
+ * Sample (i,j,k) sits at origin + h*(i,j,k) in the shape's own (principal) frame. */
+typedef struct {
+  int n[3];
+  double h;          /* uniform spacing, length units */
+  double origin[3];  /* position of sample (0,0,0) */
+  const float *phi;
+  double lip;        /* bound on |grad phi| where phi >= 0 (lsdem_grid_outer_lipschitz),
+                        0 = unknown; set by lsdem_library_open, for the node lists */
+  double lip_reach;  /* ... valid while lip * skin < lip_reach */
+} lsdem_grid;
+
+/* Trilinear interpolation of value and gradient (report Algorithm 1).
+ * Returns phi at p and writes the normalised gradient to grad (unit length; +x if the
+ * trilinear gradient vanishes).
+ * Outside the grid box: returns phi(clamp(p)) + |p - clamp(p)| with grad = the unit
+ * vector from clamp(p) towards p. Grids carry a positive margin, so such points are
+ * never inside the solid. */
+double lsdem_grid_eval(const lsdem_grid *g, const double p[3], double grad[3]);
+/* lsdem_grid_eval of n points p[3m..3m+2] into phi[m], grad[3m..3m+2] (bit-identical
+ * results), done back to back so that their cache misses overlap. */
+void lsdem_grid_eval_many(const lsdem_grid *g, int n, const double *p, double *phi,
+                          double *grad);
+/* The 8 samples of one grid cell, kept by a caller between lookups (x fastest: 000,
+ * 100, 010, 110, 001, 101, 011, 111; index = that of sample 000, -1 = none). */
+typedef struct {
+  int64_t index;
+  float v[8];
+} lsdem_grid_cell;
+/* lsdem_grid_eval_many (bit-identical) whose samples come from cells[m] when it holds
+ * the cell of p[m], and are otherwise read from the grid into cells[m]: a caller that
+ * looks the same points up step after step keeps the samples near at hand. */
+void lsdem_grid_eval_many_cached(const lsdem_grid *g, int n, const double *p, double *phi,
+                                 double *grad, lsdem_grid_cell *cells);
+/* Value only (same outside rule), for mass properties and checks. */
+double lsdem_grid_value(const lsdem_grid *g, const double p[3]);
+/* Raw trilinear gradient (not normalised) inside the grid; zero outside. For tests. */
+void lsdem_grid_gradient_raw(const lsdem_grid *g, const double p[3], double grad[3]);
+lsdem_status lsdem_grid_check(const lsdem_grid *g, lsdem_error *err); /* sizes, NaN */
+/* A bound L on |grad phi| of the trilinear level set along any path on which
+ * 0 <= phi <= L s, for every s with L s below the smallest sample on the grid's boundary
+ * (0 if there is none: no bound). The gradient components of a cell are blends of its
+ * edge differences, so max over cells with a corner >= 0 of
+ * sqrt(sum over axes of (largest |edge difference| / h)^2) bounds it inside the box; the
+ * outside rule (phi >= that smallest boundary sample) is never reached on such a path.
+ * Returned as L, with the limit on L s in *reach_limit. */
+double lsdem_grid_outer_lipschitz(const lsdem_grid *g, double *reach_limit);
+
+
+/* ------------------------------------------------------- signed distances ---- */
+
+typedef enum {
+  LSDEM_SDF_GRID = 0,
+  LSDEM_SDF_SPHERE,    /* a[0] = radius, centred at the origin */
+  LSDEM_SDF_PLANE,     /* solid is z <= 0 (half-space), outward normal +z */
+  LSDEM_SDF_CYLINDER,  /* a[0] = radius, a[1] = half-length along z (<=0: infinite) */
+  LSDEM_SDF_BOX,       /* a[0..2] = half-extents */
+  LSDEM_SDF_ELLIPSOID, /* a[0..2] = semi-axes along x, y, z (exact distance) */
+  /* a[0..2] semi-axes, a[3] = e1 (north-south), a[4] = e2 (east-west) exponents, > 0:
+   * the surface is F = (|x/a0|^(2/e2) + |y/a1|^(2/e2))^(e2/e1) + |z/a2|^(2/e1) = 1.
+   * lsdem_sdf_eval gives the first-order distance (g - 1)/|grad g|, g = F^(e1/2) the
+   * degree-1 gauge: exact zero set and normals, approximate magnitude away from the
+   * surface (node seeding, checks). Its grid (lsdem_grid_sample) is a true SDF, built by
+   * lsdem_grid_from_star. */
+  LSDEM_SDF_SUPERELLIPSOID
+} lsdem_sdf_kind;
+
+/* Any shape behind one interface: phi(p) and its outward unit gradient, in the shape's
+ * own frame. inverted != 0 swaps inside and outside (a cylindrical container, a box
+ * of walls) by negating phi and grad. */
+typedef struct {
+  lsdem_sdf_kind kind;
+  int inverted;
+  double a[5];     /* shape parameters (per kind above); a[3], a[4] only for the
+                      superellipsoid's exponents e1, e2 (libraries store a[0..2]) */
+  lsdem_grid grid; /* used when kind == LSDEM_SDF_GRID */
+} lsdem_sdf;
+
+double lsdem_sdf_eval(const lsdem_sdf *s, const double p[3], double grad[3]);
+/* lsdem_sdf_eval of n points p[3m..3m+2] into phi[m], grad[3m..3m+2], bit-identical, with
+ * the kind dispatched once (grids: lsdem_grid_eval_many). */
+void lsdem_sdf_eval_many(const lsdem_sdf *s, int n, const double *p, double *phi,
+                         double *grad);
+/* Radius of a sphere about the origin that contains the solid (HUGE_VAL if unbounded,
+ * including every inverted SDF). For a grid it bounds the trilinear solid
+ * {lsdem_grid_value < 0} (inside and outside the grid box); for a grid with positive
+ * values on its border it over-estimates the solid's extent by at most 0.03 h (cells
+ * refined by bisection). It scans all cells: compute it once per shape, not per contact. */
+/* Lower-case name of a shape kind ("grid", "sphere", ...), for messages and listings. */
+const char *lsdem_sdf_kind_name(lsdem_sdf_kind k);
+double lsdem_sdf_bound_radius(const lsdem_sdf *s);
+void lsdem_grid_free(lsdem_grid *g); /* frees phi allocated by the core; phi = NULL */
+
+/* ------------------------------------------------------ star-shaped solids ---- */
+
+/* A solid that is star-shaped about the origin: its surface point in the unit direction u
+ * is radius(u) * u, radius > 0 and finite. ctx is the shape's parameters. */
+typedef double (*lsdem_radius_fn)(const double u[3], const void *ctx);
+
+/* Radius function of an LSDEM_SDF_SUPERELLIPSOID (ctx: its const lsdem_sdf *):
+ * 1 / g(u), g the degree-1 gauge of the superellipsoid (evaluated overflow-free). */
+double lsdem_superellipsoid_radius(const double u[3], const void *sdf);
+
+/* ------------------------------------------------------------ grain shapes ---- */
+
+/* A grain template in its principal frame. Nodes are stored cluster by cluster:
+ * cluster c owns nodes [cluster_start[c], cluster_start[c+1]) and a bounding sphere
+ * (cluster_sphere[4c..4c+2] centre, [4c+3] radius), so a whole cluster can be skipped
+ * with one distance test. */
+typedef struct {
+  lsdem_sdf sdf;
+  int nnodes;
+  const double *nodes;      /* 3*nnodes, principal frame */
+  const double *node_area;  /* nnodes: surface area represented by each node */
+  int nclusters;
+  const int *cluster_start; /* nclusters+1 */
+  const double *cluster_sphere; /* 4*nclusters */
+  double radius;            /* bounding radius: max |node| and the solid's extent */
+  double volume;            /* per unit density = mass at density 1 */
+  double inertia[3];        /* principal moments per unit density */
+} lsdem_shape;
+
+
+/* ---------------------------------------------------------- shape library ---- */
+
+/* A read-only, memory-mapped library of shapes (format in doc/shape_library.rst).
+ * All pointers in the shapes point into the mapping; ranks on one node share one copy
+ * through the page cache. */
+typedef struct lsdem_library lsdem_library;
+
+lsdem_status lsdem_library_open(const char *path, lsdem_library **lib, lsdem_error *err);
+void lsdem_library_close(lsdem_library *lib);
+int lsdem_library_count(const lsdem_library *lib);
+const lsdem_shape *lsdem_library_shape(const lsdem_library *lib, int index);
+const char *lsdem_library_name(const lsdem_library *lib, int index); /* may be "" */
+
+/* Limits of the format (checked by the writer and by open). */
+#define LSDEM_LIBRARY_NAME_MAX 128            /* name bytes including the NUL */
+#define LSDEM_LIBRARY_MAX_SHAPES 16777216     /* 2^24 shapes */
+#define LSDEM_LIBRARY_MAX_NODES 67108864      /* 2^26 nodes per shape */
+#define LSDEM_LIBRARY_MAX_SAMPLES 2147483647u /* grid samples per shape (int index) */
+
+/* Open checks the header, the header/TOC checksum, every offset and length and the
+ * cluster tables, but reads no grid. This checks shape `index` (-1: all shapes): its
+ * section checksum, and that its nodes, areas, cluster spheres and grid are finite.
+ * LSDEM_ERR_FORMAT on a checksum mismatch, LSDEM_ERR_NUMERIC on NaN/inf. */
+lsdem_status lsdem_library_verify(const lsdem_library *lib, int index, lsdem_error *err);
+
+/* ------------------------------------------------------------ triangle meshes ---- */
+
+/* A triangle mesh with shared vertices (STL vertices are welded on exact equality). */
+typedef struct {
+  int nverts, ntris;
+  double *verts; /* 3*nverts */
+  int *tris;     /* 3*ntris vertex indices, counter-clockwise seen from outside */
+} lsdem_mesh;
+
+#define LSDEM_MESH_MAX_TRIS 16777216 /* triangles per mesh */
+void lsdem_mesh_free(lsdem_mesh *m);
+
+/* ---------------------------------------------------- zero level set as a mesh ---- */
+
+/* The zero level set of a bounded SDF as a closed, outward-oriented triangle mesh
+ * (lsdem_mesh above) in the SDF's frame (marching tetrahedra on a lattice: surface.c).
+ * Lattice spacing h; h <= 0 means the grid's own samples for a grid SDF, bound radius / 20
+ * for an analytic one.
+ * Vertices are shared between triangles (the mesh is watertight: every edge has two
+ * triangles). Allocates m; free with lsdem_mesh_free. LSDEM_ERR_ARG for unbounded SDFs. */
+lsdem_status lsdem_mesh_extract(const lsdem_sdf *s, double h, lsdem_mesh *m, lsdem_error *err);
+double lsdem_mesh_area(const lsdem_mesh *m);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* LSDEM_GEOM_H */

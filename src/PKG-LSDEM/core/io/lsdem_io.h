@@ -1,0 +1,96 @@
+/* lsdem_io.h -- files in and out (not linked into lmp): reading whole files, label images
+ * (raw, TIFF), surface meshes as VTK/PLY, pictures of grains (ray-marched, PNG). */
+#ifndef LSDEM_IO_H
+#define LSDEM_IO_H
+
+#include "../geom/lsdem_geom.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------------------ files ---- */
+
+    ;
+
+/* Read a whole file (at most max_bytes) into a new buffer, NUL-terminated (not counted in
+ * *size); free(*data) when done. */
+lsdem_status lsdem_read_file(const char *path, size_t max_bytes, unsigned char **data,
+                             size_t *size, lsdem_error *err);
+
+/* ------------------------------------------------------------ label images ---- */
+
+/* A labelled 3-D image: one label per voxel, x fastest, then y, then z. Label <= 0 is
+ * background. Voxel (i,j,k) has its centre at voxel_size * (i,j,k) in scan coordinates. */
+typedef struct {
+  int n[3];
+  int32_t *label; /* n[0]*n[1]*n[2], allocated by the reader */
+} lsdem_label_image;
+
+typedef enum { LSDEM_VOXEL_U8 = 0, LSDEM_VOXEL_U16, LSDEM_VOXEL_U32, LSDEM_VOXEL_I32 } lsdem_voxel_type;
+
+#define LSDEM_IMAGE_MAX_VOXELS 1073741824L /* 1024^3 voxels */
+#define LSDEM_IMAGE_MAX_PAGES 65536        /* TIFF pages (z slices) */
+
+/* Raw binary labels, no header: exactly n[0]*n[1]*n[2] values of `type`. The file size
+ * must match (a mismatch is reported with both sizes); u32 values above INT32_MAX are
+ * rejected. */
+lsdem_status lsdem_image_read_raw(const char *path, const int n[3], lsdem_voxel_type type,
+                                  int big_endian, lsdem_label_image *img, lsdem_error *err);
+/* Multi-page TIFF, one page per z slice (baseline: uncompressed, one sample per pixel,
+ * 8/16/32-bit unsigned integer, strips, both byte orders). All pages must have the same
+ * size. Compressed, tiled, multi-sample, float or signed pages are rejected naming the
+ * tag; every offset is bounds-checked and IFD chains that loop or exceed
+ * LSDEM_IMAGE_MAX_PAGES are rejected. */
+lsdem_status lsdem_image_read_tiff(const char *path, lsdem_label_image *img, lsdem_error *err);
+/* 1 if the file starts with a TIFF signature ("II*\0" or "MM\0*"), else 0. */
+int lsdem_image_is_tiff(const char *path);
+void lsdem_label_image_free(lsdem_label_image *img);
+
+
+/* ----------------------------------------------------------- surface files ---- */
+
+/* Legacy VTK polydata (ASCII) and PLY (ASCII). */
+lsdem_status lsdem_mesh_write_vtk(const char *path, const lsdem_mesh *m, lsdem_error *err);
+lsdem_status lsdem_mesh_write_ply(const char *path, const lsdem_mesh *m, lsdem_error *err);
+
+/* ---------------------------------------------------------------- pictures ---- */
+
+/* One posed grain of a picture. */
+typedef struct {
+  int shape;    /* index into the shapes array */
+  int64_t id;   /* grain id: picks the colour */
+  double x[3];  /* centroid, world */
+  double q[4];  /* body -> world, unit length */
+} lsdem_render_grain;
+
+/* Orthographic camera looking along `view`; `up` is the world direction shown upwards
+ * (projected; must not be parallel to view). Image right = view x up. pixel > 0 fixes
+ * the frame: world point `centre` at the image centre, pixel = world length per pixel;
+ * pixel <= 0 fits the grains' bounding spheres with a 5% margin (centre ignored). */
+typedef struct {
+  int width, height;
+  double view[3], up[3];
+  double centre[3], pixel;
+  int colour_by_shape; /* 0: colour by a hash of the grain id, 1: by shape index */
+} lsdem_render_view;
+
+/* Value of all three channels of pixels that see no grain; grain pixels never have it. */
+#define LSDEM_RENDER_BACKGROUND 255
+
+/* Ray-march the grains' level sets (render.c): per pixel, bounding spheres from a
+ * screen-space bin grid, then sphere tracing in each grain's frame, Lambert + ambient
+ * shading with the level-set normal. rgb receives width*height*3 bytes, row 0 at the top.
+ * Shapes must be bounded (finite radius). Deterministic. */
+lsdem_status lsdem_render(const lsdem_shape *const *shapes, int nshapes,
+                          const lsdem_render_grain *grains, int ngrains,
+                          const lsdem_render_view *view, unsigned char *rgb, lsdem_error *err);
+/* An 8-bit RGB PNG (rows top first), compressed by the core's own deflate (fixed Huffman
+ * codes, LZ77): no compression library needed. */
+lsdem_status lsdem_png_write(const char *path, int width, int height, const unsigned char *rgb,
+                             lsdem_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* LSDEM_IO_H */

@@ -1,0 +1,168 @@
+/* lsdem_specimen.h -- the triaxial specimen: stress, strain and fabric measures (report §3.5)
+ * and the flexible membrane (report §2.3.5, §3.3.2) (kernel). */
+#ifndef LSDEM_SPECIMEN_H
+#define LSDEM_SPECIMEN_H
+
+#include "../base/lsdem_base.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------- specimen measurements (measure.c) ---- */
+
+/* Sign convention: stresses and strains are COMPRESSION POSITIVE (soil mechanics):
+ * p > 0 under confinement, axial strain ln(L0/L) > 0 when the specimen shortens,
+ * volumetric strain ln(V0/V) > 0 when it contracts. Tensors are 3x3 row-major double[9]. */
+
+/* Love-Weber average stress (report eq 3.6), accumulated per grain: M += f (x) (x_c - x_g),
+ * M_ij += f_i (x_c - x_g)_j, with f a contact force ON the grain (world), x_c the contact
+ * point, x_g the grain's centroid (for a periodic image, the image nearest x_c). Sum every
+ * contact of every grain of the set: a grain-grain contact enters once per grain (opposite
+ * forces, the branch vector of each side), a wall, platen or membrane contact once. The
+ * report writes x^c from the origin; for a grain in equilibrium (sum f = 0) both agree, and
+ * this form is origin-independent also for boundary contacts and unbalanced grains. */
+void lsdem_love_weber_add(double M[9], const double f[3], const double point[3],
+                          const double centre[3]);
+/* sigma = -sym(M) / volume (compression positive; volume = the specimen's, voids included). */
+void lsdem_love_weber_stress(const double M[9], double volume, double sigma[9]);
+double lsdem_stress_mean(const double sigma[9]);       /* p = tr(sigma) / 3 (eq 3.7) */
+double lsdem_stress_deviatoric(const double sigma[9]); /* q = sqrt(3/2 s:s) (eq 3.8) */
+/* Principal stresses, descending: s[0] = sigma_1 (major) >= s[1] >= s[2] = sigma_3. */
+void lsdem_stress_principal(const double sigma[9], double s[3]);
+/* A symmetric tensor's six components in LAMMPS order: xx yy zz xy xz yz. */
+void lsdem_sym_to_voigt(const double T[9], double out[6]);
+/* Mobilised friction angle (eq 3.9), radians: asin((s1 - s3) / (s1 + s3)); 0 if s1 + s3 <= 0. */
+double lsdem_friction_angle(double s1, double s3);
+/* Dilatancy angle (eq 3.10, Schanz & Vermeer 1996 for triaxial compression), radians,
+ * from increments of volumetric and axial strain (compression positive):
+ * sin(psi) = -x / (2 - x), x = deps_v / deps_a; psi > 0 for dilation. 0 if deps_a == 0;
+ * -pi/2 for x >= 1 (the radius shrinks as well: outside the formula's range).
+ * (The report prints (x/2)/(2 - x/2); we use the published Schanz-Vermeer form.) */
+double lsdem_dilatancy_angle(double deps_v, double deps_a);
+/* Inertial number (eq 3.5): |strain_rate| d / sqrt(pressure / density); d = mean equivalent
+ * grain diameter. HUGE_VAL if pressure or density <= 0. Quasi-static when < 1e-3. */
+double lsdem_inertial_number(double strain_rate, double d, double pressure, double density);
+
+/* Long axis of a grain (report §3.5.4): the principal axis of its smallest principal moment,
+ * in the world frame (q: body -> world). Sign arbitrary. */
+void lsdem_long_axis(const double q[4], const double inertia[3], double n[3]);
+/* Fabric of unit vectors: F += n (x) n (divide by the count for <n (x) n>). */
+void lsdem_fabric_add(double F[9], const double n[3]);
+/* Deviatoric fabric tensor of the second kind (Kanatani 1984): D = 15/2 (F/count - I/3);
+ * the orientation density is then (1 + D : n n) / (4 pi) to second order. Zero if count <= 0. */
+void lsdem_fabric_deviator(const double F[9], double count, double D[9]);
+/* Anisotropy factor a = sqrt(3/2 D : D) (Zhao & Guo 2013; Wiebicke et al. 2020): 0 for an
+ * isotropic set, 15/2 when every axis is parallel. */
+double lsdem_fabric_anisotropy(const double D[9]);
+/* Rotation angle in [0, pi] of q relative to a reference orientation qref (angle of
+ * q qref^-1), for the rotated-grain shear-band indicator (report §3.5.3). */
+double lsdem_rotation_angle(const double q[4], const double qref[4]);
+
+
+/* ------------------------------------------- flexible membrane (membrane.c) ---- */
+
+/* The triaxial test's membrane (report §2.3.5, §3.3.2): two layers of bonded spheres on
+ * coaxial cylinders (axis parallel to z through centre[0..1]), each a triangular
+ * ("hexagonal") lattice: rings of nper spheres, alternate rings offset by half a step.
+ *  - Inner layer: spheres of radius rb whose centres lie on radius R = Rs + rb, so they
+ *    touch a specimen of radius Rs. nper = round(pi / asin(rb / R)) (in-ring chord ~2 rb);
+ *    nrings rings from z0 to z0 + H (end rings exactly at z0 and z0 + H; ring spacing
+ *    H / (nrings - 1) ~ chord * sqrt(3)/2).
+ *  - Outer layer: spheres of radius outer_factor * rb, one over each "up" hole of the
+ *    inner lattice (triangle with two vertices on ring m, apex on ring m+1), i.e. nrings-1
+ *    rings of nper at z = z_m + dz/3, on the radius where an outer sphere touches the
+ *    nearest of the three inner spheres around its hole. The up-hole centroids form a
+ *    translated copy of the lattice, so the outer layer is a hexagonal lattice too.
+ *  - Bonds: the in-layer lattice edges (interior spheres have 6) and, between layers,
+ *    each outer sphere to the three inner spheres around its hole, so the outer layer
+ *    stays registered over the holes it covers (the membrane is frictionless: without
+ *    these bonds the layers could slide apart and uncover the holes).
+ *  - Bond kinds (same geometry for every bond of a kind, by symmetry; atom 1 -> atom 2):
+ *    layer*3 + 0: in-ring, towards increasing angle; layer*3 + 1 / + 2: to the upper ring's
+ *    neighbour at +half / -half a step; 6, 7, 8: outer sphere -> inner hole vertex at
+ *    -half step, +half step (lower ring), apex (upper ring).
+ *  - Triangles: each layer's lattice triangles, vertices ordered so S_T points outward.
+ *  - Cap edges: the end rings of each layer as closed polygons, bottom ring traversed
+ *    clockwise seen from +z (cap normal -z), top ring counter-clockwise (+z), so lateral
+ *    triangles + caps bound a closed, outward-oriented surface. */
+typedef struct {
+  double specimen_radius; /* Rs */
+  double height;          /* H: z distance between the inner layer's end rings */
+  double centre[2];       /* axis position (x, y) */
+  double z0;              /* z of the inner layer's bottom ring */
+  double rb;              /* inner sphere radius */
+  double outer_factor;    /* outer radius / rb (report: 1.1); <= 0: single layer */
+} lsdem_membrane_params;
+
+#define LSDEM_MEMBRANE_BOND_KINDS 9
+
+typedef struct {
+  int nper;             /* spheres per ring (both layers) */
+  int nrings[2];        /* rings per layer (outer: nrings[0] - 1, or 0) */
+  int nspheres, nbonds, ntris, ncap_edges;
+  double ring_radius[2];/* centre radius of each layer's cylinder */
+  double sphere_radius[2];
+  double dz;            /* ring spacing (both layers) */
+  double *x;            /* 3 * nspheres; inner spheres first, ring by ring */
+  int *layer, *ring;    /* per sphere: 0 inner / 1 outer; ring index within its layer */
+  int *bond;            /* 2 * nbonds sphere indices (atom 1, atom 2) */
+  int *bond_kind;       /* nbonds */
+  double kind_r0[LSDEM_MEMBRANE_BOND_KINDS];      /* rest length of each kind */
+  double kind_rest[2 * LSDEM_MEMBRANE_BOND_KINDS];/* rest in-surface offset (hoop, axial) */
+  int kind_used[LSDEM_MEMBRANE_BOND_KINDS];       /* number of bonds of each kind */
+  int *tri, *tri_layer; /* 3 * ntris, ntris */
+  int *cap_edge;        /* 2 * ncap_edges */
+  int *cap_layer, *cap_end; /* per cap edge: layer; 0 bottom, 1 top */
+} lsdem_membrane;
+
+/* Generate the membrane. Allocates the arrays (free with lsdem_membrane_free).
+ * LSDEM_ERR_ARG for non-positive sizes or rb too large (fewer than 6 spheres per ring or
+ * fewer than 2 rings). */
+lsdem_status lsdem_membrane_build(const lsdem_membrane_params *p, lsdem_membrane *m,
+                                  lsdem_error *err);
+void lsdem_membrane_free(lsdem_membrane *m);
+
+/* Directional area of triangle (a, b, c): S = 0.5 (b - a) x (c - a) (report §2.3.5). */
+void lsdem_triangle_area_vector(const double a[3], const double b[3], const double c[3],
+                                double S[3]);
+/* Confining-pressure force on EACH vertex of a triangle with directional area S:
+ * p |S| / 3 along -S/|S| (inward for outward S), i.e. f = -p S / 3. */
+void lsdem_pressure_vertex_force(const double S[3], double p, double f[3]);
+/* Divergence-theorem volume term of one outward triangle (report eq 2.30, with the
+ * centroid as the point of the face): (1/3) x_T . S_T = a . (b x c) / 6. Summed over a
+ * closed outward surface it gives the enclosed volume, for any origin. */
+double lsdem_triangle_volume_term(const double a[3], const double b[3], const double c[3]);
+/* Planar-polygon cap closed through its vertex centroid g (a fan of triangles g, v_k,
+ * v_k+1). Accumulate one directed edge (vi -> vj): sum_v += vi, sum_s += 0.5 vi x vj.
+ * The fan's volume term is then (1/3) g . S_cap with g = sum_v / n and
+ * S_cap = sum_s (the polygon's vector area); the sums can be reduced across ranks. */
+void lsdem_cap_edge_accumulate(const double vi[3], const double vj[3], double sum_v[3],
+                               double sum_s[3]);
+double lsdem_cap_volume_term(const double sum_v[3], int n, const double sum_s[3]);
+/* Enclosed volume of one layer's lateral triangles closed by its two end caps (serial
+ * reference: the LAMMPS fix computes the same sums distributed). x: 3 * nspheres. */
+double lsdem_membrane_volume(const lsdem_membrane *m, const double *x, int layer);
+/* Specimen volume inside a membrane whose sphere centres enclose volume V with lateral
+ * area A and height H, the lateral surface moved inward by the sphere radius rb (a
+ * cylinder's parallel surface): V - rb A + pi rb^2 H. */
+double lsdem_membrane_inset_volume(double V, double A, double H, double rb);
+
+/* Membrane bond force (bond_style lsdem/membrane): with d = xj - xi, u = d/|d|, a local
+ * cylindrical frame at the bond midpoint (r = horizontal unit vector away from the axis
+ * through axis[0..1], t = z x r hoop, z):
+ *   normal spring      -kn (|d| - r0) u                                on j
+ *   tangential spring  -ks (e - (e.u) u),  e = (d.t - rest[0]) t + (d.z - rest[1]) z
+ * The tangential spring resists the change of the bond's in-surface (hoop, axial) offset
+ * from its rest value except along the bond, i.e. shear of the hexagonal pattern; it is
+ * blind to radial motion (bulging) and to rigid rotation about / translation along the
+ * axis, and needs no per-bond history. Writes the force on j (the force on i is -fj) and
+ * returns the energy 0.5 kn (|d| - r0)^2 + 0.5 ks |e - (e.u)u|^2. */
+double lsdem_membrane_bond_force(const double xi[3], const double xj[3], const double axis[2],
+                                 double kn, double ks, double r0, const double rest[2],
+                                 double fj[3]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* LSDEM_SPECIMEN_H */
