@@ -234,27 +234,7 @@ void AtomVecLsdem::open_library(const char *path)
   }
 }
 
-/* ----------------------------------------------------------------------
-   nodelist keyword of pair lsdem and fix wall/lsdem: auto | off | skin length
-------------------------------------------------------------------------- */
-
-double AtomVecLsdem::parse_node_skin(const char *val, LAMMPS *lmp)
-{
-  if (strcmp(val, "auto") == 0) return -1.0;
-  if (strcmp(val, "off") == 0) return 0.0;
-  double skin = utils::is_double(val) ? utils::numeric(FLERR, val, false, lmp) : 0.0;
-  if (!(skin > 0.0))
-    lmp->error->all(FLERR, "nodelist must be auto, off or a skin length > 0, not {}", val);
-  return skin;
-}
-
-void AtomVecLsdem::check_contact_law(const lsdem_contact_params &p, const char *who,
-                                     LAMMPS *lmp)
-{
-  if (!(p.kn > 0.0) || !(p.ks >= 0.0) || !(p.mu >= 0.0) || !(p.cn >= 0.0) || !(p.ct >= 0.0))
-    lmp->error->all(FLERR, "{}: need kn > 0 and ks, mu, cn, ct >= 0; got kn = {}, ks = {}, "
-                    "mu = {}, cn = {}, ct = {}", who, p.kn, p.ks, p.mu, p.cn, p.ct);
-}
+/* ---------------------------------------------------------------------- */
 
 void AtomVecLsdem::stop_if_any_rank(LAMMPS *lmp, const char *file, int line,
                                     const std::string &mesg)
@@ -274,12 +254,6 @@ void AtomVecLsdem::stop_if_any_rank(LAMMPS *lmp, const char *file, int line,
   // mpirun kill rank 0 before exit() would have flushed it.
   fflush(nullptr);
   lmp->error->all(file, line, text);
-}
-
-double AtomVecLsdem::node_skin(double setting) const
-{
-  if (setting >= 0.0) return setting;
-  return std::isfinite(min_grain_radius) ? NODE_SKIN_AUTO * min_grain_radius : 0.0;
 }
 
 /* ----------------------------------------------------------------------
