@@ -36,7 +36,7 @@ static void unpack_ids(int64_t v, lsdem_state_record &r)
 
 FixLsdemHistory::FixLsdemHistory(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), cur(0), nmax_atom(0), sfirst(nullptr), nslice(nullptr),
-  visited(nullptr), generation(0), atom_slice(0), maxrecords(0)
+  visited(nullptr), generation(0), atom_slice(0), atom_records(0), maxrecords(0)
 {
   if (narg != 3) error->all(FLERR, "Illegal fix LSDEM_HISTORY command (internal fix)");
 
@@ -99,7 +99,7 @@ bool FixLsdemHistory::find(int i, tagint ptag, lsdem_pair_state &in) const
   for (int k = 0; k < nslice[i]; k++)  // a few partners: a scan beats a binary search
     if (s[k].partner == ptag) {
       in.list.valid = s[k].list_valid;
-      in.list.head = s[k].head;
+      in.list.head = const_cast<lsdem_nodelist_head *>(&s[k].head);
       in.list.entry = const_cast<lsdem_nodelist_entry *>(p.entry.data()) + s[k].entry_start;
       in.shear = const_cast<lsdem_shear_hist *>(p.shear.data()) + s[k].shear_start;
       in.nshear = s[k].nshear;
@@ -122,6 +122,7 @@ void FixLsdemHistory::begin_step()
 void FixLsdemHistory::begin_atom()
 {
   atom_slice = pool[1 - cur].ns;
+  atom_records = 0;
 }
 
 /* ----------------------------------------------------------------------
@@ -133,9 +134,11 @@ lsdem_pair_state FixLsdemHistory::reserve(int list_cap, int shear_cap)
   Pool &next = pool[1 - cur];
   pool_room(next, 1, list_cap, shear_cap);
   lsdem_pair_state out;
-  memset(&out, 0, sizeof out);
+  out.list.valid = 0;
+  out.list.head = &next.slice[next.ns].head;  // the slice commit() fills
   out.list.entry = next.entry.data() + next.nentry;
   out.shear = next.shear.data() + next.nshear;
+  out.nshear = 0;
   return out;
 }
 
@@ -148,15 +151,15 @@ void FixLsdemHistory::commit(tagint ptag, const lsdem_pair_state &out)
 {
   if (!out.list.valid && out.nshear <= 0) return;
   Pool &next = pool[1 - cur];
-  Slice &s = next.slice[next.ns++];
+  Slice &s = next.slice[next.ns++];  // its head was written in place (reserve)
   s.partner = ptag;
   s.list_valid = out.list.valid;
-  s.head = out.list.head;
   s.entry_start = next.nentry;
   s.shear_start = next.nshear;
   s.nshear = out.nshear;
-  if (out.list.valid) next.nentry += out.list.head.count;
+  if (out.list.valid) next.nentry += s.head.count;
   next.nshear += out.nshear;
+  atom_records += (out.list.valid ? 2 + s.head.count : 0) + out.nshear;
 }
 
 /* ----------------------------------------------------------------------
@@ -180,7 +183,7 @@ void FixLsdemHistory::end_atom(int i)
   sfirst[i] = atom_slice;
   nslice[i] = ns;
   visited[i] = generation;
-  note_records(count_records(next, atom_slice, ns));
+  note_records(atom_records);
 }
 
 /* ----------------------------------------------------------------------
@@ -197,21 +200,17 @@ void FixLsdemHistory::end_step()
 }
 
 /* ----------------------------------------------------------------------
-   records of ns slices of pool p from first (one atom's state), or of atom i's state in
-   the current pool; the exchange buffer must hold the largest, and it only ever grows
+   records of atom i's state in the current pool; the exchange buffer must hold the
+   largest, and it only ever grows
 ------------------------------------------------------------------------- */
-
-int FixLsdemHistory::count_records(const Pool &p, int first, int ns)
-{
-  int n = 0;
-  for (int k = first; k < first + ns; k++)
-    n += (p.slice[k].list_valid ? 2 + p.slice[k].head.count : 0) + p.slice[k].nshear;
-  return n;
-}
 
 int FixLsdemHistory::count_records(int i) const
 {
-  return count_records(pool[cur], sfirst[i], nslice[i]);
+  const Pool &p = pool[cur];
+  int n = 0;
+  for (int k = sfirst[i]; k < sfirst[i] + nslice[i]; k++)
+    n += (p.slice[k].list_valid ? 2 + p.slice[k].head.count : 0) + p.slice[k].nshear;
+  return n;
 }
 
 void FixLsdemHistory::note_records(int n)
@@ -266,7 +265,7 @@ int FixLsdemHistory::pack_state(int i, double *buf)
     const Slice &s = p.slice[sfirst[i] + k];
     lsdem_pair_state st;
     st.list.valid = s.list_valid;
-    st.list.head = s.head;
+    st.list.head = const_cast<lsdem_nodelist_head *>(&s.head);
     st.list.entry = const_cast<lsdem_nodelist_entry *>(p.entry.data()) + s.entry_start;
     st.shear = const_cast<lsdem_shear_hist *>(p.shear.data()) + s.shear_start;
     st.nshear = s.nshear;
@@ -316,19 +315,20 @@ int FixLsdemHistory::unpack_state(int i, const double *buf)
       len++;
     }
     pool_room(p, 1, len, len);
+    Slice &s = p.slice[p.ns];
     lsdem_pair_state st;
+    st.list.head = &s.head;
     st.list.entry = p.entry.data() + p.nentry;
     st.shear = p.shear.data() + p.nshear;
     lsdem_pair_state_decode(records.data(), len, nnodes, &st);
     if (st.list.valid || st.nshear > 0) {
-      Slice &s = p.slice[p.ns++];
+      p.ns++;
       s.partner = ptag;
       s.list_valid = st.list.valid;
-      s.head = st.list.head;
       s.entry_start = p.nentry;
       s.shear_start = p.nshear;
       s.nshear = st.nshear;
-      if (st.list.valid) p.nentry += st.list.head.count;
+      if (st.list.valid) p.nentry += s.head.count;
       p.nshear += st.nshear;
       nslice[i]++;
     }

@@ -85,12 +85,12 @@ class FixLsdemHistory : public Fix {
   int *sfirst, *nslice;       // per atom: its slices in pool[cur]
   int *visited, generation;   // atoms visited since begin_step() carry its generation
   int atom_slice;             // where the atom being visited starts in the next pool
+  int atom_records;           // and the records its committed pairs take
   int maxrecords;             // largest state seen, in records (sizes exchange buffers)
   std::vector<lsdem_state_record> records;  // scratch for packing and unpacking
 
   void pool_room(Pool &p, int ns, int nentry, int nshear);
   void note_records(int n);
-  static int count_records(const Pool &, int first, int ns);
   int count_records(int i) const;
   int pack_state(int i, double *buf);
   int unpack_state(int i, const double *buf);

@@ -29,6 +29,7 @@ enum { STEPS = 400, CAP = 2 * FIX_GRAIN_NODES + 8 };
 
 /* A pair's state (node list and shear history) with its storage. */
 typedef struct {
+  lsdem_nodelist_head head;
   lsdem_nodelist_entry entry[CAP];
   lsdem_shear_hist shear[CAP];
   lsdem_pair_state st;
@@ -37,6 +38,7 @@ typedef struct {
 static void pair_buf_clear(pair_buf *b)
 {
   memset(&b->st, 0, sizeof b->st);
+  b->st.list.head = &b->head;
   b->st.list.entry = b->entry;
   b->st.shear = b->shear;
 }
@@ -53,7 +55,7 @@ static void step_pair(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_sh
 /* Whether b's list was built at step s. */
 static int built_at(const pair_buf *b, int64_t s)
 {
-  return b->st.list.valid && b->st.list.head.built == s;
+  return b->st.list.valid && b->head.built == s;
 }
 
 /* One run: its own state, swapped between steps. */
@@ -216,7 +218,7 @@ static void test_rattle_bound_limits(const lsdem_shape *A, const lsdem_shape *B,
     step_run(&fast, A, &pa, &tight, pb, &listed, s, &rf);
     same &= memcmp(rp.force, rf.force, sizeof rp.force) == 0 && rp.npen == rf.npen;
   }
-  const int listed_nodes = fast.buf[fast.cur].st.list.head.count;
+  const int listed_nodes = fast.buf[fast.cur].head.count;
   CHECK(same && rp.npen > 5, "rattle, tight bound: results differ (%d nodes)", rp.npen);
   CHECK(listed_nodes > 0 && listed_nodes < rf.ntested,
         "rattle, tight bound: %d nodes listed of %d looked up", listed_nodes, rf.ntested);
@@ -303,7 +305,7 @@ static void test_damaged_entry(const lsdem_shape *A, const lsdem_shape *B, const
   path_pose(APPROACH, 100, 11.6, &pa);
   lsdem_contact_result r0, r1;
   step_pair(A, &pa, B, pb, &listed, 0, NULL, &h0, &r0);
-  const int nn = h0.st.list.head.count;
+  const int nn = h0.head.count;
   CHECK(nn > 4 && r0.ntested >= nn, "%d listed of %d looked up", nn, r0.ntested);
   h0.entry[nn / 2].node = LSDEM_TEST_BAD_NODE;
   step_pair(A, &pa, B, pb, &listed, 1, &h0, &h1, &r1);

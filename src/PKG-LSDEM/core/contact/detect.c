@@ -19,7 +19,7 @@ typedef struct {
   double xa[3], dab[3], v0[3], dw[3];
 } pair_motion;
 
-static void pair_motion_of(const lsdem_pose *pa, const lsdem_pose *pb, pair_motion *m)
+static inline void pair_motion_of(const lsdem_pose *pa, const lsdem_pose *pb, pair_motion *m)
 {
   double wb_dab[3];
   for (int i = 0; i < 3; i++) {
@@ -44,7 +44,7 @@ static void manifold_begin(lsdem_manifold *m, const pair_motion *pm, int stride)
 }
 
 /* Appends a point at p (world) with B's outward normal n, depth d > 0 and area. */
-static void add_point(lsdem_manifold *restrict m, const pair_motion *restrict pm, int node,
+static inline __attribute__((always_inline)) void add_point(lsdem_manifold *restrict m, const pair_motion *restrict pm, int node,
                       const double p[3], const double n[3], double d, double area)
 {
   lsdem_contact_point *c = &m->point[m->n++];
@@ -381,8 +381,6 @@ static int detect_sphere_sphere(double ra, const lsdem_pose *pa, double rb,
 static int is_sphere(const lsdem_shape *s) { return s->sdf.kind == LSDEM_SDF_SPHERE; }
 
 double lsdem_sphere_contact_area(double radius) { return M_PI * radius * radius; }
-
-int lsdem_manifold_capacity(const lsdem_shape *A) { return is_sphere(A) ? 1 : A->nnodes; }
 
 lsdem_manifold lsdem_manifold_over(lsdem_contact_point *storage, int cap)
 {

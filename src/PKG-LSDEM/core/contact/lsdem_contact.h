@@ -92,8 +92,11 @@ typedef struct {
   int ntested;     /* nodes that reached a level-set lookup (the work done) */
 } lsdem_manifold;
 
-/* Points a manifold can hold for master A: 1 for a sphere, else A's node count. */
-int lsdem_manifold_capacity(const lsdem_shape *A);
+/* Points a manifold can need for master A: 1 for a sphere, else A's node count. */
+static inline int lsdem_manifold_capacity(const lsdem_shape *A)
+{
+  return A->sdf.kind == LSDEM_SDF_SPHERE ? 1 : A->nnodes;
+}
 /* An empty manifold over caller storage of cap points. */
 lsdem_manifold lsdem_manifold_over(lsdem_contact_point *storage, int cap);
 
@@ -130,16 +133,20 @@ typedef struct {
   double x[3];   /* the node in A's frame (so a step using the list reads none of A) */
 } lsdem_nodelist_entry;
 
-/* A node list as detection reads and writes it: valid = 0 means none. As output,
- * entry[] must hold lsdem_nodelist_capacity(A) entries. */
+/* A node list as detection reads and writes it, in the caller's storage: valid = 0 means
+ * none. As output, head points to room for the head and entry[] holds
+ * lsdem_nodelist_capacity(A) entries; detection sets valid. */
 typedef struct {
   int valid;
-  lsdem_nodelist_head head;
+  lsdem_nodelist_head *head;
   lsdem_nodelist_entry *entry;
 } lsdem_nodelist;
 
 /* Entries a node list of master A can need: A's node count (0 for a sphere). */
-int lsdem_nodelist_capacity(const lsdem_shape *A);
+static inline int lsdem_nodelist_capacity(const lsdem_shape *A)
+{
+  return A->sdf.kind == LSDEM_SDF_SPHERE ? 0 : A->nnodes;
+}
 
 /* ----------------------------------------------------------------- detection ---- */
 
@@ -271,7 +278,8 @@ typedef struct {
 int lsdem_pair_state_records(const lsdem_pair_state *st);
 /* st as records (lsdem_pair_state_records of them); returns the count. */
 int lsdem_pair_state_encode(const lsdem_pair_state *st, lsdem_state_record *rec);
-/* Records back into st, whose list.entry and shear hold n entries at least. A list is
+/* Records back into st, whose list.head points to room for a head and whose list.entry
+ * and shear hold n entries at least. A list is
  * taken when a head is followed by its node entries (ids of nodes < nnodes); records
  * of an older layout (shear entries ahead of the list's nodes, masks with ids -3..) leave
  * no list, their shear entries kept. Shear entries are kept in increasing node order

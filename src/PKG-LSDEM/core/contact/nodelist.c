@@ -91,13 +91,13 @@ void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
   L->cached = sdfB->kind == LSDEM_SDF_GRID && !sdfB->inverted;
   const int stride = det->node_stride > 1 ? det->node_stride : 1;
   if (in && in->valid) {
-    if (in->head.count > 0) {
+    if (in->head->count > 0) {
       L->node_in = in->entry;
-      L->nnode_in = in->head.count;
+      L->nnode_in = in->head->count;
     }
-    const double motion = list_motion(&in->head, M, t, A->radius);
-    L->use = list_holds(&in->head, motion, L->skin, step, stride);
-    if (!L->use) L->skin = adapted_skin(L->skin, sdfB, &in->head, motion, step);
+    const double motion = list_motion(in->head, M, t, A->radius);
+    L->use = list_holds(in->head, motion, L->skin, step, stride);
+    if (!L->use) L->skin = adapted_skin(L->skin, sdfB, in->head, motion, step);
   }
   L->reach = list_reach(sdfB, L->skin);
   L->lip = isfinite(L->reach) ? L->reach / L->skin : 0.0;
@@ -106,60 +106,22 @@ void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
   if (!out) return;
   L->out = out;
   out->valid = 1;
-  out->head.count = 0;
   if (L->use) {
-    out->head = in->head;
-    out->head.count = 0;
+    *out->head = *in->head;
+    out->head->count = 0;
     return;
   }
   L->building = 1;
-  memcpy(out->head.M, M, sizeof out->head.M);
-  memcpy(out->head.t, t, sizeof out->head.t);
-  out->head.built = step;
-  out->head.stride = stride; /* radius: when the list is finished */
-}
-
-void nodelist_margin(node_list *L, double d)
-{
-  L->margin = d < L->margin ? d : L->margin;
-}
-
-void nodelist_keep(node_list *L, int k, const double x[3], const lsdem_grid_cell *c)
-{
-  lsdem_nodelist_entry *e = &L->out->entry[L->out->head.count++];
-  const int kept = L->cached && c && c->index >= 0 && c->index <= INT32_MAX;
-  e->node = k;
-  e->cell = kept ? (int32_t)c->index : -1;
-  if (kept)
-    memcpy(e->v, c->v, sizeof e->v);
-  else
-    memset(e->v, 0, sizeof e->v);
-  memcpy(e->x, x, sizeof e->x);
-}
-
-void nodelist_entry_cell(const lsdem_nodelist_entry *e, lsdem_grid_cell *c)
-{
-  c->index = e->cell;
-  if (e->cell >= 0) memcpy(c->v, e->v, sizeof c->v);
-}
-
-void nodelist_cell_of(node_list *L, int k, lsdem_grid_cell *c)
-{
-  while (L->node_cursor < L->nnode_in && L->node_in[L->node_cursor].node < k) L->node_cursor++;
-  if (L->node_cursor < L->nnode_in && L->node_in[L->node_cursor].node == k)
-    nodelist_entry_cell(&L->node_in[L->node_cursor], c);
-  else
-    c->index = -1;
+  out->head->count = 0;
+  memcpy(out->head->M, M, sizeof out->head->M);
+  memcpy(out->head->t, t, sizeof out->head->t);
+  out->head->built = step;
+  out->head->stride = stride; /* radius: when the list is finished */
 }
 
 void nodelist_finish(node_list *L)
 {
   if (!L->building) return;
   const double radius = L->margin < L->cap ? L->margin : L->cap;
-  L->out->head.radius = radius > L->skin ? radius : L->skin;
-}
-
-int lsdem_nodelist_capacity(const lsdem_shape *A)
-{
-  return A->sdf.kind == LSDEM_SDF_SPHERE ? 0 : A->nnodes;
+  L->out->head->radius = radius > L->skin ? radius : L->skin;
 }

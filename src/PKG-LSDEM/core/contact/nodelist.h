@@ -6,6 +6,8 @@
 
 #include "lsdem_contact.h"
 
+#include <string.h>
+
 /* The list state of one detection call. */
 typedef struct {
   double skin;  /* s; 0: no list */
@@ -31,14 +33,46 @@ int lsdem_sdf_is_distance(const lsdem_sdf *s);
 void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
                     const lsdem_detect_params *det, int64_t step, const lsdem_nodelist *in,
                     lsdem_nodelist *out, const double M[9], const double t[3]);
+/* The per-node steps are inline: they run for every looked-up node. */
+
 /* A left-out node (or cluster) that must move by d to touch B: the list holds until d. */
-void nodelist_margin(node_list *L, double d);
+static inline void nodelist_margin(node_list *L, double d)
+{
+  L->margin = d < L->margin ? d : L->margin;
+}
+
 /* Listed node k at x (A's frame) with its cell c joins the output list. */
-void nodelist_keep(node_list *L, int k, const double x[3], const lsdem_grid_cell *c);
-/* The cell the input list kept for node k (nodes asked in increasing order), or none. */
-void nodelist_cell_of(node_list *L, int k, lsdem_grid_cell *c);
+static inline void nodelist_keep(node_list *L, int k, const double x[3], const lsdem_grid_cell *c)
+{
+  lsdem_nodelist_entry *e = &L->out->entry[L->out->head->count++];
+  const int kept = L->cached && c && c->index >= 0 && c->index <= INT32_MAX;
+  e->node = k;
+  e->cell = kept ? (int32_t)c->index : -1;
+  if (kept)
+    memcpy(e->v, c->v, sizeof e->v);
+  else
+    memset(e->v, 0, sizeof e->v);
+  memcpy(e->x, x, sizeof e->x);
+}
+
+
 /* The cell kept in an entry. */
-void nodelist_entry_cell(const lsdem_nodelist_entry *e, lsdem_grid_cell *c);
+static inline void nodelist_entry_cell(const lsdem_nodelist_entry *e, lsdem_grid_cell *c)
+{
+  c->index = e->cell;
+  if (e->cell >= 0) memcpy(c->v, e->v, sizeof c->v);
+}
+
+/* The cell the input list kept for node k (nodes asked in increasing order), or none. */
+static inline void nodelist_cell_of(node_list *L, int k, lsdem_grid_cell *c)
+{
+  while (L->node_cursor < L->nnode_in && L->node_in[L->node_cursor].node < k) L->node_cursor++;
+  if (L->node_cursor < L->nnode_in && L->node_in[L->node_cursor].node == k)
+    nodelist_entry_cell(&L->node_in[L->node_cursor], c);
+  else
+    c->index = -1;
+}
+
 /* Finishes the output list (its validity radius when built, its node count). */
 void nodelist_finish(node_list *L);
 

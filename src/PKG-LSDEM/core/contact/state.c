@@ -21,7 +21,7 @@ static int is_node_record(int32_t id, int nnodes)
 
 int lsdem_pair_state_records(const lsdem_pair_state *st)
 {
-  return (st->list.valid ? 2 + st->list.head.count : 0) + st->nshear;
+  return (st->list.valid ? 2 + st->list.head->count : 0) + st->nshear;
 }
 
 static void encode_head(const lsdem_nodelist_head *h, lsdem_state_record *rec)
@@ -59,9 +59,9 @@ int lsdem_pair_state_encode(const lsdem_pair_state *st, lsdem_state_record *rec)
 {
   int n = 0;
   if (st->list.valid) {
-    encode_head(&st->list.head, rec);
+    encode_head(st->list.head, rec);
     n = 2;
-    for (int k = 0; k < st->list.head.count; k++, n++) {
+    for (int k = 0; k < st->list.head->count; k++, n++) {
       const lsdem_nodelist_entry *e = &st->list.entry[k];
       lsdem_state_record *r = &rec[n];
       r->id = LIST_NODE + e->node;
@@ -92,7 +92,7 @@ static int decode_list(const lsdem_state_record *rec, int n, int nnodes, lsdem_n
   const int count = rec[1].aux;
   if (count < 0 || count > n - 2 || (count > 0 && !is_node_record(rec[2].id, nnodes)))
     return 0;
-  decode_head(rec, &list->head);
+  decode_head(rec, list->head);
   for (int k = 0; k < count; k++) {
     const lsdem_state_record *r = &rec[2 + k];
     lsdem_nodelist_entry *e = &list->entry[k];
