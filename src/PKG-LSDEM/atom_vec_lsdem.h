@@ -40,7 +40,9 @@ class AtomVecLsdem : public AtomVec {
 
   void grow_pointers() override;
   void create_atom_post(int) override;
+  void data_atom(double *, imageint, char **) override;
   void data_atom_post(int) override;
+  void data_vel(int, char **) override;
   void pack_data_pre(int) override;
   void pack_data_post(int) override;
   void unpack_restart_init(int) override;
@@ -84,6 +86,8 @@ class AtomVecLsdem : public AtomVec {
 
   void register_peratom(const char *, void *, int, int);
   std::string body_mismatch(int) const;
+  std::string repeated_ids() const;
+  void check_data_line(char **, int, int, const char *, const char *, const std::string &);
   void open_library(const char *);
   void report_library();
 };
