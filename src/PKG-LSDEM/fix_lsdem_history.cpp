@@ -126,40 +126,51 @@ void FixLsdemHistory::begin_atom()
 }
 
 /* ----------------------------------------------------------------------
-   room for a pair's new state after the committed ones
+   room in pool p for one more pair's state (its head in the next slice), and keeping
+   what was written there: a pair with a list or shear entries becomes the pool's next
+   slice; returns the records it takes (0: nothing kept)
+------------------------------------------------------------------------- */
+
+lsdem_pair_state FixLsdemHistory::pair_room(Pool &p, int list_cap, int shear_cap)
+{
+  pool_room(p, 1, list_cap, shear_cap);
+  lsdem_pair_state st;
+  st.list.valid = 0;
+  st.list.head = &p.slice[p.ns].head;  // the slice keep_pair() fills
+  st.list.entry = p.entry.data() + p.nentry;
+  st.shear = p.shear.data() + p.nshear;
+  st.nshear = 0;
+  return st;
+}
+
+int FixLsdemHistory::keep_pair(Pool &p, tagint ptag, const lsdem_pair_state &st)
+{
+  if (!st.list.valid && st.nshear <= 0) return 0;
+  Slice &s = p.slice[p.ns++];  // its head was written in place (pair_room)
+  s.partner = ptag;
+  s.list_valid = st.list.valid;
+  s.entry_start = p.nentry;
+  s.shear_start = p.nshear;
+  s.nshear = st.nshear;
+  const int nentry = st.list.valid ? s.head.count : 0;
+  p.nentry += nentry;
+  p.nshear += st.nshear;
+  return (st.list.valid ? 2 + nentry : 0) + st.nshear;
+}
+
+/* ----------------------------------------------------------------------
+   room for a pair's new state after the committed ones, and keeping the state the
+   kernel wrote there
 ------------------------------------------------------------------------- */
 
 lsdem_pair_state FixLsdemHistory::reserve(int list_cap, int shear_cap)
 {
-  Pool &next = pool[1 - cur];
-  pool_room(next, 1, list_cap, shear_cap);
-  lsdem_pair_state out;
-  out.list.valid = 0;
-  out.list.head = &next.slice[next.ns].head;  // the slice commit() fills
-  out.list.entry = next.entry.data() + next.nentry;
-  out.shear = next.shear.data() + next.nshear;
-  out.nshear = 0;
-  return out;
+  return pair_room(pool[1 - cur], list_cap, shear_cap);
 }
-
-/* ----------------------------------------------------------------------
-   the state the kernel wrote into the last reserve(): kept when it holds a list or
-   shear entries
-------------------------------------------------------------------------- */
 
 void FixLsdemHistory::commit(tagint ptag, const lsdem_pair_state &out)
 {
-  if (!out.list.valid && out.nshear <= 0) return;
-  Pool &next = pool[1 - cur];
-  Slice &s = next.slice[next.ns++];  // its head was written in place (reserve)
-  s.partner = ptag;
-  s.list_valid = out.list.valid;
-  s.entry_start = next.nentry;
-  s.shear_start = next.nshear;
-  s.nshear = out.nshear;
-  if (out.list.valid) next.nentry += s.head.count;
-  next.nshear += out.nshear;
-  atom_records += (out.list.valid ? 2 + s.head.count : 0) + out.nshear;
+  atom_records += keep_pair(pool[1 - cur], ptag, out);
 }
 
 /* ----------------------------------------------------------------------
@@ -314,24 +325,9 @@ int FixLsdemHistory::unpack_state(int i, const double *buf)
       }
       len++;
     }
-    pool_room(p, 1, len, len);
-    Slice &s = p.slice[p.ns];
-    lsdem_pair_state st;
-    st.list.head = &s.head;
-    st.list.entry = p.entry.data() + p.nentry;
-    st.shear = p.shear.data() + p.nshear;
+    lsdem_pair_state st = pair_room(p, len, len);
     lsdem_pair_state_decode(records.data(), len, nnodes, &st);
-    if (st.list.valid || st.nshear > 0) {
-      p.ns++;
-      s.partner = ptag;
-      s.list_valid = st.list.valid;
-      s.entry_start = p.nentry;
-      s.shear_start = p.nshear;
-      s.nshear = st.nshear;
-      if (st.list.valid) p.nentry += s.head.count;
-      p.nshear += st.nshear;
-      nslice[i]++;
-    }
+    if (keep_pair(p, ptag, st) > 0) nslice[i]++;
     k += len;
     m += RECORD_DOUBLES * len;
   }

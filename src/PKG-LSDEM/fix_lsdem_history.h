@@ -89,7 +89,9 @@ class FixLsdemHistory : public Fix {
   int maxrecords;             // largest state seen, in records (sizes exchange buffers)
   std::vector<lsdem_state_record> records;  // scratch for packing and unpacking
 
-  void pool_room(Pool &p, int ns, int nentry, int nshear);
+  static void pool_room(Pool &p, int ns, int nentry, int nshear);
+  static lsdem_pair_state pair_room(Pool &p, int list_cap, int shear_cap);
+  static int keep_pair(Pool &p, tagint partner, const lsdem_pair_state &st);
   void note_records(int n);
   int count_records(int i) const;
   int pack_state(int i, double *buf);
