@@ -44,7 +44,12 @@ FixLsdemHistory::FixLsdemHistory(LAMMPS *lmp, int narg, char **arg) :
   create_attribute = 1;
   maxexchange_dynamic = 1;
   maxexchange = 1;
-  for (Pool &p : pool) p.ns = p.nentry = p.nshear = 0;
+  for (Pool &p : pool) {
+    p.slot = nullptr;
+    p.ns = p.nslot = p.maxslot = 0;
+  }
+  static_assert(sizeof(Slot) == 64 && sizeof(lsdem_nodelist_head) <= HEAD_SLOTS * sizeof(Slot),
+                "a list head fits two slots");
 
   FixLsdemHistory::grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
@@ -57,6 +62,7 @@ FixLsdemHistory::~FixLsdemHistory()
 {
   atom->delete_callback(id, Atom::GROW);
   atom->delete_callback(id, Atom::RESTART);
+  for (Pool &p : pool) memory->sfree(p.slot);
   memory->destroy(sfirst);
   memory->destroy(nslice);
   memory->destroy(visited);
@@ -70,26 +76,37 @@ int FixLsdemHistory::setmask()
 }
 
 /* ----------------------------------------------------------------------
-   room in pool p for ns more slices, nentry more list entries and nshear more shear
-   entries (grows by doubling; the step's pointers into p are taken after this)
+   room in pool p for ns more slices and nslot more slots (grows by doubling; the step's
+   pointers into p are taken after this)
 ------------------------------------------------------------------------- */
 
-template <class T> static void room(std::vector<T> &v, int used, int more)
+void FixLsdemHistory::pool_room(Pool &p, int ns, int nslot)
 {
-  const size_t need = (size_t) used + (size_t) more;
-  if (need > v.size()) v.resize(std::max({need, 2 * v.size(), (size_t) 16}));
-}
-
-void FixLsdemHistory::pool_room(Pool &p, int ns, int nentry, int nshear)
-{
-  room(p.slice, p.ns, ns);
-  room(p.entry, p.nentry, nentry);
-  room(p.shear, p.nshear, nshear);
+  const size_t need = (size_t) p.ns + (size_t) ns;
+  if (need > p.slice.size()) p.slice.resize(std::max({need, 2 * p.slice.size(), (size_t) 16}));
+  if (p.nslot + nslot > p.maxslot) {
+    p.maxslot = std::max(2 * p.maxslot, p.nslot + nslot);
+    p.slot = (Slot *) memory->srealloc(p.slot, sizeof(Slot) * p.maxslot, "lsdem/history:slots");
+  }
 }
 
 /* ----------------------------------------------------------------------
-   the state of atom i against one partner (its list entries and shear entries point
-   into the current pool, sorted by node); false when it keeps none
+   a stored pair's state as the kernel reads it: head and entries when it has a list,
+   the shear entries behind them
+------------------------------------------------------------------------- */
+
+void FixLsdemHistory::slice_state(const Pool &p, const Slice &s, lsdem_pair_state &st)
+{
+  Slot *run = p.slot + s.first;
+  st.list.valid = s.list_valid;
+  st.list.head = reinterpret_cast<lsdem_nodelist_head *>(run);
+  st.list.entry = &run[HEAD_SLOTS].entry;
+  st.shear = &run[s.list_valid ? HEAD_SLOTS + s.nentry : 0].shear;
+  st.nshear = s.nshear;
+}
+
+/* ----------------------------------------------------------------------
+   the state of atom i against one partner; false when it keeps none
 ------------------------------------------------------------------------- */
 
 bool FixLsdemHistory::find(int i, tagint ptag, lsdem_pair_state &in) const
@@ -98,11 +115,7 @@ bool FixLsdemHistory::find(int i, tagint ptag, lsdem_pair_state &in) const
   const Slice *s = p.slice.data() + sfirst[i];
   for (int k = 0; k < nslice[i]; k++)  // a few partners: a scan beats a binary search
     if (s[k].partner == ptag) {
-      in.list.valid = s[k].list_valid;
-      in.list.head = const_cast<lsdem_nodelist_head *>(&s[k].head);
-      in.list.entry = const_cast<lsdem_nodelist_entry *>(p.entry.data()) + s[k].entry_start;
-      in.shear = const_cast<lsdem_shear_hist *>(p.shear.data()) + s[k].shear_start;
-      in.nshear = s[k].nshear;
+      slice_state(p, s[k], in);
       return true;
     }
   return false;
@@ -113,7 +126,7 @@ bool FixLsdemHistory::find(int i, tagint ptag, lsdem_pair_state &in) const
 void FixLsdemHistory::begin_step()
 {
   Pool &next = pool[1 - cur];
-  next.ns = next.nentry = next.nshear = 0;
+  next.ns = next.nslot = 0;
   generation = generation < INT_MAX ? generation + 1 : 1;  // wraps, never to 0 (new atoms)
 }
 
@@ -126,36 +139,42 @@ void FixLsdemHistory::begin_atom()
 }
 
 /* ----------------------------------------------------------------------
-   room in pool p for one more pair's state (its head in the next slice), and keeping
+   room in pool p for one more pair's state, a run of slots after the used ones (head,
+   list_cap entries, then the shear entries wherever place_shear puts them), and keeping
    what was written there: a pair with a list or shear entries becomes the pool's next
    slice; returns the records it takes (0: nothing kept)
 ------------------------------------------------------------------------- */
 
 lsdem_pair_state FixLsdemHistory::pair_room(Pool &p, int list_cap, int shear_cap)
 {
-  pool_room(p, 1, list_cap, shear_cap);
+  pool_room(p, 1, HEAD_SLOTS + list_cap + shear_cap);
+  Slot *run = p.slot + p.nslot;
   lsdem_pair_state st;
   st.list.valid = 0;
-  st.list.head = &p.slice[p.ns].head;  // the slice keep_pair() fills
-  st.list.entry = p.entry.data() + p.nentry;
-  st.shear = p.shear.data() + p.nshear;
+  st.list.head = reinterpret_cast<lsdem_nodelist_head *>(run);
+  st.list.entry = &run[HEAD_SLOTS].entry;
+  st.shear = &run[HEAD_SLOTS + list_cap].shear;  // until place_shear knows the list
   st.nshear = 0;
   return st;
+}
+
+void FixLsdemHistory::place_shear(lsdem_pair_state &out)
+{
+  Slot *run = reinterpret_cast<Slot *>(out.list.head);
+  out.shear = &run[out.list.valid ? HEAD_SLOTS + out.list.head->count : 0].shear;
 }
 
 int FixLsdemHistory::keep_pair(Pool &p, tagint ptag, const lsdem_pair_state &st)
 {
   if (!st.list.valid && st.nshear <= 0) return 0;
-  Slice &s = p.slice[p.ns++];  // its head was written in place (pair_room)
+  Slice &s = p.slice[p.ns++];
   s.partner = ptag;
+  s.first = p.nslot;
   s.list_valid = st.list.valid;
-  s.entry_start = p.nentry;
-  s.shear_start = p.nshear;
+  s.nentry = st.list.valid ? st.list.head->count : 0;
   s.nshear = st.nshear;
-  const int nentry = st.list.valid ? s.head.count : 0;
-  p.nentry += nentry;
-  p.nshear += st.nshear;
-  return (st.list.valid ? 2 + nentry : 0) + st.nshear;
+  p.nslot += (st.list.valid ? HEAD_SLOTS + s.nentry : 0) + st.nshear;
+  return (st.list.valid ? 2 + s.nentry : 0) + st.nshear;
 }
 
 /* ----------------------------------------------------------------------
@@ -220,7 +239,7 @@ int FixLsdemHistory::count_records(int i) const
   const Pool &p = pool[cur];
   int n = 0;
   for (int k = sfirst[i]; k < sfirst[i] + nslice[i]; k++)
-    n += (p.slice[k].list_valid ? 2 + p.slice[k].head.count : 0) + p.slice[k].nshear;
+    n += (p.slice[k].list_valid ? 2 + p.slice[k].nentry : 0) + p.slice[k].nshear;
   return n;
 }
 
@@ -275,11 +294,7 @@ int FixLsdemHistory::pack_state(int i, double *buf)
   for (int k = 0; k < nslice[i]; k++) {
     const Slice &s = p.slice[sfirst[i] + k];
     lsdem_pair_state st;
-    st.list.valid = s.list_valid;
-    st.list.head = const_cast<lsdem_nodelist_head *>(&s.head);
-    st.list.entry = const_cast<lsdem_nodelist_entry *>(p.entry.data()) + s.entry_start;
-    st.shear = const_cast<lsdem_shear_hist *>(p.shear.data()) + s.shear_start;
-    st.nshear = s.nshear;
+    slice_state(p, s, st);
     records.resize(std::max(records.size(), (size_t) lsdem_pair_state_records(&st)));
     const int n = lsdem_pair_state_encode(&st, records.data());
     for (int r = 0; r < n; r++) {
@@ -327,7 +342,11 @@ int FixLsdemHistory::unpack_state(int i, const double *buf)
     }
     lsdem_pair_state st = pair_room(p, len, len);
     lsdem_pair_state_decode(records.data(), len, nnodes, &st);
-    if (keep_pair(p, ptag, st) > 0) nslice[i]++;
+    // the decoded shear entries go behind the list, in the run's own layout
+    lsdem_pair_state kept = st;
+    place_shear(kept);
+    memmove(kept.shear, st.shear, sizeof(lsdem_shear_hist) * st.nshear);
+    if (keep_pair(p, ptag, kept) > 0) nslice[i]++;
     k += len;
     m += RECORD_DOUBLES * len;
   }
@@ -393,9 +412,7 @@ double FixLsdemHistory::memory_usage()
 {
   double bytes = (double) nmax_atom * 3 * sizeof(int);
   for (const Pool &p : pool)
-    bytes += (double) p.slice.size() * sizeof(Slice) +
-        (double) p.entry.size() * sizeof(lsdem_nodelist_entry) +
-        (double) p.shear.size() * sizeof(lsdem_shear_hist);
+    bytes += (double) p.slice.size() * sizeof(Slice) + (double) p.maxslot * sizeof(Slot);
   bytes += (double) records.size() * sizeof(lsdem_state_record);
   return bytes;
 }

@@ -9,11 +9,12 @@
    (exchange) and is saved in restart files (as lsdem_state_record records, the layout of
    earlier versions, so that their restart files still load).
 
-   Storage: all grains' states sit in pools (slices with their list heads, list entries,
-   shear entries), in the order the styles visit the grains; a step reads the current
-   pools and writes the next ones, so the kernel writes its output where it will be read
-   next step (no copy) and the pools are walked in order (the hardware prefetcher
-   follows). Use per step:
+   Storage: all grains' states sit in a pool of 64-byte slots, pair after pair in the
+   order the styles visit the grains, each pair's state in one run: its list head (two
+   slots), its list entries, its shear entries (the layout of earlier versions in memory
+   too, so that a step reads one stream and writes one). A step reads the current pool and
+   writes the next one, so the kernel writes its output where it will be read next step
+   (no copy). Use per step:
      begin_step();
      for each owned grain i:
        begin_atom();
@@ -51,7 +52,8 @@ class FixLsdemHistory : public Fix {
   bool find(int i, tagint partner, lsdem_pair_state &in) const;
   bool holds(int i) const { return nslice[i] > 0; }  // atom i keeps state
   void begin_atom();
-  lsdem_pair_state reserve(int list_cap, int shear_cap);
+  lsdem_pair_state reserve(int list_cap, int shear_cap);  // out.shear: see place_shear
+  static void place_shear(lsdem_pair_state &out);  // after detection: behind the list
   void commit(tagint partner, const lsdem_pair_state &out);
   void end_atom(int i);
   void end_step();
@@ -67,17 +69,21 @@ class FixLsdemHistory : public Fix {
   double memory_usage() override;
 
  private:
-  struct Slice {   // one pair's state in a pool
+  // a slot holds a shear entry or a list entry; a list head takes two
+  union Slot {
+    lsdem_shear_hist shear;
+    lsdem_nodelist_entry entry;
+    unsigned char bytes[64];
+  };
+  static constexpr int HEAD_SLOTS = 2;
+  struct Slice {   // one pair's state in a pool: its run of slots from `first`
     tagint partner;
-    lsdem_nodelist_head head;
-    int list_valid;
-    int entry_start, nshear, shear_start;  // entries: head.count from entry_start
+    int first, list_valid, nentry, nshear;
   };
   struct Pool {    // the states of all atoms, one after the other
     std::vector<Slice> slice;
-    std::vector<lsdem_nodelist_entry> entry;
-    std::vector<lsdem_shear_hist> shear;
-    int ns, nentry, nshear;  // used
+    Slot *slot;
+    int ns, nslot, maxslot;  // used; slots allocated
   };
   Pool pool[2];
   int cur;                    // pool[cur] holds the states; pool[1 - cur] is written
@@ -89,9 +95,10 @@ class FixLsdemHistory : public Fix {
   int maxrecords;             // largest state seen, in records (sizes exchange buffers)
   std::vector<lsdem_state_record> records;  // scratch for packing and unpacking
 
-  static void pool_room(Pool &p, int ns, int nentry, int nshear);
-  static lsdem_pair_state pair_room(Pool &p, int list_cap, int shear_cap);
+  void pool_room(Pool &p, int ns, int nslot);
+  lsdem_pair_state pair_room(Pool &p, int list_cap, int shear_cap);
   static int keep_pair(Pool &p, tagint partner, const lsdem_pair_state &st);
+  static void slice_state(const Pool &p, const Slice &s, lsdem_pair_state &st);
   void note_records(int n);
   int count_records(int i) const;
   int pack_state(int i, double *buf);

@@ -96,7 +96,10 @@ int LsdemContactPath::test(int i, tagint partner, const lsdem_shape *A, const ls
   lsdem_pair_state in;
   const bool found = store->find(i, partner, in);
   lsdem_pair_state out = store->reserve(lsdem_nodelist_capacity(A), lsdem_manifold_capacity(A));
-  lsdem_contact_penalty(A, &pa, B, &pb, &prm, step, found ? &in : nullptr, &out, &m, &res);
+  lsdem_detect(A, &pa, B, &pb, &prm.detect, step, found ? &in.list : nullptr, &out.list, &m);
+  FixLsdemHistory::place_shear(out);  // behind the list just written: one stream per step
+  lsdem_penalty_apply(&m, &prm.law, prm.dt, step, found ? in.shear : nullptr,
+                      found ? in.nshear : 0, out.shear, &out.nshear, &res);
   store->commit(partner, out);
   return res.npen;
 }
