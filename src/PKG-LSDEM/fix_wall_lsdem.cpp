@@ -227,6 +227,9 @@ void FixWallLsdem::init()
   prm.detect = opts.detect(avec);
   if (!fix_history) prm.detect.node_skin = 0.0;
   path.setup(fix_history, avec);
+  LsdemContactOptions::sum_quanta(
+      LsdemContactOptions::node_spring(opts.law.kn, opts.law.normal, opts.stride, avec), avec,
+      force_q, torque_q);
   for (int d = 0; d < 3; d++) {
     if (!vstr[d]) continue;
     vvar[d] = input->variable->find(vstr[d]);
@@ -458,11 +461,17 @@ void FixWallLsdem::post_force(int /*vflag*/)
       lsdem_contact_result res;
       path.test(i, WALL_PARTNER, avec->shape_of(i), p, &wall, *bp, prm, step, res);
       if (res.npen > 0) {
+        // rounded to the quanta, the wall's totals over the grains (summed over ranks)
+        // are the same in any order (lsdem_quantum_for)
+        double fk[3], ta[3], tb[3];
+        lsdem_quantize3(res.force, force_q, fk);
+        lsdem_quantize3(res.torque_a, torque_q, ta);
+        lsdem_quantize3(res.torque_b, torque_q, tb);
         for (int d = 0; d < 3; d++) {
-          f[i][d] += res.force[d];
-          torque[i][d] += res.torque_a[d];
-          flocal[d] -= res.force[d];
-          tlocal[d] += res.torque_b[d];
+          f[i][d] += fk[d];
+          torque[i][d] += ta[d];
+          flocal[d] -= fk[d];
+          tlocal[d] += tb[d];
         }
         add_contact(i, res);
       }

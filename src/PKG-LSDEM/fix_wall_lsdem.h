@@ -57,6 +57,7 @@ class FixWallLsdem : public Fix {
   lsdem_pose wpose;            // where the wall is and how it moves
   LsdemContactOptions opts;    // the contact law and detection keywords
   lsdem_contact_params prm;    // what the core gets (node skin and dt set at init)
+  lsdem_quantum force_q, torque_q;  // order-free sums of the wall's force and torque
   std::string history_id;
   class FixLsdemHistory *fix_history;  // nullptr when mu == 0 and node lists are off
   LsdemContactPath path;       // each grain's state, manifold, law, commit

@@ -11,6 +11,7 @@
 #include "lammps.h"
 #include "utils.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -87,4 +88,30 @@ lsdem_detect_params LsdemContactOptions::detect(const AtomVecLsdem *avec) const
   d.node_stride = stride;
   d.node_skin = node_skin(nodelist, avec);
   return d;
+}
+
+/* ---------------------------------------------------------------------- */
+
+double LsdemContactOptions::node_spring(double kn, lsdem_normal_law normal, int stride,
+                                        const AtomVecLsdem *avec)
+{
+  double area = 1.0;
+  if (normal == LSDEM_NORMAL_TRACTION) {
+    area = 0.0;
+    for (int s = 0; s < avec->nshapes(); s++) {
+      const lsdem_shape *sh = lsdem_library_shape(avec->library(), s);
+      if (sh->sdf.kind == LSDEM_SDF_SPHERE)
+        area = std::max(area, lsdem_sphere_contact_area(sh->sdf.a[0]));
+      for (int k = 0; k < sh->nnodes; k++) area = std::max(area, sh->node_area[k]);
+    }
+  }
+  return kn * stride * area;
+}
+
+void LsdemContactOptions::sum_quanta(double spring, const AtomVecLsdem *avec,
+                                     lsdem_quantum &force, lsdem_quantum &torque)
+{
+  const double r = avec->max_shape_radius();
+  force = lsdem_quantum_for(spring * r);
+  torque = lsdem_quantum_for(spring * r * r);
 }

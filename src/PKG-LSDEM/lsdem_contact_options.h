@@ -42,6 +42,15 @@ class LsdemContactOptions {
   lsdem_detect_params detect(const class AtomVecLsdem *) const;
   // the skin a nodelist setting gives for this atom style's shapes
   static double node_skin(double setting, const class AtomVecLsdem *);
+  // the stiffest per-node normal spring (force/length) a law of normal stiffness kn can
+  // form with this atom style's shapes: kn * stride, times the largest node area (a
+  // sphere's: lsdem_sphere_contact_area) under the traction law
+  static double node_spring(double kn, lsdem_normal_law, int stride, const class AtomVecLsdem *);
+  // quanta of order-free force and torque sums (lsdem_quantum_for) for contacts whose
+  // stiffest node spring is `spring`: force scale spring x the largest grain radius,
+  // torque scale that times the radius again
+  static void sum_quanta(double spring, const class AtomVecLsdem *, lsdem_quantum &force,
+                         lsdem_quantum &torque);
 };
 
 }    // namespace LAMMPS_NS

@@ -185,6 +185,7 @@ void PairLsdem::init_style()
   MPI_Allreduce(&onerad[1], &maxrad[1], ntypes, MPI_DOUBLE, MPI_MAX, world);
   check_periodic_length();
   kn_max = stiffest_node_spring();
+  LsdemContactOptions::sum_quanta(kn_max, avec, force_q, torque_q);
 
   // history where friction is on or node lists are kept; none at all when mu == 0
   // everywhere and node lists are off
@@ -234,30 +235,16 @@ double PairLsdem::init_one(int i, int j)
 }
 
 /* ----------------------------------------------------------------------
-   largest per-node normal stiffness (force/length) of any type pair:
-   kn * stride, times the largest node area for the traction law (a sphere's
-   area is lsdem_sphere_contact_area)
+   largest per-node normal stiffness (force/length) of any type pair
 ------------------------------------------------------------------------- */
 
 double PairLsdem::stiffest_node_spring() const
 {
-  double area = 1.0;
-  if (global.law.normal == LSDEM_NORMAL_TRACTION) {
-    area = 0.0;
-    const lsdem_library *lib = avec ? avec->library() : nullptr;
-    int nshape = lib ? avec->nshapes() : 0;
-    for (int s = 0; s < nshape; s++) {
-      const lsdem_shape *sh = lsdem_library_shape(lib, s);
-      if (sh->sdf.kind == LSDEM_SDF_SPHERE)
-        area = std::max(area, lsdem_sphere_contact_area(sh->sdf.a[0]));
-      for (int k = 0; k < sh->nnodes; k++) area = std::max(area, sh->node_area[k]);
-    }
-  }
   double kmax = 0.0;
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++)
       if (setflag[i][j]) kmax = std::max(kmax, params[i][j].law.kn);
-  return kmax * global.stride * area;
+  return LsdemContactOptions::node_spring(kmax, global.law.normal, global.stride, avec);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -426,12 +413,20 @@ void PairLsdem::apply_contacts()
       double busiest = std::max(ncount[k.i], ncount[k.j]);
       if (busiest > zcap) k.scale *= zcap / busiest;
     }
-    const double s = k.scale;
+    // each grain's force and torque is a sum of these terms, over local contacts and
+    // the ghosts' share LAMMPS sums back: rounded to the quanta, every order gives the
+    // same sum (the same on any rank count, lsdem_quantum_for)
+    double fk[3], ta[3], tb[3];
     for (int d = 0; d < 3; d++) {
-      f[k.i][d] += s * k.res.force[d];
-      torque[k.i][d] += s * k.res.torque_a[d];
-      f[k.j][d] -= s * k.res.force[d];
-      torque[k.j][d] += s * k.res.torque_b[d];
+      fk[d] = lsdem_quantize(k.scale * k.res.force[d], force_q);
+      ta[d] = lsdem_quantize(k.scale * k.res.torque_a[d], torque_q);
+      tb[d] = lsdem_quantize(k.scale * k.res.torque_b[d], torque_q);
+    }
+    for (int d = 0; d < 3; d++) {
+      f[k.i][d] += fk[d];
+      torque[k.i][d] += ta[d];
+      f[k.j][d] -= fk[d];
+      torque[k.j][d] += tb[d];
     }
   }
 }

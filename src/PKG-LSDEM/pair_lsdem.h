@@ -70,6 +70,7 @@ class PairLsdem : public Pair {
   lsdem_contact_params **params;  // per type pair
   double *onerad, *maxrad;        // largest bounding radius per type (local, global)
   double kn_max;                  // stiffest per-node normal spring, for dt checks
+  lsdem_quantum force_q, torque_q;  // order-free sums of the grains' forces and torques
 
   class AtomVecLsdem *avec;
   class FixLsdemHistory *fix_history;  // nullptr when mu == 0 for every type pair

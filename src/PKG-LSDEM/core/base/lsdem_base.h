@@ -65,6 +65,39 @@ void lsdem_quat_to_tan(const double q[4], double qtan[4]);
 /* Eq 2.26 exactly as printed, with Evans' (q1, q2, q3, q4) = qtan[0..3]. */
 void lsdem_tan_matrix_eq226(const double qtan[4], double R[9]);
 
+/* ------------------------------------------------------- order-free sums ---- */
+
+/* Sums whose value does not depend on the order of their terms (the same on any rank
+ * count and after a restart): each term is rounded to a multiple of a power-of-two
+ * quantum q (fixed-point arithmetic carried in doubles), so every partial sum of such
+ * terms is exact, and therefore the same in any order, while it stays below 2^53 q. A
+ * quantum is chosen for a scale F (the largest single term expected, e.g. the stiffest
+ * contact spring times the largest grain radius) as the power of two
+ * q = 2^(floor(log2 F) + 1 - LSDEM_EXACT_SUM_BITS): terms keep LSDEM_EXACT_SUM_BITS bits
+ * below the power of two above F (a resolution under F / 2^39 ~ 2e-12 F), and sums stay
+ * exact up to 2^12 F. */
+#define LSDEM_EXACT_SUM_BITS 40
+typedef struct {
+  double q, inv_q; /* q = 0: no rounding (terms pass unchanged) */
+} lsdem_quantum;
+/* The quantum for terms of magnitude up to scale (scale <= 0 or not finite: none). */
+lsdem_quantum lsdem_quantum_for(double scale);
+/* x rounded to the nearest multiple of the quantum (ties to even), in exact arithmetic:
+ * x / q and back are exact (powers of two), and adding and removing 1.5 * 2^52 rounds a
+ * double below 2^51 to an integer in the default rounding mode (inline: it runs for every
+ * contact). Terms beyond 2^51 q (and NaN) pass unchanged: far outside the exact range. */
+static inline double lsdem_quantize(double x, lsdem_quantum qt)
+{
+  const double y = x * qt.inv_q, round = 0x1.8p52;
+  if (!(qt.q > 0.0) || !(y < 0x1p51 && y > -0x1p51)) return x;
+  return ((y + round) - round) * qt.q;
+}
+/* The same for the three components of v into out (out may alias v). */
+static inline void lsdem_quantize3(const double v[3], lsdem_quantum qt, double out[3])
+{
+  for (int i = 0; i < 3; i++) out[i] = lsdem_quantize(v[i], qt);
+}
+
 /* Symmetric 3x3 eigen-decomposition (Jacobi). Eigenvalues ascending in w; column k of V
  * (V[3*i+k]) is the unit eigenvector of w[k]; V is a proper rotation (det +1). */
 void lsdem_sym_eigen(const double A[9], double w[3], double V[9]);
