@@ -1,0 +1,466 @@
+/* etm.c -- the Energy Tracking Method on one contact island (report Algorithm 3, eqs 4.1,
+ * 4.13-4.30, §4.4.3), after Tang et al. (2014) as modified in the report.
+ *
+ * A round is a compression phase (approaching contacts raised in small increments, the
+ * kinetic energy they take stored per contact, eq 4.24), the restitution (W <- e^2 W,
+ * eq 4.1) and a separation phase (stored energy released in small increments, eqs
+ * 4.29-4.30); rounds repeat while a contact approaches (lines 34-35). Both phases pop
+ * the extreme key of an indexed heap (queue.h) with the group of similar keys (beta)
+ * and treat that group's contacts in contact order, one after the other, each with the
+ * relative velocity left by the previous ones (Gauss-Seidel), so that the energy booked
+ * per contact is the work its own impulse did.
+ *
+ * Keys: compression u~ = w u_n, w = m_a m_b / (m_a + m_b) (§4.4.3) or 1, most negative
+ * first; separation -W, largest energy first. Every velocity a key depends on is
+ * refreshed after a group for the contacts of the group's bodies (a body -> contacts
+ * table; walls are skipped, their velocity never changes). */
+#include "lsdem_impulse.h"
+#include "queue.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+/* What the solver keeps per contact. */
+typedef struct {
+  double K[9], Kinv[9]; /* collision matrix (eq 4.13) and its inverse */
+  double knn;           /* n . K n */
+  double weight;        /* compression key = weight u_n */
+  double W;             /* stored elastic energy (eq 4.24) */
+} etm_contact;
+
+struct lsdem_etm {
+  lsdem_impulse_body *bodies;
+  const lsdem_impulse_contact *contacts;
+  int nbodies, ncontacts;
+  lsdem_etm_params p;
+  etm_contact *c;
+  int32_t *adj_start, *adj; /* contacts of body i: adj[adj_start[i] .. adj_start[i+1]) */
+  int32_t *group, *stack;   /* a popped group; the heap walk's stack */
+  lsdem_etm_queue q;
+  double u0, vtol;          /* initial approach speed; approaching while u_n < -vtol */
+  double round_absorbed;    /* energy stored in the current round */
+  double mass_ratio;
+  int64_t lightest_id;
+  int64_t iterations;
+  int rounds;
+  double absorbed, dissipated, released, truncated;
+};
+
+void lsdem_etm_params_default(lsdem_etm_params *p)
+{
+  p->alpha = 2.0;
+  p->beta = 0.1;
+  p->mass_weighted = 1;
+  p->velocity_tol = 1e-6;
+  p->energy_tol = 1e-12;
+  p->max_iterations = 1000000;
+  p->max_rounds = 1000;
+}
+
+static lsdem_status check_params(const lsdem_etm_params *p, lsdem_error *err)
+{
+  if (!(p->alpha >= 1.0) || !isfinite(p->alpha) || !(p->beta >= 0.0 && p->beta < 1.0) ||
+      !(p->velocity_tol > 0.0 && p->velocity_tol < 1.0) ||
+      !(p->energy_tol > 0.0 && p->energy_tol < 1.0) || p->max_iterations < 1 ||
+      p->max_rounds < 1)
+    return lsdem_fail(err, LSDEM_ERR_ARG,
+                      "ETM parameters: alpha %g (>= 1), beta %g ([0, 1)), velocity_tol %g and "
+                      "energy_tol %g ((0, 1)), caps %lld and %d (>= 1)",
+                      p->alpha, p->beta, p->velocity_tol, p->energy_tol,
+                      (long long)p->max_iterations, p->max_rounds);
+  return LSDEM_OK;
+}
+
+/* ------------------------------------------------------------ workspace ---- */
+
+enum { WS_ALIGN = 16 };
+
+static size_t round_up(size_t n) { return (n + WS_ALIGN - 1) / WS_ALIGN * WS_ALIGN; }
+
+/* The layout of the workspace: offsets from its aligned start. */
+typedef struct {
+  size_t contacts, key, heap, pos, group, stack, adj_start, adj, total;
+} ws_layout;
+
+static ws_layout layout_of(int nbodies, int ncontacts)
+{
+  const size_t nc = (size_t)ncontacts, nb = (size_t)nbodies;
+  ws_layout L;
+  size_t at = round_up(sizeof(struct lsdem_etm));
+  L.contacts = at, at += round_up(nc * sizeof(etm_contact));
+  L.key = at, at += round_up(nc * sizeof(double));
+  L.heap = at, at += round_up(nc * sizeof(int32_t));
+  L.pos = at, at += round_up(nc * sizeof(int32_t));
+  L.group = at, at += round_up(nc * sizeof(int32_t));
+  L.stack = at, at += round_up(nc * sizeof(int32_t));
+  L.adj_start = at, at += round_up((nb + 1) * sizeof(int32_t));
+  L.adj = at, at += round_up(2 * nc * sizeof(int32_t));
+  L.total = at;
+  return L;
+}
+
+size_t lsdem_etm_workspace_size(int nbodies, int ncontacts)
+{
+  if (nbodies < 0 || ncontacts < 0) return 0;
+  return layout_of(nbodies, ncontacts).total + WS_ALIGN; /* + room to align the start */
+}
+
+/* ---------------------------------------------------------- per contact ---- */
+
+/* u = u_a - u_b at contact k (eq 4.7); returns u_n. */
+static double relative_velocity(const lsdem_etm *s, int32_t k, double u[3])
+{
+  const lsdem_impulse_contact *ct = &s->contacts[k];
+  double ua[3], ub[3];
+  lsdem_impulse_point_velocity(&s->bodies[ct->a], ct->point, ua);
+  lsdem_impulse_point_velocity(&s->bodies[ct->b], ct->point, ub);
+  lsdem_sub3(ua, ub, u);
+  return lsdem_dot3(ct->normal, u);
+}
+
+/* K (eq 4.13) and K^-1 = V diag(1/w) V^T from K's eigen-decomposition. */
+static lsdem_status prepare_contact(lsdem_etm *s, int32_t k, lsdem_error *err)
+{
+  const lsdem_impulse_contact *ct = &s->contacts[k];
+  const lsdem_impulse_body *a = &s->bodies[ct->a], *b = &s->bodies[ct->b];
+  etm_contact *c = &s->c[k];
+  double w[3], V[9], Kn[3];
+  lsdem_impulse_collision_matrix(a, b, ct->point, c->K);
+  lsdem_sym_eigen(c->K, w, V);
+  if (!(w[0] > 1e-14 * w[2]))
+    return lsdem_fail(err, LSDEM_ERR_NUMERIC,
+                      "impulse island: contact %d (ids %lld, %lld) has a singular collision "
+                      "matrix (eigenvalues %g .. %g)",
+                      (int)k, (long long)a->id, (long long)b->id, w[0], w[2]);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      double sum = 0.0;
+      for (int m = 0; m < 3; m++) sum += V[3 * i + m] * V[3 * j + m] / w[m];
+      c->Kinv[3 * i + j] = sum;
+    }
+  lsdem_mat_vec(c->K, ct->normal, Kn);
+  c->knn = lsdem_dot3(ct->normal, Kn);
+  c->weight = s->p.mass_weighted ? 1.0 / (a->inv_mass + b->inv_mass) : 1.0; /* §4.4.3 */
+  c->W = 0.0;
+  return LSDEM_OK;
+}
+
+/* One increment du_n > 0 at contact k: the Coulomb-limited impulse (eqs 4.14-4.20) on a
+ * and its reaction on b (eq 4.6). u is k's relative velocity before it. Returns P . n. */
+static double apply_increment(lsdem_etm *s, int32_t k, const double u[3], double du_n)
+{
+  const lsdem_impulse_contact *ct = &s->contacts[k];
+  const etm_contact *c = &s->c[k];
+  double P[3], minus[3];
+  lsdem_coulomb_impulse(c->K, c->Kinv, ct->normal, u, du_n, ct->mu, P);
+  for (int i = 0; i < 3; i++) minus[i] = -P[i];
+  lsdem_impulse_apply(&s->bodies[ct->a], ct->point, P);
+  lsdem_impulse_apply(&s->bodies[ct->b], ct->point, minus);
+  return lsdem_dot3(P, ct->normal);
+}
+
+/* Queue contact k for compression if it approaches, else take it out. */
+static void refresh_approach(lsdem_etm *s, int32_t k)
+{
+  double u[3];
+  const double un = relative_velocity(s, k, u);
+  if (un < -s->vtol)
+    lsdem_etm_queue_set(&s->q, k, s->c[k].weight * un);
+  else
+    lsdem_etm_queue_remove(&s->q, k);
+}
+
+/* After a group: the keys of every contact of the group's (moving) bodies. */
+static void refresh_group(lsdem_etm *s, int32_t ng)
+{
+  for (int32_t g = 0; g < ng; g++) {
+    const lsdem_impulse_contact *ct = &s->contacts[s->group[g]];
+    const int32_t ends[2] = {ct->a, ct->b};
+    for (int e = 0; e < 2; e++) {
+      if (lsdem_impulse_body_is_wall(&s->bodies[ends[e]])) continue;
+      for (int32_t j = s->adj_start[ends[e]]; j < s->adj_start[ends[e] + 1]; j++)
+        refresh_approach(s, s->adj[j]);
+    }
+  }
+}
+
+/* -------------------------------------------------------------- set up ---- */
+
+/* body -> contacts table, each body's contacts in increasing contact index */
+static void build_adjacency(lsdem_etm *s)
+{
+  int32_t *start = s->adj_start;
+  memset(start, 0, (size_t)(s->nbodies + 1) * sizeof *start);
+  for (int k = 0; k < s->ncontacts; k++) {
+    start[s->contacts[k].a + 1]++;
+    start[s->contacts[k].b + 1]++;
+  }
+  for (int i = 0; i < s->nbodies; i++) start[i + 1] += start[i];
+  for (int k = 0; k < s->ncontacts; k++) {
+    s->adj[start[s->contacts[k].a]++] = k;
+    s->adj[start[s->contacts[k].b]++] = k;
+  }
+  for (int i = s->nbodies; i > 0; i--) start[i] = start[i - 1]; /* back to the starts */
+  start[0] = 0;
+}
+
+/* Mass ratio and lightest grain (ties: the smaller id, whatever the body order). */
+static void mass_extremes(lsdem_etm *s)
+{
+  double lo = HUGE_VAL, hi = 0.0;
+  s->lightest_id = -1;
+  for (int i = 0; i < s->nbodies; i++) {
+    const lsdem_impulse_body *b = &s->bodies[i];
+    if (lsdem_impulse_body_is_wall(b)) continue;
+    const double m = 1.0 / b->inv_mass;
+    if (m < lo || (m == lo && b->id < s->lightest_id)) {
+      lo = m;
+      s->lightest_id = b->id;
+    }
+    if (m > hi) hi = m;
+  }
+  s->mass_ratio = hi > 0.0 ? hi / lo : 1.0;
+}
+
+lsdem_status lsdem_etm_begin(lsdem_etm **out, void *ws, size_t wsize,
+                             lsdem_impulse_body *bodies, int nbodies,
+                             const lsdem_impulse_contact *contacts, int ncontacts,
+                             const lsdem_etm_params *p, lsdem_error *err)
+{
+  lsdem_status st = check_params(p, err);
+  if (st == LSDEM_OK) st = lsdem_impulse_validate(bodies, nbodies, contacts, ncontacts, err);
+  if (st != LSDEM_OK) return st;
+  if (ncontacts > INT32_MAX / 2)
+    return lsdem_fail(err, LSDEM_ERR_NOMEM, "ETM: %d contacts are too many", ncontacts);
+  const size_t need = lsdem_etm_workspace_size(nbodies, ncontacts);
+  if (!ws || wsize < need)
+    return lsdem_fail(err, LSDEM_ERR_NOMEM,
+                      "ETM: workspace of %zu bytes, %zu needed (lsdem_etm_workspace_size)",
+                      ws ? wsize : 0, need);
+  char *base = (char *)(((uintptr_t)ws + WS_ALIGN - 1) / WS_ALIGN * WS_ALIGN);
+  const ws_layout L = layout_of(nbodies, ncontacts);
+  lsdem_etm *s = (lsdem_etm *)base;
+  memset(s, 0, sizeof *s);
+  s->bodies = bodies;
+  s->contacts = contacts;
+  s->nbodies = nbodies;
+  s->ncontacts = ncontacts;
+  s->p = *p;
+  s->c = (etm_contact *)(base + L.contacts);
+  s->group = (int32_t *)(base + L.group);
+  s->stack = (int32_t *)(base + L.stack);
+  s->adj_start = (int32_t *)(base + L.adj_start);
+  s->adj = (int32_t *)(base + L.adj);
+  lsdem_etm_queue_init(&s->q, ncontacts, (int32_t *)(base + L.heap),
+                       (int32_t *)(base + L.pos), (double *)(base + L.key));
+  build_adjacency(s);
+  mass_extremes(s);
+  for (int32_t k = 0; k < ncontacts; k++) {
+    if ((st = prepare_contact(s, k, err)) != LSDEM_OK) return st;
+    double u[3];
+    s->u0 = fmax(s->u0, -relative_velocity(s, k, u));
+  }
+  s->vtol = p->velocity_tol * s->u0;
+  *out = s;
+  return LSDEM_OK;
+}
+
+/* ------------------------------------------------------------- phases ---- */
+
+static double approach_left(const lsdem_etm *s)
+{
+  double worst = 0.0, u[3];
+  for (int32_t k = 0; k < s->ncontacts; k++) worst = fmax(worst, -relative_velocity(s, k, u));
+  return worst;
+}
+
+/* The island report (task: never a silent NaN or a hang). */
+static lsdem_status cap_failure(const lsdem_etm *s, const char *what, lsdem_error *err)
+{
+  char ids[160];
+  size_t at = 0;
+  ids[0] = '\0';
+  int i = 0;
+  for (; i < s->nbodies && at + 24 < sizeof ids; i++)
+    at += (size_t)snprintf(ids + at, sizeof ids - at, "%s%lld", i ? " " : "",
+                           (long long)s->bodies[i].id);
+  if (i < s->nbodies) snprintf(ids + at, sizeof ids - at, " ...");
+  return lsdem_fail(
+      err, LSDEM_ERR_NUMERIC,
+      "impulse island of %d bodies (ids %s), %d contacts, mass ratio %.3g: ETM not converged "
+      "after %lld iterations, %d rounds (%s); approach speed left %.3g of %.3g. Try a smaller "
+      "time step, a larger beta, a smaller alpha, global damping, or a smaller mass ratio "
+      "(stable up to ~30); a grain trapped in or squeezed by one avatar (report Figure 4.8) "
+      "does not converge",
+      s->nbodies, ids, s->ncontacts, s->mass_ratio, (long long)s->iterations, s->rounds, what,
+      approach_left(s), s->u0);
+}
+
+/* The group of the queue's top: contacts with keys within beta |key_min| of it (lines 8
+ * and 24). Returns its size; *kmin the top's key. */
+static int32_t pop_group(lsdem_etm *s, double *kmin)
+{
+  *kmin = s->q.key[s->q.heap[0]];
+  return lsdem_etm_queue_collect(&s->q, *kmin + s->p.beta * fabs(*kmin), s->group, s->stack);
+}
+
+int lsdem_etm_approaching(lsdem_etm *s)
+{
+  for (int32_t k = 0; k < s->ncontacts; k++) refresh_approach(s, k);
+  if (s->q.n > 0) {
+    s->rounds++;
+    s->round_absorbed = 0.0;
+  }
+  return s->q.n;
+}
+
+lsdem_status lsdem_etm_compress(lsdem_etm *s, lsdem_error *err)
+{
+  while (s->q.n > 0) {
+    if (++s->iterations > s->p.max_iterations)
+      return cap_failure(s, "iteration cap in compression", err);
+    double kmin;
+    const int32_t ng = pop_group(s, &kmin);
+    const double dkey = -kmin / (s->p.alpha * ng); /* line 9, raising u~ towards 0 */
+    for (int32_t g = 0; g < ng; g++) {
+      const int32_t k = s->group[g];
+      double u[3];
+      const double un = relative_velocity(s, k, u);
+      if (!(un < 0.0)) continue; /* raised by an earlier member of the group */
+      double du = dkey / s->c[k].weight;
+      if (du > -un || -un - du <= s->vtol) du = -un; /* no overshoot; no tiny remainder */
+      const double pn = apply_increment(s, k, u, du);
+      const double dW = -(un + 0.5 * du) * pn; /* eq 4.24: kinetic -> elastic */
+      s->c[k].W += dW;
+      s->round_absorbed += dW;
+      s->absorbed += dW;
+    }
+    refresh_group(s, ng);
+  }
+  return LSDEM_OK;
+}
+
+void lsdem_etm_restitute(lsdem_etm *s)
+{
+  for (int32_t k = 0; k < s->ncontacts; k++) {
+    const double e = s->contacts[k].restitution, W = s->c[k].W;
+    s->c[k].W = e * e * W; /* eq 4.1: W_release = e^2 W_absorbed */
+    s->dissipated += W - s->c[k].W;
+  }
+}
+
+/* Drop a contact's stored energy (below the truncation threshold). */
+static void truncate_energy(lsdem_etm *s, int32_t k)
+{
+  s->truncated += s->c[k].W;
+  s->c[k].W = 0.0;
+  lsdem_etm_queue_remove(&s->q, k);
+}
+
+lsdem_status lsdem_etm_separate(lsdem_etm *s, lsdem_error *err)
+{
+  const double wtol = s->p.energy_tol * s->round_absorbed;
+  for (int32_t k = 0; k < s->ncontacts; k++) { /* line 22 */
+    lsdem_etm_queue_remove(&s->q, k);
+    if (s->c[k].W > wtol)
+      lsdem_etm_queue_set(&s->q, k, -s->c[k].W);
+    else if (s->c[k].W != 0.0)
+      truncate_energy(s, k);
+  }
+  while (s->q.n > 0) {
+    if (++s->iterations > s->p.max_iterations)
+      return cap_failure(s, "iteration cap in separation", err);
+    double kmin;
+    const int32_t ng = pop_group(s, &kmin);
+    const double dW = -kmin / (s->p.alpha * ng); /* a share of the largest energy */
+    for (int32_t g = 0; g < ng; g++) {
+      const int32_t k = s->group[g];
+      etm_contact *c = &s->c[k];
+      double u[3], give = fmin(dW, c->W);
+      if (c->W - give <= wtol) give = c->W; /* no tiny remainder */
+      const double un = relative_velocity(s, k, u);
+      const double du = -un + sqrt(un * un + 2.0 * give * c->knn); /* eq 4.30 */
+      const double pn = apply_increment(s, k, u, du);                /* eq 4.29 */
+      const double back = (un + 0.5 * du) * pn; /* eq 4.24: elastic -> kinetic */
+      c->W -= back;
+      s->released += back;
+      if (c->W <= wtol)
+        truncate_energy(s, k);
+      else
+        lsdem_etm_queue_set(&s->q, k, -c->W);
+    }
+  }
+  return LSDEM_OK;
+}
+
+double lsdem_etm_stored_energy(const lsdem_etm *s)
+{
+  double W = 0.0;
+  for (int32_t k = 0; k < s->ncontacts; k++) W += s->c[k].W;
+  return W;
+}
+
+void lsdem_etm_report(const lsdem_etm *s, lsdem_etm_result *r)
+{
+  memset(r, 0, sizeof *r);
+  r->approach = approach_left(s);
+  r->converged = !(r->approach > s->vtol) && lsdem_etm_stored_energy(s) == 0.0;
+  r->iterations = s->iterations;
+  r->rounds = s->rounds;
+  r->nbodies = s->nbodies;
+  r->ncontacts = s->ncontacts;
+  r->mass_ratio = s->mass_ratio;
+  r->lightest_id = s->lightest_id;
+  r->initial_approach = s->u0;
+  r->absorbed = s->absorbed;
+  r->dissipated = s->dissipated;
+  r->released = s->released;
+  r->truncated = s->truncated;
+}
+
+/* --------------------------------------------------------------- solve ---- */
+
+static lsdem_status run_rounds(lsdem_etm *s, lsdem_error *err)
+{
+  while (lsdem_etm_approaching(s) > 0) { /* lines 5 and 34-35 */
+    if (s->rounds > s->p.max_rounds) return cap_failure(s, "round cap", err);
+    lsdem_status st = lsdem_etm_compress(s, err);
+    if (st != LSDEM_OK) return st;
+    lsdem_etm_restitute(s);
+    if ((st = lsdem_etm_separate(s, err)) != LSDEM_OK) return st;
+  }
+  return LSDEM_OK;
+}
+
+/* Velocities that left the finite range (an ill-conditioned island) are an error, never
+ * a silent NaN. */
+static lsdem_status check_finite(const lsdem_etm *s, lsdem_error *err)
+{
+  for (int i = 0; i < s->nbodies; i++) {
+    const lsdem_impulse_body *b = &s->bodies[i];
+    double sum = 0.0;
+    for (int d = 0; d < 3; d++) sum += b->v[d] + b->omega[d];
+    if (!isfinite(sum))
+      return lsdem_fail(err, LSDEM_ERR_NUMERIC,
+                        "impulse island of %d bodies, mass ratio %.3g: body %lld left ETM "
+                        "with a non-finite velocity",
+                        s->nbodies, s->mass_ratio, (long long)b->id);
+  }
+  return LSDEM_OK;
+}
+
+lsdem_status lsdem_etm_solve(lsdem_impulse_body *bodies, int nbodies,
+                             const lsdem_impulse_contact *contacts, int ncontacts,
+                             const lsdem_etm_params *p, void *ws, size_t wsize,
+                             lsdem_etm_result *res, lsdem_error *err)
+{
+  lsdem_etm *s;
+  lsdem_status st = lsdem_etm_begin(&s, ws, wsize, bodies, nbodies, contacts, ncontacts, p, err);
+  if (st != LSDEM_OK) return st;
+  st = run_rounds(s, err);
+  if (st == LSDEM_OK) st = check_finite(s, err);
+  if (res) lsdem_etm_report(s, res);
+  return st;
+}
