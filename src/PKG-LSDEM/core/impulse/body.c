@@ -58,7 +58,8 @@ lsdem_status lsdem_impulse_body_wall(lsdem_impulse_body *b, int64_t id, const do
   return LSDEM_OK;
 }
 
-void lsdem_impulse_point_velocity(const lsdem_impulse_body *b, const double p[3], double u[3])
+void lsdem_impulse_point_velocity(const lsdem_impulse_body *b, const double p[3],
+                                  double u[3])
 {
   double r[3], wr[3];
   lsdem_sub3(p, b->x, r);
@@ -81,7 +82,8 @@ void lsdem_impulse_apply(lsdem_impulse_body *b, const double p[3], const double 
 
 /* Column j of eq 4.8's (1/m - r~ I^-1 r~) is the point velocity change of a unit impulse
  * e_j: e_j/m + (I^-1 (r x e_j)) x r. Symmetrised, so that K is exactly symmetric. */
-void lsdem_impulse_point_response(const lsdem_impulse_body *b, const double p[3], double M[9])
+void lsdem_impulse_point_response(const lsdem_impulse_body *b, const double p[3],
+                                  double M[9])
 {
   double r[3], C[9];
   lsdem_sub3(p, b->x, r);
@@ -97,8 +99,9 @@ void lsdem_impulse_point_response(const lsdem_impulse_body *b, const double p[3]
     for (int j = 0; j < 3; j++) M[3 * i + j] = 0.5 * (C[3 * i + j] + C[3 * j + i]);
 }
 
-void lsdem_impulse_collision_matrix(const lsdem_impulse_body *a, const lsdem_impulse_body *b,
-                                    const double p[3], double K[9])
+void lsdem_impulse_collision_matrix(const lsdem_impulse_body *a,
+                                    const lsdem_impulse_body *b, const double p[3],
+                                    double K[9])
 {
   double Ma[9], Mb[9];
   lsdem_impulse_point_response(a, p, Ma);
@@ -122,14 +125,16 @@ static lsdem_status validate_body(const lsdem_impulse_body *b, int k, lsdem_erro
            finite3(b->omega);
   for (int i = 0; i < 9; i++) ok = ok && isfinite(b->inv_inertia[i]);
   if (!ok)
-    return lsdem_fail(err, LSDEM_ERR_NUMERIC,
-                      "impulse island: body %d (id %lld) has a non-finite or negative state",
-                      k, (long long)b->id);
+    return lsdem_fail(
+        err, LSDEM_ERR_NUMERIC,
+        "impulse island: body %d (id %lld) has a non-finite or negative state", k,
+        (long long)b->id);
   return LSDEM_OK;
 }
 
 static lsdem_status validate_contact(const lsdem_impulse_body *bodies, int nbodies,
-                                     const lsdem_impulse_contact *c, int k, lsdem_error *err)
+                                     const lsdem_impulse_contact *c, int k,
+                                     lsdem_error *err)
 {
   if (c->a < 0 || c->a >= nbodies || c->b < 0 || c->b >= nbodies || c->a == c->b)
     return lsdem_fail(err, LSDEM_ERR_ARG,
@@ -141,16 +146,20 @@ static lsdem_status validate_contact(const lsdem_impulse_body *bodies, int nbodi
                       "impulse island: contact %d joins two walls (ids %lld, %lld)", k,
                       (long long)a->id, (long long)b->id);
   const double nn = lsdem_dot3(c->normal, c->normal);
-  if (!finite3(c->point) || !isfinite(nn) || !isfinite(c->depth) || !(fabs(nn - 1.0) < 2e-6))
-    return lsdem_fail(err, LSDEM_ERR_NUMERIC,
-                      "impulse island: contact %d (ids %lld, %lld) has a non-finite point or "
-                      "a normal of length %g",
-                      k, (long long)a->id, (long long)b->id, sqrt(nn));
-  if (!(c->mu >= 0.0) || !isfinite(c->mu) || !(c->restitution >= 0.0 && c->restitution <= 1.0))
-    return lsdem_fail(err, LSDEM_ERR_NUMERIC,
-                      "impulse island: contact %d has friction %g, restitution %g (need mu >= "
-                      "0, 0 <= e <= 1)",
-                      k, c->mu, c->restitution);
+  if (!finite3(c->point) || !isfinite(nn) || !isfinite(c->depth) ||
+      !(fabs(nn - 1.0) < 2e-6))
+    return lsdem_fail(
+        err, LSDEM_ERR_NUMERIC,
+        "impulse island: contact %d (ids %lld, %lld) has a non-finite point or "
+        "a normal of length %g",
+        k, (long long)a->id, (long long)b->id, sqrt(nn));
+  if (!(c->mu >= 0.0) || !isfinite(c->mu) ||
+      !(c->restitution >= 0.0 && c->restitution <= 1.0))
+    return lsdem_fail(
+        err, LSDEM_ERR_NUMERIC,
+        "impulse island: contact %d has friction %g, restitution %g (need mu >= "
+        "0, 0 <= e <= 1)",
+        k, c->mu, c->restitution);
   return LSDEM_OK;
 }
 
@@ -158,7 +167,8 @@ lsdem_status lsdem_impulse_validate(const lsdem_impulse_body *bodies, int nbodie
                                     const lsdem_impulse_contact *contacts, int ncontacts,
                                     lsdem_error *err)
 {
-  if (nbodies < 0 || ncontacts < 0 || (nbodies > 0 && !bodies) || (ncontacts > 0 && !contacts))
+  if (nbodies < 0 || ncontacts < 0 || (nbodies > 0 && !bodies) ||
+      (ncontacts > 0 && !contacts))
     return lsdem_fail(err, LSDEM_ERR_ARG, "impulse island: %d bodies, %d contacts", nbodies,
                       ncontacts);
   for (int k = 0; k < nbodies; k++) {
@@ -182,8 +192,8 @@ int lsdem_impulse_select_collisions(const lsdem_impulse_body *bodies,
     const double un = lsdem_impulse_normal_velocity(bodies, c);
     const int wall = lsdem_impulse_body_is_wall(&bodies[c->a]) ||
                      lsdem_impulse_body_is_wall(&bodies[c->b]);
-    const int keep = wall ? lsdem_wall_classify(un, rest_speed) == LSDEM_WALL_COLLIDING
-                          : un < 0.0;
+    const int keep =
+        wall ? lsdem_wall_classify(un, rest_speed) == LSDEM_WALL_COLLIDING : un < 0.0;
     if (keep) contacts[kept++] = *c;
   }
   return kept;

@@ -39,7 +39,7 @@ int lsdem_coulomb_impulse(const double K[9], const double Kinv[9], const double 
     dir[i] = n[i] + mu * t;
   }
   lsdem_mat_vec(K, dir, Kdir);
-  const double denom = lsdem_dot3(n, Kdir); /* eq 4.20 */
+  const double denom = lsdem_dot3(n, Kdir);               /* eq 4.20 */
   if (!(denom > 0.0)) return frictionless(K, n, du_n, P); /* friction would attract */
   const double pn_slide = du_n / denom;
   for (int i = 0; i < 3; i++) P[i] = pn_slide * dir[i]; /* eq 4.19 */

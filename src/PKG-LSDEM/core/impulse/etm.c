@@ -5,10 +5,15 @@
  * kinetic energy they take stored per contact, eq 4.24), the restitution (W <- e^2 W,
  * eq 4.1) and a separation phase (stored energy released in small increments, eqs
  * 4.29-4.30); rounds repeat while a contact approaches (lines 34-35). Both phases pop
- * the extreme key of an indexed heap (queue.h) with the group of similar keys (beta)
- * and treat that group's contacts in contact order, one after the other, each with the
- * relative velocity left by the previous ones (Gauss-Seidel), so that the energy booked
- * per contact is the work its own impulse did.
+ * the extreme key of an indexed heap (queue.h) with the group Gamma of similar keys
+ * (beta). The increments of a group's contacts are all computed from the velocities
+ * before the group and applied together (lines 10-17), so that contacts alike in a
+ * symmetric configuration stay alike (a block landing flat leaves without spin) -- which
+ * is why the increment is shared out (divided by |Gamma| in line 9): a member also feels
+ * the others that push on its bodies. The
+ * energy booked per contact is the work of its normal impulse over the group's velocity
+ * change, P_n (u_n before + u_n after) / 2 (eq 4.21 for impulses applied together): in
+ * sum exactly the kinetic energy the group converted.
  *
  * Keys: compression u~ = w u_n, w = m_a m_b / (m_a + m_b) (§4.4.3) or 1, most negative
  * first; separation -W, largest energy first. Every velocity a key depends on is
@@ -38,9 +43,12 @@ struct lsdem_etm {
   etm_contact *c;
   int32_t *adj_start, *adj; /* contacts of body i: adj[adj_start[i] .. adj_start[i+1]) */
   int32_t *group, *stack;   /* a popped group; the heap walk's stack */
+  double *du, *un0, *P;     /* per group member: increment, u_n before, impulse (3) */
+  double *share;            /* per group member: its share 1 / (alpha n) of the increment */
+  int32_t *load;            /* per body: group members pushing on it (0 between groups) */
   lsdem_etm_queue q;
-  double u0, vtol;          /* initial approach speed; approaching while u_n < -vtol */
-  double round_absorbed;    /* energy stored in the current round */
+  double u0, vtol;       /* initial approach speed; approaching while u_n < -vtol */
+  double round_absorbed; /* energy stored in the current round */
   double mass_ratio;
   int64_t lightest_id;
   int64_t iterations;
@@ -53,6 +61,7 @@ void lsdem_etm_params_default(lsdem_etm_params *p)
   p->alpha = 2.0;
   p->beta = 0.1;
   p->mass_weighted = 1;
+  p->share = LSDEM_ETM_SHARE_BODIES;
   p->velocity_tol = 1e-6;
   p->energy_tol = 1e-12;
   p->max_iterations = 1000000;
@@ -64,12 +73,14 @@ static lsdem_status check_params(const lsdem_etm_params *p, lsdem_error *err)
   if (!(p->alpha >= 1.0) || !isfinite(p->alpha) || !(p->beta >= 0.0 && p->beta < 1.0) ||
       !(p->velocity_tol > 0.0 && p->velocity_tol < 1.0) ||
       !(p->energy_tol > 0.0 && p->energy_tol < 1.0) || p->max_iterations < 1 ||
-      p->max_rounds < 1)
-    return lsdem_fail(err, LSDEM_ERR_ARG,
-                      "ETM parameters: alpha %g (>= 1), beta %g ([0, 1)), velocity_tol %g and "
-                      "energy_tol %g ((0, 1)), caps %lld and %d (>= 1)",
-                      p->alpha, p->beta, p->velocity_tol, p->energy_tol,
-                      (long long)p->max_iterations, p->max_rounds);
+      p->max_rounds < 1 ||
+      (p->share != LSDEM_ETM_SHARE_BODIES && p->share != LSDEM_ETM_SHARE_GROUP))
+    return lsdem_fail(
+        err, LSDEM_ERR_ARG,
+        "ETM parameters: alpha %g (>= 1), beta %g ([0, 1)), velocity_tol %g and "
+        "energy_tol %g ((0, 1)), caps %lld and %d (>= 1)",
+        p->alpha, p->beta, p->velocity_tol, p->energy_tol, (long long)p->max_iterations,
+        p->max_rounds);
   return LSDEM_OK;
 }
 
@@ -81,7 +92,8 @@ static size_t round_up(size_t n) { return (n + WS_ALIGN - 1) / WS_ALIGN * WS_ALI
 
 /* The layout of the workspace: offsets from its aligned start. */
 typedef struct {
-  size_t contacts, key, heap, pos, group, stack, adj_start, adj, total;
+  size_t contacts, key, du, un0, P, share, heap, pos, group, stack, adj_start, adj, load,
+      total;
 } ws_layout;
 
 static ws_layout layout_of(int nbodies, int ncontacts)
@@ -91,12 +103,17 @@ static ws_layout layout_of(int nbodies, int ncontacts)
   size_t at = round_up(sizeof(struct lsdem_etm));
   L.contacts = at, at += round_up(nc * sizeof(etm_contact));
   L.key = at, at += round_up(nc * sizeof(double));
+  L.du = at, at += round_up(nc * sizeof(double));
+  L.un0 = at, at += round_up(nc * sizeof(double));
+  L.P = at, at += round_up(3 * nc * sizeof(double));
+  L.share = at, at += round_up(nc * sizeof(double));
   L.heap = at, at += round_up(nc * sizeof(int32_t));
   L.pos = at, at += round_up(nc * sizeof(int32_t));
   L.group = at, at += round_up(nc * sizeof(int32_t));
   L.stack = at, at += round_up(nc * sizeof(int32_t));
   L.adj_start = at, at += round_up((nb + 1) * sizeof(int32_t));
   L.adj = at, at += round_up(2 * nc * sizeof(int32_t));
+  L.load = at, at += round_up(nb * sizeof(int32_t));
   L.total = at;
   return L;
 }
@@ -130,10 +147,11 @@ static lsdem_status prepare_contact(lsdem_etm *s, int32_t k, lsdem_error *err)
   lsdem_impulse_collision_matrix(a, b, ct->point, c->K);
   lsdem_sym_eigen(c->K, w, V);
   if (!(w[0] > 1e-14 * w[2]))
-    return lsdem_fail(err, LSDEM_ERR_NUMERIC,
-                      "impulse island: contact %d (ids %lld, %lld) has a singular collision "
-                      "matrix (eigenvalues %g .. %g)",
-                      (int)k, (long long)a->id, (long long)b->id, w[0], w[2]);
+    return lsdem_fail(
+        err, LSDEM_ERR_NUMERIC,
+        "impulse island: contact %d (ids %lld, %lld) has a singular collision "
+        "matrix (eigenvalues %g .. %g)",
+        (int)k, (long long)a->id, (long long)b->id, w[0], w[2]);
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) {
       double sum = 0.0;
@@ -147,18 +165,35 @@ static lsdem_status prepare_contact(lsdem_etm *s, int32_t k, lsdem_error *err)
   return LSDEM_OK;
 }
 
-/* One increment du_n > 0 at contact k: the Coulomb-limited impulse (eqs 4.14-4.20) on a
- * and its reaction on b (eq 4.6). u is k's relative velocity before it. Returns P . n. */
-static double apply_increment(lsdem_etm *s, int32_t k, const double u[3], double du_n)
+/* The group's increments du[g] (0: none), each the Coulomb-limited impulse of its
+ * contact (eqs 4.14-4.20) from the velocities before the group, applied together on a and
+ * (reaction, eq 4.6) b in contact order. Returns in du[g] the normal work of member g,
+ * P_n (u_n before + u_n after) / 2 (eq 4.21), with u_n before in un0[g]. */
+static void apply_group(lsdem_etm *s, int32_t ng)
 {
-  const lsdem_impulse_contact *ct = &s->contacts[k];
-  const etm_contact *c = &s->c[k];
-  double P[3], minus[3];
-  lsdem_coulomb_impulse(c->K, c->Kinv, ct->normal, u, du_n, ct->mu, P);
-  for (int i = 0; i < 3; i++) minus[i] = -P[i];
-  lsdem_impulse_apply(&s->bodies[ct->a], ct->point, P);
-  lsdem_impulse_apply(&s->bodies[ct->b], ct->point, minus);
-  return lsdem_dot3(P, ct->normal);
+  for (int32_t g = 0; g < ng; g++) {
+    const int32_t k = s->group[g];
+    const etm_contact *c = &s->c[k];
+    double u[3], *P = &s->P[3 * g];
+    relative_velocity(s, k, u);
+    if (s->du[g] > 0.0)
+      lsdem_coulomb_impulse(c->K, c->Kinv, s->contacts[k].normal, u, s->du[g],
+                            s->contacts[k].mu, P);
+    else
+      P[0] = P[1] = P[2] = 0.0;
+  }
+  for (int32_t g = 0; g < ng; g++) {
+    const lsdem_impulse_contact *ct = &s->contacts[s->group[g]];
+    const double *P = &s->P[3 * g], minus[3] = {-P[0], -P[1], -P[2]};
+    lsdem_impulse_apply(&s->bodies[ct->a], ct->point, P);
+    lsdem_impulse_apply(&s->bodies[ct->b], ct->point, minus);
+  }
+  for (int32_t g = 0; g < ng; g++) {
+    const int32_t k = s->group[g];
+    double u[3];
+    const double un1 = relative_velocity(s, k, u);
+    s->du[g] = lsdem_dot3(&s->P[3 * g], s->contacts[k].normal) * 0.5 * (s->un0[g] + un1);
+  }
 }
 
 /* Queue contact k for compression if it approaches, else take it out. */
@@ -230,7 +265,8 @@ lsdem_status lsdem_etm_begin(lsdem_etm **out, void *ws, size_t wsize,
                              const lsdem_etm_params *p, lsdem_error *err)
 {
   lsdem_status st = check_params(p, err);
-  if (st == LSDEM_OK) st = lsdem_impulse_validate(bodies, nbodies, contacts, ncontacts, err);
+  if (st == LSDEM_OK)
+    st = lsdem_impulse_validate(bodies, nbodies, contacts, ncontacts, err);
   if (st != LSDEM_OK) return st;
   if (ncontacts > INT32_MAX / 2)
     return lsdem_fail(err, LSDEM_ERR_NOMEM, "ETM: %d contacts are too many", ncontacts);
@@ -250,6 +286,12 @@ lsdem_status lsdem_etm_begin(lsdem_etm **out, void *ws, size_t wsize,
   s->p = *p;
   s->c = (etm_contact *)(base + L.contacts);
   s->group = (int32_t *)(base + L.group);
+  s->du = (double *)(base + L.du);
+  s->un0 = (double *)(base + L.un0);
+  s->P = (double *)(base + L.P);
+  s->share = (double *)(base + L.share);
+  s->load = (int32_t *)(base + L.load);
+  memset(s->load, 0, (size_t)nbodies * sizeof *s->load);
   s->stack = (int32_t *)(base + L.stack);
   s->adj_start = (int32_t *)(base + L.adj_start);
   s->adj = (int32_t *)(base + L.adj);
@@ -272,7 +314,8 @@ lsdem_status lsdem_etm_begin(lsdem_etm **out, void *ws, size_t wsize,
 static double approach_left(const lsdem_etm *s)
 {
   double worst = 0.0, u[3];
-  for (int32_t k = 0; k < s->ncontacts; k++) worst = fmax(worst, -relative_velocity(s, k, u));
+  for (int32_t k = 0; k < s->ncontacts; k++)
+    worst = fmax(worst, -relative_velocity(s, k, u));
   return worst;
 }
 
@@ -289,13 +332,46 @@ static lsdem_status cap_failure(const lsdem_etm *s, const char *what, lsdem_erro
   if (i < s->nbodies) snprintf(ids + at, sizeof ids - at, " ...");
   return lsdem_fail(
       err, LSDEM_ERR_NUMERIC,
-      "impulse island of %d bodies (ids %s), %d contacts, mass ratio %.3g: ETM not converged "
-      "after %lld iterations, %d rounds (%s); approach speed left %.3g of %.3g. Try a smaller "
+      "impulse island of %d bodies (ids %s), %d contacts, mass ratio %.3g: ETM not "
+      "converged "
+      "after %lld iterations, %d rounds (%s); approach speed left %.3g of %.3g. Try a "
+      "smaller "
       "time step, a larger beta, a smaller alpha, global damping, or a smaller mass ratio "
-      "(stable up to ~30); a grain trapped in or squeezed by one avatar (report Figure 4.8) "
+      "(stable up to ~30); a grain trapped in or squeezed by one avatar (report Figure "
+      "4.8) "
       "does not converge",
-      s->nbodies, ids, s->ncontacts, s->mass_ratio, (long long)s->iterations, s->rounds, what,
-      approach_left(s), s->u0);
+      s->nbodies, ids, s->ncontacts, s->mass_ratio, (long long)s->iterations, s->rounds,
+      what, approach_left(s), s->u0);
+}
+
+static int moving(const lsdem_etm *s, int32_t body)
+{
+  return !lsdem_impulse_body_is_wall(&s->bodies[body]);
+}
+
+/* Each member's share of the group's increment (line 9), 1 / (alpha n): n = |Gamma| as
+ * printed, or (LSDEM_ETM_SHARE_BODIES) the most members pushing on one of its two moving
+ * bodies, itself included -- its velocity feels no others. */
+static void group_shares(lsdem_etm *s, int32_t ng)
+{
+  if (s->p.share == LSDEM_ETM_SHARE_GROUP) {
+    for (int32_t g = 0; g < ng; g++) s->share[g] = 1.0 / (s->p.alpha * ng);
+    return;
+  }
+  for (int32_t g = 0; g < ng; g++) {
+    const lsdem_impulse_contact *ct = &s->contacts[s->group[g]];
+    s->load[ct->a] += moving(s, ct->a);
+    s->load[ct->b] += moving(s, ct->b);
+  }
+  for (int32_t g = 0; g < ng; g++) {
+    const lsdem_impulse_contact *ct = &s->contacts[s->group[g]];
+    const int32_t n = s->load[ct->a] > s->load[ct->b] ? s->load[ct->a] : s->load[ct->b];
+    s->share[g] = 1.0 / (s->p.alpha * n);
+  }
+  for (int32_t g = 0; g < ng; g++) {
+    const lsdem_impulse_contact *ct = &s->contacts[s->group[g]];
+    s->load[ct->a] = s->load[ct->b] = 0;
+  }
 }
 
 /* The group of the queue's top: contacts with keys within beta |key_min| of it (lines 8
@@ -303,39 +379,40 @@ static lsdem_status cap_failure(const lsdem_etm *s, const char *what, lsdem_erro
 static int32_t pop_group(lsdem_etm *s, double *kmin)
 {
   *kmin = s->q.key[s->q.heap[0]];
-  return lsdem_etm_queue_collect(&s->q, *kmin + s->p.beta * fabs(*kmin), s->group, s->stack);
+  return lsdem_etm_queue_collect(&s->q, *kmin + s->p.beta * fabs(*kmin), s->group,
+                                 s->stack);
 }
 
 int lsdem_etm_approaching(lsdem_etm *s)
 {
   for (int32_t k = 0; k < s->ncontacts; k++) refresh_approach(s, k);
-  if (s->q.n > 0) {
-    s->rounds++;
-    s->round_absorbed = 0.0;
-  }
   return s->q.n;
 }
 
 lsdem_status lsdem_etm_compress(lsdem_etm *s, lsdem_error *err)
 {
+  if (s->q.n == 0) return LSDEM_OK;
+  s->rounds++;
+  s->round_absorbed = 0.0;
   while (s->q.n > 0) {
-    if (++s->iterations > s->p.max_iterations)
+    if (s->iterations >= s->p.max_iterations)
       return cap_failure(s, "iteration cap in compression", err);
-    double kmin;
+    s->iterations++;
+    double kmin, u[3];
     const int32_t ng = pop_group(s, &kmin);
-    const double dkey = -kmin / (s->p.alpha * ng); /* line 9, raising u~ towards 0 */
+    group_shares(s, ng);
     for (int32_t g = 0; g < ng; g++) {
       const int32_t k = s->group[g];
-      double u[3];
-      const double un = relative_velocity(s, k, u);
-      if (!(un < 0.0)) continue; /* raised by an earlier member of the group */
-      double du = dkey / s->c[k].weight;
+      const double un = s->un0[g] = relative_velocity(s, k, u);
+      double du = -kmin * s->share[g] / s->c[k].weight; /* line 9, raising u~ towards 0 */
       if (du > -un || -un - du <= s->vtol) du = -un; /* no overshoot; no tiny remainder */
-      const double pn = apply_increment(s, k, u, du);
-      const double dW = -(un + 0.5 * du) * pn; /* eq 4.24: kinetic -> elastic */
-      s->c[k].W += dW;
-      s->round_absorbed += dW;
-      s->absorbed += dW;
+      s->du[g] = du;
+    }
+    apply_group(s, ng);
+    for (int32_t g = 0; g < ng; g++) { /* eq 4.24: kinetic -> elastic */
+      s->c[s->group[g]].W -= s->du[g];
+      s->round_absorbed -= s->du[g];
+      s->absorbed -= s->du[g];
     }
     refresh_group(s, ng);
   }
@@ -370,26 +447,31 @@ lsdem_status lsdem_etm_separate(lsdem_etm *s, lsdem_error *err)
       truncate_energy(s, k);
   }
   while (s->q.n > 0) {
-    if (++s->iterations > s->p.max_iterations)
+    if (s->iterations >= s->p.max_iterations)
       return cap_failure(s, "iteration cap in separation", err);
-    double kmin;
+    s->iterations++;
+    double kmin, u[3];
     const int32_t ng = pop_group(s, &kmin);
-    const double dW = -kmin / (s->p.alpha * ng); /* a share of the largest energy */
+    group_shares(s, ng);
     for (int32_t g = 0; g < ng; g++) {
+      const etm_contact *c = &s->c[s->group[g]];
+      double give = fmin(-kmin * s->share[g], c->W); /* a share of the largest energy */
+      if (c->W - give <= wtol) give = c->W;          /* no tiny remainder */
+      /* eq 4.30 (for eq 4.29) from u_n >= 0: a contact still approaching would take the
+       * elastic reversal -u_n -> u_n on top of its share, and the reversals of a group,
+       * applied together, would add up on a shared body far beyond its stored energy */
+      const double un = fmax(s->un0[g] = relative_velocity(s, s->group[g], u), 0.0);
+      s->du[g] = -un + sqrt(un * un + 2.0 * give * c->knn);
+    }
+    apply_group(s, ng);
+    for (int32_t g = 0; g < ng; g++) { /* elastic -> kinetic */
       const int32_t k = s->group[g];
-      etm_contact *c = &s->c[k];
-      double u[3], give = fmin(dW, c->W);
-      if (c->W - give <= wtol) give = c->W; /* no tiny remainder */
-      const double un = relative_velocity(s, k, u);
-      const double du = -un + sqrt(un * un + 2.0 * give * c->knn); /* eq 4.30 */
-      const double pn = apply_increment(s, k, u, du);                /* eq 4.29 */
-      const double back = (un + 0.5 * du) * pn; /* eq 4.24: elastic -> kinetic */
-      c->W -= back;
-      s->released += back;
-      if (c->W <= wtol)
+      s->c[k].W -= s->du[g];
+      s->released += s->du[g];
+      if (s->c[k].W <= wtol)
         truncate_energy(s, k);
       else
-        lsdem_etm_queue_set(&s->q, k, -c->W);
+        lsdem_etm_queue_set(&s->q, k, -s->c[k].W);
     }
   }
   return LSDEM_OK;
@@ -425,7 +507,7 @@ void lsdem_etm_report(const lsdem_etm *s, lsdem_etm_result *r)
 static lsdem_status run_rounds(lsdem_etm *s, lsdem_error *err)
 {
   while (lsdem_etm_approaching(s) > 0) { /* lines 5 and 34-35 */
-    if (s->rounds > s->p.max_rounds) return cap_failure(s, "round cap", err);
+    if (s->rounds >= s->p.max_rounds) return cap_failure(s, "round cap", err);
     lsdem_status st = lsdem_etm_compress(s, err);
     if (st != LSDEM_OK) return st;
     lsdem_etm_restitute(s);
@@ -457,7 +539,8 @@ lsdem_status lsdem_etm_solve(lsdem_impulse_body *bodies, int nbodies,
                              lsdem_etm_result *res, lsdem_error *err)
 {
   lsdem_etm *s;
-  lsdem_status st = lsdem_etm_begin(&s, ws, wsize, bodies, nbodies, contacts, ncontacts, p, err);
+  lsdem_status st =
+      lsdem_etm_begin(&s, ws, wsize, bodies, nbodies, contacts, ncontacts, p, err);
   if (st != LSDEM_OK) return st;
   st = run_rounds(s, err);
   if (st == LSDEM_OK) st = check_finite(s, err);

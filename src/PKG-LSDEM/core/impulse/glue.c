@@ -11,8 +11,8 @@ void lsdem_glue_params_default(lsdem_glue_params *g)
   g->max_angle = 15.0 * M_PI / 180.0;
 }
 
-static int joins(const lsdem_contact_point *seed, const lsdem_contact_point *p, double dist2,
-                 double cos_max)
+static int joins(const lsdem_contact_point *seed, const lsdem_contact_point *p,
+                 double dist2, double cos_max)
 {
   double d[3];
   lsdem_sub3(p->point, seed->point, d);

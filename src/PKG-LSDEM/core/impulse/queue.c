@@ -41,7 +41,8 @@ static void sift_down(lsdem_etm_queue *q, int32_t at)
   place(q, at, c);
 }
 
-void lsdem_etm_queue_init(lsdem_etm_queue *q, int32_t cap, int32_t *heap, int32_t *pos, double *key)
+void lsdem_etm_queue_init(lsdem_etm_queue *q, int32_t cap, int32_t *heap, int32_t *pos,
+                          double *key)
 {
   q->n = 0;
   q->heap = heap;
@@ -85,7 +86,8 @@ static int by_index(const void *a, const void *b)
 }
 
 /* A subtree whose root's key is above the limit holds nothing below it (heap order). */
-int32_t lsdem_etm_queue_collect(const lsdem_etm_queue *q, double limit, int32_t *out, int32_t *stack)
+int32_t lsdem_etm_queue_collect(const lsdem_etm_queue *q, double limit, int32_t *out,
+                                int32_t *stack)
 {
   int32_t nout = 0, top = 0;
   if (q->n > 0) stack[top++] = 0;

@@ -11,21 +11,23 @@
 #include <stdint.h>
 
 typedef struct {
-  int32_t n;       /* queued contacts */
-  int32_t *heap;   /* heap[0] is the top */
-  int32_t *pos;    /* position of each contact in heap, -1 if not queued */
-  double *key;     /* each contact's key */
+  int32_t n;     /* queued contacts */
+  int32_t *heap; /* heap[0] is the top */
+  int32_t *pos;  /* position of each contact in heap, -1 if not queued */
+  double *key;   /* each contact's key */
 } lsdem_etm_queue;
 
 /* An empty queue over storage for cap contacts (pos all -1). */
-void lsdem_etm_queue_init(lsdem_etm_queue *q, int32_t cap, int32_t *heap, int32_t *pos, double *key);
+void lsdem_etm_queue_init(lsdem_etm_queue *q, int32_t cap, int32_t *heap, int32_t *pos,
+                          double *key);
 /* Queue c with key k, or move it to key k if queued. */
 void lsdem_etm_queue_set(lsdem_etm_queue *q, int32_t c, double k);
 /* Take c out (nothing if not queued). */
 void lsdem_etm_queue_remove(lsdem_etm_queue *q, int32_t c);
 /* Every queued contact with key <= limit, into out (room for q->n), in increasing
  * contact index; returns the count. stack holds q->n entries. */
-int32_t lsdem_etm_queue_collect(const lsdem_etm_queue *q, double limit, int32_t *out, int32_t *stack);
+int32_t lsdem_etm_queue_collect(const lsdem_etm_queue *q, double limit, int32_t *out,
+                                int32_t *stack);
 /* Invariants (heap order, pos consistent): 1 if they hold. */
 int lsdem_etm_queue_valid(const lsdem_etm_queue *q, int32_t cap);
 

@@ -11,6 +11,7 @@
 void lsdem_wall_params_default(lsdem_wall_params *p, double gravity, double dt, double mu)
 {
   p->rest_speed = 2.0 * fabs(gravity) * dt;
+  p->depth_tol = 0.01 * fabs(gravity) * dt * dt;
   p->mu = mu;
 }
 
@@ -22,8 +23,8 @@ lsdem_wall_contact_kind lsdem_wall_classify(double u_n, double rest_speed)
 }
 
 /* The point with the same arm from the grain's current centroid as p from the predicted. */
-static void same_arm(const lsdem_impulse_body *g, const lsdem_manifold *m, const double p[3],
-                     double out[3])
+static void same_arm(const lsdem_impulse_body *g, const lsdem_manifold *m,
+                     const double p[3], double out[3])
 {
   for (int i = 0; i < 3; i++) out[i] = p[i] - m->xa[i] + g->x[i];
 }
@@ -128,18 +129,19 @@ static int apply_friction(lsdem_impulse_body *g, const lsdem_manifold *m,
   return need > mu * jn;
 }
 
-lsdem_status lsdem_wall_correct(lsdem_impulse_body *grain, const lsdem_manifold *m, double dt,
-                                const lsdem_wall_params *p, lsdem_wall_result *res,
-                                lsdem_error *err)
+lsdem_status lsdem_wall_correct(lsdem_impulse_body *grain, const lsdem_manifold *m,
+                                double dt, const lsdem_wall_params *p,
+                                lsdem_wall_result *res, lsdem_error *err)
 {
   memset(res, 0, sizeof *res);
   res->deepest = -1;
   if (lsdem_impulse_body_is_wall(grain) || !(dt > 0.0) || !isfinite(dt) ||
-      !(p->rest_speed >= 0.0) || !(p->mu >= 0.0) || !isfinite(p->mu))
+      !(p->rest_speed >= 0.0) || !(p->depth_tol >= 0.0) || !(p->mu >= 0.0) ||
+      !isfinite(p->mu))
     return lsdem_fail(err, LSDEM_ERR_ARG,
                       "wall correction of body %lld: need a grain, dt > 0 (%g), rest_speed "
-                      ">= 0 (%g), mu >= 0 (%g)",
-                      (long long)grain->id, dt, p->rest_speed, p->mu);
+                      ">= 0 (%g), depth_tol >= 0 (%g), mu >= 0 (%g)",
+                      (long long)grain->id, dt, p->rest_speed, p->depth_tol, p->mu);
   res->kind = LSDEM_WALL_CLEAR;
   if (m->n == 0) return LSDEM_OK;
   const int k = deepest_point(m);
@@ -147,6 +149,7 @@ lsdem_status lsdem_wall_correct(lsdem_impulse_body *grain, const lsdem_manifold 
   res->deepest = k;
   res->depth = deep->depth;
   res->u_n = lsdem_dot3(deep->vrel, deep->normal);
+  if (deep->depth <= p->depth_tol) return LSDEM_OK; /* clear */
   res->kind = lsdem_wall_classify(res->u_n, p->rest_speed);
   if (res->kind != LSDEM_WALL_RESTING) return LSDEM_OK;
 
