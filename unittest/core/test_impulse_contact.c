@@ -88,60 +88,70 @@ static void test_collision_matrix_energy(void)
   CHECK_REL(K[0], 1.0 / sp.mass + 0.25 / (0.4 * sp.mass * 0.25), 1e-14);
 }
 
-/* K and its inverse (formed here by Cramer's rule) for a random pair. */
-static void pair_matrices(double K[9], double Kinv[9], double u[3])
+/* K and the relative velocity at the contact of a random pair. */
+static void pair_matrix(double K[9], double u[3])
 {
   fx_state s[2];
   lsdem_impulse_body b[2];
   double p[3], ua[3], ub[3];
   random_pair(s, b, p);
   lsdem_impulse_collision_matrix(&b[0], &b[1], p, K);
-  const double det = K[0] * (K[4] * K[8] - K[5] * K[7]) -
-                     K[1] * (K[3] * K[8] - K[5] * K[6]) +
-                     K[2] * (K[3] * K[7] - K[4] * K[6]);
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++) {
-      const int r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
-      Kinv[3 * i + j] =
-          (K[3 * r0 + c0] * K[3 * r1 + c1] - K[3 * r0 + c1] * K[3 * r1 + c0]) / det;
-    }
   lsdem_impulse_point_velocity(&b[0], p, ua);
   lsdem_impulse_point_velocity(&b[1], p, ub);
   lsdem_sub3(ua, ub, u);
 }
 
-/* Frictionless: P along n; large mu: the slip is removed (zero tangential restitution);
- * small mu: |P_t| = mu P_n against the slip. Always n . K P = du_n (eq 4.15). */
+/* Frictionless: P along n. Friction acts against w, the slip a frictionless increment
+ * would leave (u_t + (K n)_t du/knn, formed here); large mu: stuck, the fraction s of w
+ * removed (zero tangential restitution for s = 1); small mu: |P_t| = mu P_n. Always
+ * n . K P = du_n (eq 4.15). */
 static void test_coulomb_increment(void)
 {
+  int sticks = 0;
   for (int trial = 0; trial < 30; trial++) {
-    double K[9], Kinv[9], u[3], P[3], KP[3];
-    pair_matrices(K, Kinv, u);
+    double K[9], u[3], P[3], KP[3], Kn[3], w[3], Pt[3], x[3];
+    pair_matrix(K, u);
     const double n[3] = {0.0, 0.6, 0.8}, du = 0.3 + urand();
-    const double un = lsdem_dot3(u, n);
-    double ut[3];
-    for (int i = 0; i < 3; i++) ut[i] = u[i] - un * n[i];
+    lsdem_mat_vec(K, n, Kn);
+    const double un = lsdem_dot3(u, n), knn = lsdem_dot3(n, Kn);
+    for (int i = 0; i < 3; i++) w[i] = u[i] - un * n[i] + (Kn[i] - knn * n[i]) * du / knn;
+    const double wl = sqrt(lsdem_dot3(w, w));
 
-    CHECK(lsdem_coulomb_impulse(K, Kinv, n, u, du, 0.0, P) == 1, "frictionless slides");
+    CHECK(lsdem_coulomb_impulse(K, n, u, du, 0.0, 1.0, P) == 1, "frictionless slides");
     lsdem_mat_vec(K, P, KP);
     CHECK_NEAR(lsdem_dot3(n, KP), du, 1e-12);
     CHECK_NEAR(sqrt(lsdem_dot3(P, P)), lsdem_dot3(P, n), 1e-12);
 
-    CHECK(lsdem_coulomb_impulse(K, Kinv, n, u, du, 1e6, P) == 0, "huge mu sticks");
-    lsdem_mat_vec(K, P, KP);
-    for (int i = 0; i < 3; i++) CHECK_NEAR(KP[i], du * n[i] - ut[i], 1e-12); /* slip gone */
+    const double shares[2] = {1.0, 0.5};
+    for (int k = 0; k < 2; k++) {
+      const int stuck = lsdem_coulomb_impulse(K, n, u, du, 1e6, shares[k], P) == 0;
+      lsdem_mat_vec(K, P, KP);
+      CHECK_NEAR(lsdem_dot3(n, KP), du, 1e-12);
+      const double pn = lsdem_dot3(P, n);
+      for (int i = 0; i < 3; i++) Pt[i] = P[i] - pn * n[i];
+      fix_cross(Pt, w, x);
+      CHECK(sqrt(lsdem_dot3(x, x)) <= 1e-12 * wl * (1 + sqrt(lsdem_dot3(Pt, Pt))),
+            "friction not along the slip");
+      CHECK(lsdem_dot3(Pt, w) <= 0.0, "friction does not oppose the slip");
+      if (stuck) { /* what is left of the slip along w: (1 - s) |w| */
+        sticks++;
+        double after[3];
+        for (int i = 0; i < 3; i++) after[i] = u[i] + KP[i];
+        CHECK_NEAR(lsdem_dot3(after, w) / wl, (1.0 - shares[k]) * wl, 1e-12);
+      }
+    }
 
     const double mu = 0.01;
-    CHECK(lsdem_coulomb_impulse(K, Kinv, n, u, du, mu, P) == 1, "small mu slides");
+    const int slides = lsdem_coulomb_impulse(K, n, u, du, mu, 1.0, P);
     lsdem_mat_vec(K, P, KP);
     CHECK_NEAR(lsdem_dot3(n, KP), du, 1e-12);
-    const double pn = lsdem_dot3(P, n);
-    double Pt[3];
-    for (int i = 0; i < 3; i++) Pt[i] = P[i] - pn * n[i];
-    CHECK(pn > 0.0, "normal impulse %g", pn);
-    CHECK_REL(sqrt(lsdem_dot3(Pt, Pt)), mu * pn, 1e-12);
-    CHECK(lsdem_dot3(Pt, ut) < 0.0, "friction does not oppose the slip");
+    const double pn2 = lsdem_dot3(P, n);
+    for (int i = 0; i < 3; i++) Pt[i] = P[i] - pn2 * n[i];
+    CHECK(pn2 > 0.0 && slides, "normal impulse %g, sliding %d", pn2, slides);
+    CHECK_REL(sqrt(lsdem_dot3(Pt, Pt)), mu * pn2, 1e-12);
+    CHECK(lsdem_dot3(Pt, w) < 0.0, "friction does not oppose the slip");
   }
+  CHECK(sticks > 40, "only %d of 60 random contacts stick at huge mu", sticks);
 }
 
 /* A manifold over caller storage with the given points (normal +z unless set). */

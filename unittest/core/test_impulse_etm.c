@@ -258,6 +258,52 @@ static void test_flat_block(void)
          b[0].v[2], e, spin, (long long)res.iterations, res.rounds);
 }
 
+/* The same block landing flat while sliding along x, mu = 0.3: the motion stays in the
+ * x-z plane (friction never pushes across the slip); sliding throughout (fast), the
+ * friction impulse is mu times the normal impulse; slow, the corners end stuck. */
+static void test_sliding_flat_block(void)
+{
+  const double hx = 0.5, hy = 0.3, hz = 0.2, m = 1.0, mu = 0.3, o[3] = {0, 0, 0};
+  const double vts[2] = {3.0, 0.2};
+  for (int k = 0; k < 2; k++) {
+    const double x[3] = {0, 0, hz}, v[3] = {vts[k], 0, -1.0};
+    fx_state s = fx_grain(1, m, m * (hy * hy + hz * hz) / 3, m * (hx * hx + hz * hz) / 3,
+                          m * (hx * hx + hy * hy) / 3, x, v, o);
+    lsdem_impulse_body b[2];
+    fx_body_of(&s, &b[0]);
+    fx_wall(&b[1], -1, o, o);
+    const double E0 = fx_kinetic(&s, &b[0]);
+    lsdem_impulse_contact c[4];
+    for (int j = 0; j < 4; j++) {
+      const double p[3] = {j & 1 ? hx : -hx, j & 2 ? hy : -hy, 0.0};
+      c[j] = fx_contact(0, 1, p, 0, 0, 1, mu, 0.5);
+    }
+    lsdem_etm_result res;
+    lsdem_error err;
+    CHECK(fx_etm(b, 2, c, 4, NULL, &res, &err) == LSDEM_OK && res.converged, "%s", err.msg);
+    CHECK(fabs(b[0].v[1]) + fabs(b[0].omega[0]) + fabs(b[0].omega[2]) < 1e-12,
+          "v_t %g: out of plane v_y %g, omega_x %g, omega_z %g", vts[k], b[0].v[1],
+          b[0].omega[0], b[0].omega[2]);
+    CHECK(fx_kinetic(&s, &b[0]) < E0, "energy grew");
+    const double dvx = b[0].v[0] - vts[k], dvz = b[0].v[2] + 1.0;
+    double slip = 0.0;
+    for (int j = 0; j < 4; j++) {
+      double u[3];
+      lsdem_impulse_point_velocity(&b[0], c[j].point, u);
+      slip = fmax(slip, hypot(u[0], u[1]));
+    }
+    if (k == 0) {
+      CHECK(-dvx <= mu * dvz * (1 + 1e-12) && -dvx > 0.999 * mu * dvz,
+            "friction %g of the normal impulse", -dvx / dvz);
+    } else {
+      CHECK(slip < 1e-9, "corners still slip at %g", slip);
+    }
+    printf("sliding flat block v_t %.1f: dv_x/dv_z %.6f (mu %.1f), corner slip %.1e, spin "
+           "about y %.4f\n",
+           vts[k], dvx / dvz, mu, slip, b[0].omega[1]);
+  }
+}
+
 /* An island of 7 grains and a wall with friction: solved as given and with its bodies
  * permuted (contacts renumbered, same contact order), the velocities agree bit for bit. */
 static void test_permutation(void)
@@ -576,6 +622,7 @@ int main(void)
   test_energy_bookkeeping();
   test_oblique_friction();
   test_flat_block();
+  test_sliding_flat_block();
   test_permutation();
   test_stiff_figure43();
   test_enclosed_figure48();

@@ -1,5 +1,6 @@
 /* coulomb.c -- the impulse of one ETM increment with Coulomb friction (report eqs
- * 4.14-4.20, Algorithm 3 lines 11-14 and 27-30). World frame. */
+ * 4.14-4.20, Algorithm 3 lines 11-14 and 27-30). World frame. The rule is in
+ * lsdem_impulse.h (lsdem_coulomb_impulse). */
 #include "lsdem_impulse.h"
 
 #include <math.h>
@@ -14,34 +15,34 @@ static int frictionless(const double K[9], const double n[3], double du_n, doubl
   return 1;
 }
 
-int lsdem_coulomb_impulse(const double K[9], const double Kinv[9], const double n[3],
-                          const double u[3], double du_n, double mu, double P[3])
+int lsdem_coulomb_impulse(const double K[9], const double n[3], const double u[3],
+                          double du_n, double mu, double slip_share, double P[3])
 {
-  if (mu == 0.0) return frictionless(K, n, du_n, P);
-  const double un = lsdem_dot3(u, n);
-  double ut[3], target[3], Pt[3];
-  for (int i = 0; i < 3; i++) {
-    ut[i] = u[i] - un * n[i];
-    target[i] = du_n * n[i] - ut[i]; /* normal change du_n, slip removed */
-  }
-  lsdem_mat_vec(Kinv, target, P); /* eq 4.14 */
-  const double pn = lsdem_dot3(P, n);
-  for (int i = 0; i < 3; i++) Pt[i] = P[i] - pn * n[i]; /* eqs 4.16-4.17 */
-  const double pt = sqrt(lsdem_dot3(Pt, Pt));
-  if (pn > 0.0 && pt <= mu * pn) return 0; /* sticks */
+  double Kn[3], w[3], t[3], Kt[3];
+  lsdem_mat_vec(K, n, Kn);
+  const double knn = lsdem_dot3(n, Kn), un = lsdem_dot3(u, n);
+  /* w: the slip a frictionless increment would leave (u_t plus what its normal impulse
+   * drives sideways through K) -- friction opposes that */
+  for (int i = 0; i < 3; i++) w[i] = u[i] - un * n[i] + (Kn[i] - knn * n[i]) * du_n / knn;
+  const double slip = sqrt(lsdem_dot3(w, w));
+  if (mu == 0.0 || !(slip > 0.0)) return frictionless(K, n, du_n, P);
+  for (int i = 0; i < 3; i++) t[i] = -w[i] / slip;
 
-  /* slides: t against the slip, or without slip along the stick impulse's tangential
-   * part (pt > 0 then, K being positive definite) */
-  const double slip = sqrt(lsdem_dot3(ut, ut));
-  double dir[3], Kdir[3];
-  for (int i = 0; i < 3; i++) {
-    const double t = slip > 0.0 ? -ut[i] / slip : Pt[i] / pt;
-    dir[i] = n[i] + mu * t;
+  /* stick: eq 4.14 in the plane of n and t -- normal change du_n, and the fraction
+   * slip_share of that slip removed */
+  lsdem_mat_vec(K, t, Kt);
+  const double knt = lsdem_dot3(n, Kt), ktt = lsdem_dot3(t, Kt);
+  const double rhs_t = knt * du_n / knn + slip_share * slip;
+  const double det = knn * ktt - knt * knt;
+  const double pn = (ktt * du_n - knt * rhs_t) / det, pt = (knn * rhs_t - knt * du_n) / det;
+  if (pn > 0.0 && pt <= mu * pn) {
+    for (int i = 0; i < 3; i++) P[i] = pn * n[i] + pt * t[i];
+    return 0;
   }
-  lsdem_mat_vec(K, dir, Kdir);
-  const double denom = lsdem_dot3(n, Kdir);               /* eq 4.20 */
+  /* slide: |P_t| = mu |P_n| against the slip (eqs 4.18-4.20) */
+  const double denom = knn + mu * knt;                    /* n . K (n + mu t) */
   if (!(denom > 0.0)) return frictionless(K, n, du_n, P); /* friction would attract */
   const double pn_slide = du_n / denom;
-  for (int i = 0; i < 3; i++) P[i] = pn_slide * dir[i]; /* eq 4.19 */
+  for (int i = 0; i < 3; i++) P[i] = pn_slide * (n[i] + mu * t[i]); /* eq 4.19 */
   return 1;
 }

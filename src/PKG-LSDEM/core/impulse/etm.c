@@ -10,10 +10,10 @@
  * before the group and applied together (lines 10-17), so that contacts alike in a
  * symmetric configuration stay alike (a block landing flat leaves without spin) -- which
  * is why the increment is shared out (divided by |Gamma| in line 9): a member also feels
- * the others that push on its bodies. The
- * energy booked per contact is the work of its normal impulse over the group's velocity
- * change, P_n (u_n before + u_n after) / 2 (eq 4.21 for impulses applied together): in
- * sum exactly the kinetic energy the group converted.
+ * the others that push on its bodies. The energy booked per contact is the work of its
+ * normal impulse over the group's velocity change, P_n (u_n before + u_n after) / 2 (eq
+ * 4.21 for impulses applied together): in sum exactly the kinetic energy the group
+ * converted.
  *
  * Keys: compression u~ = w u_n, w = m_a m_b / (m_a + m_b) (§4.4.3) or 1, most negative
  * first; separation -W, largest energy first. Every velocity a key depends on is
@@ -29,10 +29,10 @@
 
 /* What the solver keeps per contact. */
 typedef struct {
-  double K[9], Kinv[9]; /* collision matrix (eq 4.13) and its inverse */
-  double knn;           /* n . K n */
-  double weight;        /* compression key = weight u_n */
-  double W;             /* stored elastic energy (eq 4.24) */
+  double K[9];   /* collision matrix (eq 4.13) */
+  double knn;    /* n . K n */
+  double weight; /* compression key = weight u_n */
+  double W;      /* stored elastic energy (eq 4.24) */
 } etm_contact;
 
 struct lsdem_etm {
@@ -137,37 +137,24 @@ static double relative_velocity(const lsdem_etm *s, int32_t k, double u[3])
   return lsdem_dot3(ct->normal, u);
 }
 
-/* K (eq 4.13) and K^-1 = V diag(1/w) V^T from K's eigen-decomposition. */
-static lsdem_status prepare_contact(lsdem_etm *s, int32_t k, lsdem_error *err)
+/* K (eq 4.13), n . K n and the key's weight of contact k. */
+static void prepare_contact(lsdem_etm *s, int32_t k)
 {
   const lsdem_impulse_contact *ct = &s->contacts[k];
   const lsdem_impulse_body *a = &s->bodies[ct->a], *b = &s->bodies[ct->b];
   etm_contact *c = &s->c[k];
-  double w[3], V[9], Kn[3];
+  double Kn[3];
   lsdem_impulse_collision_matrix(a, b, ct->point, c->K);
-  lsdem_sym_eigen(c->K, w, V);
-  if (!(w[0] > 1e-14 * w[2]))
-    return lsdem_fail(
-        err, LSDEM_ERR_NUMERIC,
-        "impulse island: contact %d (ids %lld, %lld) has a singular collision "
-        "matrix (eigenvalues %g .. %g)",
-        (int)k, (long long)a->id, (long long)b->id, w[0], w[2]);
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++) {
-      double sum = 0.0;
-      for (int m = 0; m < 3; m++) sum += V[3 * i + m] * V[3 * j + m] / w[m];
-      c->Kinv[3 * i + j] = sum;
-    }
   lsdem_mat_vec(c->K, ct->normal, Kn);
   c->knn = lsdem_dot3(ct->normal, Kn);
   c->weight = s->p.mass_weighted ? 1.0 / (a->inv_mass + b->inv_mass) : 1.0; /* §4.4.3 */
   c->W = 0.0;
-  return LSDEM_OK;
 }
 
 /* The group's increments du[g] (0: none), each the Coulomb-limited impulse of its
- * contact (eqs 4.14-4.20) from the velocities before the group, applied together on a and
- * (reaction, eq 4.6) b in contact order. Returns in du[g] the normal work of member g,
+ * contact (eqs 4.14-4.20) from the velocities before the group, removing the slip in the
+ * same shares as the increment (alpha share = 1/n), applied together on a and (reaction,
+ * eq 4.6) b in contact order. Returns in du[g] the normal work of member g,
  * P_n (u_n before + u_n after) / 2 (eq 4.21), with u_n before in un0[g]. */
 static void apply_group(lsdem_etm *s, int32_t ng)
 {
@@ -177,8 +164,8 @@ static void apply_group(lsdem_etm *s, int32_t ng)
     double u[3], *P = &s->P[3 * g];
     relative_velocity(s, k, u);
     if (s->du[g] > 0.0)
-      lsdem_coulomb_impulse(c->K, c->Kinv, s->contacts[k].normal, u, s->du[g],
-                            s->contacts[k].mu, P);
+      lsdem_coulomb_impulse(c->K, s->contacts[k].normal, u, s->du[g], s->contacts[k].mu,
+                            s->p.alpha * s->share[g], P);
     else
       P[0] = P[1] = P[2] = 0.0;
   }
@@ -300,7 +287,7 @@ lsdem_status lsdem_etm_begin(lsdem_etm **out, void *ws, size_t wsize,
   build_adjacency(s);
   mass_extremes(s);
   for (int32_t k = 0; k < ncontacts; k++) {
-    if ((st = prepare_contact(s, k, err)) != LSDEM_OK) return st;
+    prepare_contact(s, k);
     double u[3];
     s->u0 = fmax(s->u0, -relative_velocity(s, k, u));
   }
@@ -383,6 +370,24 @@ static int32_t pop_group(lsdem_etm *s, double *kmin)
                                  s->stack);
 }
 
+/* One iteration of either phase begins: the cap, then the group of the queue's top and
+ * its members' shares. Returns the group's size, or 0 with *st the island report when the
+ * cap is reached. */
+static int32_t next_group(lsdem_etm *s, const char *phase, double *kmin, lsdem_status *st,
+                          lsdem_error *err)
+{
+  if (s->iterations >= s->p.max_iterations) {
+    char what[48];
+    snprintf(what, sizeof what, "iteration cap in %s", phase);
+    *st = cap_failure(s, what, err);
+    return 0;
+  }
+  s->iterations++;
+  const int32_t ng = pop_group(s, kmin);
+  group_shares(s, ng);
+  return ng;
+}
+
 int lsdem_etm_approaching(lsdem_etm *s)
 {
   for (int32_t k = 0; k < s->ncontacts; k++) refresh_approach(s, k);
@@ -395,12 +400,10 @@ lsdem_status lsdem_etm_compress(lsdem_etm *s, lsdem_error *err)
   s->rounds++;
   s->round_absorbed = 0.0;
   while (s->q.n > 0) {
-    if (s->iterations >= s->p.max_iterations)
-      return cap_failure(s, "iteration cap in compression", err);
-    s->iterations++;
     double kmin, u[3];
-    const int32_t ng = pop_group(s, &kmin);
-    group_shares(s, ng);
+    lsdem_status st = LSDEM_OK;
+    const int32_t ng = next_group(s, "compression", &kmin, &st, err);
+    if (ng == 0) return st;
     for (int32_t g = 0; g < ng; g++) {
       const int32_t k = s->group[g];
       const double un = s->un0[g] = relative_velocity(s, k, u);
@@ -447,12 +450,10 @@ lsdem_status lsdem_etm_separate(lsdem_etm *s, lsdem_error *err)
       truncate_energy(s, k);
   }
   while (s->q.n > 0) {
-    if (s->iterations >= s->p.max_iterations)
-      return cap_failure(s, "iteration cap in separation", err);
-    s->iterations++;
     double kmin, u[3];
-    const int32_t ng = pop_group(s, &kmin);
-    group_shares(s, ng);
+    lsdem_status st = LSDEM_OK;
+    const int32_t ng = next_group(s, "separation", &kmin, &st, err);
+    if (ng == 0) return st;
     for (int32_t g = 0; g < ng; g++) {
       const etm_contact *c = &s->c[s->group[g]];
       double give = fmin(-kmin * s->share[g], c->W); /* a share of the largest energy */

@@ -153,19 +153,24 @@ int lsdem_impulse_select_collisions(const lsdem_impulse_body *bodies,
 /* ------------------------------------------------------- one increment ---- */
 
 /* The impulse P that raises the relative normal velocity of a contact by du_n > 0,
- * given its collision matrix K, K^-1, unit normal n, current relative velocity u and
- * friction mu (Algorithm 3 lines 11-14 and 27-30):
- *   stick  P = K^-1 (du_n n - u_t)  (eq 4.14: normal change du_n; the slip u_t is
- *          removed, i.e. zero tangential restitution, report §4.6.1), kept when
- *          P.n > 0 and |P_t| <= mu P.n (eqs 4.16-4.17);
- *   slide  P = P_n (n + mu t), P_n = du_n / (n . K (n + mu t))  (eqs 4.18-4.20), t the unit
- *          direction opposing the slip (or, without slip, that of the stick impulse's
- *          tangential part);
- *   mu = 0 (or a non-positive eq 4.20 denominator) gives the frictionless
- *          P = du_n / (n . K n) n.
+ * given its collision matrix K, unit normal n, current relative velocity u and friction
+ * mu (Algorithm 3 lines 11-14 and 27-30). Friction acts along t = -w / |w| only, w the
+ * slip a frictionless increment would leave: u_t plus what its normal impulse drives
+ * sideways through K, (K n - (n . K n) n) du_n / (n . K n). So it always opposes a slip
+ * and never drives motion across it, and its direction is set by the contact, not by
+ * round-off in a slip near zero (the report's stick impulse K^-1 Delta u, taken by the
+ * four corners of a block landing flat, sets it drifting sideways and spinning):
+ *   stick  P = P_n n + P_t t with n . K P = du_n and t . K P = t . K n du_n / (n . K n)
+ *          + s |w| (eq 4.14 in the plane of n and t): the normal change du_n, and the
+ *          fraction s = slip_share in (0, 1] of w removed (zero tangential restitution,
+ *          report §4.6.1, for s = 1; 1/k when k contacts on one body take impulses
+ *          together); kept when P_n > 0 and P_t <= mu P_n (eqs 4.16-4.17);
+ *   slide  P = P_n (n + mu t), P_n = du_n / (n . K (n + mu t))  (eqs 4.18-4.20);
+ *   none   P = du_n / (n . K n) n when mu = 0, w = 0, or for a non-positive eq 4.20
+ *          denominator.
  * In every case n . K P = du_n. Returns 1 when sliding (or frictionless), 0 sticking. */
-int lsdem_coulomb_impulse(const double K[9], const double Kinv[9], const double n[3],
-                          const double u[3], double du_n, double mu, double P[3]);
+int lsdem_coulomb_impulse(const double K[9], const double n[3], const double u[3],
+                          double du_n, double mu, double slip_share, double P[3]);
 
 /* ------------------------------------------------------------------- ETM ---- */
 
