@@ -109,14 +109,21 @@ void lsdem_impulse_collision_matrix(const lsdem_impulse_body *a,
   for (int i = 0; i < 9; i++) K[i] = Ma[i] + Mb[i]; /* eq 4.13 */
 }
 
-double lsdem_impulse_normal_velocity(const lsdem_impulse_body *bodies,
-                                     const lsdem_impulse_contact *c)
+double lsdem_impulse_relative_velocity(const lsdem_impulse_body *bodies,
+                                       const lsdem_impulse_contact *c, double u[3])
 {
-  double ua[3], ub[3], u[3];
+  double ua[3], ub[3];
   lsdem_impulse_point_velocity(&bodies[c->a], c->point, ua);
   lsdem_impulse_point_velocity(&bodies[c->b], c->point, ub);
   lsdem_sub3(ua, ub, u);
   return lsdem_dot3(c->normal, u);
+}
+
+double lsdem_impulse_normal_velocity(const lsdem_impulse_body *bodies,
+                                     const lsdem_impulse_contact *c)
+{
+  double u[3];
+  return lsdem_impulse_relative_velocity(bodies, c, u);
 }
 
 static lsdem_status validate_body(const lsdem_impulse_body *b, int k, lsdem_error *err)

@@ -22,6 +22,7 @@
 #include "lsdem_impulse.h"
 #include "queue.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -129,12 +130,7 @@ size_t lsdem_etm_workspace_size(int nbodies, int ncontacts)
 /* u = u_a - u_b at contact k (eq 4.7); returns u_n. */
 static double relative_velocity(const lsdem_etm *s, int32_t k, double u[3])
 {
-  const lsdem_impulse_contact *ct = &s->contacts[k];
-  double ua[3], ub[3];
-  lsdem_impulse_point_velocity(&s->bodies[ct->a], ct->point, ua);
-  lsdem_impulse_point_velocity(&s->bodies[ct->b], ct->point, ub);
-  lsdem_sub3(ua, ub, u);
-  return lsdem_dot3(ct->normal, u);
+  return lsdem_impulse_relative_velocity(s->bodies, &s->contacts[k], u);
 }
 
 /* K (eq 4.13), n . K n and the key's weight of contact k. */
@@ -418,6 +414,7 @@ lsdem_status lsdem_etm_compress(lsdem_etm *s, lsdem_error *err)
       s->absorbed -= s->du[g];
     }
     refresh_group(s, ng);
+    assert(lsdem_etm_queue_valid(&s->q, s->ncontacts));
   }
   return LSDEM_OK;
 }
@@ -474,6 +471,7 @@ lsdem_status lsdem_etm_separate(lsdem_etm *s, lsdem_error *err)
       else
         lsdem_etm_queue_set(&s->q, k, -s->c[k].W);
     }
+    assert(lsdem_etm_queue_valid(&s->q, s->ncontacts));
   }
   return LSDEM_OK;
 }

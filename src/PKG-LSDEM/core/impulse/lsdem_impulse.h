@@ -102,7 +102,11 @@ typedef struct {
   double restitution; /* Stronge's coefficient e of the pair, 0 <= e <= 1 (eq 4.1) */
 } lsdem_impulse_contact;
 
-/* Relative normal velocity u_n = n . (u_a - u_b) at the contact (< 0: approaching). */
+/* Relative velocity u = u_a - u_b at the contact (eq 4.7); returns its normal part
+ * u_n = n . u (< 0: approaching). */
+double lsdem_impulse_relative_velocity(const lsdem_impulse_body *bodies,
+                                       const lsdem_impulse_contact *c, double u[3]);
+/* u_n alone. */
 double lsdem_impulse_normal_velocity(const lsdem_impulse_body *bodies,
                                      const lsdem_impulse_contact *c);
 

@@ -1,8 +1,6 @@
 /* queue.c -- the ETM's indexed min-heap (queue.h). */
 #include "queue.h"
 
-#include <stdlib.h>
-
 /* a before b in (key, index) order */
 static int before(const lsdem_etm_queue *q, int32_t a, int32_t b)
 {
@@ -79,12 +77,6 @@ void lsdem_etm_queue_remove(lsdem_etm_queue *q, int32_t c)
   sift_up(q, q->pos[last]);
 }
 
-static int by_index(const void *a, const void *b)
-{
-  const int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
-  return (x > y) - (x < y);
-}
-
 /* A subtree whose root's key is above the limit holds nothing below it (heap order). */
 int32_t lsdem_etm_queue_collect(const lsdem_etm_queue *q, double limit, int32_t *out,
                                 int32_t *stack)
@@ -99,7 +91,6 @@ int32_t lsdem_etm_queue_collect(const lsdem_etm_queue *q, double limit, int32_t 
     for (int32_t child = 2 * at + 1; child <= 2 * at + 2 && child < q->n; child++)
       stack[top++] = child;
   }
-  qsort(out, (size_t)nout, sizeof *out, by_index);
   return nout;
 }
 

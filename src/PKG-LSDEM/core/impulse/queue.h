@@ -24,8 +24,10 @@ void lsdem_etm_queue_init(lsdem_etm_queue *q, int32_t cap, int32_t *heap, int32_
 void lsdem_etm_queue_set(lsdem_etm_queue *q, int32_t c, double k);
 /* Take c out (nothing if not queued). */
 void lsdem_etm_queue_remove(lsdem_etm_queue *q, int32_t c);
-/* Every queued contact with key <= limit, into out (room for q->n), in increasing
- * contact index; returns the count. stack holds q->n entries. */
+/* Every queued contact with key <= limit, into out (room for q->n), in the order a walk
+ * of the heap from its top meets them -- a function of the keys and of the sequence of
+ * pushes and updates alone, so of the contact order and not of the bodies' (no sort: no
+ * allocation); returns the count. stack holds q->n entries. */
 int32_t lsdem_etm_queue_collect(const lsdem_etm_queue *q, double limit, int32_t *out,
                                 int32_t *stack);
 /* Invariants (heap order, pos consistent): 1 if they hold. */
