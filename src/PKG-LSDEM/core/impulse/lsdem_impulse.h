@@ -265,7 +265,10 @@ lsdem_status lsdem_etm_compress(lsdem_etm *s, lsdem_error *err);
 /* Restitution, lines 18-20: W <- e^2 W per contact (Stronge, eq 4.1: the user gives the
  * coefficient of restitution e; the printed "W <- eps W" scales energy, so eps = e^2). */
 void lsdem_etm_restitute(lsdem_etm *s);
-/* Separation phase, lines 21-33. */
+/* Separation phase, lines 21-33: each increment from eq 4.30 with u_n taken >= 0 (a
+ * contact still approaching would get the elastic reversal -u_n -> u_n on top of its
+ * share, and such reversals of a group applied together add up on a shared body far
+ * beyond the energy stored); an approaching contact is left to the next round. */
 lsdem_status lsdem_etm_separate(lsdem_etm *s, lsdem_error *err);
 /* Elastic energy stored at the contacts now. */
 double lsdem_etm_stored_energy(const lsdem_etm *s);
