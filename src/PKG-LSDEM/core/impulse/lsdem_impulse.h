@@ -1,0 +1,400 @@
+/* lsdem_impulse.h -- impulse-based LS-DEM (report chapter 4), kernel module core/impulse.
+ *
+ * What a time step of impulse mode needs, without LAMMPS or MPI:
+ *   body.c      the island's body record (mass, world inverse inertia, x, v, omega; walls
+ *               of infinite mass with a prescribed motion), the collision matrix K
+ *               (eq 4.13), impulses on bodies (eqs 4.31-4.32), validation of an island
+ *   glue.c      a pair's contact manifold -> impulse contacts (§4.3.3 "glued" points)
+ *   coulomb.c   the Coulomb-limited impulse of one increment (eqs 4.14-4.20)
+ *   etm.c       the Energy Tracking Method on one island (Algorithm 3, eqs 4.1, 4.24-4.30,
+ *               §4.4.3 mass weighting), in caller-provided workspace, with an island
+ *               report when it does not converge
+ *   integrate.c symplectic Euler (eqs 4.37-4.40) and global damping (eqs 4.44-4.46)
+ *   wall.c      resting contact on rigid walls: the predicted-position velocity
+ *               correction of §4.4.1 (Figures 4.4-4.5)
+ *   islands.c   contact islands: union-find, labels, the cross-rank label merge (§4.5)
+ *
+ * One step (Figure 4.4), as the caller (fix impulse/lsdem) runs it:
+ *   1. kick: v, omega += external forces and torques over dt (lsdem_impulse_kick);
+ *   2. detect the manifolds of touching pairs and grain-wall pairs at the current poses
+ *      (lsdem_detect), glue them (lsdem_impulse_glue), keep the collisions
+ *      (lsdem_impulse_select_collisions), build islands (lsdem_islands_build and, across
+ *      ranks, lsdem_islands_merge), gather each island on one rank, sort its contacts
+ *      by global ids (the tie-breaking order), solve it (lsdem_etm_solve), scatter the
+ *      velocities;
+ *   3. wall correction: detect each grain against each wall at the predicted pose
+ *      (lsdem_impulse_predict_pose) and correct resting contacts (lsdem_wall_correct);
+ *      new collisions between grains are resolved again (step 2), and 3 is repeated until
+ *      nothing is corrected or a cap (the report used 10);
+ *   4. damping (lsdem_impulse_damp), then positions and orientations (lsdem_impulse_drift).
+ *
+ * Frames and signs: everything is world frame. A contact's normal n points from body b
+ * towards body a (the manifold's convention: B's outward normal, A's nodes inside B); the
+ * impulse P of a contact acts on a, -P on b; the relative velocity is u = u_a - u_b at
+ * the contact point (eq 4.7), its normal part u_n = n . u < 0 when approaching. Units are
+ * the caller's (mass, length, time); energies are mass length^2 / time^2. */
+#ifndef LSDEM_IMPULSE_H
+#define LSDEM_IMPULSE_H
+
+#include "../contact/lsdem_contact.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------- bodies ---- */
+
+/* One body of an island (a grain, a wall or a platen). A wall is a body of infinite
+ * mass (inv_mass = 0, inv_inertia = 0) whose v and omega are prescribed: impulses leave
+ * them unchanged. The record is a view rebuilt every step from a grain's state. */
+typedef struct {
+  int64_t id;            /* global id (LAMMPS tag); walls: any id, for reports */
+  double inv_mass;       /* 1/m; 0: infinite mass */
+  double inv_inertia[9]; /* world-frame I^-1 = R I0^-1 R^T (eq 4.13, I = R I0 R^T) */
+  double x[3];           /* centre of mass */
+  double v[3];           /* its velocity */
+  double omega[3];       /* angular velocity, world frame */
+} lsdem_impulse_body;
+
+/* A grain of mass m and principal moments I0 (absolute: density times the shape's
+ * per-unit-density inertia; all > 0) at orientation q (body -> world). Refuses
+ * non-finite or non-positive mass and moments and non-finite state. */
+lsdem_status lsdem_impulse_body_grain(lsdem_impulse_body *b, int64_t id, double mass,
+                                      const double inertia[3], const double q[4],
+                                      const double x[3], const double v[3],
+                                      const double omega[3], lsdem_error *err);
+/* A wall or platen: infinite mass, reference point x, prescribed v and omega (the wall's
+ * velocity at point p is v + omega x (p - x)). */
+lsdem_status lsdem_impulse_body_wall(lsdem_impulse_body *b, int64_t id, const double x[3],
+                                     const double v[3], const double omega[3],
+                                     lsdem_error *err);
+static inline int lsdem_impulse_body_is_wall(const lsdem_impulse_body *b)
+{
+  return b->inv_mass == 0.0;
+}
+/* Velocity of the body's material point at p: v + omega x (p - x)  (eq 4.7). */
+void lsdem_impulse_point_velocity(const lsdem_impulse_body *b, const double p[3],
+                                  double u[3]);
+/* Impulse P applied at p: v += P/m (eq 4.31), omega += I^-1 ((p - x) x P) (eq 4.32).
+ * No effect on a wall. */
+void lsdem_impulse_apply(lsdem_impulse_body *b, const double p[3], const double P[3]);
+/* The change of the point velocity at p per unit impulse there, as a matrix:
+ * (1/m) 1 - r~ I^-1 r~ with r = p - x (eq 4.8); symmetric, 0 for a wall. */
+void lsdem_impulse_point_response(const lsdem_impulse_body *b, const double p[3],
+                                  double M[9]);
+/* Collision matrix of a contact at p between a and b (eq 4.13): the sum of the two
+ * point responses, so that Delta u = K P (eq 4.12). Symmetric positive definite unless
+ * both bodies are walls. */
+void lsdem_impulse_collision_matrix(const lsdem_impulse_body *a,
+                                    const lsdem_impulse_body *b, const double p[3],
+                                    double K[9]);
+
+/* ---------------------------------------------------------------- contacts ---- */
+
+/* One contact of an island: a point of impulse exchange between bodies a and b (indices
+ * into the island's body array; b may be a wall, a may not be the same body as b). */
+typedef struct {
+  int32_t a, b;
+  double point[3];    /* world */
+  double normal[3];   /* unit, from b towards a */
+  double depth;       /* penetration there (>= 0; information only, 0 if unknown) */
+  double mu;          /* Coulomb friction coefficient of the pair (>= 0) */
+  double restitution; /* Stronge's coefficient e of the pair, 0 <= e <= 1 (eq 4.1) */
+} lsdem_impulse_contact;
+
+/* Relative velocity u = u_a - u_b at the contact (eq 4.7); returns its normal part
+ * u_n = n . u (< 0: approaching). */
+double lsdem_impulse_relative_velocity(const lsdem_impulse_body *bodies,
+                                       const lsdem_impulse_contact *c, double u[3]);
+/* u_n alone. */
+double lsdem_impulse_normal_velocity(const lsdem_impulse_body *bodies,
+                                     const lsdem_impulse_contact *c);
+
+/* Checks an island before a solve: 0 <= a, b < nbodies, a != b, not both walls, finite
+ * positions, velocities and inverse inertias, inv_mass >= 0, unit normals (to 1e-6),
+ * mu >= 0, 0 <= e <= 1. LSDEM_ERR_ARG (indices) or LSDEM_ERR_NUMERIC, naming the first
+ * offending body or contact. */
+lsdem_status lsdem_impulse_validate(const lsdem_impulse_body *bodies, int nbodies,
+                                    const lsdem_impulse_contact *contacts, int ncontacts,
+                                    lsdem_error *err);
+
+/* Gluing (report §4.3.3: "a group of adjacent contact points is glued together and
+ * treated as a single contact"). The rule, applied in the manifold's point order (so
+ * the result is deterministic): the first point not yet in a group seeds a new group,
+ * and every later free point joins it when it lies within `distance` of the seed's point
+ * and its normal is within `max_angle` of the seed's normal. A group becomes one
+ * contact at the area-weighted mean point, with the area-weighted mean normal
+ * (normalised; never zero since max_angle < pi/2) and the largest depth of its points.
+ * Seeding bounds a group's extent by 2 distance and its normals' spread by 2 max_angle,
+ * so a curved surface is never glued into one flat contact however dense its nodes. */
+typedef struct {
+  double distance;  /* length; 0: no gluing (every point its own contact). A good choice
+                       is about twice the node spacing: neighbouring nodes glue, the
+                       corners of a flat face stay apart and keep the torque they carry */
+  double max_angle; /* radians, in [0, pi/2); default 15 degrees */
+} lsdem_glue_params;
+
+void lsdem_glue_params_default(lsdem_glue_params *g); /* distance 0, max_angle 15 deg */
+
+/* The contacts of one pair from its manifold m (A = body a, B = body b, as detected),
+ * with the pair's friction mu and restitution e. out holds m->n contacts at least;
+ * group[k] (m->n entries, required: also the scratch of the rule) receives the contact
+ * index of point k.
+ * Returns the number of contacts, or -1 with err set for bad parameters. */
+int lsdem_impulse_glue(const lsdem_manifold *m, int32_t a, int32_t b, double mu, double e,
+                       const lsdem_glue_params *g, lsdem_impulse_contact *out,
+                       int32_t *group, lsdem_error *err);
+
+/* Keeps, in place and in order, the contacts that ETM must resolve: between two grains
+ * those approaching (u_n < 0); with a wall those approaching faster than rest_speed
+ * (u_n < -rest_speed: a collision, lsdem_wall_classify), the slower ones being resting
+ * contacts for lsdem_wall_correct (report §4.4.1: "only dynamic collisions are
+ * considered"). Returns the number kept. */
+int lsdem_impulse_select_collisions(const lsdem_impulse_body *bodies,
+                                    lsdem_impulse_contact *contacts, int ncontacts,
+                                    double rest_speed);
+
+/* ------------------------------------------------------- one increment ---- */
+
+/* The impulse P that raises the relative normal velocity of a contact by du_n > 0,
+ * given its collision matrix K, unit normal n, current relative velocity u and friction
+ * mu (Algorithm 3 lines 11-14 and 27-30). Friction acts along t = -w / |w| only, w the
+ * slip a frictionless increment would leave: u_t plus what its normal impulse drives
+ * sideways through K, (K n - (n . K n) n) du_n / (n . K n). So it always opposes a slip
+ * and never drives motion across it, and its direction is set by the contact, not by
+ * round-off in a slip near zero (the report's stick impulse K^-1 Delta u, taken by the
+ * four corners of a block landing flat, sets it drifting sideways and spinning):
+ *   stick  P = P_n n + P_t t with n . K P = du_n and t . K P = t . K n du_n / (n . K n)
+ *          + s |w| (eq 4.14 in the plane of n and t): the normal change du_n, and the
+ *          fraction s = slip_share in (0, 1] of w removed (zero tangential restitution,
+ *          report §4.6.1, for s = 1; 1/k when k contacts on one body take impulses
+ *          together); kept when P_n > 0 and P_t <= mu P_n (eqs 4.16-4.17);
+ *   slide  P = P_n (n + mu t), P_n = du_n / (n . K (n + mu t))  (eqs 4.18-4.20);
+ *   none   P = du_n / (n . K n) n when mu = 0, w = 0, or for a non-positive eq 4.20
+ *          denominator.
+ * In every case n . K P = du_n. Returns 1 when sliding (or frictionless), 0 sticking. */
+int lsdem_coulomb_impulse(const double K[9], const double n[3], const double u[3],
+                          double du_n, double mu, double slip_share, double P[3]);
+
+/* ------------------------------------------------------------------- ETM ---- */
+
+/* How a group's increment is shared out among its members (Algorithm 3 line 9). */
+typedef enum {
+  /* 1/(alpha n), n the most members of the group that push on one of the member's two
+   * moving bodies (itself included): |Gamma| for a group on one body (a block landing flat,
+   * a grain in a grain, each of the report's figures), while collisions in one island
+   * that share no body go at the speed they would go alone (an island of 1344 contacts
+   * in a cubic packing: 25 s with |Gamma|, 0.1 s like this). The default */
+  LSDEM_ETM_SHARE_BODIES = 0,
+  LSDEM_ETM_SHARE_GROUP = 1 /* 1/(alpha |Gamma|), as printed */
+} lsdem_etm_share;
+
+/* Parameters of the Energy Tracking Method (Algorithm 3). */
+typedef struct {
+  double alpha;           /* >= 1: a member's increment is 1/(alpha n) of the group's
+                             largest deficit (line 9) or stored energy (separation), n as
+                             `share` says; 1 resolves a lone contact at once. Default 2 */
+  lsdem_etm_share share;  /* default LSDEM_ETM_SHARE_BODIES */
+  double beta;            /* similarity, [0, 1): a group takes every contact whose key is
+                             within beta |key_min| of the extreme one (lines 8, 24).
+                             Default 0.1 */
+  int mass_weighted;      /* 1 (default): order the compression queue by the weighted
+                             u~ = m_a m_b / (m_a + m_b) u_n (§4.4.3; m_a for a wall);
+                             0: by u_n (the original ETM) */
+  double velocity_tol;    /* truncation: a contact counts as approaching while u_n <
+                             -velocity_tol u_0, u_0 the island's largest initial approach
+                             speed. Default 1e-6 */
+  double energy_tol;      /* truncation: stored energy below energy_tol times the round's
+                             absorbed energy is dropped (counted as truncated). Default
+                             1e-12 (the square of velocity_tol: energies go as u^2) */
+  int64_t max_iterations; /* cap on group iterations (one queue pop each), all phases
+                             and rounds together. Default 1000000 */
+  int max_rounds;         /* cap on compression-separation rounds (re-entries, lines
+                             34-35). Default 1000 */
+} lsdem_etm_params;
+
+void lsdem_etm_params_default(lsdem_etm_params *p);
+
+/* What a solve did, and the island report when it did not converge. */
+typedef struct {
+  int converged;      /* 1: no contact approaching, all stored energy released */
+  int64_t iterations; /* group iterations, all phases */
+  int rounds;         /* compression-separation rounds */
+  int nbodies, ncontacts;
+  double mass_ratio;       /* largest / smallest finite mass of the island (1: one grain) */
+  int64_t lightest_id;     /* id of the lightest grain */
+  double initial_approach; /* u_0: the largest initial approach speed (-u_n) */
+  double approach;         /* the largest approach speed left (0 when converged) */
+  double absorbed;         /* elastic energy stored in compression, all rounds (eq 4.24) */
+  double dissipated;       /* lost at restitution: (1 - e^2) of it (eq 4.1) */
+  double released;         /* given back in separation (eqs 4.29-4.30) */
+  double truncated;        /* stored energy dropped below energy_tol */
+} lsdem_etm_result;
+
+/* The solver's state on one island; lives in the caller's workspace. */
+typedef struct lsdem_etm lsdem_etm;
+
+/* Bytes of workspace a solve of this size needs (any alignment: it aligns itself). */
+size_t lsdem_etm_workspace_size(int nbodies, int ncontacts);
+
+/* The whole of Algorithm 3 on an island: bodies' v and omega (walls untouched) are
+ * updated in place. The contacts' order is the tie-break order of both queues (sort them
+ * by global ids): the same island gives bit-identical velocities whatever the order of
+ * its bodies. No allocation: ws holds lsdem_etm_workspace_size bytes. Returns
+ * LSDEM_ERR_ARG / LSDEM_ERR_NUMERIC on bad input (lsdem_impulse_validate),
+ * LSDEM_ERR_NOMEM when ws is too small, and LSDEM_ERR_NUMERIC with the island report in
+ * err (size, the bodies' ids, mass ratio, iterations, what to change) when a cap is hit
+ * (velocities are then those reached, finite). res (NULL: not wanted) is filled in
+ * every case past validation. */
+lsdem_status lsdem_etm_solve(lsdem_impulse_body *bodies, int nbodies,
+                             const lsdem_impulse_contact *contacts, int ncontacts,
+                             const lsdem_etm_params *p, void *ws, size_t wsize,
+                             lsdem_etm_result *res, lsdem_error *err);
+
+/* The phases one by one, for callers that watch the energies (tests, Figure 4.2).
+ * lsdem_etm_solve is: begin; while (lsdem_etm_approaching) { compress; restitute;
+ * separate; } -- each returning the capped status as solve does. */
+lsdem_status lsdem_etm_begin(lsdem_etm **s, void *ws, size_t wsize,
+                             lsdem_impulse_body *bodies, int nbodies,
+                             const lsdem_impulse_contact *contacts, int ncontacts,
+                             const lsdem_etm_params *p, lsdem_error *err);
+/* Lines 34-35 (and 4 on the first call): queue the approaching contacts; their number. */
+int lsdem_etm_approaching(lsdem_etm *s);
+/* Compression phase, lines 6-17; starts a round when anything approaches. */
+lsdem_status lsdem_etm_compress(lsdem_etm *s, lsdem_error *err);
+/* Restitution, lines 18-20: W <- e^2 W per contact (Stronge, eq 4.1: the user gives the
+ * coefficient of restitution e; the printed "W <- eps W" scales energy, so eps = e^2). */
+void lsdem_etm_restitute(lsdem_etm *s);
+/* Separation phase, lines 21-33: each increment from eq 4.30 with u_n taken >= 0 (a
+ * contact still approaching would get the elastic reversal -u_n -> u_n on top of its
+ * share, and such reversals of a group applied together add up on a shared body far
+ * beyond the energy stored); an approaching contact is left to the next round. */
+lsdem_status lsdem_etm_separate(lsdem_etm *s, lsdem_error *err);
+/* Elastic energy stored at the contacts now. */
+double lsdem_etm_stored_energy(const lsdem_etm *s);
+/* Progress so far (converged set when nothing approaches and nothing is stored). */
+void lsdem_etm_report(const lsdem_etm *s, lsdem_etm_result *res);
+
+/* ----------------------------------------------------------- integration ---- */
+
+/* Velocity change from external forces over dt (eqs 4.37, 4.39 with Delta v = f dt/m,
+ * Delta omega = I^-1 tau dt): force and torque world frame, torque about the centre of
+ * mass. No effect on a wall. */
+void lsdem_impulse_kick(lsdem_impulse_body *b, const double force[3],
+                        const double torque[3], double dt);
+/* Global damping (eqs 4.44-4.45): v, omega *= (1 - xi dt); LSDEM_ERR_ARG unless
+ * 0 <= xi dt <= 1 (eq 4.46). */
+lsdem_status lsdem_impulse_damp(lsdem_impulse_body *b, double xi, double dt,
+                                lsdem_error *err);
+/* Positions and orientations (eqs 4.38, 4.40): x += v dt; q turns over dt with the
+ * torque-free motion of the angular momentum L = R I0 R^T omega, which is kept (the
+ * gyroscopic term of Euler's equations that eq 4.39 leaves out): by the angular velocity
+ * of L at mid-step (explicit midpoint, lsdem_quat_advance), energy kept to O(dt^2)
+ * without drift, exact for an isotropic body or a spin about a principal axis; omega
+ * becomes that of L at the new orientation. inertia: principal moments. */
+void lsdem_impulse_drift(double x[3], double q[4], double omega[3], const double v[3],
+                         const double inertia[3], double dt);
+/* The predicted pose of §4.4.1, x' = x + v dt and q' where lsdem_impulse_drift would
+ * take them, carrying the current v and omega (so that a manifold detected there has the
+ * current relative velocities). */
+void lsdem_impulse_predict_pose(const double x[3], const double q[4], const double v[3],
+                                const double omega[3], const double inertia[3], double dt,
+                                lsdem_pose *pose);
+
+/* ------------------------------------------------------- rigid boundaries ---- */
+
+/* Resting contact with a rigid wall (report §4.4.1): the grain's manifold against the
+ * wall is taken at its PREDICTED pose (lsdem_impulse_predict_pose; the wall's pose
+ * predicted alike, with its prescribed velocity), and the grain's current v and omega are
+ * corrected so that its deepest point no longer penetrates at the next step. */
+typedef struct {
+  double rest_speed; /* a contact is resting when the relative normal velocity at its
+                        deepest point is within +-rest_speed (velocity). A grain resting
+                        under gravity g approaches at about |g| dt each step, an impact
+                        at much more: lsdem_wall_params_default takes 2 |g| dt */
+  double depth_tol;  /* penetrations up to this depth count as none (length): a
+                        correction leaves the deepest point clear to first order, so
+                        without it second-order remainders would be corrected again and
+                        again. lsdem_wall_params_default takes 1 % of |g| dt^2, the depth
+                        gravity sinks a resting grain by in one step */
+  double mu;         /* grain-wall Coulomb friction */
+} lsdem_wall_params;
+
+void lsdem_wall_params_default(lsdem_wall_params *p, double gravity, double dt, double mu);
+
+typedef enum {
+  LSDEM_WALL_CLEAR = 0, /* no point penetrates deeper than depth_tol (predicted pose) */
+  LSDEM_WALL_RESTING,   /* resting contact: v and omega corrected */
+  LSDEM_WALL_COLLIDING, /* approaching faster than rest_speed: ETM's, not corrected */
+  LSDEM_WALL_SEPARATING /* leaving faster than rest_speed: not corrected */
+} lsdem_wall_contact_kind;
+
+/* The low-relative-velocity criterion: u_n < -rest_speed colliding, u_n > rest_speed
+ * separating, else resting. */
+lsdem_wall_contact_kind lsdem_wall_classify(double u_n, double rest_speed);
+
+typedef struct {
+  lsdem_wall_contact_kind kind;
+  int deepest;       /* manifold index of the deepest point, -1 for an empty manifold */
+  double depth;      /* its depth at the predicted pose */
+  double u_n;        /* relative normal velocity there before the correction */
+  double impulse[3]; /* the impulse given to the grain (0 unless resting); the wall's
+                        reaction, divided by dt, is the force on the wall */
+  int sliding;       /* resting: friction reached mu times the normal impulse */
+} lsdem_wall_result;
+
+/* The correction (Figure 4.5), for manifold m of the grain (A) against the wall (B) at
+ * the predicted pose, whose arms p - m->xa are taken about the predicted centroid:
+ *   1. the deepest point k (depth d, normal n, ties: the first) classifies the contact:
+ *      clear if d <= depth_tol, else lsdem_wall_classify of u_n = vrel_k . n; only a
+ *      resting one is corrected;
+ *   2. normal part: the overlaps give repulsive weights w_j = area_j d_j (a penalty
+ *      force per point, "the repulsive forces due to temporary grain-wall overlaps"), and
+ *      the grain receives the impulse lambda w_j n_j at every point p_j -- linear
+ *      lambda F, angular lambda sum (p_j - xa) x w_j n_j, so the angular correction comes
+ *      from the overlaps -- with lambda such that the deepest point's normal velocity
+ *      rises by d/dt: it is then clear of the wall at the next predicted pose, to first
+ *      order. (Should the overlaps' torque turn the deepest point towards the wall, so
+ *      that no positive lambda exists, the deepest point alone is pushed out.)
+ *   3. friction: at the overlaps' weighted centre c, with their mean normal, a tangential
+ *      impulse stops the slip there if it needs at most mu times the normal impulse of
+ *      step 2, else it is mu times that, against the slip (Coulomb, eqs 4.18-4.19).
+ * The caller repeats detection and correction until LSDEM_WALL_CLEAR or a cap (the
+ * report: 10). dt > 0. LSDEM_ERR_ARG for a wall grain or bad parameters. */
+lsdem_status lsdem_wall_correct(lsdem_impulse_body *grain, const lsdem_manifold *m,
+                                double dt, const lsdem_wall_params *p,
+                                lsdem_wall_result *res, lsdem_error *err);
+
+/* ------------------------------------------------------------ islands ---- */
+
+/* Contact islands (report §4.5) as connected components of the contact graph, by
+ * union-find with path halving and union by size. Walls are not graph vertices (a wall
+ * would join every grain touching it into one island): a pair naming a negative index
+ * (LSDEM_ISLAND_NONE) is skipped, its wall contact belongs to the grain's island.
+ * Labels are the smallest global id of each island: independent of the order of pairs
+ * and bodies, and comparable across ranks. */
+#define LSDEM_ISLAND_NONE (-1)
+
+/* parent and size hold n entries; label (n) receives each body's island label. pairs
+ * holds 2 npairs body indices (pairs[2k], pairs[2k+1]). Returns the number of islands. */
+int lsdem_islands_build(int n, const int64_t *id, int npairs, const int32_t *pairs,
+                        int32_t *parent, int32_t *size, int64_t *label);
+/* The root of i's island (with path halving). */
+int32_t lsdem_islands_find(int32_t *parent, int32_t i);
+/* One step of the cross-rank merge: body[k] (a local index) has a neighbour (a ghost's
+ * owner, or a ghost of ours on another rank) whose label is nlabel[k]. Every local island
+ * takes the smallest label among its own and those its members received; returns 1 if any
+ * label changed. Iterated with the exchange of labels between ranks until no rank
+ * changes, every island ends labelled by the smallest id of its global island. parent
+ * and label as left by lsdem_islands_build (or a previous merge). */
+int lsdem_islands_merge(int n, int32_t *parent, int64_t *label, int m, const int32_t *body,
+                        const int64_t *nlabel);
+/* Invariants: parent indices in range, no cycles other than roots, every body's label
+ * that of its root. LSDEM_ERR_ARG naming the first broken one. */
+lsdem_status lsdem_islands_validate(int n, const int32_t *parent, const int64_t *label,
+                                    lsdem_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* LSDEM_IMPULSE_H */
