@@ -16,6 +16,7 @@
 #include "comm.h"
 #include "error.h"
 #include "force.h"
+#include "lsdem_input.h"
 #include "memory.h"
 #include "neighbor.h"
 
@@ -112,8 +113,8 @@ void BondLsdemMembrane::settings(int narg, char **arg)
                "'bond_style lsdem/membrane [axis cx cy]'");
   axis[0] = axis[1] = 0.0;
   if (narg == 3) {
-    axis[0] = utils::numeric(FLERR, arg[1], false, lmp);
-    axis[1] = utils::numeric(FLERR, arg[2], false, lmp);
+    axis[0] = LsdemInput::number(FLERR, arg[1], "bond_style lsdem/membrane", "axis cx", lmp);
+    axis[1] = LsdemInput::number(FLERR, arg[2], "bond_style lsdem/membrane", "axis cy", lmp);
   }
 }
 
@@ -131,11 +132,11 @@ void BondLsdemMembrane::coeff(int narg, char **arg)
 
   int ilo, ihi;
   utils::bounds(FLERR, arg[0], 1, atom->nbondtypes, ilo, ihi, error);
-  double kn_one = utils::numeric(FLERR, arg[1], false, lmp);
-  double ks_one = utils::numeric(FLERR, arg[2], false, lmp);
-  double r0_one = utils::numeric(FLERR, arg[3], false, lmp);
-  double hoop = utils::numeric(FLERR, arg[4], false, lmp);
-  double axial = utils::numeric(FLERR, arg[5], false, lmp);
+  double kn_one = LsdemInput::number(FLERR, arg[1], "bond_coeff lsdem/membrane", "kn", lmp);
+  double ks_one = LsdemInput::number(FLERR, arg[2], "bond_coeff lsdem/membrane", "ks", lmp);
+  double r0_one = LsdemInput::number(FLERR, arg[3], "bond_coeff lsdem/membrane", "r0", lmp);
+  double hoop = LsdemInput::number(FLERR, arg[4], "bond_coeff lsdem/membrane", "hoop", lmp);
+  double axial = LsdemInput::number(FLERR, arg[5], "bond_coeff lsdem/membrane", "axial", lmp);
   if (kn_one < 0.0 || ks_one < 0.0)
     error->all(FLERR, "Bond lsdem/membrane: Knbb ({}) and Ksbb ({}) must be >= 0", kn_one,
                ks_one);

@@ -16,6 +16,7 @@
 #include "comm.h"
 #include "error.h"
 #include "input.h"
+#include "lsdem_input.h"
 #include "math_const.h"
 #include "update.h"
 #include "variable.h"
@@ -36,7 +37,7 @@ ComputeInertialLsdem::ComputeInertialLsdem(LAMMPS *lmp, int narg, char **arg) :
                "compute ID group inertial/lsdem RATE PRESSURE [warn LIMIT]");
   parse_input(rate, arg[3]);
   parse_input(pressure, arg[4]);
-  if (narg == 7) limit = utils::numeric(FLERR, arg[6], false, lmp);
+  if (narg == 7) limit = LsdemInput::number(FLERR, arg[6], "compute inertial/lsdem", "warn", lmp);
   scalar_flag = 1;
   extscalar = 0;
 }
@@ -48,7 +49,7 @@ void ComputeInertialLsdem::parse_input(Input &in, const char *s)
   in.value = 0.0;
   in.ivar = -1;
   if (utils::strmatch(s, "^v_")) in.var = s + 2;
-  else in.value = utils::numeric(FLERR, s, false, lmp);
+  else in.value = LsdemInput::number(FLERR, s, "compute inertial/lsdem", "RATE or PRESSURE", lmp);
 }
 
 /* ---------------------------------------------------------------------- */

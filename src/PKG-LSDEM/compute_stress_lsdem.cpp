@@ -18,6 +18,7 @@
 #include "fix_wall_lsdem.h"
 #include "force.h"
 #include "input.h"
+#include "lsdem_input.h"
 #include "math_const.h"
 #include "modify.h"
 #include "pair_lsdem.h"
@@ -42,7 +43,7 @@ ComputeStressLsdem::ComputeStressLsdem(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "Illegal compute stress/lsdem command: {}", usage);
   if (utils::strmatch(arg[4], "^v_")) volume_var = arg[4] + 2;
   else {
-    volume_value = utils::numeric(FLERR, arg[4], false, lmp);
+    volume_value = LsdemInput::number(FLERR, arg[4], "compute stress/lsdem", "volume", lmp);
     if (volume_value <= 0.0) error->all(FLERR, "compute stress/lsdem: volume must be > 0");
   }
   int iarg = 5;

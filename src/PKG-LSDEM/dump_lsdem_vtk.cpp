@@ -19,6 +19,7 @@
 #include "atom.h"
 #include "atom_vec_lsdem.h"
 #include "error.h"
+#include "lsdem_input.h"
 #include "update.h"
 
 #include <cerrno>
@@ -42,7 +43,7 @@ DumpLsdemVtk::DumpLsdemVtk(LAMMPS *lmp, int narg, char **arg) :
   for (int iarg = 5; iarg < narg; iarg += 2) {
     if (strcmp(arg[iarg], "spacing") != 0 || iarg + 1 >= narg)
       error->all(FLERR, "Illegal dump lsdem/vtk keyword {}: expected spacing S", arg[iarg]);
-    spacing_factor = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+    spacing_factor = LsdemInput::number(FLERR, arg[iarg + 1], "dump lsdem/vtk", "spacing", lmp);
     if (!(spacing_factor > 0.0))
       error->all(FLERR, "Dump lsdem/vtk spacing must be positive, got {}", arg[iarg + 1]);
   }

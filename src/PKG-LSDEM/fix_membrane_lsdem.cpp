@@ -22,6 +22,7 @@
 #include "force.h"
 #include "group.h"
 #include "input.h"
+#include "lsdem_input.h"
 #include "memory.h"
 #include "modify.h"
 #include "neighbor.h"
@@ -69,13 +70,13 @@ FixMembraneLsdem::FixMembraneLsdem(LAMMPS *lmp, int narg, char **arg) :
   comm_reverse = 4;
 
   if (utils::strmatch(arg[4], "^v_")) pstr = arg[4] + 2;
-  else pressure_value = utils::numeric(FLERR, arg[4], false, lmp);
+  else pressure_value = LsdemInput::number(FLERR, arg[4], "fix membrane/lsdem", "pressure", lmp);
   file = arg[6];
   weight[0] = weight[1] = -1.0;
   for (int iarg = 7; iarg < narg;) {
     if (strcmp(arg[iarg], "weights") == 0 && iarg + 2 < narg) {
-      weight[0] = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      weight[1] = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      weight[0] = LsdemInput::number(FLERR, arg[iarg + 1], "fix membrane/lsdem", "weights", lmp);
+      weight[1] = LsdemInput::number(FLERR, arg[iarg + 2], "fix membrane/lsdem", "weights", lmp);
       if (weight[0] < 0.0 || weight[1] < 0.0)
         error->all(FLERR, "fix membrane/lsdem: weights must be >= 0");
       iarg += 3;
@@ -85,7 +86,7 @@ FixMembraneLsdem::FixMembraneLsdem(LAMMPS *lmp, int narg, char **arg) :
       else error->all(FLERR, "fix membrane/lsdem: surface must be centres or specimen");
       iarg += 2;
     } else if (strcmp(arg[iarg], "knb") == 0 && iarg + 1 < narg) {
-      knb = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      knb = LsdemInput::number(FLERR, arg[iarg + 1], "fix membrane/lsdem", "knb", lmp);
       if (knb <= 0.0) error->all(FLERR, "fix membrane/lsdem: knb ({}) must be > 0", knb);
       iarg += 2;
     } else error->all(FLERR, "Illegal fix membrane/lsdem keyword {}: {}", arg[iarg], usage);

@@ -19,6 +19,7 @@
 #include "comm.h"
 #include "error.h"
 #include "force.h"
+#include "lsdem_input.h"
 #include "pair.h"
 #include "update.h"
 
@@ -41,7 +42,7 @@ FixNVELsdem::FixNVELsdem(LAMMPS *lmp, int narg, char **arg) :
     if (strcmp(arg[iarg], "damping") == 0) {
       if (iarg + 2 > narg)
         error->all(FLERR, "Illegal fix nve/lsdem command: damping needs a value");
-      xi = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      xi = LsdemInput::number(FLERR, arg[iarg + 1], "fix nve/lsdem", "damping", lmp);
       if (xi < 0.0) error->all(FLERR, "Illegal fix nve/lsdem command: damping {} < 0", xi);
       iarg += 2;
     } else error->all(FLERR, "Illegal fix nve/lsdem command: unknown keyword {}", arg[iarg]);

@@ -18,6 +18,7 @@
 #include "error.h"
 #include "fix_lsdem_history.h"
 #include "input.h"
+#include "lsdem_input.h"
 #include "math_const.h"
 #include "memory.h"
 #include "modify.h"
@@ -79,8 +80,9 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
     iarg = 7;
   } else error->all(FLERR, "fix wall/lsdem: unknown wall {} ({})", arg[3], usage);
   if (narg < iarg + 3) error->all(FLERR, "Illegal fix wall/lsdem command: {}", usage);
-  for (int k = 4; k < iarg; k++) geom[k - 4] = utils::numeric(FLERR, arg[k], false, lmp);
-  opts.read_stiffness(lmp, arg + iarg);
+  for (int k = 4; k < iarg; k++)
+    geom[k - 4] = LsdemInput::number(FLERR, arg[k], "fix wall/lsdem", "the wall geometry", lmp);
+  opts.read_stiffness(lmp, "fix wall/lsdem", arg + iarg);
   iarg += 3;
 
   while (iarg < narg) {
@@ -96,7 +98,7 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
       for (int d = 0; d < 3; d++) {
         const char *val_d = arg[iarg + 1 + d];
         if (utils::strmatch(val_d, "^v_")) vstr[d] = utils::strdup(val_d + 2);
-        else wpose.v[d] = utils::numeric(FLERR, val_d, false, lmp);
+        else wpose.v[d] = LsdemInput::number(FLERR, val_d, "fix wall/lsdem", "velocity", lmp);
         if (vstr[d] || wpose.v[d] != 0.0) moving = true;
       }
     } else if (key == "axis") {
@@ -148,11 +150,11 @@ int FixWallLsdem::parse_pivot(int iarg, int narg, char **arg)
   if (wallstyle != PLANE)
     error->all(FLERR, "fix wall/lsdem: keyword pivot is for plane walls only, not {}", arg[3]);
   pivot = true;
-  pivot_h = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-  pivot_inertia = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+  pivot_h = LsdemInput::number(FLERR, arg[iarg + 1], "fix wall/lsdem", "pivot h", lmp);
+  pivot_inertia = LsdemInput::number(FLERR, arg[iarg + 2], "fix wall/lsdem", "pivot I", lmp);
   int nval = 2;
   if (iarg + 3 < narg && utils::is_double(arg[iarg + 3])) {
-    pivot_damping = utils::numeric(FLERR, arg[iarg + 3], false, lmp);
+    pivot_damping = LsdemInput::number(FLERR, arg[iarg + 3], "fix wall/lsdem", "pivot c", lmp);
     nval = 3;
   }
   if (pivot_h < 0.0)

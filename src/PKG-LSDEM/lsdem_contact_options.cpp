@@ -9,6 +9,7 @@
 #include "atom_vec_lsdem.h"
 #include "error.h"
 #include "lammps.h"
+#include "lsdem_input.h"
 #include "utils.h"
 
 #include <algorithm>
@@ -25,11 +26,11 @@ LsdemContactOptions::LsdemContactOptions() : stride(1), nodelist(-1.0)
 
 /* ---------------------------------------------------------------------- */
 
-void LsdemContactOptions::read_stiffness(LAMMPS *lmp, char **arg)
+void LsdemContactOptions::read_stiffness(LAMMPS *lmp, const char *who, char **arg)
 {
-  law.kn = utils::numeric(FLERR, arg[0], false, lmp);
-  law.ks = utils::numeric(FLERR, arg[1], false, lmp);
-  law.mu = utils::numeric(FLERR, arg[2], false, lmp);
+  law.kn = LsdemInput::number(FLERR, arg[0], who, "kn", lmp);
+  law.ks = LsdemInput::number(FLERR, arg[1], who, "ks", lmp);
+  law.mu = LsdemInput::number(FLERR, arg[2], who, "mu", lmp);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -39,9 +40,9 @@ bool LsdemContactOptions::read_keyword(LAMMPS *lmp, const char *who, const std::
 {
   const std::string val = value;
   if ((accept & DAMPING) && key == "cn") {
-    law.cn = utils::numeric(FLERR, value, false, lmp);
+    law.cn = LsdemInput::number(FLERR, value, who, "cn", lmp);
   } else if ((accept & DAMPING) && key == "ct") {
-    law.ct = utils::numeric(FLERR, value, false, lmp);
+    law.ct = LsdemInput::number(FLERR, value, who, "ct", lmp);
   } else if ((accept & NORMAL) && key == "normal") {
     if (val == "node") law.normal = LSDEM_NORMAL_PER_NODE;
     else if (val == "traction") law.normal = LSDEM_NORMAL_TRACTION;
@@ -53,7 +54,8 @@ bool LsdemContactOptions::read_keyword(LAMMPS *lmp, const char *who, const std::
     if (val == "auto") nodelist = -1.0;
     else if (val == "off") nodelist = 0.0;
     else {
-      nodelist = utils::is_double(value) ? utils::numeric(FLERR, value, false, lmp) : 0.0;
+      nodelist = utils::is_double(value) ? LsdemInput::number(FLERR, value, who, "nodelist", lmp)
+                                         : 0.0;
       if (!(nodelist > 0.0))
         lmp->error->all(FLERR, "nodelist must be auto, off or a skin length > 0, not {}", val);
     }

@@ -30,8 +30,8 @@ class LsdemContactOptions {
   double nodelist;  // node-list setting: -1 auto, 0 off, > 0 skin length
 
   LsdemContactOptions();  // kn = 0 (to be read), per-node law, stride 1, nodelist auto
-  // kn ks mu from three arguments
-  void read_stiffness(class LAMMPS *, char **arg);
+  // kn ks mu from three arguments (finite numbers; `who` names the command in errors)
+  void read_stiffness(class LAMMPS *, const char *who, char **arg);
   // key and its value when key is one of the groups in accept (cn, ct: DAMPING; normal:
   // NORMAL; stride, nodelist: DETECT); false when it is not
   bool read_keyword(class LAMMPS *, const char *who, const std::string &key, const char *value,

@@ -140,7 +140,7 @@ void PairLsdem::coeff(int narg, char **arg)
   utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
 
   LsdemContactOptions c;
-  c.read_stiffness(lmp, arg + 2);
+  c.read_stiffness(lmp, "pair_coeff for lsdem", arg + 2);
   for (int iarg = 5; iarg < narg; iarg += 2)
     if (!c.read_keyword(lmp, "pair_coeff for lsdem", arg[iarg], arg[iarg + 1],
                         LsdemContactOptions::DAMPING))

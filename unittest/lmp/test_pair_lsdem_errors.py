@@ -1,5 +1,6 @@
 """pair_style lsdem, fix wall/lsdem, compute contact/lsdem: wrong setups stop with a
-message that says what to add or fix. And an error raised on one rank by LAMMPS itself
+message that says what to add or fix; a number too large for a double (1e400, read as inf)
+in any numeric argument of the styles is refused naming the style and the keyword. And an error raised on one rank by LAMMPS itself
 (error->one, which ends in MPI_Abort) still reaches the log file, with the log lines before
 it (src/PKG-LSDEM/abort_flush.cpp)."""
 import os
@@ -39,6 +40,40 @@ CASES = [
      "compute c all contact/lsdem\ndump d all custom 1 d.dump id c_c\nrun 0\n",
      "requires pair_style lsdem"),
 ]
+# a number too large for a double (read as inf) is refused by name, in every numeric
+# argument of every style (#22.6); BIG is 1e400
+BIG = "1e400"
+pair = "pair_style lsdem\npair_coeff * * 1 1 0\n"
+NONFINITE = [
+    ("kn", pair.replace("* * 1 1 0", "* * %s 1e4 0.5" % BIG), "pair_coeff for lsdem: kn = 1e400"),
+    ("ks", pair.replace("* * 1 1 0", "* * 1 %s 0.5" % BIG), "pair_coeff for lsdem: ks = 1e400"),
+    ("mu", pair.replace("* * 1 1 0", "* * 1 1 %s" % BIG), "pair_coeff for lsdem: mu = 1e400"),
+    ("cn", pair.replace("* * 1 1 0", "* * 1 1 0 cn %s" % BIG), "pair_coeff for lsdem: cn = 1e400"),
+    ("ct", pair.replace("* * 1 1 0", "* * 1 1 0 ct %s" % BIG), "pair_coeff for lsdem: ct = 1e400"),
+    ("nodelist", "pair_style lsdem nodelist %s\n" % BIG, "pair_style lsdem: nodelist = 1e400"),
+    ("wallkn", "fix w all wall/lsdem plane 0 0 0 0 0 1 %s 1 0\n" % BIG, "fix wall/lsdem: kn = 1e400"),
+    ("wallgeom", "fix w all wall/lsdem plane 0 0 %s 0 0 1 1 1 0\n" % BIG,
+     "fix wall/lsdem: the wall geometry = 1e400"),
+    ("wallvel", "fix w all wall/lsdem plane 0 0 0 0 0 1 1 1 0 velocity 0 0 %s\n" % BIG,
+     "fix wall/lsdem: velocity = 1e400"),
+    ("wallcn", "fix w all wall/lsdem plane 0 0 0 0 0 1 1 1 0 cn %s\n" % BIG,
+     "fix wall/lsdem: cn = 1e400"),
+    ("pivot", "fix w all wall/lsdem plane 0 0 0 0 0 1 1 1 0 pivot 1 %s\n" % BIG,
+     "fix wall/lsdem: pivot I = 1e400"),
+    ("damping", "fix n all nve/lsdem damping %s\n" % BIG, "fix nve/lsdem: damping = 1e400"),
+    ("stress", "compute s all stress/lsdem volume %s\n" % BIG,
+     "compute stress/lsdem: volume = 1e400"),
+    ("inertial", "compute s all inertial/lsdem %s 1.0\n" % BIG,
+     "compute inertial/lsdem: RATE or PRESSURE = 1e400"),
+    ("vtk", "dump d all lsdem/vtk 10 vtk spacing %s\n" % BIG, "dump lsdem/vtk: spacing = 1e400"),
+    ("membrane", "fix m all membrane/lsdem pressure %s triangles none\n" % BIG,
+     "fix membrane/lsdem: pressure = 1e400"),
+    ("knb", "fix m all membrane/lsdem pressure 1 triangles none knb %s\n" % BIG,
+     "fix membrane/lsdem: knb = 1e400"),
+]
+for name, lines, expect in NONFINITE:
+    CASES.append(("inf_" + name, good + lines, expect + " is not a finite number"))
+
 for name, deck, expect in CASES:
     rc, log = run_lmp(deck, cwd=os.path.abspath(name), expect_fail=True)
     check(rc != 0 and expect in log, "%s: expected an error containing %r, got rc %d:\n%s"
