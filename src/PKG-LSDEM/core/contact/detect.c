@@ -333,9 +333,78 @@ static int sphere_point(double radius, const double n[3], double d, const lsdem_
   return 1;
 }
 
+/* The distance from a point c outside B's grid box (B's frame) to B's solid, where the
+ * grid's outside rule gives only an upper bound, phi(q) + |c - q| at q = clamp(c), and a
+ * direction that is not the normal (lsdem_grid_eval). The distance is the least value of
+ * f(q) = |c - q| + phi_B(q) over the box (triangle inequality: equal where q lies on the
+ * segment from c to its closest surface point, phi being a distance inside the box),
+ * reached on the box's boundary. It is found by projected descent from clamp(c),
+ * q <- clamp(q - a grad f), grad f = (q - c)/|q - c| + grad phi_B(q): a step is kept only
+ * when f decreases, and halved otherwise; on a face squarely below c the first point is
+ * already the minimum. Returns the distance, the normal in n (from the minimising q
+ * towards c: the line to c's closest surface point, which the grid's interpolated
+ * gradient at q follows only to about h over the distance from an edge) and the lookups
+ * made in *lookups. */
+enum { OUTSIDE_LOOKUPS = 32 };
+
+/* p clamped into the box, a millionth of a spacing inside its faces (where lookups
+ * interpolate, with the gradient of the cell) */
+static void clamp_to_box(const lsdem_grid *gr, const double p[3], double q[3])
+{
+  const double inset = 1e-6 * gr->h;
+  for (int a = 0; a < 3; a++) {
+    const double lo = gr->origin[a] + inset, hi = gr->origin[a] + gr->h * (gr->n[a] - 1) - inset;
+    q[a] = fmin(fmax(p[a], lo), hi);
+  }
+}
+
+/* f(q) and its gradient (unprojected) */
+static double outside_f(const lsdem_sdf *sdf, const double c[3], const double q[3],
+                        double g[3], double grad_f[3])
+{
+  double d[3];
+  lsdem_sub3(q, c, d);
+  const double len = sqrt(lsdem_dot3(d, d)), phi = lsdem_sdf_eval(sdf, q, g);
+  for (int a = 0; a < 3; a++) grad_f[a] = (len > 0.0 ? d[a] / len : 0.0) + g[a];
+  return len + phi;
+}
+
+static double outside_distance(const lsdem_sdf *sdf, const double c[3], double n[3],
+                               int *lookups)
+{
+  const lsdem_grid *gr = &sdf->grid;
+  double q[3], gf[3], g[3];
+  clamp_to_box(gr, c, q);
+  double d0[3];
+  lsdem_sub3(q, c, d0);
+  double best = outside_f(sdf, c, q, g, gf), step = sqrt(lsdem_dot3(d0, d0));
+  *lookups = 1;
+  while (*lookups < OUTSIDE_LOOKUPS && step > 1e-6 * gr->h) {
+    double p[3], t[3], tf[3], moved = 0.0;
+    for (int a = 0; a < 3; a++) p[a] = q[a] - step * gf[a];
+    clamp_to_box(gr, p, t);
+    for (int a = 0; a < 3; a++) moved += (t[a] - q[a]) * (t[a] - q[a]);
+    if (moved < 1e-24 * gr->h * gr->h) break; /* the projected gradient vanishes */
+    const double f = outside_f(sdf, c, t, g, tf);
+    ++*lookups;
+    if (f < best) {
+      best = f;
+      memcpy(q, t, sizeof q);
+      memcpy(gf, tf, sizeof gf);
+    } else {
+      step *= 0.5;
+    }
+  }
+  lsdem_sub3(c, q, n);
+  const double len = sqrt(lsdem_dot3(n, n));
+  for (int a = 0; a < 3; a++) n[a] /= len; /* c lies outside the box: len > 0 */
+  return best;
+}
+
 /* Sphere A (centre pa->x) against any shape B with ONE level-set lookup of the sphere
  * centre in B's frame (report §2.3.5): depth d = radius - phi_B(centre), normal = B's
- * gradient there. */
+ * gradient there; for a centre outside B's grid, its distance found by descent over the
+ * grid's box (outside_distance). */
 static int detect_sphere_shape(double radius, const lsdem_pose *pa, const lsdem_shape *B,
                                const lsdem_pose *pb, lsdem_manifold *m)
 {
@@ -350,7 +419,12 @@ static int detect_sphere_shape(double radius, const lsdem_pose *pa, const lsdem_
   m->ntested = 1;
   double q[3], g[3], n[3];
   lsdem_matT_vec(pb->R, dx, q);
-  const double d = radius - lsdem_sdf_eval(&B->sdf, q, g);
+  double d;
+  if (B->sdf.kind == LSDEM_SDF_GRID && !B->sdf.inverted &&
+      !lsdem_grid_box_contains(&B->sdf.grid, q))
+    d = radius - outside_distance(&B->sdf, q, g, &m->ntested);
+  else
+    d = radius - lsdem_sdf_eval(&B->sdf, q, g);
   if (!(d > 0.0)) return 0;
   lsdem_mat_vec(pb->R, g, n);
   return sphere_point(radius, n, d, pa, &pm, m);

@@ -177,6 +177,15 @@ void lsdem_grid_eval_many(const lsdem_grid *g, int n, const double *p, double *p
   for (int m = 0; m < n; m++) phi[m] = grid_eval(g, inv_h, &p[3 * m], &grad[3 * m]);
 }
 
+int lsdem_grid_box_contains(const lsdem_grid *g, const double p[3])
+{
+  for (int a = 0; a < 3; a++) {
+    const double u = (p[a] - g->origin[a]) / g->h;
+    if (!(u >= 0.0 && u <= (double)(g->n[a] - 1))) return 0;
+  }
+  return 1;
+}
+
 double lsdem_grid_value(const lsdem_grid *g, const double p[3])
 {
   double u[3];

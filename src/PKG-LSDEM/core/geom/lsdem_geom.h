@@ -29,8 +29,13 @@ typedef struct {
  * trilinear gradient vanishes).
  * Outside the grid box: returns phi(clamp(p)) + |p - clamp(p)| with grad = the unit
  * vector from clamp(p) towards p. Grids carry a positive margin, so such points are
- * never inside the solid. */
+ * never inside the solid. This outside value is an UPPER bound of the distance to the
+ * solid (triangle inequality), exact only along the box's face normals, and its
+ * gradient is not the surface normal: a sphere whose centre lies outside the box is
+ * detected from its surface instead (contact/detect.c). */
 double lsdem_grid_eval(const lsdem_grid *g, const double p[3], double grad[3]);
+/* Whether p lies in the grid's box (where lsdem_grid_eval interpolates). */
+int lsdem_grid_box_contains(const lsdem_grid *g, const double p[3]);
 /* lsdem_grid_eval of n points p[3m..3m+2] into phi[m], grad[3m..3m+2] (bit-identical
  * results), done back to back so that their cache misses overlap. */
 void lsdem_grid_eval_many(const lsdem_grid *g, int n, const double *p, double *phi,
