@@ -109,6 +109,52 @@ def detrend(grey, t, step):
     return (grey - trend).astype(np.float32), float(np.abs(b).sum())
 
 
+def merge_oversplit(labels, dist, ratio):
+    """Join neighbouring regions whose common boundary is no neck: where the distance on
+    the boundary (its saddle) reaches `ratio` times the smaller of the two regions' largest
+    distances, the two are one grain split at a shallow dip of an elongated or bumpy
+    grain's distance map; at a contact between two grains the saddle is far lower. A
+    relative test, so it treats small and large grains alike, where h is absolute.
+    Returns the labels and the number of joins."""
+    n = int(labels.max())
+    if n < 2 or ratio >= 1.0:
+        return labels, 0
+    peak = np.zeros(n + 1)
+    peak[1:] = ndi.maximum(dist, labels, index=np.arange(1, n + 1))
+    keys, vals = [], []
+    for ax in range(3):
+        a, b = np.moveaxis(labels, ax, 0), np.moveaxis(dist, ax, 0)
+        la, lb = a[:-1].ravel(), a[1:].ravel()
+        m = (la > 0) & (lb > 0) & (la != lb)
+        lo, hi = np.minimum(la[m], lb[m]).astype(np.int64), np.maximum(la[m], lb[m])
+        keys.append(lo * (n + 1) + hi)
+        vals.append(np.minimum(b[:-1].ravel()[m], b[1:].ravel()[m]))
+    keys, vals = np.concatenate(keys), np.concatenate(vals)
+    if keys.size == 0:
+        return labels, 0
+    order = np.lexsort((vals, keys))  # per pair, the largest boundary distance comes last
+    keys, vals = keys[order], vals[order]
+    last = np.r_[keys[1:] != keys[:-1], True]
+    pa, pb, saddle = keys[last] // (n + 1), keys[last] % (n + 1), vals[last]
+    parent = np.arange(n + 1)
+
+    def root(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    joins = 0
+    for a, b, s_ab in zip(pa, pb, saddle):
+        if s_ab >= ratio * min(peak[a], peak[b]):
+            ra, rb = root(a), root(b)
+            if ra != rb:
+                parent[max(ra, rb)] = min(ra, rb)
+                joins += 1
+    roots = np.array([root(i) for i in range(n + 1)])
+    return roots[labels], joins
+
+
 def merge_fragments(labels, min_voxels):
     """Labels below min_voxels join the neighbour they share most faces with; fragments that
     touch no other label are dropped. Returns the relabelled volume (1..n), merged, dropped."""
@@ -165,6 +211,10 @@ def segment(grey, args, say):
     say("markers (h-maxima, h = %g voxels): %d" % (args.h, nmark))
     labels = segmentation.watershed(-dist, markers, mask=solid)
     say("watershed: %d regions" % labels.max())
+    labels, joins = merge_oversplit(labels, dist, args.merge_ratio)
+    info["joined"] = joins
+    say("regions joined across saddles above %g of their peak distance: %d"
+        % (args.merge_ratio, joins))
     labels, merged, dropped = merge_fragments(labels, args.min_voxels)
     info.update(markers=nmark, merged=merged, dropped=dropped, grains=int(labels.max()))
     say("fragments below %d voxels: %d merged into a neighbour, %d dropped; %d grains"
@@ -194,6 +244,9 @@ def parse(argv):
     p.add_argument("--dark-grains", action="store_true", help="grains are darker than pores")
     p.add_argument("--sigma", type=float, default=1.0, help="Gaussian smoothing, voxels (1)")
     p.add_argument("--h", type=float, default=0.5, help="h-maxima height, voxels (0.5)")
+    p.add_argument("--merge-ratio", type=float, default=0.9,
+                   help="join regions whose saddle reaches this share of their peak distance "
+                        "(0.9; 1 joins none)")
     p.add_argument("--min-voxels", type=int, default=100, help="smallest grain, voxels (100)")
     p.add_argument("--labels", help="keep the labels: raw uint32 or .tif")
     p.add_argument("--quiet", action="store_true", help="no progress lines")
