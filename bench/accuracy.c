@@ -101,10 +101,12 @@ static result measure(const lsdem_shape *s, double delta, uint64_t seed)
 {
   lsdem_contact_params prm;
   memset(&prm, 0, sizeof prm);
-  prm.kn = 1.0;
+  prm.law.kn = 1.0;
+  prm.law.normal = LSDEM_NORMAL_TRACTION;
+  prm.detect.node_stride = 1;
   prm.dt = 1.0;
-  prm.node_stride = 1;
-  prm.law = LSDEM_NORMAL_TRACTION;
+  lsdem_contact_point *points = malloc((size_t)lsdem_manifold_capacity(s) * sizeof *points);
+  lsdem_manifold m = lsdem_manifold_over(points, lsdem_manifold_capacity(s));
   const double d = 2.0 - delta, exact = exact_force(1.0, d);
   result out = {exact, surface_offset(s), 0.0, 0.0, 0.0, 0.0, s->nnodes};
   lsdem_pose pa, pb;
@@ -119,7 +121,7 @@ static result measure(const lsdem_shape *s, double delta, uint64_t seed)
     random_rotation(&seed, pa.R);
     random_rotation(&seed, pb.R);
     for (int i = 0; i < 3; i++) pa.x[i] = d * e[i];
-    lsdem_contact_nodes(s, &pa, s, &pb, &prm, 1, NULL, 0, NULL, NULL, &res);
+    lsdem_contact_penalty(s, &pa, s, &pb, &prm, 1, NULL, NULL, &m, &res);
     const double fe = res.force[0] * e[0] + res.force[1] * e[1] + res.force[2] * e[2];
     double side2 = 0.0, f2 = 0.0;
     for (int i = 0; i < 3; i++) {
@@ -141,11 +143,12 @@ static result measure(const lsdem_shape *s, double delta, uint64_t seed)
     double t1;
     do {
       for (int k = 0; k < 64; k++)
-        lsdem_contact_nodes(s, &pa, s, &pb, &prm, 1, NULL, 0, NULL, NULL, &res);
+        lsdem_contact_penalty(s, &pa, s, &pb, &prm, 1, NULL, NULL, &m, &res);
       calls += 64;
     } while ((t1 = now_seconds()) - t0 < 0.02);
     out.ns_per_test = fmin(out.ns_per_test, 1e9 * (t1 - t0) / (double)calls);
   }
+  free(points);
   return out;
 }
 

@@ -23,6 +23,8 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <utility>
+#include <vector>
 
 using namespace LAMMPS_NS;
 
@@ -41,12 +43,6 @@ AtomVecLsdem::Storage &storage_for(const Atom *a)
   return registry[a];  // value-initialised (all null) on first use
 }
 
-// radius of the sphere with the same volume
-double equivalent_radius(double volume)
-{
-  return std::cbrt(3.0 * volume / (4.0 * M_PI));
-}
-
 // Line-buffered from now on (glibc: setvbuf with no buffer only sets the mode, also on a
 // stream already written to).
 void line_buffered(FILE *f)
@@ -60,12 +56,54 @@ void line_buffered(FILE *f)
 // file): the log and screen line-buffered, since an error->one on another rank kills rank 0
 // at once through MPI_Abort and rank 0's buffered lines were lost with it (this also lets a
 // long run's progress be followed, tail -f); and a rank with neither (ranks > 0 under
-// -screen none) sends its aborting errors to stderr.
+// -screen none) sends its aborting errors to stderr; the ranks mpirun then terminates flush
+// their streams (dumps with flush no).
 void keep_output_on_abort(LAMMPS *lmp)
 {
   line_buffered(lmp->logfile);
   line_buffered(lmp->screen);
   lsdem_note_error_output(lmp->screen || lmp->logfile);
+  lsdem_flush_on_terminate();
+}
+
+// What follows the values that LAMMPS's data reader gave a line, to the end of that line
+// and without a '#' comment; nmore = how many it took after values[nvalues - 1] (image
+// flags). The reader (Atom::data_atoms, data_vels) cuts a section into values at any white
+// space, line ends included, ends each with a NUL written over the separator after it, and
+// counts the values of the first line of each chunk only; the rest of its buffer is as read,
+// each line ending in '\n' and the buffer in a NUL. So a line with a value too many leaves it
+// here, and one with a value too few took the first of the next line, whose others are here
+// (the line after that then crashes the reader). When the line end directly followed the
+// last value, the NUL replaced it and the whole next line is here.
+std::string text_after_values(char **values, int nvalues, int &nmore)
+{
+  const char *p = values[nvalues - 1] + strlen(values[nvalues - 1]) + 1;
+  nmore = 0;
+  for (;;) {  // values taken later end in a NUL, text not read yet in a separator
+    const char *word = p + strspn(p, " \t\r\f");
+    const size_t len = strcspn(word, " \t\n\r\f");
+    if (len == 0 || word[len] != '\0') break;
+    nmore++;
+    p = word + len + 1;
+  }
+  const std::string rest(p, strcspn(p, "\n"));
+  return rest.substr(0, rest.find('#'));
+}
+
+// Comm::rendezvous callback: the atom IDs sent to this rank (each ID goes to rank ID % nprocs);
+// those present more than once go to *ptr with their counts.
+int find_repeated_ids(int n, char *inbuf, int &flag, int *& /*proclist*/, char *& /*outbuf*/,
+                      void *ptr)
+{
+  tagint *ids = (tagint *) inbuf;
+  std::sort(ids, ids + n);
+  auto *repeated = static_cast<std::vector<std::pair<tagint, int>> *>(ptr);
+  for (int i = 0, j; i < n; i = j) {
+    for (j = i + 1; j < n && ids[j] == ids[i]; j++) {}
+    if (j - i > 1) repeated->emplace_back(ids[i], j - i);
+  }
+  flag = 0;  // nothing to send back
+  return 0;
 }
 
 // names accepted by compute property/atom, in property index order
@@ -169,9 +207,42 @@ void AtomVecLsdem::init()
     error->all(FLERR, "atom_style lsdem needs a 3d simulation (remove 'dimension {}')",
                domain->dimension);
   keep_output_on_abort(lmp);
+  stop_if_any_rank(lmp, FLERR, repeated_ids());
   std::string bad;
   for (int i = 0; i < atom->nlocal && bad.empty(); i++) bad = body_mismatch(i);
   stop_if_any_rank(lmp, FLERR, bad);
+}
+
+/* ----------------------------------------------------------------------
+   atom IDs held by more than one atom (LAMMPS's read_data only notices some: a largest ID
+   below the atom count), as a message naming those this rank found, or "": each ID is sorted
+   with its copies on rank ID % nprocs (one rendezvous of the local IDs)
+------------------------------------------------------------------------- */
+
+std::string AtomVecLsdem::repeated_ids() const
+{
+  if (!atom->tag_enable) return std::string();
+  const int nlocal = atom->nlocal;
+  std::vector<tagint> ids(atom->tag, atom->tag + nlocal);
+  std::vector<int> procs(nlocal);
+  for (int i = 0; i < nlocal; i++) procs[i] = (int) (ids[i] % comm->nprocs);
+  std::vector<std::pair<tagint, int>> repeated;
+  char *unused = nullptr;
+  comm->rendezvous(1, nlocal, (char *) ids.data(), sizeof(tagint), 0, procs.data(),
+                   find_repeated_ids, 0, unused, 0, &repeated);
+  bigint mine = repeated.size(), total;
+  MPI_Allreduce(&mine, &total, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (repeated.empty()) return std::string();
+  const size_t max_named = 10;
+  std::string list;
+  for (size_t k = 0; k < repeated.size() && k < max_named; k++)
+    list += fmt::format("{}{} ({} atoms)", k ? ", " : "", repeated[k].first, repeated[k].second);
+  if (total > (bigint) std::min(repeated.size(), max_named))
+    list += fmt::format(" and {} more", total - (bigint) std::min(repeated.size(), max_named));
+  return fmt::format("atom_style lsdem: {} atom ID{} given to more than one atom: {}; every "
+                     "grain needs its own ID (check the Atoms sections read, and the IDs "
+                     "that read_data add merge keeps)", total, total == 1 ? " is" : "s are",
+                     list);
 }
 
 /* ----------------------------------------------------------------------
@@ -221,8 +292,8 @@ void AtomVecLsdem::open_library(const char *path)
   // open reads no section (grids, nodes): rank 0 checks their checksums and values once
   std::string damaged;
   if (comm->me == 0 && lsdem_library_verify(lib, -1, &err) != LSDEM_OK)
-    damaged = fmt::format("atom_style lsdem: shape library {} is damaged: {} (lsdem-shape "
-                          "verify lists every bad shape)", path, err.msg);
+    damaged = fmt::format("atom_style lsdem: shape library {} is damaged or invalid: {} "
+                          "(lsdem-shape verify lists every bad shape)", path, err.msg);
   stop_if_any_rank(lmp, FLERR, damaged);
 
   maxradius = 0.0;
@@ -234,27 +305,7 @@ void AtomVecLsdem::open_library(const char *path)
   }
 }
 
-/* ----------------------------------------------------------------------
-   nodelist keyword of pair lsdem and fix wall/lsdem: auto | off | skin length
-------------------------------------------------------------------------- */
-
-double AtomVecLsdem::parse_node_skin(const char *val, LAMMPS *lmp)
-{
-  if (strcmp(val, "auto") == 0) return -1.0;
-  if (strcmp(val, "off") == 0) return 0.0;
-  double skin = utils::is_double(val) ? utils::numeric(FLERR, val, false, lmp) : 0.0;
-  if (!(skin > 0.0))
-    lmp->error->all(FLERR, "nodelist must be auto, off or a skin length > 0, not {}", val);
-  return skin;
-}
-
-void AtomVecLsdem::check_contact_law(const lsdem_contact_params &p, const char *who,
-                                     LAMMPS *lmp)
-{
-  if (!(p.kn > 0.0) || !(p.ks >= 0.0) || !(p.mu >= 0.0) || !(p.cn >= 0.0) || !(p.ct >= 0.0))
-    lmp->error->all(FLERR, "{}: need kn > 0 and ks, mu, cn, ct >= 0; got kn = {}, ks = {}, "
-                    "mu = {}, cn = {}, ct = {}", who, p.kn, p.ks, p.mu, p.cn, p.ct);
-}
+/* ---------------------------------------------------------------------- */
 
 void AtomVecLsdem::stop_if_any_rank(LAMMPS *lmp, const char *file, int line,
                                     const std::string &mesg)
@@ -274,12 +325,6 @@ void AtomVecLsdem::stop_if_any_rank(LAMMPS *lmp, const char *file, int line,
   // mpirun kill rank 0 before exit() would have flushed it.
   fflush(nullptr);
   lmp->error->all(file, line, text);
-}
-
-double AtomVecLsdem::node_skin(double setting) const
-{
-  if (setting >= 0.0) return setting;
-  return std::isfinite(min_grain_radius) ? NODE_SKIN_AUTO * min_grain_radius : 0.0;
 }
 
 /* ----------------------------------------------------------------------
@@ -323,15 +368,15 @@ void AtomVecLsdem::report_library()
   int ncoarse = 0;
   for (int s = 0; s < n; s++) {
     const lsdem_shape *sh = lsdem_library_shape(lib, s);
-    if (sh->sdf.kind != LSDEM_SDF_GRID) continue;
-    const double req = equivalent_radius(sh->volume);
-    if (sh->sdf.grid.h <= 0.1 * req * (1.0 + 1e-9)) continue;  // a tie is not coarse
+    if (sh->sdf.kind != LSDEM_SDF_GRID || !lsdem_grid_is_coarse(sh->sdf.grid.h, sh->volume))
+      continue;
     if (++ncoarse > max_named) continue;
     const char *name = lsdem_library_name(lib, s);
+    const double limit = lsdem_grid_spacing_limit(sh->volume);
     error->warning(FLERR, "atom_style lsdem: shape {} ({}) has grid spacing {:.6g}, "
                    "coarser than R/10 = {:.6g} (R = equivalent-volume radius {:.6g}); "
                    "contacts will be rough", s + 1, (name && name[0]) ? name : "unnamed",
-                   sh->sdf.grid.h, 0.1 * req, req);
+                   sh->sdf.grid.h, limit, 10.0 * limit);
   }
   if (ncoarse > max_named)
     error->warning(FLERR, "atom_style lsdem: {} more shapes have grid spacings coarser than "
@@ -365,6 +410,51 @@ void AtomVecLsdem::create_atom_post(int ilocal)
   radius[ilocal] = sh->radius;
   rmass[ilocal] = sh->volume;
   for (int k = 0; k < 3; k++) inertia[ilocal][k] = sh->inertia[k];
+}
+
+/* ----------------------------------------------------------------------
+   the Atoms or Velocities line whose values LAMMPS has just cut (values[0..nvalues-1], after
+   nbefore others) has exactly as many as the section's first line: after them only blanks or
+   a comment, or (when its line end was overwritten) a whole next line of that many
+------------------------------------------------------------------------- */
+
+void AtomVecLsdem::check_data_line(char **values, int nvalues, int nbefore,
+                                   const char *section, const char *layout,
+                                   const std::string &id)
+{
+  int nmore;
+  const std::string rest = text_after_values(values, nvalues, nmore);
+  const int nwords = nbefore + nvalues + nmore;
+  const size_t nrest = utils::count_words(rest);
+  if (nrest == 0 || (int) nrest == nwords) return;
+  error->one(FLERR, "read_data: each {} line needs {} values ({}{}), but after the {} read "
+             "for atom {} comes '{}' ({} value{}) before a line end: the line of atom {}, or "
+             "this next line, has more or fewer values than {}", section, nwords, layout,
+             nmore ? " ix iy iz" : "", nwords, id, utils::trim(rest), nrest,
+             nrest == 1 ? "" : "s", id, nwords);
+}
+
+/* ----------------------------------------------------------------------
+   Atoms line: id type shape-ID density x y z qw qx qy qz [ix iy iz]; checked before
+   AtomVec::data_atom reads it
+------------------------------------------------------------------------- */
+
+void AtomVecLsdem::data_atom(double *coord, imageint image, char **values)
+{
+  check_data_line(values, size_data_atom, 0, "Atoms",
+                  "atom-ID atom-type shape-ID density x y z qw qx qy qz", values[0]);
+  AtomVec::data_atom(coord, image, values);
+}
+
+/* ----------------------------------------------------------------------
+   Velocities line: id vx vy vz wx wy wz (values: from vx on)
+------------------------------------------------------------------------- */
+
+void AtomVecLsdem::data_vel(int ilocal, char **values)
+{
+  check_data_line(values, size_data_vel - 1, 1, "Velocities", "atom-ID vx vy vz wx wy wz",
+                  std::to_string(atom->tag[ilocal]));
+  AtomVec::data_vel(ilocal, values);
 }
 
 /* ----------------------------------------------------------------------

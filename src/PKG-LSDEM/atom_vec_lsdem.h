@@ -40,7 +40,9 @@ class AtomVecLsdem : public AtomVec {
 
   void grow_pointers() override;
   void create_atom_post(int) override;
+  void data_atom(double *, imageint, char **) override;
   void data_atom_post(int) override;
+  void data_vel(int, char **) override;
   void pack_data_pre(int) override;
   void pack_data_post(int) override;
   void unpack_restart_init(int) override;
@@ -59,15 +61,9 @@ class AtomVecLsdem : public AtomVec {
   int nshapes() const { return lsdem_library_count(lib); }
   double max_shape_radius() const { return maxradius; }
 
-  // node lists of the contact styles (core: lsdem_contact_params.node_skin): the keyword
-  // value "auto", "off" or a skin length as a setting (-1, 0, length), and the skin a
-  // setting gives: auto = NODE_SKIN_AUTO x the smallest bounding radius of a grain shape
-  // (not a sphere: spheres have no nodes)
-  static constexpr double NODE_SKIN_AUTO = 0.02;
-  static double parse_node_skin(const char *, class LAMMPS *);
-  // the contact law of pair_coeff and fix wall/lsdem: kn > 0; ks, mu, cn, ct >= 0
-  static void check_contact_law(const lsdem_contact_params &, const char *who, class LAMMPS *);
-  double node_skin(double setting) const;
+  // smallest bounding radius of a shape with nodes (not a sphere), HUGE_VAL when none:
+  // the scale of the contact styles' automatic node-list skin (LsdemContactOptions)
+  double smallest_grain_radius() const { return min_grain_radius; }
   // An error that per-step code finds on some ranks, reported by all: every rank calls
   // this at the same point with its own message ("" when it found nothing). When any rank
   // has one, all stop through error->all with the message of the lowest such rank (and
@@ -90,6 +86,8 @@ class AtomVecLsdem : public AtomVec {
 
   void register_peratom(const char *, void *, int, int);
   std::string body_mismatch(int) const;
+  std::string repeated_ids() const;
+  void check_data_line(char **, int, int, const char *, const char *, const std::string &);
   void open_library(const char *);
   void report_library();
 };

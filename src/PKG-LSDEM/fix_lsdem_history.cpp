@@ -1,12 +1,13 @@
 // clang-format off
 /* ----------------------------------------------------------------------
-   LSDEM package for LAMMPS: per-node tangential contact history (internal fix).
+   LSDEM package for LAMMPS: the contact state of each grain's pairs (internal fix).
    See fix_lsdem_history.h for the usage pattern.
 ------------------------------------------------------------------------- */
 
 #include "fix_lsdem_history.h"
 
 #include "atom.h"
+#include "atom_vec_lsdem.h"
 #include "comm.h"
 #include "error.h"
 #include "memory.h"
@@ -17,26 +18,25 @@
 
 using namespace LAMMPS_NS;
 
-// doubles per packed entry: partner, node and pad_ (pad_ << 32 | node: the node lists'
-// entries use pad_), stamp, shear[3], normal[3]
-static constexpr int ENTRY_DOUBLES = 9;
+// doubles per packed record: partner, id and aux (aux << 32 | id), stamp, a[3], b[3]
+static constexpr int RECORD_DOUBLES = 9;
 
-static int64_t pack_node(const lsdem_node_hist &h)
+static int64_t pack_ids(const lsdem_state_record &r)
 {
-  return (int64_t) (((uint64_t) (uint32_t) h.pad_ << 32) | (uint32_t) h.node);
+  return (int64_t) (((uint64_t) (uint32_t) r.aux << 32) | (uint32_t) r.id);
 }
 
-static void unpack_node(int64_t v, lsdem_node_hist &h)
+static void unpack_ids(int64_t v, lsdem_state_record &r)
 {
-  h.node = (int32_t) (uint32_t) ((uint64_t) v & 0xffffffffu);
-  h.pad_ = (int32_t) (uint32_t) ((uint64_t) v >> 32);
+  r.id = (int32_t) (uint32_t) ((uint64_t) v & 0xffffffffu);
+  r.aux = (int32_t) (uint32_t) ((uint64_t) v >> 32);
 }
 
 /* ---------------------------------------------------------------------- */
 
 FixLsdemHistory::FixLsdemHistory(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), cur(0), nmax_atom(0), first(nullptr), nhist(nullptr), sfirst(nullptr),
-  nslice(nullptr), visited(nullptr), generation(0), atom_entry(0), atom_slice(0), maxcount(0)
+  Fix(lmp, narg, arg), cur(0), nmax_atom(0), sfirst(nullptr), nslice(nullptr),
+  visited(nullptr), generation(0), atom_slice(0), atom_records(0), maxrecords(0)
 {
   if (narg != 3) error->all(FLERR, "Illegal fix LSDEM_HISTORY command (internal fix)");
 
@@ -44,7 +44,12 @@ FixLsdemHistory::FixLsdemHistory(LAMMPS *lmp, int narg, char **arg) :
   create_attribute = 1;
   maxexchange_dynamic = 1;
   maxexchange = 1;
-  for (Pool &p : pool) p = {nullptr, 0, 0, nullptr, 0, 0};
+  for (Pool &p : pool) {
+    p.slot = nullptr;
+    p.ns = p.nslot = p.maxslot = 0;
+  }
+  static_assert(sizeof(Slot) == 64 && sizeof(lsdem_nodelist_head) <= HEAD_SLOTS * sizeof(Slot),
+                "a list head fits two slots");
 
   FixLsdemHistory::grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
@@ -57,12 +62,7 @@ FixLsdemHistory::~FixLsdemHistory()
 {
   atom->delete_callback(id, Atom::GROW);
   atom->delete_callback(id, Atom::RESTART);
-  for (Pool &p : pool) {
-    memory->sfree(p.entry);
-    memory->sfree(p.slice);
-  }
-  memory->destroy(first);
-  memory->destroy(nhist);
+  for (Pool &p : pool) memory->sfree(p.slot);
   memory->destroy(sfirst);
   memory->destroy(nslice);
   memory->destroy(visited);
@@ -76,36 +76,49 @@ int FixLsdemHistory::setmask()
 }
 
 /* ----------------------------------------------------------------------
-   room in pool p for n more entries and ns more slice headers (grows by doubling)
+   room in pool p for ns more slices and nslot more slots (grows by doubling; the step's
+   pointers into p are taken after this)
 ------------------------------------------------------------------------- */
 
-void FixLsdemHistory::pool_room(Pool &p, int n, int ns)
+void FixLsdemHistory::pool_room(Pool &p, int ns, int nslot)
 {
-  if (p.n + n > p.max) {
-    p.max = std::max(2 * p.max, p.n + n);
-    p.entry = (lsdem_node_hist *) memory->srealloc(p.entry, sizeof(lsdem_node_hist) * p.max,
-                                                   "lsdem/history:entries");
-  }
-  if (p.ns + ns > p.maxs) {
-    p.maxs = std::max({16, 2 * p.maxs, p.ns + ns});
-    p.slice = (Slice *) memory->srealloc(p.slice, sizeof(Slice) * p.maxs, "lsdem/history:slices");
+  const size_t need = (size_t) p.ns + (size_t) ns;
+  if (need > p.slice.size()) p.slice.resize(std::max({need, 2 * p.slice.size(), (size_t) 16}));
+  if (p.nslot + nslot > p.maxslot) {
+    p.maxslot = std::max(2 * p.maxslot, p.nslot + nslot);
+    p.slot = (Slot *) memory->srealloc(p.slot, sizeof(Slot) * p.maxslot, "lsdem/history:slots");
   }
 }
 
 /* ----------------------------------------------------------------------
-   slice of atom i's list against one partner (sorted by node), n entries
+   a stored pair's state as the kernel reads it: head and entries when it has a list,
+   the shear entries behind them
 ------------------------------------------------------------------------- */
 
-const lsdem_node_hist *FixLsdemHistory::find(int i, tagint ptag, int &n) const
+void FixLsdemHistory::slice_state(const Pool &p, const Slice &s, lsdem_pair_state &st)
 {
-  const Slice *s = pool[cur].slice + sfirst[i];
+  Slot *run = p.slot + s.first;
+  st.list.valid = s.list_valid;
+  st.list.head = reinterpret_cast<lsdem_nodelist_head *>(run);
+  st.list.entry = &run[HEAD_SLOTS].entry;
+  st.shear = &run[s.list_valid ? HEAD_SLOTS + s.nentry : 0].shear;
+  st.nshear = s.nshear;
+}
+
+/* ----------------------------------------------------------------------
+   the state of atom i against one partner; false when it keeps none
+------------------------------------------------------------------------- */
+
+bool FixLsdemHistory::find(int i, tagint ptag, lsdem_pair_state &in) const
+{
+  const Pool &p = pool[cur];
+  const Slice *s = p.slice.data() + sfirst[i];
   for (int k = 0; k < nslice[i]; k++)  // a few partners: a scan beats a binary search
     if (s[k].partner == ptag) {
-      n = s[k].n;
-      return pool[cur].entry + first[i] + s[k].start;
+      slice_state(p, s[k], in);
+      return true;
     }
-  n = 0;
-  return nullptr;
+  return false;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -113,7 +126,7 @@ const lsdem_node_hist *FixLsdemHistory::find(int i, tagint ptag, int &n) const
 void FixLsdemHistory::begin_step()
 {
   Pool &next = pool[1 - cur];
-  next.n = next.ns = 0;
+  next.ns = next.nslot = 0;
   generation = generation < INT_MAX ? generation + 1 : 1;  // wraps, never to 0 (new atoms)
 }
 
@@ -121,41 +134,72 @@ void FixLsdemHistory::begin_step()
 
 void FixLsdemHistory::begin_atom()
 {
-  atom_entry = pool[1 - cur].n;
   atom_slice = pool[1 - cur].ns;
+  atom_records = 0;
 }
 
 /* ----------------------------------------------------------------------
-   room for cap new entries after the committed ones
+   room in pool p for one more pair's state, a run of slots after the used ones (head,
+   list_cap entries, then the shear entries wherever place_shear puts them), and keeping
+   what was written there: a pair with a list or shear entries becomes the pool's next
+   slice; returns the records it takes (0: nothing kept)
 ------------------------------------------------------------------------- */
 
-lsdem_node_hist *FixLsdemHistory::reserve(int cap)
+lsdem_pair_state FixLsdemHistory::pair_room(Pool &p, int list_cap, int shear_cap)
 {
-  Pool &next = pool[1 - cur];
-  pool_room(next, cap, 1);
-  return next.entry + next.n;
+  pool_room(p, 1, HEAD_SLOTS + list_cap + shear_cap);
+  Slot *run = p.slot + p.nslot;
+  lsdem_pair_state st;
+  st.list.valid = 0;
+  st.list.head = reinterpret_cast<lsdem_nodelist_head *>(run);
+  st.list.entry = &run[HEAD_SLOTS].entry;
+  st.shear = &run[HEAD_SLOTS + list_cap].shear;  // until place_shear knows the list
+  st.nshear = 0;
+  return st;
 }
 
-/* ---------------------------------------------------------------------- */
-
-void FixLsdemHistory::commit(tagint ptag, int n)
+void FixLsdemHistory::place_shear(lsdem_pair_state &out)
 {
-  if (n <= 0) return;
-  Pool &next = pool[1 - cur];
-  pool_room(next, 0, 1);
-  next.slice[next.ns++] = {ptag, next.n - atom_entry, n};
-  next.n += n;
+  Slot *run = reinterpret_cast<Slot *>(out.list.head);
+  out.shear = &run[out.list.valid ? HEAD_SLOTS + out.list.head->count : 0].shear;
+}
+
+int FixLsdemHistory::keep_pair(Pool &p, tagint ptag, const lsdem_pair_state &st)
+{
+  if (!st.list.valid && st.nshear <= 0) return 0;
+  Slice &s = p.slice[p.ns++];
+  s.partner = ptag;
+  s.first = p.nslot;
+  s.list_valid = st.list.valid;
+  s.nentry = st.list.valid ? st.list.head->count : 0;
+  s.nshear = st.nshear;
+  p.nslot += (st.list.valid ? HEAD_SLOTS + s.nentry : 0) + st.nshear;
+  return (st.list.valid ? 2 + s.nentry : 0) + st.nshear;
 }
 
 /* ----------------------------------------------------------------------
-   atom i's list := the committed slices, headers ordered by partner tag
-   (each slice is already sorted by node: the kernel writes it that way)
+   room for a pair's new state after the committed ones, and keeping the state the
+   kernel wrote there
+------------------------------------------------------------------------- */
+
+lsdem_pair_state FixLsdemHistory::reserve(int list_cap, int shear_cap)
+{
+  return pair_room(pool[1 - cur], list_cap, shear_cap);
+}
+
+void FixLsdemHistory::commit(tagint ptag, const lsdem_pair_state &out)
+{
+  atom_records += keep_pair(pool[1 - cur], ptag, out);
+}
+
+/* ----------------------------------------------------------------------
+   atom i's state := the committed pairs, ordered by partner tag
 ------------------------------------------------------------------------- */
 
 void FixLsdemHistory::end_atom(int i)
 {
   Pool &next = pool[1 - cur];
-  Slice *s = next.slice + atom_slice;
+  Slice *s = next.slice.data() + atom_slice;
   const int ns = next.ns - atom_slice;
   for (int a = 1; a < ns; a++) {  // few partners per grain: insertion sort
     Slice t = s[a];
@@ -166,12 +210,10 @@ void FixLsdemHistory::end_atom(int i)
     }
     s[b + 1] = t;
   }
-  first[i] = atom_entry;
-  nhist[i] = next.n - atom_entry;
   sfirst[i] = atom_slice;
   nslice[i] = ns;
   visited[i] = generation;
-  note_count(nhist[i]);
+  note_records(atom_records);
 }
 
 /* ----------------------------------------------------------------------
@@ -183,19 +225,29 @@ void FixLsdemHistory::end_step()
 {
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++)
-    if (visited[i] != generation) nhist[i] = nslice[i] = 0;
+    if (visited[i] != generation) nslice[i] = 0;
   cur = 1 - cur;
 }
 
 /* ----------------------------------------------------------------------
-   the exchange buffer must hold the largest list; it only ever grows
+   records of atom i's state in the current pool; the exchange buffer must hold the
+   largest, and it only ever grows
 ------------------------------------------------------------------------- */
 
-void FixLsdemHistory::note_count(int n)
+int FixLsdemHistory::count_records(int i) const
 {
-  if (n <= maxcount) return;
-  maxcount = n;
-  maxexchange = 1 + ENTRY_DOUBLES * maxcount;
+  const Pool &p = pool[cur];
+  int n = 0;
+  for (int k = sfirst[i]; k < sfirst[i] + nslice[i]; k++)
+    n += (p.slice[k].list_valid ? 2 + p.slice[k].nentry : 0) + p.slice[k].nshear;
+  return n;
+}
+
+void FixLsdemHistory::note_records(int n)
+{
+  if (n <= maxrecords) return;
+  maxrecords = n;
+  maxexchange = 1 + RECORD_DOUBLES * maxrecords;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -203,24 +255,20 @@ void FixLsdemHistory::note_count(int n)
 void FixLsdemHistory::grow_arrays(int nmax)
 {
   if (nmax <= nmax_atom) return;
-  memory->grow(first, nmax, "lsdem/history:first");
-  memory->grow(nhist, nmax, "lsdem/history:nhist");
   memory->grow(sfirst, nmax, "lsdem/history:sfirst");
   memory->grow(nslice, nmax, "lsdem/history:nslice");
   memory->grow(visited, nmax, "lsdem/history:visited");
-  for (int i = nmax_atom; i < nmax; i++) first[i] = nhist[i] = sfirst[i] = nslice[i] = visited[i] = 0;
+  for (int i = nmax_atom; i < nmax; i++) sfirst[i] = nslice[i] = visited[i] = 0;
   nmax_atom = nmax;
 }
 
 /* ----------------------------------------------------------------------
-   atom j takes over atom i's list (its place in the pool: lists are never written in
+   atom j takes over atom i's state (its place in the pool: states are never written in
    place, so two atoms may share one until the next step rewrites the pool)
 ------------------------------------------------------------------------- */
 
 void FixLsdemHistory::copy_arrays(int i, int j, int /*delflag*/)
 {
-  first[j] = first[i];
-  nhist[j] = nhist[i];
   sfirst[j] = sfirst[i];
   nslice[j] = nslice[i];
   visited[j] = visited[i];
@@ -230,63 +278,79 @@ void FixLsdemHistory::copy_arrays(int i, int j, int /*delflag*/)
 
 void FixLsdemHistory::set_arrays(int i)
 {
-  nhist[i] = nslice[i] = 0;
+  nslice[i] = 0;
 }
 
 /* ----------------------------------------------------------------------
-   count, then per entry: partner, node/pad_, stamp, shear[3], normal[3]
+   count, then per record: partner, id/aux, stamp, a[3], b[3] (each pair's records
+   together, lsdem_pair_state_encode)
 ------------------------------------------------------------------------- */
 
-int FixLsdemHistory::pack_entries(int i, double *buf) const
+int FixLsdemHistory::pack_state(int i, double *buf)
 {
   int m = 0;
-  buf[m++] = ubuf(nhist[i]).d;
+  buf[m++] = ubuf(count_records(i)).d;
   const Pool &p = pool[cur];
-  for (int s = 0; s < nslice[i]; s++) {
-    const Slice &sl = p.slice[sfirst[i] + s];
-    for (int k = sl.start; k < sl.start + sl.n; k++) {
-      const lsdem_node_hist &h = p.entry[first[i] + k];
-      buf[m++] = ubuf(sl.partner).d;
-      buf[m++] = ubuf(pack_node(h)).d;
-      buf[m++] = ubuf((int64_t) h.stamp).d;
-      for (int d = 0; d < 3; d++) buf[m++] = h.shear[d];
-      for (int d = 0; d < 3; d++) buf[m++] = h.normal[d];
+  for (int k = 0; k < nslice[i]; k++) {
+    const Slice &s = p.slice[sfirst[i] + k];
+    lsdem_pair_state st;
+    slice_state(p, s, st);
+    records.resize(std::max(records.size(), (size_t) lsdem_pair_state_records(&st)));
+    const int n = lsdem_pair_state_encode(&st, records.data());
+    for (int r = 0; r < n; r++) {
+      const lsdem_state_record &rec = records[r];
+      buf[m++] = ubuf(s.partner).d;
+      buf[m++] = ubuf(pack_ids(rec)).d;
+      buf[m++] = ubuf((int64_t) rec.stamp).d;
+      for (int d = 0; d < 3; d++) buf[m++] = rec.a[d];
+      for (int d = 0; d < 3; d++) buf[m++] = rec.b[d];
     }
   }
   return m;
 }
 
 /* ----------------------------------------------------------------------
-   entries come grouped by partner: each run of one partner is a slice. They are
-   appended to the current pool (the next step rewrites it without the dropped ones).
+   records come grouped by partner: each run of one partner is one pair's state
+   (lsdem_pair_state_decode, against the nodes of atom i's shape). They are appended to
+   the current pool (the next step rewrites it without the dropped ones).
 ------------------------------------------------------------------------- */
 
-int FixLsdemHistory::unpack_entries(int i, const double *buf)
+int FixLsdemHistory::unpack_state(int i, const double *buf)
 {
   const int n = (int) ubuf(buf[0]).i;
-  int ns = 0;
-  for (int k = 0; k < n; k++)
-    if (k == 0 || ubuf(buf[1 + k * ENTRY_DOUBLES]).i != ubuf(buf[1 + (k - 1) * ENTRY_DOUBLES]).i)
-      ns++;
+  auto avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
+  if (!avec) error->one(FLERR, "Fix LSDEM_HISTORY requires atom_style lsdem");
+  const int nnodes = avec->shape_of(i)->nnodes;
   Pool &p = pool[cur];
-  pool_room(p, n, ns);
-  first[i] = p.n;
   sfirst[i] = p.ns;
+  nslice[i] = 0;
+  records.resize(std::max(records.size(), (size_t) n));
   int m = 1;
-  for (int k = 0; k < n; k++) {
-    lsdem_node_hist &h = p.entry[p.n + k];
-    const tagint ptag = (tagint) ubuf(buf[m++]).i;
-    if (p.ns == sfirst[i] || p.slice[p.ns - 1].partner != ptag) p.slice[p.ns++] = {ptag, k, 0};
-    p.slice[p.ns - 1].n++;
-    unpack_node(ubuf(buf[m++]).i, h);
-    h.stamp = (int64_t) ubuf(buf[m++]).i;
-    for (int d = 0; d < 3; d++) h.shear[d] = buf[m++];
-    for (int d = 0; d < 3; d++) h.normal[d] = buf[m++];
+  for (int k = 0; k < n;) {
+    const tagint ptag = (tagint) ubuf(buf[m]).i;
+    int len = 0;  // this partner's run of records
+    while (k + len < n && (tagint) ubuf(buf[m + RECORD_DOUBLES * len]).i == ptag) {
+      lsdem_state_record &rec = records[len];
+      const double *r = &buf[m + RECORD_DOUBLES * len];
+      unpack_ids(ubuf(r[1]).i, rec);
+      rec.stamp = (int64_t) ubuf(r[2]).i;
+      for (int d = 0; d < 3; d++) {
+        rec.a[d] = r[3 + d];
+        rec.b[d] = r[6 + d];
+      }
+      len++;
+    }
+    lsdem_pair_state st = pair_room(p, len, len);
+    lsdem_pair_state_decode(records.data(), len, nnodes, &st);
+    // the decoded shear entries go behind the list, in the run's own layout
+    lsdem_pair_state kept = st;
+    place_shear(kept);
+    memmove(kept.shear, st.shear, sizeof(lsdem_shear_hist) * st.nshear);
+    if (keep_pair(p, ptag, kept) > 0) nslice[i]++;
+    k += len;
+    m += RECORD_DOUBLES * len;
   }
-  p.n += n;
-  nhist[i] = n;
-  nslice[i] = p.ns - sfirst[i];
-  note_count(n);
+  note_records(count_records(i));
   return m;
 }
 
@@ -294,14 +358,14 @@ int FixLsdemHistory::unpack_entries(int i, const double *buf)
 
 int FixLsdemHistory::pack_exchange(int i, double *buf)
 {
-  return pack_entries(i, buf);
+  return pack_state(i, buf);
 }
 
 /* ---------------------------------------------------------------------- */
 
 int FixLsdemHistory::unpack_exchange(int nlocal, double *buf)
 {
-  return unpack_entries(nlocal, buf);
+  return unpack_state(nlocal, buf);
 }
 
 /* ----------------------------------------------------------------------
@@ -310,7 +374,7 @@ int FixLsdemHistory::unpack_exchange(int nlocal, double *buf)
 
 int FixLsdemHistory::pack_restart(int i, double *buf)
 {
-  int m = 1 + pack_entries(i, buf + 1);
+  int m = 1 + pack_state(i, buf + 1);
   buf[0] = m;
   return m;
 }
@@ -322,14 +386,14 @@ void FixLsdemHistory::unpack_restart(int nlocal, int nth)
   double **extra = atom->extra;
   int m = 0;
   for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
-  unpack_entries(nlocal, &extra[nlocal][m + 1]);
+  unpack_state(nlocal, &extra[nlocal][m + 1]);
 }
 
 /* ---------------------------------------------------------------------- */
 
 int FixLsdemHistory::size_restart(int nlocal)
 {
-  return 2 + ENTRY_DOUBLES * nhist[nlocal];
+  return 2 + RECORD_DOUBLES * count_records(nlocal);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -337,17 +401,18 @@ int FixLsdemHistory::size_restart(int nlocal)
 int FixLsdemHistory::maxsize_restart()
 {
   int nlocal = atom->nlocal, mine = 0, all = 0;
-  for (int i = 0; i < nlocal; i++) mine = std::max(mine, nhist[i]);
+  for (int i = 0; i < nlocal; i++) mine = std::max(mine, count_records(i));
   MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MAX, world);
-  return 2 + ENTRY_DOUBLES * all;
+  return 2 + RECORD_DOUBLES * all;
 }
 
 /* ---------------------------------------------------------------------- */
 
 double FixLsdemHistory::memory_usage()
 {
-  double bytes = (double) nmax_atom * 5 * sizeof(int);
+  double bytes = (double) nmax_atom * 3 * sizeof(int);
   for (const Pool &p : pool)
-    bytes += (double) p.max * sizeof(lsdem_node_hist) + (double) p.maxs * sizeof(Slice);
+    bytes += (double) p.slice.size() * sizeof(Slice) + (double) p.maxslot * sizeof(Slot);
+  bytes += (double) records.size() * sizeof(lsdem_state_record);
   return bytes;
 }

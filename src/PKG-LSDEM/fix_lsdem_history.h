@@ -1,25 +1,28 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   LSDEM package for LAMMPS: per-node tangential contact history.
+   LSDEM package for LAMMPS: the contact state of each grain's pairs (internal fix).
 
    An internal fix (created by pair_style lsdem and by each fix wall/lsdem, never by
-   the user). Each owned grain keeps a variable-length list of the history entries of
-   ITS OWN nodes that touched a partner on the last step: {partner tag, lsdem_node_hist},
-   one run of entries per partner (sorted by node) with a header per partner (tag, first
-   entry, count), headers sorted by partner. The list travels with the grain (exchange)
-   and is saved in restart files (a partner tag per entry there).
+   the user). Each owned grain keeps, per partner it touched or was near on the last
+   step, the state the core carries for a master from step to step (core/contact,
+   lsdem_pair_state): the pair's node list (head and entries) and the shear history of
+   ITS OWN nodes. Partners are held sorted by tag. The state travels with the grain
+   (exchange) and is saved in restart files (as lsdem_state_record records, the layout of
+   earlier versions, so that their restart files still load).
 
-   Storage: all grains' lists sit in one pool, in the order the styles visit the grains;
-   a step reads the current pool and writes the next one, so the kernel writes its
-   output where it will be read next step (no copy) and both pools are walked in order
-   (the hardware prefetcher follows). Use per step:
+   Storage: all grains' states sit in a pool of 64-byte slots, pair after pair in the
+   order the styles visit the grains, each pair's state in one run: its list head (two
+   slots), its list entries, its shear entries (the layout of earlier versions in memory
+   too, so that a step reads one stream and writes one). A step reads the current pool and
+   writes the next one, so the kernel writes its output where it will be read next step
+   (no copy). Use per step:
      begin_step();
      for each owned grain i:
        begin_atom();
-       for each partner j: find(i, tag_j, n) -> this pair's slice (the kernel's hist_in);
-                           reserve(cap) -> room for the kernel's hist_out;
-                           commit(tag_j, n_out);
-       end_atom(i);  // i's list := the committed slices; untouched entries are dropped
-     end_step();     // grains not visited lose their lists
+       for each partner j: find(i, tag_j, in) -> this pair's state (the kernel's input);
+                           reserve(list_cap, shear_cap) -> room for the kernel's output;
+                           commit(tag_j, out);
+       end_atom(i);  // i's state := the committed pairs; untouched pairs are dropped
+     end_step();     // grains not visited lose their state
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -34,6 +37,8 @@ FixStyle(LSDEM_HISTORY,FixLsdemHistory);
 #include "fix.h"
 #include "lsdem_kernel.h"
 
+#include <vector>
+
 namespace LAMMPS_NS {
 
 class FixLsdemHistory : public Fix {
@@ -44,11 +49,12 @@ class FixLsdemHistory : public Fix {
 
   // per-step interface for the contact styles
   void begin_step();
-  const lsdem_node_hist *find(int i, tagint partner, int &n) const;
-  bool holds(int i) const { return nhist[i] > 0; }  // atom i keeps entries
+  bool find(int i, tagint partner, lsdem_pair_state &in) const;
+  bool holds(int i) const { return nslice[i] > 0; }  // atom i keeps state
   void begin_atom();
-  lsdem_node_hist *reserve(int cap);
-  void commit(tagint partner, int n);
+  lsdem_pair_state reserve(int list_cap, int shear_cap);  // out.shear: see place_shear
+  static void place_shear(lsdem_pair_state &out);  // after detection: behind the list
+  void commit(tagint partner, const lsdem_pair_state &out);
   void end_atom(int i);
   void end_step();
   void grow_arrays(int) override;
@@ -63,29 +69,40 @@ class FixLsdemHistory : public Fix {
   double memory_usage() override;
 
  private:
-  struct Slice {
-    tagint partner;
-    int start, n;  // entries from the atom's first one
+  // a slot holds a shear entry or a list entry; a list head takes two
+  union Slot {
+    lsdem_shear_hist shear;
+    lsdem_nodelist_entry entry;
+    unsigned char bytes[64];
   };
-  struct Pool {    // the lists of all atoms, one after the other
-    lsdem_node_hist *entry;
-    int n, max;
-    Slice *slice;
-    int ns, maxs;
+  static constexpr int HEAD_SLOTS = 2;
+  struct Slice {   // one pair's state in a pool: its run of slots from `first`
+    tagint partner;
+    int first, list_valid, nentry, nshear;
+  };
+  struct Pool {    // the states of all atoms, one after the other
+    std::vector<Slice> slice;
+    Slot *slot;
+    int ns, nslot, maxslot;  // used; slots allocated
   };
   Pool pool[2];
-  int cur;                    // pool[cur] holds the lists; pool[1 - cur] is written
+  int cur;                    // pool[cur] holds the states; pool[1 - cur] is written
   int nmax_atom;              // length of the per-atom arrays
-  int *first, *nhist;         // per atom: its entries in pool[cur]
-  int *sfirst, *nslice;       // per atom: its slice headers in pool[cur]
+  int *sfirst, *nslice;       // per atom: its slices in pool[cur]
   int *visited, generation;   // atoms visited since begin_step() carry its generation
-  int atom_entry, atom_slice; // where the atom being visited starts in the next pool
-  int maxcount;               // largest list seen (sizes exchange/restart buffers)
+  int atom_slice;             // where the atom being visited starts in the next pool
+  int atom_records;           // and the records its committed pairs take
+  int maxrecords;             // largest state seen, in records (sizes exchange buffers)
+  std::vector<lsdem_state_record> records;  // scratch for packing and unpacking
 
-  void pool_room(Pool &p, int n, int ns);
-  void note_count(int n);
-  int pack_entries(int i, double *buf) const;
-  int unpack_entries(int i, const double *buf);
+  void pool_room(Pool &p, int ns, int nslot);
+  lsdem_pair_state pair_room(Pool &p, int list_cap, int shear_cap);
+  static int keep_pair(Pool &p, tagint partner, const lsdem_pair_state &st);
+  static void slice_state(const Pool &p, const Slice &s, lsdem_pair_state &st);
+  void note_records(int n);
+  int count_records(int i) const;
+  int pack_state(int i, double *buf);
+  int unpack_state(int i, const double *buf);
 };
 
 }    // namespace LAMMPS_NS

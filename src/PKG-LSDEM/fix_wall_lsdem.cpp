@@ -41,7 +41,7 @@ static constexpr tagint WALL_PARTNER = -1;
 
 FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), axis(2), fix_history(nullptr), avec(nullptr), fall_valid(0),
-  moving(false), nodelist(-1.0), pivot(false), pivot_h(0.0), pivot_inertia(0.0),
+  moving(false), pivot(false), pivot_h(0.0), pivot_inertia(0.0),
   pivot_damping(0.0),
   cand(nullptr), ncand(0), maxcand(0), cand_nlocal(0), cand_built(-1),
   contact(nullptr), ncontact(0), maxcontact(0), contact_step(-1)
@@ -80,11 +80,7 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   } else error->all(FLERR, "fix wall/lsdem: unknown wall {} ({})", arg[3], usage);
   if (narg < iarg + 3) error->all(FLERR, "Illegal fix wall/lsdem command: {}", usage);
   for (int k = 4; k < iarg; k++) geom[k - 4] = utils::numeric(FLERR, arg[k], false, lmp);
-  prm.kn = utils::numeric(FLERR, arg[iarg], false, lmp);
-  prm.ks = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-  prm.mu = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
-  prm.node_stride = 1;
-  prm.law = LSDEM_NORMAL_PER_NODE;
+  opts.read_stiffness(lmp, arg + iarg);
   iarg += 3;
 
   while (iarg < narg) {
@@ -92,9 +88,11 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
     int nval = key == "velocity" ? 3 : (key == "pivot" ? 2 : 1);
     if (iarg + nval >= narg) error->all(FLERR, "fix wall/lsdem: keyword {} needs a value", key);
     std::string val = arg[iarg + 1];
-    if (key == "cn") prm.cn = utils::numeric(FLERR, val.c_str(), false, lmp);
-    else if (key == "ct") prm.ct = utils::numeric(FLERR, val.c_str(), false, lmp);
-    else if (key == "velocity") {
+    if (opts.read_keyword(lmp, "fix wall/lsdem", key, arg[iarg + 1],
+                          LsdemContactOptions::DAMPING | LsdemContactOptions::NORMAL |
+                              LsdemContactOptions::DETECT)) {
+      // the contact law or detection
+    } else if (key == "velocity") {
       for (int d = 0; d < 3; d++) {
         const char *val_d = arg[iarg + 1 + d];
         if (utils::strmatch(val_d, "^v_")) vstr[d] = utils::strdup(val_d + 2);
@@ -105,21 +103,13 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
       if (val == "x" || val == "y" || val == "z") axis = val[0] - 'x';
       else error->all(FLERR, "fix wall/lsdem: axis must be x, y or z, not {}", val);
       if (wallstyle != CYLINDER) error->all(FLERR, "fix wall/lsdem: axis is for cylinder walls");
-    } else if (key == "normal") {
-      if (val == "node") prm.law = LSDEM_NORMAL_PER_NODE;
-      else if (val == "traction") prm.law = LSDEM_NORMAL_TRACTION;
-      else error->all(FLERR, "fix wall/lsdem: normal must be node or traction, not {}", val);
     } else if (key == "pivot") {
       nval = parse_pivot(iarg, narg, arg);
-    } else if (key == "stride") {
-      prm.node_stride = utils::inumeric(FLERR, val.c_str(), false, lmp);
-      if (prm.node_stride < 1) error->all(FLERR, "fix wall/lsdem: stride must be >= 1");
-    } else if (key == "nodelist") {
-      nodelist = AtomVecLsdem::parse_node_skin(val.c_str(), lmp);
     } else error->all(FLERR, "fix wall/lsdem: unknown keyword {}", key);
     iarg += 1 + nval;
   }
-  AtomVecLsdem::check_contact_law(prm, "fix wall/lsdem", lmp);
+  opts.check_law(lmp, "fix wall/lsdem");
+  prm.law = opts.law;
 
   if (wallstyle == PLANE) {
     // scaled by its largest component first, so that no square overflows or underflows
@@ -221,7 +211,7 @@ int FixWallLsdem::setmask()
 
 void FixWallLsdem::post_constructor()
 {
-  if (prm.mu <= 0.0 && nodelist == 0.0) return;
+  if (opts.law.mu <= 0.0 && opts.nodelist == 0.0) return;
   history_id = std::string("LSDEM_WALL_HISTORY_") + id;
   fix_history = dynamic_cast<FixLsdemHistory *>(
       modify->add_fix(fmt::format("{} all LSDEM_HISTORY", history_id)));
@@ -234,7 +224,9 @@ void FixWallLsdem::init()
   avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
   if (!avec) error->all(FLERR, "Fix wall/lsdem requires atom_style lsdem");
   prm.dt = update->dt;
-  prm.node_skin = fix_history ? avec->node_skin(nodelist) : 0.0;
+  prm.detect = opts.detect(avec);
+  if (!fix_history) prm.detect.node_skin = 0.0;
+  path.setup(fix_history, avec);
   for (int d = 0; d < 3; d++) {
     if (!vstr[d]) continue;
     vvar[d] = input->variable->find(vstr[d]);
@@ -423,7 +415,7 @@ void FixWallLsdem::find_candidates()
   const double margin = keep ? neighbor->skin : 0.0;
   ncand = 0;
   for (int i = 0; i < nlocal; i++)
-    if (may_touch(i, margin) || (fix_history && fix_history->holds(i)))
+    if (may_touch(i, margin) || path.keeps_state(i))
       cand[ncand++] = i;
   cand_built = keep ? neighbor->lastcall : -1;
   cand_nlocal = nlocal;
@@ -434,7 +426,6 @@ void FixWallLsdem::find_candidates()
 
 void FixWallLsdem::post_force(int /*vflag*/)
 {
-  double **x = atom->x, **v = atom->v, **omega = atom->omega;
   double **f = atom->f, **torque = atom->torque;
   const int *mask = atom->mask;
   const bigint step = update->ntimestep;
@@ -455,31 +446,17 @@ void FixWallLsdem::post_force(int /*vflag*/)
   contact_step = step;
 
   if (!candidates_hold()) find_candidates();
-  if (fix_history) fix_history->begin_step();
+  path.begin_step();
   for (int c = 0; c < ncand; c++) {
     const int i = cand[c];
     const bool test = (mask[i] & groupbit) && may_touch(i, 0.0);
-    if (!test && !(fix_history && fix_history->holds(i))) continue;  // far, nothing kept
-    if (fix_history) fix_history->begin_atom();
+    if (!test && !path.keeps_state(i)) continue;  // far, nothing kept
+    path.begin_atom();
     if (test) {
       lsdem_pose p;
-      for (int d = 0; d < 3; d++) {
-        p.x[d] = x[i][d];
-        p.v[d] = v[i][d];
-        p.omega[d] = omega[i][d];
-      }
-      lsdem_quat_to_matrix(avec->quat[i], p.R);
-      const lsdem_shape *A = avec->shape_of(i);
-      const lsdem_node_hist *hin = nullptr;
-      lsdem_node_hist *hout = nullptr;
-      int nin = 0, nout = 0;
-      if (fix_history) {
-        hin = fix_history->find(i, WALL_PARTNER, nin);
-        hout = fix_history->reserve(lsdem_contact_history_capacity(A));
-      }
+      LsdemContactPath::pose_of(atom, avec, i, p);
       lsdem_contact_result res;
-      lsdem_contact_grain(A, &p, &wall, bp, &prm, step, hin, nin, hout, &nout, &res);
-      if (fix_history) fix_history->commit(WALL_PARTNER, nout);
+      path.test(i, WALL_PARTNER, avec->shape_of(i), p, &wall, *bp, prm, step, res);
       if (res.npen > 0) {
         for (int d = 0; d < 3; d++) {
           f[i][d] += res.force[d];
@@ -490,9 +467,9 @@ void FixWallLsdem::post_force(int /*vflag*/)
         add_contact(i, res);
       }
     }
-    if (fix_history) fix_history->end_atom(i);
+    path.end_atom(i);
   }
-  if (fix_history) fix_history->end_step();
+  path.end_step();
   if (pivot) reduce_pivot_load();
 }
 

@@ -17,6 +17,8 @@ FixStyle(wall/lsdem,FixWallLsdem);
 #define LMP_FIX_WALL_LSDEM_H
 
 #include "fix.h"
+#include "lsdem_contact_options.h"
+#include "lsdem_contact_path.h"
 #include "lsdem_kernel.h"
 
 #include <string>
@@ -53,9 +55,11 @@ class FixWallLsdem : public Fix {
   int axis;                    // cylinder axis 0,1,2 = x,y,z
   lsdem_shape wall;            // the wall's signed distance (no nodes)
   lsdem_pose wpose;            // where the wall is and how it moves
-  lsdem_contact_params prm;
+  LsdemContactOptions opts;    // the contact law and detection keywords
+  lsdem_contact_params prm;    // what the core gets (node skin and dt set at init)
   std::string history_id;
-  class FixLsdemHistory *fix_history;  // nullptr when mu == 0
+  class FixLsdemHistory *fix_history;  // nullptr when mu == 0 and node lists are off
+  LsdemContactPath path;       // each grain's state, manifold, law, commit
   class AtomVecLsdem *avec;
 
   double flocal[3], fall[3];   // force of the grains on the wall: this rank, all ranks
@@ -63,7 +67,6 @@ class FixWallLsdem : public Fix {
   char *vstr[3];               // velocity components given as equal-style variables
   int vvar[3];
   bool moving;                 // a velocity is set (constant or variable)
-  double nodelist;             // node-list skin setting: -1 auto, 0 off, > 0 length
 
   Contact *contact;
   int ncontact, maxcontact;

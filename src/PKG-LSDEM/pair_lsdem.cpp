@@ -39,8 +39,7 @@ static const char HISTORY_ID[] = "LSDEM_PAIR_HISTORY";
 /* ---------------------------------------------------------------------- */
 
 PairLsdem::PairLsdem(LAMMPS *lmp) :
-  Pair(lmp), mode(ONEWAY), law(LSDEM_NORMAL_PER_NODE), stride(1), zcap(0), nodelist(-1.0),
-  params(nullptr),
+  Pair(lmp), mode(LSDEM_ROLES_ONEWAY), zcap(0), params(nullptr),
   onerad(nullptr), maxrad(nullptr), kn_max(0.0), avec(nullptr), fix_history(nullptr),
   nmax_atom(0), pose(nullptr), shape(nullptr), ncount(nullptr),
   master_built(0), nmax_master(0), maxmaster(0), master_first(nullptr), master_num(nullptr),
@@ -106,30 +105,22 @@ void PairLsdem::allocate()
 
 void PairLsdem::settings(int narg, char **arg)
 {
-  mode = ONEWAY;
-  law = LSDEM_NORMAL_PER_NODE;
-  stride = 1;
+  mode = LSDEM_ROLES_ONEWAY;
+  global = LsdemContactOptions();
   zcap = 0;
-  nodelist = -1.0;
   for (int iarg = 0; iarg < narg; iarg += 2) {
     if (iarg + 1 >= narg) error->all(FLERR, "pair_style lsdem: keyword {} needs a value", arg[iarg]);
     std::string key = arg[iarg], val = arg[iarg + 1];
+    if (global.read_keyword(lmp, "pair_style lsdem", key, arg[iarg + 1],
+                            LsdemContactOptions::NORMAL | LsdemContactOptions::DETECT))
+      continue;
     if (key == "mode") {
-      if (val == "oneway") mode = ONEWAY;
-      else if (val == "twoway") mode = TWOWAY;
+      if (val == "oneway") mode = LSDEM_ROLES_ONEWAY;
+      else if (val == "twoway") mode = LSDEM_ROLES_TWOWAY;
       else error->all(FLERR, "pair_style lsdem: mode must be oneway or twoway, not {}", val);
-    } else if (key == "normal") {
-      if (val == "node") law = LSDEM_NORMAL_PER_NODE;
-      else if (val == "traction") law = LSDEM_NORMAL_TRACTION;
-      else error->all(FLERR, "pair_style lsdem: normal must be node or traction, not {}", val);
-    } else if (key == "stride") {
-      stride = utils::inumeric(FLERR, val.c_str(), false, lmp);
-      if (stride < 1) error->all(FLERR, "pair_style lsdem: stride must be >= 1");
     } else if (key == "zcap") {
       zcap = utils::inumeric(FLERR, val.c_str(), false, lmp);
       if (zcap < 0) error->all(FLERR, "pair_style lsdem: zcap must be >= 0 (0 = off)");
-    } else if (key == "nodelist") {
-      nodelist = AtomVecLsdem::parse_node_skin(val.c_str(), lmp);
     } else error->all(FLERR, "pair_style lsdem: unknown keyword {}", key);
   }
 }
@@ -148,18 +139,16 @@ void PairLsdem::coeff(int narg, char **arg)
   utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
   utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
 
+  LsdemContactOptions c;
+  c.read_stiffness(lmp, arg + 2);
+  for (int iarg = 5; iarg < narg; iarg += 2)
+    if (!c.read_keyword(lmp, "pair_coeff for lsdem", arg[iarg], arg[iarg + 1],
+                        LsdemContactOptions::DAMPING))
+      error->all(FLERR, "pair_coeff for lsdem: unknown keyword {}", arg[iarg]);
+  c.check_law(lmp, "pair_coeff for lsdem");
   lsdem_contact_params p;
   memset(&p, 0, sizeof(p));
-  p.kn = utils::numeric(FLERR, arg[2], false, lmp);
-  p.ks = utils::numeric(FLERR, arg[3], false, lmp);
-  p.mu = utils::numeric(FLERR, arg[4], false, lmp);
-  for (int iarg = 5; iarg < narg; iarg += 2) {
-    double value = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-    if (strcmp(arg[iarg], "cn") == 0) p.cn = value;
-    else if (strcmp(arg[iarg], "ct") == 0) p.ct = value;
-    else error->all(FLERR, "pair_coeff for lsdem: unknown keyword {}", arg[iarg]);
-  }
-  AtomVecLsdem::check_contact_law(p, "pair_coeff for lsdem", lmp);
+  p.law = c.law;
 
   int count = 0;
   for (int i = ilo; i <= ihi; i++)
@@ -199,10 +188,10 @@ void PairLsdem::init_style()
 
   // history where friction is on or node lists are kept; none at all when mu == 0
   // everywhere and node lists are off
-  int need_history = avec->node_skin(nodelist) > 0.0;
+  int need_history = global.detect(avec).node_skin > 0.0;
   for (int i = 1; i <= ntypes; i++)
     for (int j = i; j <= ntypes; j++)
-      if (setflag[i][j] && params[i][j].mu > 0.0) need_history = 1;
+      if (setflag[i][j] && params[i][j].law.mu > 0.0) need_history = 1;
   // a fixed ID, so restart files find it again (pair gran appends instance_me, which
   // differs when a script clears and re-reads a restart within one process)
   if (need_history) {
@@ -212,6 +201,7 @@ void PairLsdem::init_style()
     fix_history = dynamic_cast<FixLsdemHistory *>(fix);
     if (!fix_history) error->all(FLERR, "Fix ID {} is reserved for pair lsdem", HISTORY_ID);
   }
+  path.setup(fix_history, avec);
 }
 
 /* ----------------------------------------------------------------------
@@ -237,9 +227,8 @@ double PairLsdem::init_one(int i, int j)
   if (setflag[i][j] == 0)
     error->all(FLERR, "pair_coeff {} {} is not set (pair_style lsdem does not mix)", i, j);
   params[i][j].dt = update->dt;
-  params[i][j].node_stride = stride;
-  params[i][j].law = law;
-  params[i][j].node_skin = avec->node_skin(nodelist);
+  params[i][j].law.normal = global.law.normal;
+  params[i][j].detect = global.detect(avec);
   params[j][i] = params[i][j];
   return maxrad[i] + maxrad[j];
 }
@@ -253,7 +242,7 @@ double PairLsdem::init_one(int i, int j)
 double PairLsdem::stiffest_node_spring() const
 {
   double area = 1.0;
-  if (law == LSDEM_NORMAL_TRACTION) {
+  if (global.law.normal == LSDEM_NORMAL_TRACTION) {
     area = 0.0;
     const lsdem_library *lib = avec ? avec->library() : nullptr;
     int nshape = lib ? avec->nshapes() : 0;
@@ -267,8 +256,8 @@ double PairLsdem::stiffest_node_spring() const
   double kmax = 0.0;
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++)
-      if (setflag[i][j]) kmax = std::max(kmax, params[i][j].kn);
-  return kmax * stride * area;
+      if (setflag[i][j]) kmax = std::max(kmax, params[i][j].law.kn);
+  return kmax * global.stride * area;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -304,19 +293,19 @@ void PairLsdem::compute(int eflag, int vflag)
   if (neighbor->ago == 0 || !master_built) build_master_pairs();  // the list was just built
   const int inum = list->inum;
   const int *ilist = list->ilist;
-  if (fix_history) fix_history->begin_step();
+  path.begin_step();
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
-    if (fix_history) fix_history->begin_atom();
+    path.begin_atom();
     const int *js = master_j + master_first[i];
     const double *scales = master_scale_of + master_first[i];
     for (int k = 0; k < master_num[i]; k++) {
       const int j = js[k];
       if (bounding_spheres_overlap(i, j)) test_pair(i, j, scales[k], contact_step);
     }
-    if (fix_history) fix_history->end_atom(i);
+    path.end_atom(i);
   }
-  if (fix_history) fix_history->end_step();
+  path.end_step();
 
   apply_contacts();
   tally_workload();
@@ -339,15 +328,8 @@ void PairLsdem::update_poses()
     memory->create(ncount, nmax_atom, "pair:ncount");
   }
   const int nall = atom->nlocal + atom->nghost;
-  double **x = atom->x, **v = atom->v, **omega = atom->omega, **quat = avec->quat;
   for (int i = 0; i < nall; i++) {
-    lsdem_pose &p = pose[i];
-    for (int d = 0; d < 3; d++) {
-      p.x[d] = x[i][d];
-      p.v[d] = v[i][d];
-      p.omega[d] = omega[i][d];
-    }
-    lsdem_quat_to_matrix(quat[i], p.R);
+    LsdemContactPath::pose_of(atom, avec, i, pose[i]);
     shape[i] = avec->shape_of(i);
   }
 }
@@ -385,7 +367,8 @@ void PairLsdem::build_master_pairs()
     master_first[i] = n;
     for (int jj = 0; jj < numneigh[i]; jj++) {
       const int j = firstneigh[i][jj] & NEIGHMASK;
-      const double scale = master_scale(i, j);
+      const double scale = lsdem_contact_roles(shape[i], atom->tag[i], shape[j], atom->tag[j],
+                                               mode);
       if (scale == 0.0) continue;
       master_j[n] = j;
       master_scale_of[n++] = scale;
@@ -396,47 +379,14 @@ void PairLsdem::build_master_pairs()
 }
 
 /* ----------------------------------------------------------------------
-   factor for the test of i's nodes against j, 0 when i is not master:
-   - a sphere against a non-sphere: the sphere is master (fast path, 1 lookup);
-   - sphere-sphere (analytic, symmetric): the lower ID;
-   - two grains: the lower ID (oneway, report) or both, each half (twoway).
-   Same tag = a periodic image of the grain itself: no contact.
-------------------------------------------------------------------------- */
-
-double PairLsdem::master_scale(int i, int j) const
-{
-  const tagint *tag = atom->tag;
-  if (tag[i] == tag[j]) return 0.0;
-  const bool si = shape[i]->sdf.kind == LSDEM_SDF_SPHERE;
-  const bool sj = shape[j]->sdf.kind == LSDEM_SDF_SPHERE;
-  if (si != sj) return si ? 1.0 : 0.0;
-  if (!si && mode == TWOWAY) return 0.5;
-  return tag[i] < tag[j] ? 1.0 : 0.0;
-}
-
-/* ----------------------------------------------------------------------
-   run the core kernel for i's nodes (or i's sphere) against j's level set
+   i's nodes (or i's sphere) against j's level set, through the shared contact path
 ------------------------------------------------------------------------- */
 
 void PairLsdem::test_pair(int i, int j, double scale, bigint step)
 {
-  const lsdem_contact_params &prm = params[atom->type[i]][atom->type[j]];
-  const lsdem_shape *A = shape[i], *B = shape[j];
-  const tagint tagj = atom->tag[j];
-
-  const lsdem_node_hist *hin = nullptr;
-  lsdem_node_hist *hout = nullptr;
-  int nin = 0, nout = 0;
-  FixLsdemHistory *store = prm.mu > 0.0 || prm.node_skin > 0.0 ? fix_history : nullptr;
-  if (store) {
-    hin = store->find(i, tagj, nin);
-    hout = store->reserve(lsdem_contact_history_capacity(A));
-  }
-
   lsdem_contact_result res;
-  lsdem_contact_grain(A, &pose[i], B, &pose[j], &prm, step, hin, nin, hout, &nout, &res);
-  if (store) store->commit(tagj, nout);
-
+  path.test(i, atom->tag[j], shape[i], pose[i], shape[j], pose[j],
+            params[atom->type[i]][atom->type[j]], step, res);
   ntested_pairs++;
   ntested_nodes += res.ntested;
   npen_nodes += res.npen;
@@ -530,14 +480,13 @@ static double equivalent_radius(const lsdem_shape *s)
 
 /* the deepest node of slave j's nodes in master i's level set: the test one-way contact
    (mode oneway) does not make, run at setup only, without history or forces */
-double PairLsdem::reverse_depth(int i, int j) const
+double PairLsdem::reverse_depth(int i, int j)
 {
   lsdem_contact_params prm = params[atom->type[i]][atom->type[j]];
-  prm.mu = 0.0;
-  prm.node_skin = 0.0;
+  prm.law.mu = 0.0;
+  prm.detect.node_skin = 0.0;  // no state: nothing read or kept
   lsdem_contact_result res;
-  lsdem_contact_grain(shape[j], &pose[j], shape[i], &pose[i], &prm, update->ntimestep, nullptr,
-                      0, nullptr, nullptr, &res);
+  path.test(j, atom->tag[i], shape[j], pose[j], shape[i], pose[i], prm, update->ntimestep, res);
   return res.npen > 0 ? res.max_depth : 0.0;
 }
 
@@ -634,11 +583,8 @@ void PairLsdem::unpack_reverse_comm(int n, int *list, double *buf)
 
 void PairLsdem::write_restart_settings(FILE *fp)
 {
-  int lawi = (int) law;
-  fwrite(&mode, sizeof(int), 1, fp);
-  fwrite(&lawi, sizeof(int), 1, fp);
-  fwrite(&stride, sizeof(int), 1, fp);
-  fwrite(&zcap, sizeof(int), 1, fp);
+  int v[4] = {(int) mode, (int) global.law.normal, global.stride, zcap};
+  fwrite(v, sizeof(int), 4, fp);
   // nodelist is not stored: it changes no result, and files of earlier versions stay readable
 }
 
@@ -647,11 +593,11 @@ void PairLsdem::read_restart_settings(FILE *fp)
   int v[4] = {0, 0, 0, 0};
   if (comm->me == 0) utils::sfread(FLERR, v, sizeof(int), 4, fp, nullptr, error);
   MPI_Bcast(v, 4, MPI_INT, 0, world);
-  mode = v[0];
-  law = (lsdem_normal_law) v[1];
-  stride = v[2];
+  global = LsdemContactOptions();
+  mode = (lsdem_roles_rule) v[0];
+  global.law.normal = (lsdem_normal_law) v[1];
+  global.stride = v[2];
   zcap = v[3];
-  nodelist = -1.0;
 }
 
 void PairLsdem::write_restart(FILE *fp)
@@ -662,7 +608,7 @@ void PairLsdem::write_restart(FILE *fp)
       fwrite(&setflag[i][j], sizeof(int), 1, fp);
       if (setflag[i][j]) {
         const lsdem_contact_params &p = params[i][j];
-        double c[5] = {p.kn, p.ks, p.mu, p.cn, p.ct};
+        double c[5] = {p.law.kn, p.law.ks, p.law.mu, p.law.cn, p.law.ct};
         fwrite(c, sizeof(double), 5, fp);
       }
     }
@@ -680,7 +626,7 @@ void PairLsdem::read_restart(FILE *fp)
       double c[5];
       if (comm->me == 0) utils::sfread(FLERR, c, sizeof(double), 5, fp, nullptr, error);
       MPI_Bcast(c, 5, MPI_DOUBLE, 0, world);
-      lsdem_contact_params &p = params[i][j];
+      lsdem_penalty_law &p = params[i][j].law;
       p.kn = c[0];
       p.ks = c[1];
       p.mu = c[2];

@@ -2,10 +2,11 @@
    LSDEM package: level-set discrete element method for LAMMPS.
 
    pair_style lsdem: node-to-surface contact between level-set grains (report
-   Algorithm 2, eqs 2.2-2.16). Thin glue over the core kernels in core/contact.c:
-   gathers poses, picks the master of each pair, keeps each master's per-node shear
-   history in fix LSDEM_HISTORY, applies force/torque to both grains (ghost forces
-   are summed back by LAMMPS: newton pair on).
+   Algorithm 2, eqs 2.2-2.16). Thin glue over the core (core/contact): gathers poses,
+   asks the core who is master of each pair (lsdem_contact_roles), runs each pair through
+   the path it shares with fix wall/lsdem (lsdem_contact_path.h: state, manifold, law,
+   commit), applies force/torque to both grains (ghost forces are summed back by
+   LAMMPS: newton pair on).
 ------------------------------------------------------------------------- */
 
 #ifdef PAIR_CLASS
@@ -18,6 +19,8 @@ PairStyle(lsdem,PairLsdem);
 #define LMP_PAIR_LSDEM_H
 
 #include "pair.h"
+#include "lsdem_contact_options.h"
+#include "lsdem_contact_path.h"
 #include "lsdem_kernel.h"
 
 namespace LAMMPS_NS {
@@ -60,12 +63,9 @@ class PairLsdem : public Pair {
   const double *coordination(int to_ghosts);
 
  protected:
-  enum { ONEWAY, TWOWAY };
-  int mode;                  // ONEWAY (report) or TWOWAY (symmetric average)
-  lsdem_normal_law law;      // per-node kn*d or traction kn*d*area
-  int stride;                // test every stride-th node (report §3.4.1)
-  int zcap;                  // coordination cap (report §3.3.3), 0 = off
-  double nodelist;           // node-list skin setting: -1 auto, 0 off, > 0 length
+  lsdem_roles_rule mode;        // oneway (report) or twoway (symmetric average)
+  LsdemContactOptions global;   // pair_style's normal law, stride and node lists
+  int zcap;                     // coordination cap (report §3.3.3), 0 = off
 
   lsdem_contact_params **params;  // per type pair
   double *onerad, *maxrad;        // largest bounding radius per type (local, global)
@@ -73,6 +73,7 @@ class PairLsdem : public Pair {
 
   class AtomVecLsdem *avec;
   class FixLsdemHistory *fix_history;  // nullptr when mu == 0 for every type pair
+  LsdemContactPath path;               // each pair's state, manifold, law, commit
 
   // per local+ghost atom, refreshed every force call; grown only when nmax grows
   int nmax_atom;
@@ -95,7 +96,6 @@ class PairLsdem : public Pair {
 
   void allocate();
   void update_poses();
-  double master_scale(int, int) const;
   void build_master_pairs();
   void test_pair(int, int, double, bigint);
   void add_contact(int, int, double, const lsdem_contact_result &);
@@ -103,7 +103,7 @@ class PairLsdem : public Pair {
   void tally_workload();
   void check_periodic_length() const;
   bool bounding_spheres_overlap(int, int) const;
-  double reverse_depth(int, int) const;
+  double reverse_depth(int, int);
   void report_overlaps();
   double stiffest_node_spring() const;
 };

@@ -128,13 +128,55 @@ static inline lsdem_contact_params fix_params(double kn, double ks, double mu, d
 {
   lsdem_contact_params p;
   memset(&p, 0, sizeof p);
-  p.kn = kn;
-  p.ks = ks;
-  p.mu = mu;
+  p.law.kn = kn;
+  p.law.ks = ks;
+  p.law.mu = mu;
+  p.law.normal = LSDEM_NORMAL_PER_NODE;
+  p.detect.node_stride = 1;
   p.dt = dt;
-  p.node_stride = 1;
-  p.law = LSDEM_NORMAL_PER_NODE;
   return p;
+}
+
+/* Manifold storage for the tests' shapes (at most FIX_MAX_POINTS nodes), reused. */
+enum { FIX_MAX_POINTS = 4096 };
+static inline lsdem_manifold *fix_manifold(void)
+{
+  static lsdem_contact_point points[FIX_MAX_POINTS];
+  static lsdem_manifold m;
+  m = lsdem_manifold_over(points, FIX_MAX_POINTS);
+  return &m;
+}
+
+/* Node detection (A's nodes, whatever A's kind) and the penalty law with shear history
+ * only: hist_in (n_in entries) the last step's, hist_out (NULL: not kept) this step's,
+ * count in *n_out. */
+static inline int fix_contact(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
+                              const lsdem_pose *pb, const lsdem_contact_params *prm,
+                              int64_t step, const lsdem_shear_hist *hist_in, int n_in,
+                              lsdem_shear_hist *hist_out, int *n_out, lsdem_contact_result *res)
+{
+  lsdem_manifold *m = fix_manifold();
+  lsdem_detect_nodes(A, pa, B, pb, &prm->detect, step, NULL, NULL, m);
+  int n = 0;
+  lsdem_penalty_apply(m, &prm->law, prm->dt, step, hist_in, n_in, hist_out, &n, res);
+  if (n_out) *n_out = n;
+  return res->npen;
+}
+
+/* The same through the kernel's dispatch (lsdem_contact_penalty: a sphere A takes the
+ * sphere paths). */
+static inline int fix_contact_grain(const lsdem_shape *A, const lsdem_pose *pa,
+                                    const lsdem_shape *B, const lsdem_pose *pb,
+                                    const lsdem_contact_params *prm, int64_t step,
+                                    lsdem_shear_hist *hist_out, int *n_out,
+                                    lsdem_contact_result *res)
+{
+  lsdem_pair_state out;
+  memset(&out, 0, sizeof out);
+  out.shear = hist_out;
+  lsdem_contact_penalty(A, pa, B, pb, prm, step, NULL, &out, fix_manifold(), res);
+  if (n_out) *n_out = out.nshear;
+  return res->npen;
 }
 
 static inline lsdem_sdf fix_sdf(lsdem_sdf_kind kind, double a0, double a1, double a2)

@@ -78,7 +78,7 @@ static int pair_forces(grain *A, grain *B, const lsdem_contact_params *prm, int 
                        double fa[3], double ta[3], double fb[3], double tb[3])
 {
   lsdem_contact_result ab, ba;
-  lsdem_contact_nodes(&A->shape, &A->pose, &B->shape, &B->pose, prm, 0, NULL, 0, NULL, NULL,
+  fix_contact(&A->shape, &A->pose, &B->shape, &B->pose, prm, 0, NULL, 0, NULL, NULL,
                       &ab);
   if (!two_way) {
     for (int i = 0; i < 3; i++) {
@@ -89,7 +89,7 @@ static int pair_forces(grain *A, grain *B, const lsdem_contact_params *prm, int 
     }
     return ab.npen;
   }
-  lsdem_contact_nodes(&B->shape, &B->pose, &A->shape, &A->pose, prm, 0, NULL, 0, NULL, NULL,
+  fix_contact(&B->shape, &B->pose, &A->shape, &A->pose, prm, 0, NULL, 0, NULL, NULL,
                       &ba);
   for (int i = 0; i < 3; i++) {
     fa[i] = 0.5 * (ab.force[i] - ba.force[i]);

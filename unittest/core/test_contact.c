@@ -42,7 +42,7 @@ static void test_single_axis_node(void)
   lsdem_pose pa = fix_pose(0, 0, 0), pb = fix_pose(2.0 - delta, 0, 0);
   lsdem_contact_params prm = fix_params(kn, 0, 0, 1e-3);
   lsdem_contact_result r;
-  const int np = lsdem_contact_nodes(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &r);
+  const int np = fix_contact(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &r);
   CHECK(np == 1 && r.npen == 1, "penetrating nodes %d (only the axis node expected)", np);
   CHECK(r.ntested == 1, "ntested %d", r.ntested);
   CHECK_REL(r.force[0], -kn * delta, 1e-9); /* pushes A away from B (-x) */
@@ -93,7 +93,7 @@ static void test_sphere_overlap_sum(void)
   /* symmetric: A unrotated, B on A's x axis */
   lsdem_pose pa = fix_pose(0.1, -0.2, 0.3), pb = fix_pose(1.9, -0.2, 0.3);
   fix_axis_angle((double[]){1, 0, 0}, 0.3, pb.R); /* a sphere: B's rotation is irrelevant */
-  lsdem_contact_nodes(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &r);
+  fix_contact(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &r);
   expected_sphere_sum(&pa, &pb, kn, 1, F, Ta, &npen);
   CHECK(r.npen == npen && npen > 1, "npen %d, expected %d", r.npen, npen);
   CHECK(F[0] < 0, "expected force pushes A to -x");
@@ -107,7 +107,7 @@ static void test_sphere_overlap_sum(void)
   fix_axis_angle(k, 0.9, pa.R);
   pb = fix_pose(1.5, 0.6, -0.4);
   fix_axis_angle((double[]){0, 0.6, 0.8}, -1.3, pb.R);
-  lsdem_contact_nodes(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &r);
+  fix_contact(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &r);
   expected_sphere_sum(&pa, &pb, kn, 1, F, Ta, &npen);
   CHECK(r.npen == npen && npen > 3, "npen %d, expected %d", r.npen, npen);
   for (int i = 0; i < 3; i++) {
@@ -117,8 +117,8 @@ static void test_sphere_overlap_sum(void)
   CHECK_NEAR(angular_imbalance(&pa, &pb, &r), 0.0, 1e-12 * fix_norm(F));
 
   /* node_stride 2: every second node, twice the force per node */
-  prm.node_stride = 2;
-  lsdem_contact_nodes(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &r);
+  prm.detect.node_stride = 2;
+  fix_contact(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &r);
   expected_sphere_sum(&pa, &pb, kn, 2, F, Ta, &npen);
   CHECK(r.npen == npen, "stride 2: npen %d, expected %d", r.npen, npen);
   for (int i = 0; i < 3; i++) CHECK_NEAR(r.force[i], F[i], 1e-10 * fix_norm(F));
@@ -184,7 +184,7 @@ static void test_box_transform(void)
   lsdem_contact_result r;
   double F[3];
   int npen;
-  lsdem_contact_nodes(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &r);
+  fix_contact(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &r);
   expected_box_sum(&pa, &pb, a, kn, F, &npen);
   CHECK(r.npen == npen && npen > 3, "box: npen %d, expected %d", r.npen, npen);
   for (int i = 0; i < 3; i++) CHECK_NEAR(r.force[i], F[i], 1e-10 * fix_norm(F));
@@ -211,19 +211,19 @@ static void test_momentum_balance(void)
   memcpy(pa.omega, wa, sizeof wa);
   memcpy(pb.omega, wb, sizeof wb);
   lsdem_contact_params prm = fix_params(50.0, 40.0, 0.4, 1e-2);
-  prm.cn = 2.0;
-  prm.ct = 1.0;
-  lsdem_node_hist h1[NNODES], h2[NNODES];
+  prm.law.cn = 2.0;
+  prm.law.ct = 1.0;
+  lsdem_shear_hist h1[NNODES], h2[NNODES];
   int n1 = 0, n2 = 0;
   lsdem_contact_result r;
-  lsdem_contact_nodes(&A, &pa, &B, &pb, &prm, 7, NULL, 0, h1, &n1, &r);
+  fix_contact(&A, &pa, &B, &pb, &prm, 7, NULL, 0, h1, &n1, &r);
   CHECK(n1 == r.npen && n1 > 3, "history entries %d, npen %d", n1, r.npen);
   for (int e = 1; e < n1; e++) CHECK(h1[e].node > h1[e - 1].node, "history not sorted");
   const double scale = fix_norm(r.force) * 3.0;
   CHECK_NEAR(angular_imbalance(&pa, &pb, &r), 0.0, 1e-13 * scale);
   pa.x[0] += 0.01; /* a small move: most contacts persist, their shear rotates */
   pa.x[1] -= 0.005;
-  lsdem_contact_nodes(&A, &pa, &B, &pb, &prm, 8, h1, n1, h2, &n2, &r);
+  fix_contact(&A, &pa, &B, &pb, &prm, 8, h1, n1, h2, &n2, &r);
   CHECK(n2 > 0, "history entries at step 8: %d", n2);
   CHECK_NEAR(angular_imbalance(&pa, &pb, &r), 0.0, 1e-13 * scale);
   /* every applied tangential force respects the cap */
@@ -246,8 +246,8 @@ static void test_two_way(void)
   memcpy(pb.R, pa.R, sizeof pa.R);
   lsdem_contact_params prm = fix_params(100.0, 0, 0, 1e-3);
   lsdem_contact_result ab, ba;
-  lsdem_contact_nodes(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &ab);
-  lsdem_contact_nodes(&B, &pb, &A, &pa, &prm, 1, NULL, 0, NULL, NULL, &ba);
+  fix_contact(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &ab);
+  fix_contact(&B, &pb, &A, &pa, &prm, 1, NULL, 0, NULL, NULL, &ba);
   const double fs = fix_norm(ab.force);
   CHECK(ab.npen > 1 && ab.npen == ba.npen, "npen %d vs %d", ab.npen, ba.npen);
   for (int i = 0; i < 3; i++) {
@@ -293,14 +293,14 @@ static void test_history_slide_and_cap(void)
   one_node s = one_node_setup();
   const double vt = 0.1;
   s.pa.v[1] = vt; /* A slides along +y over B */
-  const double inc = s.prm.ks * vt * s.prm.dt;         /* 0.08 per step */
-  const double cap = s.prm.mu * s.prm.kn * s.delta;    /* 0.5 */
-  lsdem_node_hist h[2][NNODES];
+  const double inc = s.prm.law.ks * vt * s.prm.dt;         /* 0.08 per step */
+  const double cap = s.prm.law.mu * s.prm.law.kn * s.delta;    /* 0.5 */
+  lsdem_shear_hist h[2][NNODES];
   int n = 0, cur = 0, capped_steps = 0;
   lsdem_contact_result r;
   for (int step = 1; step <= 10; step++) {
     int n_out;
-    lsdem_contact_nodes(&s.A, &s.pa, &s.B, &s.pb, &s.prm, step, h[cur], n, h[1 - cur], &n_out,
+    fix_contact(&s.A, &s.pa, &s.B, &s.pb, &s.prm, step, h[cur], n, h[1 - cur], &n_out,
                         &r);
     cur = 1 - cur;
     n = n_out;
@@ -310,25 +310,25 @@ static void test_history_slide_and_cap(void)
     if (step * inc > cap) capped_steps++;
     CHECK_REL(r.force[1], -expect, 1e-9);
     CHECK_NEAR(r.force[2], 0.0, 1e-15);
-    CHECK_REL(r.force[0], -s.prm.kn * s.delta, 1e-9);
+    CHECK_REL(r.force[0], -s.prm.law.kn * s.delta, 1e-9);
     CHECK_REL(h[cur][0].shear[1], -expect, 1e-9);
   }
   CHECK(capped_steps == 4, "capped steps %d", capped_steps);
   /* exactly at the cap (relative round-off only) */
-  CHECK_NEAR(fabs(r.force[1]), s.prm.mu * fabs(r.force[0]), 1e-14);
+  CHECK_NEAR(fabs(r.force[1]), s.prm.law.mu * fabs(r.force[0]), 1e-14);
 
   /* a second call at the same step reuses the entry: no second increment */
-  lsdem_node_hist again[NNODES];
+  lsdem_shear_hist again[NNODES];
   int n_again;
   lsdem_contact_result r2;
-  s.prm.mu = 10.0; /* cap out of the way: an advance would show */
-  lsdem_contact_nodes(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 10, h[cur], n, again, &n_again, &r2);
+  s.prm.law.mu = 10.0; /* cap out of the way: an advance would show */
+  fix_contact(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 10, h[cur], n, again, &n_again, &r2);
   CHECK(n_again == 1, "entries %d", n_again);
   CHECK(r2.force[1] == r.force[1], "same-step call changed the shear: %g vs %g", r2.force[1],
         r.force[1]);
   CHECK(again[0].shear[1] == h[cur][0].shear[1], "same-step shear advanced");
   /* the next step advances it again, now uncapped */
-  lsdem_contact_nodes(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 11, again, 1, h[1 - cur], &n, &r2);
+  fix_contact(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 11, again, 1, h[1 - cur], &n, &r2);
   CHECK_REL(r2.force[1], -cap - inc, 1e-9);
 }
 
@@ -342,13 +342,13 @@ static void test_relative_velocity(void)
   s.pa.omega[2] = 0.5;
   s.pb.omega[2] = 0.25;
   s.pb.v[0] = 0.7; /* normal relative velocity: no shear from it */
-  s.prm.mu = 100.0; /* keep the cap out of the way */
-  lsdem_node_hist h[NNODES];
+  s.prm.law.mu = 100.0; /* keep the cap out of the way */
+  lsdem_shear_hist h[NNODES];
   int n;
   lsdem_contact_result r;
-  lsdem_contact_nodes(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 1, NULL, 0, h, &n, &r);
+  fix_contact(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 1, NULL, 0, h, &n, &r);
   const double vrel = 0.02 + 0.5 - (-0.03) + 0.25 * (1.0 - s.delta);
-  CHECK_REL(h[0].shear[1], -s.prm.ks * s.prm.dt * vrel, 1e-12);
+  CHECK_REL(h[0].shear[1], -s.prm.law.ks * s.prm.dt * vrel, 1e-12);
   CHECK_NEAR(h[0].shear[0], 0.0, 1e-15);
   CHECK_NEAR(h[0].shear[2], 0.0, 1e-15);
 }
@@ -360,13 +360,13 @@ static void test_history_rotation(void)
   one_node s = one_node_setup();
   s.pa.v[1] = 0.1;
   s.pa.v[2] = -0.05;
-  lsdem_node_hist h1[NNODES], h2[NNODES], h3[NNODES];
+  lsdem_shear_hist h1[NNODES], h2[NNODES], h3[NNODES];
   int n1, n2, n3;
   lsdem_contact_result r;
-  lsdem_contact_nodes(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 1, NULL, 0, h1, &n1, &r);
-  lsdem_contact_nodes(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 2, h1, n1, h2, &n2, &r);
+  fix_contact(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 1, NULL, 0, h1, &n1, &r);
+  fix_contact(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 2, h1, n1, h2, &n2, &r);
   const double *s_old = h2[0].shear;
-  CHECK(fix_norm(s_old) > 0 && fix_norm(s_old) < s.prm.mu * s.prm.kn * s.delta,
+  CHECK(fix_norm(s_old) > 0 && fix_norm(s_old) < s.prm.law.mu * s.prm.law.kn * s.delta,
         "shear %g must be below the cap for this test", fix_norm(s_old));
 
   double Q[9];
@@ -379,26 +379,26 @@ static void test_history_rotation(void)
   }
   memcpy(qa.R, Q, sizeof Q);
   memcpy(qb.R, Q, sizeof Q);
-  lsdem_contact_nodes(&s.A, &qa, &s.B, &qb, &s.prm, 3, h2, n2, h3, &n3, &r);
+  fix_contact(&s.A, &qa, &s.B, &qb, &s.prm, 3, h2, n2, h3, &n3, &r);
   CHECK(n3 == 1, "entries %d", n3);
   for (int i = 0; i < 3; i++) {
     const double qs = Q[3 * i] * s_old[0] + Q[3 * i + 1] * s_old[1] + Q[3 * i + 2] * s_old[2];
     CHECK_NEAR(h3[0].shear[i], qs, 1e-12);
     const double qn = -Q[3 * i]; /* Q (-e_x) */
     CHECK_NEAR(h3[0].normal[i], qn, 1e-12);
-    CHECK_NEAR(r.force[i], s.prm.kn * s.delta * qn + qs, 1e-9);
+    CHECK_NEAR(r.force[i], s.prm.law.kn * s.delta * qn + qs, 1e-9);
   }
 }
 
 static void test_no_history_without_friction(void)
 {
   one_node s = one_node_setup();
-  s.prm.mu = 0.0;
+  s.prm.law.mu = 0.0;
   s.pa.v[1] = 1.0;
-  lsdem_node_hist h[NNODES];
+  lsdem_shear_hist h[NNODES];
   int n = -1;
   lsdem_contact_result r;
-  lsdem_contact_nodes(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 1, NULL, 0, h, &n, &r);
+  fix_contact(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 1, NULL, 0, h, &n, &r);
   CHECK(r.npen == 1 && n == 0, "npen %d, history entries %d", r.npen, n);
   CHECK(r.force[1] == 0.0, "tangential force %g without friction", r.force[1]);
 }
@@ -406,11 +406,11 @@ static void test_no_history_without_friction(void)
 static void test_stride_single_node(void)
 {
   one_node s = one_node_setup();
-  s.prm.mu = 0.0;
+  s.prm.law.mu = 0.0;
   lsdem_contact_result r1, r3;
-  lsdem_contact_nodes(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 1, NULL, 0, NULL, NULL, &r1);
-  s.prm.node_stride = 3;
-  lsdem_contact_nodes(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 1, NULL, 0, NULL, NULL, &r3);
+  fix_contact(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 1, NULL, 0, NULL, NULL, &r1);
+  s.prm.detect.node_stride = 3;
+  fix_contact(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 1, NULL, 0, NULL, NULL, &r3);
   CHECK(r3.npen == 1, "npen %d", r3.npen);
   CHECK_REL(r3.force[0], 3.0 * r1.force[0], 1e-15);
 }
@@ -418,24 +418,24 @@ static void test_stride_single_node(void)
 static void test_traction_and_damping(void)
 {
   one_node s = one_node_setup();
-  s.prm.mu = 0.0;
+  s.prm.law.mu = 0.0;
   double area[NNODES];
   for (int k = 0; k < NNODES; k++) area[k] = 0.05 + 0.001 * k;
   s.A.node_area = area;
-  s.prm.law = LSDEM_NORMAL_TRACTION;
+  s.prm.law.normal = LSDEM_NORMAL_TRACTION;
   lsdem_contact_result r;
-  lsdem_contact_nodes(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 1, NULL, 0, NULL, NULL, &r);
-  CHECK_REL(r.force[0], -s.prm.kn * s.delta * 0.05, 1e-9);
+  fix_contact(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 1, NULL, 0, NULL, NULL, &r);
+  CHECK_REL(r.force[0], -s.prm.law.kn * s.delta * 0.05, 1e-9);
 
   /* normal damping: A approaching B at u adds cn u to the repulsion */
-  s.prm.law = LSDEM_NORMAL_PER_NODE;
-  s.prm.cn = 3.0;
+  s.prm.law.normal = LSDEM_NORMAL_PER_NODE;
+  s.prm.law.cn = 3.0;
   s.pa.v[0] = 0.2;
-  lsdem_contact_nodes(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 1, NULL, 0, NULL, NULL, &r);
-  CHECK_REL(r.force[0], -(s.prm.kn * s.delta + 3.0 * 0.2), 1e-9);
+  fix_contact(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 1, NULL, 0, NULL, NULL, &r);
+  CHECK_REL(r.force[0], -(s.prm.law.kn * s.delta + 3.0 * 0.2), 1e-9);
   /* separating fast: the damped normal force is clamped at zero, never attractive */
   s.pa.v[0] = -10.0;
-  lsdem_contact_nodes(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 1, NULL, 0, NULL, NULL, &r);
+  fix_contact(&s.A, &s.pa, &s.B, &s.pb, &s.prm, 1, NULL, 0, NULL, NULL, &r);
   CHECK(r.force[0] == 0.0 && r.npen == 1, "force %g, npen %d", r.force[0], r.npen);
 }
 
@@ -449,11 +449,11 @@ static void test_rejection_and_clusters(void)
   lsdem_pose pa = fix_pose(0, 0, 0), pb = fix_pose(2.0001, 0, 0);
   lsdem_contact_params prm = fix_params(100.0, 0, 0, 1e-3);
   lsdem_contact_result r;
-  lsdem_contact_nodes(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &r);
+  fix_contact(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &r);
   CHECK(r.ntested == 0 && r.npen == 0 && r.force[0] == 0.0, "far pair: ntested %d",
         r.ntested);
   pb.x[0] = 1.999; /* bounding spheres overlap; only nodes inside B's sphere looked up */
-  lsdem_contact_nodes(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &r);
+  fix_contact(&A, &pa, &B, &pb, &prm, 1, NULL, 0, NULL, NULL, &r);
   CHECK(r.ntested == 1, "near pair: ntested %d", r.ntested);
 
   static double nodes_c[3 * NNODES], scratch[3 * NNODES], sphere[4 * NNODES];
@@ -472,23 +472,23 @@ static void test_rejection_and_clusters(void)
   box_pair(&Aunused, &Bbox, &qa, &qb, a);
   lsdem_contact_result ru, rc;
   A.nodes = nodes_c; /* same order, no clusters */
-  lsdem_contact_nodes(&A, &qa, &Bbox, &qb, &prm, 1, NULL, 0, NULL, NULL, &ru);
-  lsdem_contact_nodes(&C, &qa, &Bbox, &qb, &prm, 1, NULL, 0, NULL, NULL, &rc);
+  fix_contact(&A, &qa, &Bbox, &qb, &prm, 1, NULL, 0, NULL, NULL, &ru);
+  fix_contact(&C, &qa, &Bbox, &qb, &prm, 1, NULL, 0, NULL, NULL, &rc);
   CHECK(ru.npen == rc.npen && ru.ntested == rc.ntested, "clustered npen %d/%d", rc.npen,
         ru.npen);
   for (int i = 0; i < 3; i++) CHECK(ru.force[i] == rc.force[i], "clustered force differs");
 
   /* with a node stride the same nodes are tested, clusters or not */
-  prm.node_stride = 3;
-  lsdem_contact_nodes(&A, &qa, &Bbox, &qb, &prm, 1, NULL, 0, NULL, NULL, &ru);
-  lsdem_contact_nodes(&C, &qa, &Bbox, &qb, &prm, 1, NULL, 0, NULL, NULL, &rc);
+  prm.detect.node_stride = 3;
+  fix_contact(&A, &qa, &Bbox, &qb, &prm, 1, NULL, 0, NULL, NULL, &ru);
+  fix_contact(&C, &qa, &Bbox, &qb, &prm, 1, NULL, 0, NULL, NULL, &rc);
   CHECK(ru.npen == rc.npen && ru.npen > 0, "stride 3: clustered npen %d/%d", rc.npen, ru.npen);
   for (int i = 0; i < 3; i++) CHECK(ru.force[i] == rc.force[i], "stride 3: force differs");
-  prm.node_stride = 1;
+  prm.detect.node_stride = 1;
 
   /* move every cluster sphere far away: all nodes are skipped */
   for (int c = 0; c < C.nclusters; c++) sphere[4 * c] += 100.0;
-  lsdem_contact_nodes(&C, &qa, &Bbox, &qb, &prm, 1, NULL, 0, NULL, NULL, &rc);
+  fix_contact(&C, &qa, &Bbox, &qb, &prm, 1, NULL, 0, NULL, NULL, &rc);
   CHECK(rc.ntested == 0 && rc.npen == 0, "displaced clusters: ntested %d", rc.ntested);
 }
 
@@ -504,19 +504,23 @@ static void test_inverted_container(void)
   lsdem_pose pa = fix_pose(2.0 + delta, 0, 0), pw = fix_pose(0, 0, 0);
   lsdem_contact_params prm = fix_params(kn, 0, 0, 1e-3);
   lsdem_contact_result r;
-  lsdem_contact_nodes(&A, &pa, &W, &pw, &prm, 1, NULL, 0, NULL, NULL, &r);
+  fix_contact(&A, &pa, &W, &pw, &prm, 1, NULL, 0, NULL, NULL, &r);
   CHECK(r.npen == 1 && r.ntested == NNODES, "container: npen %d, ntested %d", r.npen,
         r.ntested);
   CHECK_REL(r.force[0], -kn * delta, 1e-9);
   CHECK_NEAR(r.force[1], 0.0, 1e-15);
 }
 
-/* Sphere fast paths: one lookup; analytic depth and normal; agree with each other. */
+/* Sphere fast paths: one lookup; analytic depth and normal; agree with each other. The
+ * sphere-shape path is taken against a sphere written as an ellipsoid of equal semi-axes
+ * (an exact distance that is not the sphere kind), the closed form against the sphere. */
 static void test_sphere_paths(void)
 {
   lsdem_contact_params prm = fix_params(200.0, 150.0, 0.3, 1e-3);
   const double ra = 0.5, rb = 2.0;
-  lsdem_shape B = fix_shape(fix_sdf(LSDEM_SDF_SPHERE, rb, 0, 0), 0, NULL, rb);
+  lsdem_shape A = fix_shape(fix_sdf(LSDEM_SDF_SPHERE, ra, 0, 0), 0, NULL, ra);
+  lsdem_shape B = fix_shape(fix_sdf(LSDEM_SDF_ELLIPSOID, rb, rb, rb), 0, NULL, rb);
+  lsdem_shape Bs = fix_shape(fix_sdf(LSDEM_SDF_SPHERE, rb, 0, 0), 0, NULL, rb);
   lsdem_pose pa = fix_pose(1.2, 1.6, 0.9), pb = fix_pose(0.1, 0.2, 0.3);
   fix_axis_angle((double[]){0, 0, 1}, 0.8, pb.R);
   pa.v[2] = 0.4;
@@ -526,27 +530,25 @@ static void test_sphere_paths(void)
   const double dist = fix_norm(d), depth = ra + rb - dist;
   CHECK(depth > 0, "setup overlap %g", depth);
 
-  lsdem_node_hist h1[1], h2[1];
+  lsdem_shear_hist h1[1], h2[1];
   int n1, n2;
   lsdem_contact_result r1, r2;
-  const int c1 = lsdem_contact_sphere_shape(ra, 0.0, &pa, &B, &pb, &prm, 1, NULL, 0, h1, &n1,
-                                            &r1);
-  const int c2 = lsdem_contact_sphere_sphere(ra, 0.0, &pa, rb, &pb, &prm, 1, NULL, 0, h2, &n2,
-                                             &r2);
+  const int c1 = fix_contact_grain(&A, &pa, &B, &pb, &prm, 1, h1, &n1, &r1);
+  const int c2 = fix_contact_grain(&A, &pa, &Bs, &pb, &prm, 1, h2, &n2, &r2);
   CHECK(c1 == 1 && c2 == 1 && r1.ntested == 1 && n1 == 1 && n2 == 1, "contact %d %d", c1, c2);
   /* normal part: kn * depth along (xA - xB)/|xA - xB| */
   double fn1 = 0;
   for (int i = 0; i < 3; i++) fn1 += r1.force[i] * d[i] / dist;
-  CHECK_REL(fn1, prm.kn * depth, 1e-12);
+  CHECK_REL(fn1, prm.law.kn * depth, 1e-12);
   CHECK_REL(r1.max_depth, depth, 1e-12);
   for (int i = 0; i < 3; i++) {
-    CHECK_NEAR(r1.force[i], r2.force[i], 1e-12 * prm.kn * depth);
-    CHECK_NEAR(r1.torque_b[i], r2.torque_b[i], 1e-12 * prm.kn * depth);
+    CHECK_NEAR(r1.force[i], r2.force[i], 1e-12 * prm.law.kn * depth);
+    CHECK_NEAR(r1.torque_b[i], r2.torque_b[i], 1e-12 * prm.law.kn * depth);
     /* contact point: middle of the overlap on the line of centres */
     CHECK_NEAR(r1.point[i], pa.x[i] - (ra - 0.5 * depth) * d[i] / dist, 1e-12);
   }
   CHECK(h1[0].node == 0 && fix_norm(h1[0].shear) > 0, "sphere history");
-  CHECK_NEAR(angular_imbalance(&pa, &pb, &r1), 0.0, 1e-12 * prm.kn);
+  CHECK_NEAR(angular_imbalance(&pa, &pb, &r1), 0.0, 1e-12 * prm.law.kn);
   /* the sphere's torque is the tangential force's only: |torque_a| = (ra - d/2)|ft| */
   double ft[3];
   for (int i = 0; i < 3; i++) ft[i] = r1.force[i] - fn1 * d[i] / dist;
@@ -554,24 +556,25 @@ static void test_sphere_paths(void)
 
   /* deep inside a grain: depth = r - phi with phi < 0 still pushes out */
   pa = fix_pose(0.1, 0.2, 1.3); /* 1.0 from B's centre: phi = -1 */
-  lsdem_contact_sphere_shape(ra, 0.0, &pa, &B, &pb, &prm, 1, NULL, 0, h1, &n1, &r1);
-  CHECK_REL(r1.force[2], prm.kn * (ra + 1.0), 1e-12);
+  fix_contact_grain(&A, &pa, &B, &pb, &prm, 1, h1, &n1, &r1);
+  CHECK_REL(r1.force[2], prm.law.kn * (ra + 1.0), 1e-12);
 
-  /* a wall: plane z <= 0, sphere of radius ra at height ra - 0.01, traction law */
+  /* a wall: plane z <= 0, sphere of radius ra at height ra - 0.01, traction law: the
+   * sphere's tributary area is its cross-section */
   lsdem_shape W = fix_shape(fix_sdf(LSDEM_SDF_PLANE, 0, 0, 0), 0, NULL, HUGE_VAL);
   lsdem_pose pw = fix_pose(0, 0, 0);
   pa = fix_pose(3.0, -4.0, ra - 0.01);
-  prm.law = LSDEM_NORMAL_TRACTION;
-  lsdem_contact_sphere_shape(ra, 0.2, &pa, &W, &pw, &prm, 1, NULL, 0, h1, &n1, &r1);
-  CHECK_REL(r1.force[2], prm.kn * 0.01 * 0.2, 1e-9);
+  prm.law.normal = LSDEM_NORMAL_TRACTION;
+  fix_contact_grain(&A, &pa, &W, &pw, &prm, 1, h1, &n1, &r1);
+  CHECK_REL(r1.force[2], prm.law.kn * 0.01 * (FIX_PI * ra * ra), 1e-9);
   CHECK_NEAR(fix_norm(r1.torque_a), 0.0, 1e-15);
 
   /* out of reach: nothing tested */
   pa = fix_pose(0.1, 0.2, 0.3 + ra + rb + 1e-9);
-  CHECK(lsdem_contact_sphere_shape(ra, 0, &pa, &B, &pb, &prm, 1, NULL, 0, h1, &n1, &r1) == 0 &&
+  CHECK(fix_contact_grain(&A, &pa, &B, &pb, &prm, 1, h1, &n1, &r1) == 0 &&
             r1.ntested == 0 && n1 == 0,
         "far sphere tested");
-  CHECK(lsdem_contact_sphere_sphere(ra, 0, &pa, rb, &pb, &prm, 1, NULL, 0, h2, &n2, &r2) == 0,
+  CHECK(fix_contact_grain(&A, &pa, &Bs, &pb, &prm, 1, h2, &n2, &r2) == 0,
         "far sphere pair in contact");
 }
 

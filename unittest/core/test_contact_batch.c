@@ -95,8 +95,8 @@ static void test_grid_pairs(fix_grain *ga, const lsdem_shape *B)
     random_rotation(pa.R);
     random_rotation(pb.R);
     lsdem_contact_result rc, rp;
-    lsdem_contact_nodes(&ga->clustered, &pa, B, &pb, &prm, 1, NULL, 0, NULL, NULL, &rc);
-    lsdem_contact_nodes(&ga->plain, &pa, B, &pb, &prm, 1, NULL, 0, NULL, NULL, &rp);
+    fix_contact(&ga->clustered, &pa, B, &pb, &prm, 1, NULL, 0, NULL, NULL, &rc);
+    fix_contact(&ga->plain, &pa, B, &pb, &prm, 1, NULL, 0, NULL, NULL, &rp);
     double f[3];
     const int npen = brute_force(&ga->plain, &pa, B, &pb, kn, f);
     CHECK(rc.npen == npen && rp.npen == npen, "grid pair %d: npen %d %d vs %d", t, rc.npen,
@@ -140,9 +140,9 @@ static void test_walls(fix_grain *ga)
       lsdem_pose pa = fix_pose(pw.x[0] + off[0], pw.x[1] + off[1], pw.x[2] + off[2]);
       random_rotation(pa.R);
       lsdem_contact_result rc, rp;
-      lsdem_contact_nodes(&ga->clustered, &pa, &walls[w], &pw, &prm, 1, NULL, 0, NULL, NULL,
+      fix_contact(&ga->clustered, &pa, &walls[w], &pw, &prm, 1, NULL, 0, NULL, NULL,
                           &rc);
-      lsdem_contact_nodes(&ga->plain, &pa, &walls[w], &pw, &prm, 1, NULL, 0, NULL, NULL, &rp);
+      fix_contact(&ga->plain, &pa, &walls[w], &pw, &prm, 1, NULL, 0, NULL, NULL, &rp);
       double f[3];
       const int npen = brute_force(&ga->plain, &pa, &walls[w], &pw, kn, f);
       CHECK(rc.npen == npen && rp.npen == npen, "wall %d case %d: npen %d %d vs %d", w, t,

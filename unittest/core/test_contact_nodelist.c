@@ -24,36 +24,66 @@
 #include <stdlib.h>
 
 enum { STEPS = 400, CAP = 2 * FIX_GRAIN_NODES + 8 };
-/* a node id past every node of A (ids of listed nodes are -(1 << 29) + k) */
-#define LSDEM_TEST_BAD_NODE_ID (-(1 << 29) + 1000000)
+/* a node index past every node of A */
+#define LSDEM_TEST_BAD_NODE 1000000
 
-/* One run: its own history, swapped between steps. */
+/* A pair's state (node list and shear history) with its storage. */
 typedef struct {
-  lsdem_node_hist buf[2][CAP];
-  int n, cur;
-} run_state;
+  lsdem_nodelist_head head;
+  lsdem_nodelist_entry entry[CAP];
+  lsdem_shear_hist shear[CAP];
+  lsdem_pair_state st;
+} pair_buf;
 
-static int step_run(run_state *r, const lsdem_shape *A, const lsdem_pose *pa,
-                    const lsdem_shape *B, const lsdem_pose *pb,
-                    const lsdem_contact_params *prm, int64_t step, lsdem_contact_result *res)
+static void pair_buf_clear(pair_buf *b)
 {
-  int nout = 0;
-  lsdem_contact_nodes(A, pa, B, pb, prm, step, r->buf[r->cur], r->n, r->buf[1 - r->cur], &nout,
-                      res);
-  r->cur = 1 - r->cur;
-  r->n = nout;
-  return nout;
+  memset(&b->st, 0, sizeof b->st);
+  b->st.list.head = &b->head;
+  b->st.list.entry = b->entry;
+  b->st.shear = b->shear;
 }
 
-/* The shear entries (node >= 0) of a history: after the list's pose and node entries. */
-static const lsdem_node_hist *shear_entries(const run_state *r, int *n)
+/* One step of the pair from state in (NULL: none) to out (NULL: not kept). */
+static void step_pair(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
+                      const lsdem_pose *pb, const lsdem_contact_params *prm, int64_t step,
+                      const pair_buf *in, pair_buf *out, lsdem_contact_result *res)
 {
-  const lsdem_node_hist *h = r->buf[r->cur];
-  int first = 0, last;
-  while (first < r->n && h[first].node < 0) first++;
-  for (last = first; last < r->n && h[last].node >= 0; last++) continue;
-  *n = last - first;
-  return h + first;
+  lsdem_contact_penalty(A, pa, B, pb, prm, step, in ? &in->st : NULL, out ? &out->st : NULL,
+                        fix_manifold(), res);
+}
+
+/* Whether b's list was built at step s. */
+static int built_at(const pair_buf *b, int64_t s)
+{
+  return b->st.list.valid && b->head.built == s;
+}
+
+/* One run: its own state, swapped between steps. */
+typedef struct {
+  pair_buf buf[2];
+  int cur;
+} run_state;
+
+static void run_clear(run_state *r)
+{
+  pair_buf_clear(&r->buf[0]);
+  pair_buf_clear(&r->buf[1]);
+  r->cur = 0;
+}
+
+static void step_run(run_state *r, const lsdem_shape *A, const lsdem_pose *pa,
+                     const lsdem_shape *B, const lsdem_pose *pb,
+                     const lsdem_contact_params *prm, int64_t step, lsdem_contact_result *res)
+{
+  step_pair(A, pa, B, pb, prm, step, &r->buf[r->cur], &r->buf[1 - r->cur], res);
+  r->cur = 1 - r->cur;
+}
+
+/* The shear entries of a run's current state. */
+static const lsdem_shear_hist *shear_entries(const run_state *r, int *n)
+{
+  *n = r->buf[r->cur].st.nshear;
+  return r->buf[r->cur].shear;
 }
 
 /* A's pose at step s. SLIDE: a slow slide and roll across B's surface, approaching at
@@ -85,12 +115,12 @@ static void compare_runs(const char *what, int path, const lsdem_shape *A,
                          int stride, double skin, int fewer)
 {
   lsdem_contact_params prm = fix_params(50.0, 40.0, mu, 0.5);
-  prm.node_stride = stride;
+  prm.detect.node_stride = stride;
   lsdem_contact_params listed = prm;
-  listed.node_skin = skin;
+  listed.detect.node_skin = skin;
   static run_state plain, fast;
-  memset(&plain, 0, sizeof plain);
-  memset(&fast, 0, sizeof fast);
+  run_clear(&plain);
+  run_clear(&fast);
   long tested_plain = 0, tested_fast = 0;
   int contact_steps = 0, reused = 0, rebuilt = 0, same = 1, same_hist = 1;
   for (int s = 0; s < STEPS; s++) {
@@ -105,14 +135,13 @@ static void compare_runs(const char *what, int path, const lsdem_shape *A,
             memcmp(rp.point, rf.point, sizeof rp.point) == 0 && rp.npen == rf.npen &&
             rp.max_depth == rf.max_depth;
     int np, nf;
-    const lsdem_node_hist *hp = shear_entries(&plain, &np), *hf = shear_entries(&fast, &nf);
+    const lsdem_shear_hist *hp = shear_entries(&plain, &np), *hf = shear_entries(&fast, &nf);
     same_hist &= np == nf && memcmp(hp, hf, sizeof *hp * (size_t)np) == 0;
     contact_steps += rp.npen > 0;
     tested_plain += rp.ntested;
     tested_fast += rf.ntested;
     if (rp.npen > 0) reused += rf.ntested < rp.ntested / 2;
-    rebuilt += fast.n > 0 && fast.buf[fast.cur][0].node < 0 &&
-               fast.buf[fast.cur][0].stamp == s; /* the list's first entry: step built */
+    rebuilt += built_at(&fast.buf[fast.cur], s);
   }
   CHECK(same, "%s: a result differs with node lists", what);
   CHECK(same_hist, "%s: the shear history differs with node lists", what);
@@ -139,11 +168,11 @@ static void rattle_pose(int s, lsdem_pose *pa)
 static void test_rattle_widens(const lsdem_shape *A, const lsdem_shape *B, const lsdem_pose *pb)
 {
   lsdem_contact_params prm = fix_params(50.0, 40.0, 0.5, 0.5), listed = prm;
-  listed.node_skin = 0.3;
+  listed.detect.node_skin = 0.3;
   static run_state plain, fast, fresh;
-  memset(&plain, 0, sizeof plain);
-  memset(&fast, 0, sizeof fast);
-  memset(&fresh, 0, sizeof fresh);
+  run_clear(&plain);
+  run_clear(&fast);
+  run_clear(&fresh);
   int same = 1, rebuilt_shaking = 0;
   lsdem_contact_result rp, rf, r0;
   for (int s = 0; s < STEPS; s++) {
@@ -153,7 +182,7 @@ static void test_rattle_widens(const lsdem_shape *A, const lsdem_shape *B, const
     step_run(&fast, A, &pa, B, pb, &listed, s, &rf);
     same &= memcmp(rp.force, rf.force, sizeof rp.force) == 0 && rp.npen == rf.npen;
     if (s > 0 && s < 200)
-      rebuilt_shaking += fast.buf[fast.cur][0].node < 0 && fast.buf[fast.cur][0].stamp == s;
+      rebuilt_shaking += built_at(&fast.buf[fast.cur], s);
   }
   lsdem_pose rest;
   rattle_pose(STEPS, &rest);
@@ -176,10 +205,10 @@ static void test_rattle_bound_limits(const lsdem_shape *A, const lsdem_shape *B,
   lsdem_shape tight = *B;
   tight.sdf.grid.lip_reach = 0.5 * tight.sdf.grid.lip;
   lsdem_contact_params prm = fix_params(50.0, 40.0, 0.5, 0.5), listed = prm;
-  listed.node_skin = 0.3;
+  listed.detect.node_skin = 0.3;
   static run_state plain, fast;
-  memset(&plain, 0, sizeof plain);
-  memset(&fast, 0, sizeof fast);
+  run_clear(&plain);
+  run_clear(&fast);
   int same = 1;
   lsdem_contact_result rp, rf;
   for (int s = 0; s < 200; s++) {
@@ -189,8 +218,7 @@ static void test_rattle_bound_limits(const lsdem_shape *A, const lsdem_shape *B,
     step_run(&fast, A, &pa, &tight, pb, &listed, s, &rf);
     same &= memcmp(rp.force, rf.force, sizeof rp.force) == 0 && rp.npen == rf.npen;
   }
-  int listed_nodes = 0; /* node entries: ids below the list's two pose entries */
-  for (int k = 0; k < fast.n; k++) listed_nodes += fast.buf[fast.cur][k].node < -2;
+  const int listed_nodes = fast.buf[fast.cur].head.count;
   CHECK(same && rp.npen > 5, "rattle, tight bound: results differ (%d nodes)", rp.npen);
   CHECK(listed_nodes > 0 && listed_nodes < rf.ntested,
         "rattle, tight bound: %d nodes listed of %d looked up", listed_nodes, rf.ntested);
@@ -203,28 +231,29 @@ static void test_rattle_bound_limits(const lsdem_shape *A, const lsdem_shape *B,
 static void test_list_settings(const lsdem_shape *A, const lsdem_shape *wall,
                                const lsdem_pose *pw)
 {
-  static lsdem_node_hist h0[CAP], h1[CAP];
+  static pair_buf h0, h1;
+  pair_buf_clear(&h0);
+  pair_buf_clear(&h1);
   lsdem_contact_params prm = fix_params(50.0, 0.0, 0.0, 0.5), first = prm, second = prm;
-  first.node_skin = 0.1;
-  second.node_skin = 0.5;
+  first.detect.node_skin = 0.1;
+  second.detect.node_skin = 0.5;
   lsdem_pose pa, moved;
   path_pose(APPROACH, 0, 0.0, &pa);
   moved = pa;
   moved.x[2] -= 0.4;
-  int n0 = 0, n1 = 0;
   lsdem_contact_result r0, r1, ref;
-  lsdem_contact_nodes(A, &pa, wall, pw, &first, 0, NULL, 0, h0, &n0, &r0);
-  lsdem_contact_nodes(A, &moved, wall, pw, &second, 1, h0, n0, h1, &n1, &r1);
-  lsdem_contact_nodes(A, &moved, wall, pw, &prm, 1, NULL, 0, NULL, NULL, &ref);
+  step_pair(A, &pa, wall, pw, &first, 0, NULL, &h0, &r0);
+  step_pair(A, &moved, wall, pw, &second, 1, &h0, &h1, &r1);
+  step_pair(A, &moved, wall, pw, &prm, 1, NULL, NULL, &ref);
   CHECK(r1.npen == ref.npen && r1.npen > r0.npen + 3 &&
             memcmp(r1.force, ref.force, sizeof ref.force) == 0,
         "skin changed: %d penetrating nodes, %d without list (%d before the move)", r1.npen,
         ref.npen, r0.npen);
-  first.node_stride = 2;
-  first.node_skin = second.node_skin;
-  lsdem_contact_nodes(A, &pa, wall, pw, &first, 0, NULL, 0, h0, &n0, &r0);
-  lsdem_contact_nodes(A, &pa, wall, pw, &second, 1, h0, n0, h1, &n1, &r1);
-  lsdem_contact_nodes(A, &pa, wall, pw, &prm, 1, NULL, 0, NULL, NULL, &ref);
+  first.detect.node_stride = 2;
+  first.detect.node_skin = second.detect.node_skin;
+  step_pair(A, &pa, wall, pw, &first, 0, NULL, &h0, &r0);
+  step_pair(A, &pa, wall, pw, &second, 1, &h0, &h1, &r1);
+  step_pair(A, &pa, wall, pw, &prm, 1, NULL, NULL, &ref);
   CHECK(r1.npen == ref.npen && r1.npen > r0.npen &&
             memcmp(r1.force, ref.force, sizeof ref.force) == 0,
         "stride changed: %d penetrating nodes, %d without list (%d at stride 2)", r1.npen,
@@ -236,7 +265,9 @@ static void test_list_settings(const lsdem_shape *A, const lsdem_shape *wall,
  * run still gives the answer of the grid the cells came from. */
 static void test_kept_cells(const lsdem_shape *A, const lsdem_shape *B, const lsdem_pose *pb)
 {
-  static lsdem_node_hist h0[CAP], h1[CAP];
+  static pair_buf h0, h1;
+  pair_buf_clear(&h0);
+  pair_buf_clear(&h1);
   const lsdem_grid *g = &B->sdf.grid;
   const size_t ns = (size_t)g->n[0] * g->n[1] * g->n[2];
   float *shifted = malloc(ns * sizeof *shifted);
@@ -244,15 +275,14 @@ static void test_kept_cells(const lsdem_shape *A, const lsdem_shape *B, const ls
   lsdem_shape B2 = *B;
   B2.sdf.grid.phi = shifted;
   lsdem_contact_params prm = fix_params(50.0, 0.0, 0.0, 0.5), listed = prm;
-  listed.node_skin = 0.3;
+  listed.detect.node_skin = 0.3;
   lsdem_pose pa;
   path_pose(APPROACH, 100, 11.6, &pa);
-  int n0 = 0, n1 = 0;
   lsdem_contact_result r0, r1, on_b, on_b2;
-  lsdem_contact_nodes(A, &pa, B, pb, &listed, 0, NULL, 0, h0, &n0, &r0);
-  lsdem_contact_nodes(A, &pa, &B2, pb, &listed, 1, h0, n0, h1, &n1, &r1);
-  lsdem_contact_nodes(A, &pa, B, pb, &prm, 1, NULL, 0, NULL, NULL, &on_b);
-  lsdem_contact_nodes(A, &pa, &B2, pb, &prm, 1, NULL, 0, NULL, NULL, &on_b2);
+  step_pair(A, &pa, B, pb, &listed, 0, NULL, &h0, &r0);
+  step_pair(A, &pa, &B2, pb, &listed, 1, &h0, &h1, &r1);
+  step_pair(A, &pa, B, pb, &prm, 1, NULL, NULL, &on_b);
+  step_pair(A, &pa, &B2, pb, &prm, 1, NULL, NULL, &on_b2);
   CHECK(on_b.npen > 5 && on_b2.npen != on_b.npen, "%d / %d penetrating nodes", on_b.npen,
         on_b2.npen);
   CHECK(r1.npen == on_b.npen && memcmp(r1.force, on_b.force, sizeof r1.force) == 0,
@@ -266,18 +296,19 @@ static void test_kept_cells(const lsdem_shape *A, const lsdem_shape *B, const ls
  * index out of A's range is ever read (the ASan build of this test would report it). */
 static void test_damaged_entry(const lsdem_shape *A, const lsdem_shape *B, const lsdem_pose *pb)
 {
-  static lsdem_node_hist h0[CAP], h1[CAP];
+  static pair_buf h0, h1;
+  pair_buf_clear(&h0);
+  pair_buf_clear(&h1);
   lsdem_contact_params listed = fix_params(50.0, 0.0, 0.0, 0.5);
-  listed.node_skin = 0.3;
+  listed.detect.node_skin = 0.3;
   lsdem_pose pa;
   path_pose(APPROACH, 100, 11.6, &pa);
-  int n0 = 0, n1 = 0;
   lsdem_contact_result r0, r1;
-  lsdem_contact_nodes(A, &pa, B, pb, &listed, 0, NULL, 0, h0, &n0, &r0);
-  const int nn = h0[1].pad_; /* node entries follow the two head entries */
+  step_pair(A, &pa, B, pb, &listed, 0, NULL, &h0, &r0);
+  const int nn = h0.head.count;
   CHECK(nn > 4 && r0.ntested >= nn, "%d listed of %d looked up", nn, r0.ntested);
-  h0[2 + nn / 2].node = LSDEM_TEST_BAD_NODE_ID;
-  lsdem_contact_nodes(A, &pa, B, pb, &listed, 1, h0, n0, h1, &n1, &r1);
+  h0.entry[nn / 2].node = LSDEM_TEST_BAD_NODE;
+  step_pair(A, &pa, B, pb, &listed, 1, &h0, &h1, &r1);
   CHECK(r1.ntested == nn - 1, "damaged list: %d lookups, want %d", r1.ntested, nn - 1);
 }
 
@@ -289,17 +320,17 @@ static void test_damaged_entry(const lsdem_shape *A, const lsdem_shape *B, const
 static void test_random_moves(const lsdem_shape *A, const lsdem_shape *B,
                               const lsdem_pose *pb, double lift, int loose, const char *what)
 {
-  static lsdem_node_hist h0[CAP];
+  static pair_buf h0;
+  pair_buf_clear(&h0);
   int trusted = 0, same = 1, touching = 0;
   for (int t = 0; t < 300; t++) {
     const double skin = t % 2 ? 0.4 : 2.0;
     lsdem_contact_params prm = fix_params(50.0, 0.0, 0.0, 0.5), listed = prm;
-    listed.node_skin = skin;
+    listed.detect.node_skin = skin;
     lsdem_pose pa = fix_pose(3.0 * srand1(), 3.0 * srand1(), lift + 2.5 * srand1());
     fix_rotation_about(srand1(), srand1(), srand1(), FIX_PI * urand(), pa.R);
-    int n0 = 0;
     lsdem_contact_result r0;
-    lsdem_contact_nodes(A, &pa, B, pb, &listed, 0, NULL, 0, h0, &n0, &r0);
+    step_pair(A, &pa, B, pb, &listed, 0, NULL, &h0, &r0);
     for (int m = 0; m < 8; m++) {
       lsdem_pose moved = pa;
       const double u = 4.0 * skin * urand();
@@ -313,8 +344,8 @@ static void test_random_moves(const lsdem_shape *A, const lsdem_shape *B,
                          turn[3 * i + 2] * pa.R[6 + j];
       memcpy(moved.R, R, sizeof R);
       lsdem_contact_result r1, ref;
-      lsdem_contact_nodes(A, &moved, B, pb, &listed, 1, h0, n0, NULL, NULL, &r1);
-      lsdem_contact_nodes(A, &moved, B, pb, &prm, 1, NULL, 0, NULL, NULL, &ref);
+      step_pair(A, &moved, B, pb, &listed, 1, &h0, NULL, &r1);
+      step_pair(A, &moved, B, pb, &prm, 1, NULL, NULL, &ref);
       same &= r1.npen == ref.npen && memcmp(r1.force, ref.force, sizeof r1.force) == 0;
       trusted += r1.ntested < ref.ntested;
       touching += ref.npen > 0;
@@ -359,13 +390,18 @@ static void test_outer_lipschitz(const lsdem_sdf *g)
 
 /* A history in the layout of earlier versions (restart files written by them: masks
  * with ids -3.., the pose at -2 and -1, cells at ids -2^30 + k whose samples are stored
- * otherwise) is not taken for a list: the answer is the plain one and a new list is built
- * at this step. The old entries are filled so that, read as a list, they would hold. */
+ * otherwise), as records, is not taken for a list: the answer is the plain one and a new
+ * list is built at this step. The old entries are filled so that, read as a list, they
+ * would hold. */
 static void test_old_layout(const lsdem_shape *A, const lsdem_shape *B, const lsdem_pose *pb)
 {
-  static lsdem_node_hist old[CAP], out[CAP];
+  static lsdem_state_record old[CAP];
+  static pair_buf in, out;
+  pair_buf_clear(&in);
+  pair_buf_clear(&out);
+  memset(old, 0, sizeof old);
   lsdem_contact_params prm = fix_params(50.0, 40.0, 0.5, 0.5), listed = prm;
-  listed.node_skin = 0.3;
+  listed.detect.node_skin = 0.3;
   lsdem_pose pa;
   path_pose(APPROACH, 100, 11.6, &pa);
   double M[9], t[3], dx[3], mdx[3];
@@ -378,31 +414,31 @@ static void test_old_layout(const lsdem_shape *A, const lsdem_shape *B, const ls
       M[3 * i + j] = pb->R[i] * pa.R[j] + pb->R[3 + i] * pa.R[3 + j] + pb->R[6 + i] * pa.R[6 + j];
   lsdem_matT_vec(pb->R, mdx, t);
   int n = 0;
-  old[n++] = (lsdem_node_hist){.node = -3, .stamp = 99}; /* mask: node 0 alone */
-  old[n].node = -2; /* pose M[0..5]; stamp: the validity radius (huge) */
+  old[n++] = (lsdem_state_record){.id = -3, .stamp = 99}; /* mask: node 0 alone */
+  old[n].id = -2; /* pose M[0..5]; stamp: the validity radius (huge) */
   const double radius = 1e9;
   memcpy(&old[n].stamp, &radius, sizeof radius);
-  old[n + 1].node = -1; /* M[6..8], t; stamp: the stride */
+  old[n + 1].id = -1; /* M[6..8], t; stamp: the stride */
   old[n + 1].stamp = 1;
   for (int i = 0; i < 3; i++) {
-    old[n].shear[i] = M[i];
-    old[n].normal[i] = M[3 + i];
-    old[n + 1].shear[i] = M[6 + i];
-    old[n + 1].normal[i] = t[i];
+    old[n].a[i] = M[i];
+    old[n].b[i] = M[3 + i];
+    old[n + 1].a[i] = M[6 + i];
+    old[n + 1].b[i] = t[i];
   }
   n += 2;
-  old[0].shear[0] = 1.0;
-  for (int k = 0; k < 4; k++) old[n++] = (lsdem_node_hist){.node = -(1 << 30) + k, .pad_ = 7};
+  old[0].a[0] = 1.0;
+  for (int k = 0; k < 4; k++) old[n++] = (lsdem_state_record){.id = -(1 << 30) + k, .aux = 7};
+  lsdem_pair_state_decode(old, n, A->nnodes, &in.st);
   lsdem_contact_result plain, res;
-  int nout = 0;
-  lsdem_contact_nodes(A, &pa, B, pb, &prm, 100, NULL, 0, NULL, NULL, &plain);
-  lsdem_contact_nodes(A, &pa, B, pb, &listed, 100, old, n, out, &nout, &res);
+  step_pair(A, &pa, B, pb, &prm, 100, NULL, NULL, &plain);
+  step_pair(A, &pa, B, pb, &listed, 100, &in, &out, &res);
   CHECK(plain.npen > 5 && res.npen == plain.npen &&
             memcmp(res.force, plain.force, sizeof res.force) == 0,
         "old layout: %d nodes, force %g; plain %d, %g", res.npen, res.force[2], plain.npen,
         plain.force[2]);
-  CHECK(nout > 2 && out[0].node < 0 && out[0].stamp == 100, "old layout: no new list (%d)",
-        nout);
+  CHECK(!in.st.list.valid && built_at(&out, 100), "old layout: no new list (%d)",
+        out.st.list.valid);
 }
 
 int main(void)

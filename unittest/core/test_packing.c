@@ -2,7 +2,7 @@
  * generator's cell list and probes: all pairs by the contact kernel in both directions,
  * every node inside the container by its coordinates, clearances by direct level-set
  * lookups; plus determinism, weights, and an overfull request. */
-#include "lsdem.h"
+#include "contact_fixtures.h"
 #include "lsdem_test.h"
 
 #include <math.h>
@@ -45,7 +45,7 @@ static void pose_of(const lsdem_placed *g, lsdem_pose *p)
 /* Penetrating nodes of every pair, both directions, all pairs (no culling). */
 static int pair_penetrations(const lsdem_placed *g, int n)
 {
-  const lsdem_contact_params prm = {1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1, LSDEM_NORMAL_PER_NODE, 0.0};
+  const lsdem_contact_params prm = fix_params(1.0, 0.0, 0.0, 0.0);
   int total = 0;
   for (int i = 0; i < n; i++)
     for (int j = i + 1; j < n; j++) {
@@ -54,10 +54,10 @@ static int pair_penetrations(const lsdem_placed *g, int n)
       int nout;
       pose_of(&g[i], &a);
       pose_of(&g[j], &b);
-      total += lsdem_contact_nodes(&shapes[g[i].shape], &a, &shapes[g[j].shape], &b, &prm, 0,
-                                   NULL, 0, NULL, &nout, &res);
-      total += lsdem_contact_nodes(&shapes[g[j].shape], &b, &shapes[g[i].shape], &a, &prm, 0,
-                                   NULL, 0, NULL, &nout, &res);
+      total += fix_contact(&shapes[g[i].shape], &a, &shapes[g[j].shape], &b, &prm, 0,
+                         NULL, 0, NULL, &nout, &res);
+      total += fix_contact(&shapes[g[j].shape], &b, &shapes[g[i].shape], &a, &prm, 0,
+                         NULL, 0, NULL, &nout, &res);
     }
   return total;
 }

@@ -1,7 +1,9 @@
 /* test_shapelib.c -- the shape-library file (doc/shape_library.rst): exact round trip of
  * grid and analytic shapes, header fields at their documented offsets, an independent
  * FNV-1a checksum of the header/TOC, rejection of every truncation, of bad magic and
- * version, of hostile TOC entries, and detection of a corrupt section by verify. */
+ * version, of hostile TOC entries, detection of a corrupt section by verify, and refusal of
+ * shapes a grain cannot use (no solid, centroid outside the grid, bad node areas or radius)
+ * by the writer and by verify. */
 #include "lsdem.h"
 #include "lsdem_test.h"
 
@@ -182,6 +184,7 @@ static void build_shapes(void)
   make_grid_shape(&store_b, &shapes[3]);
   store_b.phi[17] = -0.0f; /* the sign bit must survive */
   shapes[3].sdf.grid.n[2] = 3;
+  shapes[3].sdf.grid.origin[2] = -0.37; /* the centroid stays inside the shorter grid */
   shapes[3].sdf.inverted = 1;
 }
 
@@ -415,6 +418,67 @@ static void test_writer_rejects(void)
   CHECK(lsdem_library_write(BAD, &s, NULL, 1, &err) == LSDEM_ERR_ARG, "negative semi-axis");
   CHECK(lsdem_library_write("no/such/dir/x.lslib", shapes, NULL, 1, &err) == LSDEM_ERR_IO,
         "unwritable path");
+  CHECK(lsdem_library_write(".", shapes, NULL, 1, &err) == LSDEM_ERR_IO &&
+            strstr(err.msg, "not a regular file"), "a folder as the output: %s", err.msg);
+}
+
+/* Content a grain cannot use, refused by the writer with the shape's index and name:
+ * a grid without a negative value, a centroid (origin) outside the grid box, a node area
+ * of 0, a node beyond the bounding radius. */
+static void test_writer_rejects_content(void)
+{
+  static const struct {
+    const char *what, *needle;
+  } cases[] = {{"no solid", "shape 0 ('grain_a'): no level-set value is negative"},
+               {"centroid above the grid", "shape 0 ('grain_a'): its centroid (the origin of "
+                                           "its principal frame) is at grid coordinates (2, "
+                                           "2.5, -1)"},
+               {"zero node area", "shape 0 ('grain_a'): node 4 has area 0"},
+               {"node beyond the radius", "shape 0 ('grain_a'): node 0 lies 0.5 from the "
+                                          "centroid, beyond the bounding radius 0.4"}};
+  for (int c = 0; c < 4; c++) {
+    grid_store g;
+    lsdem_shape s;
+    make_grid_shape(&g, &s);
+    if (c == 0)
+      for (int i = 0; i < 5 * 6 * 7; i++) g.phi[i] = 0.25f;
+    if (c == 1) s.sdf.grid.origin[2] = 0.37; /* grid z from 0.37 to 2.59 */
+    if (c == 2) g.area[4] = 0.0;
+    if (c == 3) {
+      g.nodes[0] = 0.3, g.nodes[1] = 0.0, g.nodes[2] = -0.4; /* |node 0| = 0.5 */
+      s.radius = 0.4;
+    }
+    lsdem_error err = {{0}};
+    const lsdem_status st = lsdem_library_write(BAD, &s, names, 1, &err);
+    CHECK(st == LSDEM_ERR_NUMERIC && strstr(err.msg, cases[c].needle), "%s: %s (%s)",
+          cases[c].what, lsdem_status_name(st), err.msg);
+  }
+}
+
+/* The same checks in verify, for a file whose TOC says so (resealed): shape 1's bounding
+ * radius 2.5 lowered to 0.5, below its node at distance 1. */
+static void test_verify_content(void)
+{
+  size_t n = 0;
+  unsigned char *b = slurp(LIB, &n);
+  CHECK(b && n > 64 + 4 * 360, "library file missing");
+  if (!b || n <= 64 + 4 * 360) return;
+  double r = 0.5;
+  memcpy(b + 64 + 360 + 88, &r, 8);
+  reseal(b);
+  spill(BAD, b, n);
+  lsdem_library *lib = NULL;
+  lsdem_error err = {{0}};
+  CHECK(lsdem_library_open(BAD, &lib, &err) == LSDEM_OK, "open: %s", err.msg);
+  if (lib) {
+    CHECK(lsdem_library_verify(lib, 0, &err) == LSDEM_OK, "shape 0 intact: %s", err.msg);
+    const lsdem_status st = lsdem_library_verify(lib, -1, &err);
+    CHECK(st == LSDEM_ERR_NUMERIC && strstr(err.msg, "shape 1 (''): node 0 lies 1 from the "
+                                            "centroid, beyond the bounding radius 0.5"),
+          "verify: %s", err.msg);
+    lsdem_library_close(lib);
+  }
+  free(b);
 }
 
 int main(void)
@@ -427,6 +491,8 @@ int main(void)
   test_hostile_toc();
   test_corrupt_section();
   test_writer_rejects();
+  test_writer_rejects_content();
+  test_verify_content();
   remove(LIB);
   remove(BAD);
   return lsdem_test_summary();

@@ -1,13 +1,16 @@
 """atom_style lsdem: shape library report, data file input/output, restart, migration
-between ranks, replicate, compute property/atom names, input errors, hybrid use.
+between ranks, replicate, compute property/atom names, input errors (bad libraries, data
+lines with a value too many or too few, repeated atom IDs), hybrid use.
 
 Expected masses and moments come from closed forms (grain_decks.closed_form); restart and
 migration are checked by continuing a run through a restart file and on 2 ranks, which must
 reproduce an uninterrupted single-rank run (this needs the integrator state dwprev too)."""
 import math
 import re
+import struct
+import subprocess
 
-from lsdemtest import run_lmp, shape_tool, check, near, finish
+from lsdemtest import SHAPE_TOOL, run_lmp, shape_tool, check, near, finish
 import grain_decks as gd
 
 LIB = gd.library()
@@ -29,6 +32,13 @@ GRAINS = [
 gd.write_data("grains.data", GRAINS)
 
 HEAD = "units lj\natom_style lsdem library %s\n" % LIB
+
+
+def fnv1a(data, h=0xcbf29ce484222325):
+    """FNV-1a 64 (the library's checksum, doc/shape_library.rst) from its definition."""
+    for b in data:
+        h = ((h ^ b) * 0x100000001b3) & 0xffffffffffffffff
+    return h
 
 
 def section(path, name):
@@ -193,6 +203,81 @@ open("damaged.lslib", "wb").write(bytes(raw))
 rc, log = run_lmp("atom_style lsdem library damaged.lslib\n", expect_fail=True)
 check(rc != 0 and "shape library damaged.lslib is damaged" in log
       and "section checksum mismatch" in log, "damaged library section:\n" + log[-600:])
+# a library whose TOC (resealed: its checksum matches) gives the ball a bounding radius of
+# 0.05 while its nodes lie at 0.5: lsdem-shape verify and the atom style refuse it, naming
+# the shape (the grains would pass through each other)
+raw = bytearray(open("ball.lslib", "rb").read())
+raw[64 + 88:64 + 96] = struct.pack("<d", 0.05)               # TOC entry 0: radius
+count = struct.unpack("<I", raw[20:24])[0]
+raw[56:64] = struct.pack("<Q", fnv1a(raw[64:64 + 360 * count], fnv1a(raw[:56])))
+open("shrunk.lslib", "wb").write(bytes(raw))
+p = subprocess.run([SHAPE_TOOL, "verify", "shrunk.lslib"], stdout=subprocess.PIPE,
+                   stderr=subprocess.STDOUT, text=True)
+want = "lies 0.5 from the centroid, beyond the bounding radius 0.05"
+check(p.returncode == 1 and "shape 0 ('sphere'): node " in p.stdout and want in p.stdout
+      and "1 bad" in p.stdout,
+      "lsdem-shape verify of a too small radius:\n" + p.stdout)
+rc, log = run_lmp("atom_style lsdem library shrunk.lslib\n", expect_fail=True)
+check(rc != 0 and want in log, "atom style with a too small radius:\n" + log[-600:])
+
+# every Atoms and Velocities line must have the values of the section's first line: LAMMPS
+# checks only that one, passes over extra values and shifts the values after a line with
+# one missing (its reader crashes two lines later). The check cannot tell whether the
+# text after a line's values is its own or the next line's, and names both; when lines end
+# in their last value it is the whole next line, here the bad one, that is shown.
+def data_with(name, section, k, edit):
+    lines = open("grains.data").read().split("\n")
+    i = lines.index(section) + 2 + k
+    lines[i] = edit(lines[i])
+    open(name, "w").write("\n".join(lines))
+    return lines[i]
+
+
+drop = lambda line: line.rsplit(" ", 1)[0]
+cases = [("short.data", "Atoms # lsdem", 2, drop, 11),          # atom 3 lacks qz
+         ("extra.data", "Atoms # lsdem", 3, lambda l: l + " 7", 11),
+         ("vshort.data", "Velocities", 1, drop, 7),              # atom 2 lacks wz
+         ("vextra.data", "Velocities", 4, lambda l: l + " 1", 7)]  # the last line, atom 5
+for name, section, k, edit, n in cases:
+    line = data_with(name, section, k, edit)
+    rc, log = run_lmp(HEAD + "read_data %s\nrun 0\n" % name, expect_fail=True)
+    check(rc != 0 and "each %s line needs %d values" % (section.split()[0], n) in log
+          and "'%s' (%d values)" % (line, len(line.split())) in log,
+          "%s: refused showing the line:\n%s" % (name, log[-700:]))
+# image flags on all lines but one (atom 3's)
+lines = open("grains.data").read().split("\n")
+first = lines.index("Atoms # lsdem") + 2
+for i in (0, 1, 3, 4):
+    lines[first + i] += " 0 0 0"
+open("flags.data", "w").write("\n".join(lines))
+rc, log = run_lmp(HEAD + "read_data flags.data\nrun 0\n", expect_fail=True)
+check(rc != 0 and "each Atoms line needs 14 values" in log and "'%s' (11 values)"
+      % lines[first + 2] in log, "a line without image flags:\n" + log[-700:])
+# a comment after the values is no value (as on the first line, where LAMMPS strips it)
+data_with("comment.data", "Atoms # lsdem", 2, lambda l: l + "   # the box")
+rc, log = run_lmp(HEAD + "read_data comment.data\nrun 0\n")
+check(rc == 0, "a comment after an Atoms line's values")
+# on 2 ranks the rank that owns the line stops the run (extra value on atom 4's line,
+# rank 1's: x = 8 on a 2 by 1 by 1 grid)
+rc, log = run_lmp(HEAD + "processors 2 1 1\nread_data extra.data\nrun 0\n", np=2,
+                  expect_fail=True)
+check(rc != 0 and "each Atoms line needs 11 values" in log, "np 2 extra value:\n" + log[-700:])
+
+# an atom ID given to two grains (not seen by LAMMPS's read_data when the largest ID is not
+# below the atom count) stops the run naming it, also when the two are on different ranks:
+# IDs 1 3 3 4 7, the two 3s at x = 5 (rank 1) and x = -5 (rank 0); ID 3 is sorted on rank 1
+dup = [dict(g) for g in GRAINS]
+for g, new_id in zip(dup, (1, 3, 3, 4, 7)):
+    g["id"] = new_id
+gd.write_data("dup.data", dup)
+for np in (1, 2):
+    rc, log = run_lmp(HEAD + "processors %d 1 1\nread_data dup.data\nrun 0\n" % np, np=np,
+                      log="dup.log", expect_fail=True)
+    log = open("dup.log").read()
+    check(rc != 0 and "1 atom ID is given to more than one atom: 3 (2 atoms)" in log
+          and ("(found on rank 1)" in log) == (np == 2),
+          "np %d: repeated atom ID:\n%s" % (np, log[-700:]))
+
 # LAMMPS's set diameter/mass/density would change a grain's radius or mass apart from its
 # shape and moments: refused at the run, naming the atom, on all ranks (atom 4, at x = 8, is
 # rank 1's on a 2 by 1 by 1 grid)

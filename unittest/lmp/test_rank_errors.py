@@ -8,8 +8,10 @@ before it reach rank 0's log, and dumps stay complete.
 2. A stock LAMMPS error->one on rank 1 alone (a division by zero in an atom-style variable,
    evaluated for rank 1's grain only): rank 1 aborts at once; rank 0's log still has every
    line written before (it is line-buffered, also a log opened later by the log command; it
-   used to come out empty), and rank 1, which shows no output under -screen none, writes the
-   message to its standard error.
+   used to come out empty), the dump written by rank 0 with flush no every frame before the
+   error (rank 0 flushes when mpirun terminates it; the dump used to come out empty), and
+   rank 1, which shows no output under -screen none, writes the message to its standard
+   error.
 (fix membrane/lsdem's torn-membrane stop is tested in test_membrane_lsdem.py.)"""
 import contact_decks as cd
 from lsdemtest import check, finish, run_lmp, thermo
@@ -65,6 +67,9 @@ for name, switch in (("divide.log", ""), ("switched.log", "log switched.log\n"))
     check([int(r["Step"]) for r in thermo(log)] == list(range(0, 41, 10)),
           "%s: rank 0's log keeps the rows written before rank 1 aborted:\n%s"
           % (name, log[-800:]))
+    check(dump_steps("grains.dump") == list(range(0, 41, 10)),
+          "%s: dump (flush no) keeps the frames written before rank 1 aborted: %s"
+          % (name, dump_steps("grains.dump")))
     # lmp runs with -screen none: rank 1 shows nothing, so the message goes to its stderr
     check(out.count("ERROR on proc 1: Divide by 0 in variable formula") == 1,
           "%s: rank 1's message on its standard error, once:\n%s" % (name, out[-800:]))

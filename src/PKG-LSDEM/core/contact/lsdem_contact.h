@@ -1,4 +1,24 @@
-/* lsdem_contact.h -- contact of level-set grains (kernel). */
+/* lsdem_contact.h -- contact of level-set grains (kernel, core/contact).
+ *
+ * Two stages with a public type between them (report §2.2, Algorithm 2):
+ *
+ *   detection  (detect.c, nodelist.c)  which nodes of master A lie inside slave B, and
+ *              the geometry there: a CONTACT MANIFOLD, one point per penetrating node
+ *              (point, normal, depth, node, relative velocity). Knows nothing of forces.
+ *   a solver   that consumes manifolds: the penalty law (penalty.c, eqs 2.2-2.16) turns
+ *              one into forces, torques and per-node shear history; the impulse solver
+ *              of report chapter 4 turns those of an island into impulses.
+ *
+ * A pair carries two kinds of state from step to step, each its own record type, both
+ * owned by the master A (the caller keeps them; fix LSDEM_HISTORY in LAMMPS):
+ *   - a node list (lsdem_nodelist): which of A's nodes may touch B, detection's cache;
+ *   - shear history (lsdem_shear_hist): the penalty law's tangential springs, per node.
+ * Who is master of a pair is decided by lsdem_contact_roles (roles.c).
+ *
+ * Frames and signs: everything here is world frame except node coordinates (A's
+ * principal frame). The normal n is B's outward unit normal at the contact, so it points
+ * from B towards A; a force computed for a contact acts on A (repulsive: +|f_n| n) and B
+ * receives -f. Torques are about each grain's centroid. */
 #ifndef LSDEM_CONTACT_H
 #define LSDEM_CONTACT_H
 
@@ -8,8 +28,6 @@
 extern "C" {
 #endif
 
-/* ------------------------------------------------------------------ contact ---- */
-
 /* Rigid-body state of one grain in the world frame, as the contact kernel needs it. */
 typedef struct {
   double x[3];      /* centroid */
@@ -17,6 +35,152 @@ typedef struct {
   double v[3];      /* centroid velocity */
   double omega[3];  /* angular velocity, world frame */
 } lsdem_pose;
+
+/* ---------------------------------------------------------------- parameters ---- */
+
+/* What detection tests (not what force follows). */
+typedef struct {
+  int node_stride;  /* test every N-th node (report §3.4.1), the law's stiffnesses and
+                       dampings then weighted by N; 1 = all */
+  double node_skin; /* > 0: keep a node list per pair (lsdem_nodelist), built with this
+                       skin (length); 0 = screen every node at every call */
+} lsdem_detect_params;
+
+typedef enum { LSDEM_NORMAL_PER_NODE = 0, LSDEM_NORMAL_TRACTION = 1 } lsdem_normal_law;
+
+/* The penalty law (report eqs 2.2-2.16). */
+typedef struct {
+  double kn;        /* per-node normal stiffness (force/length), or traction stiffness
+                       (stress/length) when normal == LSDEM_NORMAL_TRACTION */
+  double ks;        /* tangential stiffness, same convention as kn */
+  double mu;        /* Coulomb friction coefficient (eq 2.10); 0 = no shear history */
+  double cn;        /* normal viscous damping per node (force/velocity), 0 = none */
+  double ct;        /* tangential viscous damping per node, 0 = none */
+  lsdem_normal_law normal;
+} lsdem_penalty_law;
+
+/* A pair's whole contact setting: law, detection and the time step (eq 2.7's dt). */
+typedef struct {
+  lsdem_penalty_law law;
+  lsdem_detect_params detect;
+  double dt;
+} lsdem_contact_params;
+
+/* ------------------------------------------------------------------ manifold ---- */
+
+/* One contact point: a node of master A inside slave B. World frame. */
+typedef struct {
+  int32_t node;      /* A's node index (0 for a sphere) */
+  double point[3];   /* the node's position (a sphere: the middle of the overlap) */
+  double normal[3];  /* B's outward unit normal there: from B towards A */
+  double depth;      /* penetration -phi_B > 0 */
+  double area;       /* the node's tributary area (traction law; 1 when A has none; a
+                        sphere: its cross-section, lsdem_sphere_contact_area) */
+  double vrel[3];    /* velocity of A's material point at `point` relative to B's
+                        (eq 2.6: vA + wA x (p - xA) - vB - wB x (p - xB)) */
+} lsdem_contact_point;
+
+/* The contact manifold of one master-on-slave test: its points in increasing node order,
+ * with what a solver needs of the pair. Storage is the caller's: point[] holds cap
+ * entries, at least lsdem_manifold_capacity(A). */
+typedef struct {
+  int n, cap;
+  lsdem_contact_point *point;
+  int stride;      /* the node stride the points were found with (weights them) */
+  double xa[3];    /* A's centroid: the arm of point p about A is p - xa */
+  double dab[3];   /* xA - xB: the arm about B is (p - xa) + dab */
+  int ntested;     /* nodes that reached a level-set lookup (the work done) */
+} lsdem_manifold;
+
+/* Points a manifold can need for master A: 1 for a sphere, else A's node count. */
+static inline int lsdem_manifold_capacity(const lsdem_shape *A)
+{
+  return A->sdf.kind == LSDEM_SDF_SPHERE ? 1 : A->nnodes;
+}
+/* An empty manifold over caller storage of cap points. */
+lsdem_manifold lsdem_manifold_over(lsdem_contact_point *storage, int cap);
+
+/* ------------------------------------------------------------------ node lists ---- */
+
+/* A pair's node list: a Verlet list of A's nodes that may touch B (nodelist.c). It is
+ * built when every node is screened, with the nodes that could reach B within a skin s,
+ * and used while no node has moved by its validity radius relative to B (bound
+ * |M - M0| rA + |t - t0| on the change of q = M x + t); then only its nodes are looked
+ * up. A node is left out when it is farther than rB + s from B's centre or, when B's
+ * level set has a known gradient bound L (exact distances: 1; grids:
+ * lsdem_grid_outer_lipschitz), when phi_B >= L s there: it cannot reach phi < 0 before
+ * the list is rebuilt. Against a grid each entry also keeps the 8 samples of the cell its
+ * node was last looked up in, and a lookup in the same cell reads those instead of the
+ * grid (lsdem_grid_eval_many_cached). The contacts found are the same, bit for bit, as
+ * without a list; only lookups of nodes that cannot touch, and grid reads, are saved.
+ * The skin adapts per pair: a list outlived within 8 steps is followed by one wide
+ * enough to last 8 steps at the pair's rate of motion (at most 4 s, and within B's
+ * gradient bound), and a wide list (validity radius above 2 s) is rebuilt after 32
+ * steps. A list built with another stride is rebuilt. */
+typedef struct {
+  double M[9], t[3]; /* pose of B relative to A when built: node x -> M x + t (B's frame) */
+  int64_t built;     /* step it was built at */
+  double radius;     /* validity radius: the least distance any left-out node had to move
+                        to touch B (at least the skin) */
+  int32_t stride;    /* node stride it was built with */
+  int32_t count;     /* node entries */
+} lsdem_nodelist_head;
+
+typedef struct {
+  int32_t node;  /* A's node index */
+  int32_t cell;  /* grid index of the kept cell's sample 000, -1: none kept */
+  float v[8];    /* that cell's samples (lsdem_grid_cell order) */
+  double x[3];   /* the node in A's frame (so a step using the list reads none of A) */
+} lsdem_nodelist_entry;
+
+/* A node list as detection reads and writes it, in the caller's storage: valid = 0 means
+ * none. As output, head points to room for the head and entry[] holds
+ * lsdem_nodelist_capacity(A) entries; detection sets valid. */
+typedef struct {
+  int valid;
+  lsdem_nodelist_head *head;
+  lsdem_nodelist_entry *entry;
+} lsdem_nodelist;
+
+/* Entries a node list of master A can need: A's node count (0 for a sphere). */
+static inline int lsdem_nodelist_capacity(const lsdem_shape *A)
+{
+  return A->sdf.kind == LSDEM_SDF_SPHERE ? 0 : A->nnodes;
+}
+
+/* ----------------------------------------------------------------- detection ---- */
+
+/* Node-to-surface detection of master A's nodes in slave B's level set (report
+ * Algorithm 2, the geometry of eqs 2.2-2.6), chosen by the kinds: A a sphere (one lookup
+ * of its centre in B, or sphere-sphere in closed form, report §2.3.5) or A's nodes.
+ * Cheap rejection first: bounding spheres (eq 2.1), then A's node clusters and nodes
+ * outside B's bounding sphere (or, B an unbounded exact distance such as a wall, clear
+ * of B's level set) are skipped before any trilinear lookup; looked-up nodes go in
+ * batches (their cache misses overlap).
+ * list_in (NULL or not valid: none) is the pair's node list of the last step; list_out
+ * (NULL: none kept) receives this step's (copied, rebuilt or none when det->node_skin is
+ * 0). m receives the points (m->n = 0: no contact). Returns m->n.
+ * Spheres: the point is the middle of the overlap, xA - (radius - d/2) n, so a normal
+ * force there exerts no torque on the sphere; a sphere's centre inside B is handled
+ * (depth = radius - phi_B(centre)). B->radius must bound B's solid (HUGE_VAL for walls
+ * and inverted shapes). node_stride N tests only nodes k with k % N == 0 (in the stored,
+ * clustered order). A shape with nclusters == 0 is one cluster without a sphere test. */
+int lsdem_detect(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
+                 const lsdem_pose *pb, const lsdem_detect_params *det, int64_t step,
+                 const lsdem_nodelist *list_in, lsdem_nodelist *list_out,
+                 lsdem_manifold *m);
+
+/* The node path of lsdem_detect, whatever A's kind (an analytic sphere with nodes, in
+ * tests). */
+int lsdem_detect_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
+                       const lsdem_pose *pb, const lsdem_detect_params *det, int64_t step,
+                       const lsdem_nodelist *list_in, lsdem_nodelist *list_out,
+                       lsdem_manifold *m);
+
+/* The sphere path's tributary area under the traction law: the cross-section pi r^2. */
+double lsdem_sphere_contact_area(double radius);
+
+/* ---------------------------------------------------------------- penalty law ---- */
 
 /* Per-node tangential history (report eq 2.8): the shear force carried by node `node`
  * of the master against one partner, the contact normal it was last rotated to, and the
@@ -27,123 +191,101 @@ typedef struct {
   int64_t stamp;
   double shear[3];
   double normal[3];
-} lsdem_node_hist;
+} lsdem_shear_hist;
 
-typedef enum { LSDEM_NORMAL_PER_NODE = 0, LSDEM_NORMAL_TRACTION = 1 } lsdem_normal_law;
-
-typedef struct {
-  double kn;        /* per-node normal stiffness (force/length), or traction stiffness
-                       (stress/length) when law == LSDEM_NORMAL_TRACTION */
-  double ks;        /* tangential stiffness, same convention as kn */
-  double mu;        /* Coulomb friction coefficient (eq 2.10); 0 = no history at all */
-  double cn;        /* normal viscous damping per node (force/velocity), 0 = none */
-  double ct;        /* tangential viscous damping per node, 0 = none */
-  double dt;        /* time step, for the shear increment (eq 2.7) */
-  int node_stride;  /* test every N-th node, forces scaled by N (report §3.4.1); 1 = all */
-  lsdem_normal_law law;
-  double node_skin; /* > 0: keep a node list per pair in its history (see below), built
-                       with this skin (length); 0 = screen every node at every call */
-} lsdem_contact_params;
-
-/* What one master-on-slave test produced. Forces and torques are world-frame and act
+/* What the penalty law made of one manifold. Forces and torques are world-frame and act
  * on the master A; the slave B receives -force and torque_b. */
 typedef struct {
   double force[3];     /* sum of node forces on A (eq 2.14) */
   double torque_a[3];  /* about A's centroid (eq 2.16) */
   double torque_b[3];  /* about B's centroid, of the reaction on B */
-  double point[3];     /* mean contact point weighted by normal force (world) */
+  double point[3];     /* mean contact point weighted by normal force (0 without contact) */
   double max_depth;    /* deepest penetration (>= 0) */
-  int npen;            /* penetrating nodes */
-  int ntested;         /* nodes that reached the trilinear lookup */
+  int npen;            /* penetrating nodes (the manifold's points) */
+  int ntested;         /* nodes looked up (the manifold's ntested) */
 } lsdem_contact_result;
 
-/* Node-to-surface contact of master A's nodes against slave B's level set
- * (report Algorithm 2, eqs 2.2-2.16). Cheap rejection first: clusters and nodes outside
- * B's bounding sphere are skipped before any trilinear lookup.
- *
- * History: hist_in (n_in entries, sorted by node) is this pair's history from the
- * previous step; every penetrating node's updated entry is written to hist_out (sorted,
- * capacity >= lsdem_contact_history_capacity(A)), count in *n_out. An entry whose stamp
- * == step is reused as is (already advanced this step: a second force call at the same
- * step must not advance the shear twice). With mu == 0 and node_skin == 0 no history is
- * read or written (pass NULL, 0, NULL).
- *
- * Node list (node_skin = s > 0; a Verlet list of nodes): the history also carries, in
- * entries with negative node ids, the pose of B relative to A (two entries placed first)
- * and the nodes of A that may touch B found at that pose (one entry per node, between
- * those two and the shear entries, holding the node's coordinates). While no node has
- * moved by s relative to B since then (bound |M - M0| rA + |t - t0| on the change of
- * q = M x + t), only those nodes are looked up; otherwise every node is screened again and
- * the list rebuilt. A node is left out when it is farther than rB + s from B's centre or,
- * when B's level set has a known gradient bound L (exact distances: 1; grids:
- * lsdem_grid_outer_lipschitz), when phi_B >= L s there: it cannot reach phi < 0 before the
- * list is rebuilt. Against a grid each listed node's entry also keeps its cell (the 8
- * samples), and a lookup in the same cell reads those instead of the grid
- * (lsdem_grid_eval_many_cached). The contacts found are therefore the same, bit for bit,
- * as without a list; only lookups of nodes that cannot touch, and grid reads, are saved
- * (res->ntested counts the lookups made). A list is trusted up to the least distance any
- * node it left out had to move to touch B (at least its skin: the distance to the widened
- * sphere, phi / L, a left-out cluster's clearance), whatever the skin is now; one built
- * with another stride is rebuilt. The skin adapts per pair: a list outlived within 8 steps
- * is followed by one wide enough to last 8 steps at the pair's rate of motion (at most
- * 4 s, and within B's gradient bound), and a wide list (validity radius above 2 s) is
- * rebuilt after 32 steps. Returns the number of penetrating nodes. */
-int lsdem_contact_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
-                        const lsdem_pose *pb, const lsdem_contact_params *prm, int64_t step,
-                        const lsdem_node_hist *hist_in, int n_in, lsdem_node_hist *hist_out,
-                        int *n_out, lsdem_contact_result *res);
-/* Details shared by all contact functions (lsdem_contact_nodes and the sphere paths):
- *   - The normal n is B's outward unit normal (world), pointing towards A. A contact's
- *     force on A is f = fn n + ft with fn = kn d (per node) or kn d area_k (traction),
- *     minus cn (v_rel . n) when cn > 0, clamped at >= 0 (never attractive); v_rel is
- *     the velocity of A's material point relative to B's at the contact (eq 2.6).
- *   - Shear (mu > 0): spring s = Z s_old - ks v_t dt (eqs 2.7-2.8; s_old = 0 for a new
- *     contact, Z = lsdem_rotate_between from the stored to the current normal),
- *     ft = s - ct v_t, |ft| capped at mu fn (eq 2.10) with s reset to ft + ct v_t.
- *     The history entry stores s, n and stamp = step.
- *   - node_stride N: only nodes k with k % N == 0 are tested (in the stored, clustered
- *     order); kn, ks, cn, ct are multiplied by N for them.
- *   - A shape with nclusters == 0 is one cluster without a cluster-sphere test.
- *     B->radius must bound B's solid (HUGE_VAL for walls and inverted shapes).
- *   - res->point is weighted by the normal-force magnitudes (zero when npen == 0).
- *   - hist_in and hist_out must not overlap. hist_out == NULL with mu > 0 evaluates the
- *     shear from hist_in without keeping it (a one-off evaluation). */
+/* The penalty law on a manifold (report eqs 2.2-2.16), per point k with weight
+ * w = stride (per node) or stride * area (traction):
+ *   normal   fn = kn w d - cn stride (vrel . n), clamped at >= 0 (never attractive);
+ *   shear    (mu > 0) spring s = Z s_old - ks w vt dt (eqs 2.7-2.8; s_old = 0 for a new
+ *            contact, Z = lsdem_rotate_between from the stored to the current normal),
+ *            ft = s - ct stride vt, |ft| capped at mu fn (eq 2.10) with s reset to
+ *            ft + ct stride vt;
+ *   sums     force and torques in node order (eqs 2.14-2.16).
+ * hist_in (n_in entries, sorted by node) is this pair's shear history of the previous
+ * step; every point's updated entry is written to hist_out (capacity m->n, sorted; count
+ * in *n_out). An entry whose stamp == step is reused as is (already advanced this step:
+ * a second force call at the same step must not advance the shear twice). mu == 0: no
+ * history read or written (NULL, 0, NULL). hist_out == NULL with mu > 0 evaluates the
+ * shear from hist_in without keeping it. hist_in and hist_out must not overlap.
+ * Returns m->n. */
+int lsdem_penalty_apply(const lsdem_manifold *m, const lsdem_penalty_law *law, double dt,
+                        int64_t step, const lsdem_shear_hist *hist_in, int n_in,
+                        lsdem_shear_hist *hist_out, int *n_out, lsdem_contact_result *res);
 
-/* Sphere fast path (report §2.3.5): a sphere A (centre pa->x, radius) against any
- * shape B, with ONE level-set lookup of the sphere centre in B's frame: depth
- * d = radius - phi_B(centre), normal = B's gradient there. Works for a membrane ball or
- * a grain whose sdf kind is SPHERE, and stays correct when the sphere centre is inside
- * B. The contact point is the middle of the overlap, xA - (radius - d/2) n, so the
- * normal force exerts no torque on the sphere. `area` is the sphere's tributary area
- * (used only by the traction law). node_stride is ignored. History uses node index 0
- * (capacity of hist_out >= 1). ntested is 1 when the bounding spheres overlap.
- * Returns 1 if in contact, else 0. */
-int lsdem_contact_sphere_shape(double radius, double area, const lsdem_pose *pa,
-                               const lsdem_shape *B, const lsdem_pose *pb,
-                               const lsdem_contact_params *prm, int64_t step,
-                               const lsdem_node_hist *hist_in, int n_in,
-                               lsdem_node_hist *hist_out, int *n_out,
-                               lsdem_contact_result *res);
-/* Analytic sphere-sphere contact: d = ra + rb - |xA - xB|, n = (xA - xB)/|xA - xB|;
- * otherwise the same conventions as lsdem_contact_sphere_shape (A = sphere ra). */
-int lsdem_contact_sphere_sphere(double ra, double area, const lsdem_pose *pa, double rb,
-                                const lsdem_pose *pb, const lsdem_contact_params *prm,
-                                int64_t step, const lsdem_node_hist *hist_in, int n_in,
-                                lsdem_node_hist *hist_out, int *n_out,
-                                lsdem_contact_result *res);
+/* ------------------------------------------------- one pair, end to end ---- */
 
-/* Contact of grain A (its nodes, or one lookup when A is a sphere kind) against shape B,
- * the path chosen from the kinds: sphere-sphere, sphere-shape (area
- * lsdem_sphere_contact_area) or nodes. Same conventions and returns;
- * hist_out needs lsdem_contact_history_capacity(A) entries. */
-int lsdem_contact_grain(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
-                        const lsdem_pose *pb, const lsdem_contact_params *prm, int64_t step,
-                        const lsdem_node_hist *hist_in, int n_in, lsdem_node_hist *hist_out,
-                        int *n_out, lsdem_contact_result *res);
-/* 1 for a sphere, else nnodes plus the node list's entries */
-int lsdem_contact_history_capacity(const lsdem_shape *A);
-/* The sphere path's tributary area under the traction law: the cross-section pi r^2. */
-double lsdem_sphere_contact_area(double radius);
+/* The state a pair keeps between steps (owned by the master): node list and shear
+ * history, each may be absent. As output, list.entry needs lsdem_nodelist_capacity(A)
+ * entries and shear lsdem_manifold_capacity(A). */
+typedef struct {
+  lsdem_nodelist list;
+  lsdem_shear_hist *shear;
+  int nshear;
+} lsdem_pair_state;
+
+/* Detection then the penalty law, with the pair's state of the last step (in, NULL:
+ * none) and of this one (out, NULL: none kept); m is scratch storage for the manifold
+ * (capacity lsdem_manifold_capacity(A)). Returns the penetrating nodes. */
+int lsdem_contact_penalty(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
+                          const lsdem_pose *pb, const lsdem_contact_params *prm,
+                          int64_t step, const lsdem_pair_state *in, lsdem_pair_state *out,
+                          lsdem_manifold *m, lsdem_contact_result *res);
+
+/* ------------------------------------------------------------- master and slave ---- */
+
+typedef enum {
+  LSDEM_ROLES_ONEWAY = 0, /* the report: the lower-ID grain's nodes against the other */
+  LSDEM_ROLES_TWOWAY = 1  /* both directions, each weighted 1/2 (action = reaction) */
+} lsdem_roles_rule;
+
+/* Weight of the test of grain a's nodes against grain b's level set (0: a does not test
+ * b), for two grains with distinct ids (same ids: a periodic image of itself, 0):
+ *   - a sphere against a grain with nodes: the sphere tests (1 lookup), the grain not;
+ *   - two analytic spheres: the lower id (closed form, symmetric);
+ *   - two grains with nodes: the lower id (oneway) or both, each 1/2 (twoway). */
+double lsdem_contact_roles(const lsdem_shape *a, int64_t id_a, const lsdem_shape *b,
+                           int64_t id_b, lsdem_roles_rule rule);
+
+/* ------------------------------------------- history in exchange and restart records ---- */
+
+/* A pair's state as it travels between ranks and sits in restart files: a sequence of
+ * fixed-size records (8 words each, one partner tag beside them in the caller's buffer),
+ * the layout of every earlier version so that their restart files still load:
+ *   list head  two records: id -2 {aux stride, stamp built, a M[0..2], b M[3..5]} and
+ *              id -1 {aux count, stamp = the bits of radius, a M[6..8], b t};
+ *   list node  one per entry: id -(1 << 29) + node {aux cell, stamp and a = v[0..7] as
+ *              32 bits each, b x};
+ *   shear      one per entry: id = node >= 0 {stamp, a shear, b normal}. */
+typedef struct {
+  int32_t id, aux;
+  int64_t stamp;
+  double a[3], b[3];
+} lsdem_state_record;
+
+/* Records st needs: 2 + list count (if valid) + nshear. */
+int lsdem_pair_state_records(const lsdem_pair_state *st);
+/* st as records (lsdem_pair_state_records of them); returns the count. */
+int lsdem_pair_state_encode(const lsdem_pair_state *st, lsdem_state_record *rec);
+/* Records back into st, whose list.head points to room for a head and whose list.entry
+ * and shear hold n entries at least. A list is
+ * taken when a head is followed by its node entries (ids of nodes < nnodes); records
+ * of an older layout (shear entries ahead of the list's nodes, masks with ids -3..) leave
+ * no list, their shear entries kept. Shear entries are kept in increasing node order
+ * (others dropped). */
+void lsdem_pair_state_decode(const lsdem_state_record *rec, int n, int nnodes,
+                             lsdem_pair_state *st);
 
 #ifdef __cplusplus
 }

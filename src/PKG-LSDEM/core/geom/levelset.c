@@ -295,3 +295,13 @@ void lsdem_grid_free(lsdem_grid *g)
   free((void *)g->phi);
   g->phi = NULL;
 }
+
+double lsdem_grid_spacing_limit(double volume)
+{
+  return 0.1 * cbrt(3.0 * volume / (4.0 * 3.14159265358979323846));
+}
+
+int lsdem_grid_is_coarse(double h, double volume)
+{
+  return h > lsdem_grid_spacing_limit(volume) * (1.0 + 1e-5);
+}

@@ -59,6 +59,13 @@ lsdem_status lsdem_grid_check(const lsdem_grid *g, lsdem_error *err); /* sizes, 
  * outside rule (phi >= that smallest boundary sample) is never reached on such a path.
  * Returned as L, with the limit on L s in *reach_limit. */
 double lsdem_grid_outer_lipschitz(const lsdem_grid *g, double *reach_limit);
+/* A level-set grain behaves like a DEM sphere with a grid spacing finer than R/10, R the
+ * radius of the sphere of the grain's volume (Duriez & Bonelli 2021): the limit R/10 for
+ * a volume, and whether spacing h exceeds it by more than a relative 1e-5 (so a spacing
+ * of R/10 up to round-off is not coarse, and a coarse one differs from R/10 within the 6
+ * significant digits that messages print). */
+double lsdem_grid_spacing_limit(double volume);
+int lsdem_grid_is_coarse(double h, double volume);
 
 
 /* ------------------------------------------------------- signed distances ---- */
@@ -156,9 +163,19 @@ const char *lsdem_library_name(const lsdem_library *lib, int index); /* may be "
 
 /* Open checks the header, the header/TOC checksum, every offset and length and the
  * cluster tables, but reads no grid. This checks shape `index` (-1: all shapes): its
- * section checksum, and that its nodes, areas, cluster spheres and grid are finite.
- * LSDEM_ERR_FORMAT on a checksum mismatch, LSDEM_ERR_NUMERIC on NaN/inf. */
+ * section checksum, then lsdem_shape_validate. LSDEM_ERR_FORMAT on a checksum mismatch,
+ * LSDEM_ERR_NUMERIC from lsdem_shape_validate. */
 lsdem_status lsdem_library_verify(const lsdem_library *lib, int index, lsdem_error *err);
+
+/* What a grain needs of a shape's arrays beyond its counts and scalars (the library
+ * reader checks those at open, the writer before writing): nodes, node areas, cluster
+ * spheres and grid values finite; a grid shape has a solid (a negative value) and its
+ * centroid, the frame's origin, inside the grid box; every node area > 0; every node
+ * within the bounding radius (relative slack 1e-9). A shape failing these lets grains
+ * pass through each other. LSDEM_ERR_NUMERIC with a message naming shape `index` and
+ * `name` (may be NULL) and the first failure. */
+lsdem_status lsdem_shape_validate(const lsdem_shape *s, int index, const char *name,
+                                  lsdem_error *err);
 
 /* ------------------------------------------------------------ triangle meshes ---- */
 

@@ -16,6 +16,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <sys/mman.h>
@@ -277,16 +278,82 @@ static lsdem_status verify_shape(const lsdem_library *lib, int i, lsdem_error *e
                       "checksum mismatch (stored %016llx, computed %016llx): the file is "
                       "corrupt", i, lib->names[i], (unsigned long long)lib->sec_sum[i],
                       (unsigned long long)sum);
-  const lsdem_shape *s = &lib->shapes[i];
+  return lsdem_shape_validate(&lib->shapes[i], i, lib->names[i], err);
+}
+
+/* ----------------------------------------------------------- shape content ---- */
+
+/* A failed content check of shape `index`: "shape library: shape I ('NAME'): WHY". */
+static lsdem_status invalid_shape(lsdem_error *err, int index, const char *name,
+                                  const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
+static lsdem_status invalid_shape(lsdem_error *err, int index, const char *name,
+                                  const char *fmt, ...)
+{
+  char why[sizeof err->msg];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(why, sizeof why, fmt, ap);
+  va_end(ap);
+  return lsdem_fail(err, LSDEM_ERR_NUMERIC, "shape library: shape %d ('%s'): %s", index,
+                    name ? name : "", why);
+}
+
+/* The grid's values finite, one of them negative, and the origin inside the grid box. */
+static lsdem_status validate_grid(const lsdem_shape *s, int index, const char *name,
+                                  lsdem_error *err)
+{
+  const lsdem_grid *g = &s->sdf.grid;
+  const uint64_t ns = grid_samples(s);
+  uint64_t negative = 0;
+  for (uint64_t k = 0; k < ns; k++) {
+    if (!isfinite(g->phi[k]))
+      return invalid_shape(err, index, name, "level-set value %llu is not finite",
+                           (unsigned long long)k);
+    negative += g->phi[k] < 0.0f;
+  }
+  if (negative == 0)
+    return invalid_shape(err, index, name, "no level-set value is negative: the grid holds "
+                         "no solid");
+  for (int a = 0; a < 3; a++)
+    if (!(g->origin[a] <= 0.0 && 0.0 <= g->origin[a] + g->h * (g->n[a] - 1)))
+      return invalid_shape(err, index, name, "its centroid (the origin of its principal "
+                           "frame) is at grid coordinates (%g, %g, %g), outside the grid "
+                           "of %d x %d x %d samples", -g->origin[0] / g->h,
+                           -g->origin[1] / g->h, -g->origin[2] / g->h, g->n[0], g->n[1],
+                           g->n[2]);
+  return LSDEM_OK;
+}
+
+lsdem_status lsdem_shape_validate(const lsdem_shape *s, int index, const char *name,
+                                  lsdem_error *err)
+{
   if (!all_finite(s->nodes, 3 * s->nnodes) || !all_finite(s->node_area, s->nnodes) ||
       !all_finite(s->cluster_sphere, 4 * s->nclusters))
-    return lsdem_fail(err, LSDEM_ERR_NUMERIC, "shape library: shape %d ('%s'): NaN or inf in "
-                      "its nodes, node areas or cluster spheres", i, lib->names[i]);
-  const uint64_t ns = grid_samples(s);
-  for (uint64_t k = 0; k < ns; k++)
-    if (!isfinite(s->sdf.grid.phi[k]))
-      return lsdem_fail(err, LSDEM_ERR_NUMERIC, "shape library: shape %d ('%s'): level-set "
-                        "value %llu is not finite", i, lib->names[i], (unsigned long long)k);
+    return invalid_shape(err, index, name, "NaN or inf in its nodes, node areas or cluster "
+                         "spheres");
+  if (s->sdf.kind == LSDEM_SDF_GRID) {
+    const lsdem_status st = validate_grid(s, index, name, err);
+    if (st != LSDEM_OK) return st;
+  }
+  for (int k = 0; k < s->nnodes; k++)
+    if (!(s->node_area[k] > 0.0))
+      return invalid_shape(err, index, name, "node %d has area %g: each node stands for a "
+                           "part of the surface (area > 0)", k, s->node_area[k]);
+  int far = -1;
+  double r2 = 0.0;
+  for (int k = 0; k < s->nnodes; k++) {
+    const double *p = s->nodes + 3 * k, d2 = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+    if (d2 > r2) r2 = d2, far = k;
+  }
+  if (far >= 0 && sqrt(r2) > s->radius * (1.0 + 1e-9))
+    return invalid_shape(err, index, name, "node %d lies %g from the centroid, beyond the "
+                         "bounding radius %g (contacts beyond the radius are missed)", far,
+                         sqrt(r2), s->radius);
   return LSDEM_OK;
 }
 

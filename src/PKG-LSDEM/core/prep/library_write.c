@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 /* ------------------------------------------------------------------ writer ---- */
@@ -60,7 +61,7 @@ static lsdem_status check_shape_for_write(const lsdem_shape *s, int i, const cha
   if (name && strlen(name) >= LIB_NAME_SIZE)
     return lsdem_fail(err, LSDEM_ERR_ARG, "shape library: shape %d: name '%.40s...' longer "
                       "than %d bytes", i, name, LIB_NAME_SIZE - 1);
-  return LSDEM_OK;
+  return lsdem_shape_validate(s, i, name, err);
 }
 
 static void encode_entry(unsigned char *e, const lsdem_shape *s, const char *name,
@@ -121,7 +122,8 @@ static uint64_t encode_header_toc(unsigned char *buf, const lsdem_shape *shapes,
 }
 
 /* Written to a temporary file renamed over `path` at the end, so processes that have
- * the old library mapped keep a consistent copy. */
+ * the old library mapped keep a consistent copy; a path that exists as anything but a
+ * regular file (a device, a pipe) is refused. Every shape must pass lsdem_shape_validate. */
 lsdem_status lsdem_library_write(const char *path, const lsdem_shape *shapes,
                                  const char *const *names, int count, lsdem_error *err)
 {
@@ -131,6 +133,12 @@ lsdem_status lsdem_library_write(const char *path, const lsdem_shape *shapes,
   if (!host_is_little_endian())
     return lsdem_fail(err, LSDEM_ERR_ARG, "shape library: a big-endian host cannot write "
                       "the little-endian format");
+  /* The new file is renamed onto path: a device, pipe or folder there would be replaced. */
+  struct stat sb;
+  if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode))
+    return lsdem_fail(err, LSDEM_ERR_IO, "shape library '%s': exists and is not a regular "
+                      "file (a device, pipe, socket or folder, which writing the library "
+                      "would replace); give the path of a file", path);
   for (int i = 0; i < count; i++) {
     const lsdem_status st = check_shape_for_write(&shapes[i], i, names ? names[i] : NULL, err);
     if (st != LSDEM_OK) return st;

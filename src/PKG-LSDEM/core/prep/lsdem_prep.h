@@ -177,7 +177,7 @@ void lsdem_built_shape_free(lsdem_built_shape *b);
 
 /* Quality checks every shape source runs (issue 4): warnings are bits of `warnings`. */
 enum {
-  LSDEM_CHECK_COARSE_GRID = 1,    /* grid spacing h > R/10, R equivalent-sphere radius */
+  LSDEM_CHECK_COARSE_GRID = 1,    /* lsdem_grid_is_coarse: h > R/10, R equivalent radius */
   LSDEM_CHECK_SPARSE_NODES = 2,   /* mean node spacing sqrt(area/N) > d/10, d = 2R */
   LSDEM_CHECK_OPEN_LEVEL_SET = 4, /* a negative sample on the grid border */
   LSDEM_CHECK_VOLUME = 8,         /* node (divergence-theorem) volume vs shape volume */

@@ -34,6 +34,7 @@ typedef struct {
   lsdem_shape s;
   double *nodes, *sphere;
   double rin; /* smallest |node| of the original: no surface point is nearer the centroid */
+  lsdem_contact_point *found; /* the probe's manifold storage (its node count) */
 } probe;
 
 static lsdem_status probe_make(const lsdem_shape *s, double gap, probe *p, lsdem_error *err)
@@ -41,6 +42,8 @@ static lsdem_status probe_make(const lsdem_shape *s, double gap, probe *p, lsdem
   memset(p, 0, sizeof *p);
   p->s = *s;
   p->rin = HUGE_VAL;
+  p->found = malloc((size_t)lsdem_manifold_capacity(s) * sizeof *p->found + 1);
+  if (!p->found) return lsdem_fail(err, LSDEM_ERR_NOMEM, "probe manifold");
   for (int k = 0; k < s->nnodes; k++) {
     const double *x = s->nodes + 3 * k;
     p->rin = fmin(p->rin, sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]));
@@ -68,7 +71,9 @@ static void probe_free(probe *p)
 {
   free(p->nodes);
   free(p->sphere);
+  free(p->found);
   p->nodes = p->sphere = NULL;
+  p->found = NULL;
 }
 
 static void pose_of(const lsdem_placed *g, lsdem_pose *p)
@@ -78,15 +83,13 @@ static void pose_of(const lsdem_placed *g, lsdem_pose *p)
   lsdem_quat_to_matrix(g->q, p->R);
 }
 
-/* Any node of probe A inside B's level set (lsdem_contact_nodes, unit stiffness, no
- * friction: only the penetrating-node count is used). */
-static int nodes_penetrate(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
+/* Any node of probe A inside B's level set (the kernel's detection, every node). */
+static int nodes_penetrate(const probe *A, const lsdem_pose *pa, const lsdem_shape *B,
                            const lsdem_pose *pb)
 {
-  const lsdem_contact_params prm = {1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1, LSDEM_NORMAL_PER_NODE, 0.0};
-  lsdem_contact_result res;
-  int nout = 0;
-  return lsdem_contact_nodes(A, pa, B, pb, &prm, 0, NULL, 0, NULL, &nout, &res) > 0;
+  const lsdem_detect_params every_node = {1, 0.0};
+  lsdem_manifold m = lsdem_manifold_over(A->found, lsdem_manifold_capacity(&A->s));
+  return lsdem_detect(&A->s, pa, B, pb, &every_node, 0, NULL, NULL, &m) > 0;
 }
 
 /* Overlap of two placed grains: bounding spheres, then nodes both ways. */
@@ -101,7 +104,7 @@ static int probes_overlap(const probe *pa, const lsdem_placed *a, const probe *p
   pose_of(a, &A);
   pose_of(b, &B);
   /* probe nodes against the other's true level set (the probes share the level sets) */
-  return nodes_penetrate(&pa->s, &A, &pb->s, &B) || nodes_penetrate(&pb->s, &B, &pa->s, &A);
+  return nodes_penetrate(pa, &A, &pb->s, &B) || nodes_penetrate(pb, &B, &pa->s, &A);
 }
 
 /* ------------------------------------------------------------------- walls ---- */
@@ -185,7 +188,7 @@ static int probe_outside(const probe *pr, const lsdem_placed *g, const lsdem_con
   lsdem_pose A;
   pose_of(g, &A);
   for (int k = 0; k < w->n; k++)
-    if (nodes_penetrate(&pr->s, &A, &w->s[k], &w->p[k])) return 1;
+    if (nodes_penetrate(pr, &A, &w->s[k], &w->p[k])) return 1;
   return 0;
 }
 

@@ -152,7 +152,7 @@ lsdem_status lsdem_shape_check(const lsdem_shape *s, lsdem_shape_report *r, lsde
   if (r->node_spacing > 2.0 * r->radius_eq / 10.0) r->warnings |= LSDEM_CHECK_SPARSE_NODES;
   if (s->sdf.kind == LSDEM_SDF_GRID) {
     r->h = s->sdf.grid.h;
-    if (r->h > r->radius_eq / 10.0) r->warnings |= LSDEM_CHECK_COARSE_GRID;
+    if (lsdem_grid_is_coarse(r->h, s->volume)) r->warnings |= LSDEM_CHECK_COARSE_GRID;
     r->border_negative = border_negative(&s->sdf.grid);
     if (r->border_negative) r->warnings |= LSDEM_CHECK_OPEN_LEVEL_SET;
   }

@@ -1,0 +1,404 @@
+/* detect.c -- node-to-surface detection of level-set grains (report Algorithm 2, the
+ * geometry of eqs 2.1-2.6) and the analytic sphere paths (report §2.3.5), producing a
+ * contact manifold (lsdem_contact.h). No forces here: see penalty.c.
+ *
+ * Frames: node coordinates are in A's principal frame, cb (B's centre) too; q, g (a node
+ * and B's level-set gradient) in B's principal frame; the manifold is world frame. */
+#include "nodelist.h"
+
+#include <math.h>
+#include <string.h>
+
+/* --------------------------------------------------------------- pair motion ---- */
+
+/* The pair's motion as the manifold's relative velocities need it (world frame), with
+ * ra = p - xA the arm of a contact point p from A's centroid: the velocity of A's material
+ * point at p relative to B's is v0 + dw x ra (report eq 2.6: vA + wA x ra - vB - wB x
+ * (ra + dab) with dab = xA - xB, so v0 = vA - vB - wB x dab and dw = wA - wB). */
+typedef struct {
+  double xa[3], dab[3], v0[3], dw[3];
+} pair_motion;
+
+static inline void pair_motion_of(const lsdem_pose *pa, const lsdem_pose *pb, pair_motion *m)
+{
+  double wb_dab[3];
+  for (int i = 0; i < 3; i++) {
+    m->xa[i] = pa->x[i];
+    m->dab[i] = pa->x[i] - pb->x[i];
+    m->dw[i] = pa->omega[i] - pb->omega[i];
+  }
+  lsdem_cross3(pb->omega, m->dab, wb_dab);
+  for (int i = 0; i < 3; i++) m->v0[i] = pa->v[i] - pb->v[i] - wb_dab[i];
+}
+
+/* An empty manifold for the pair (no points yet). */
+static void manifold_begin(lsdem_manifold *m, const pair_motion *pm, int stride)
+{
+  m->n = 0;
+  m->ntested = 0;
+  m->stride = stride;
+  for (int i = 0; i < 3; i++) {
+    m->xa[i] = pm->xa[i];
+    m->dab[i] = pm->dab[i];
+  }
+}
+
+/* Appends a point at p (world) with B's outward normal n, depth d > 0 and area. */
+static inline __attribute__((always_inline)) void add_point(lsdem_manifold *restrict m, const pair_motion *restrict pm, int node,
+                      const double p[3], const double n[3], double d, double area)
+{
+  lsdem_contact_point *c = &m->point[m->n++];
+  double r[3];
+  c->node = node;
+  for (int i = 0; i < 3; i++) {
+    c->point[i] = p[i];
+    c->normal[i] = n[i];
+    r[i] = p[i] - pm->xa[i];
+  }
+  c->depth = d;
+  c->area = area;
+  lsdem_cross3(pm->dw, r, c->vrel); /* eq 2.6 (see pair_motion) */
+  for (int i = 0; i < 3; i++) c->vrel[i] += pm->v0[i];
+}
+
+static int no_contact(lsdem_manifold *m, lsdem_nodelist *list_out)
+{
+  m->n = 0;
+  m->ntested = 0;
+  if (list_out) list_out->valid = 0;
+  return 0;
+}
+
+/* ------------------------------------------------------------ node batches ---- */
+
+/* Nodes looked up together, at most. */
+enum { NODE_BATCH = 64 };
+
+/* Nodes are screened in A's own frame, where B's centre sits at cb = RA^T (xB - xA):
+ * |p - xB| = |node - cb|, so rejecting a node costs 8 flops and no transform. The
+ * screening pass is branch-free (no mispredicted branch per rejected node): it keeps
+ * the indices of nodes inside B's bounding sphere, a batch at a time, and only those
+ * are mapped to B's frame and looked up, all lookups of a batch together (their cache
+ * misses overlap: lsdem_grid_eval_many). */
+typedef struct {
+  int n;
+  int node[NODE_BATCH];
+  double x[3 * NODE_BATCH];    /* kept nodes in A's frame */
+  double q[3 * NODE_BATCH];    /* and in B's frame */
+  double phi[NODE_BATCH];      /* B's level set there */
+  double grad[3 * NODE_BATCH]; /* and its outward unit gradient (B's frame) */
+  int cached;                  /* B is a grid whose cells come from the pair's list */
+  lsdem_grid_cell cell[NODE_BATCH];
+} node_batch;
+
+/* What one detection shares between its batches. */
+typedef struct {
+  const lsdem_shape *A, *B;
+  const lsdem_pose *pb;
+  double M[9], t[3]; /* A's frame -> B's frame: q = M x + t */
+  pair_motion motion;
+  node_list list;
+  lsdem_manifold *m;
+} detection;
+
+/* Screen `count` (<= NODE_BATCH - b->n) nodes first, first + stride, ...: appended to
+ * the batch when |node - cb|^2 <= rb2; *nearest_out is lowered to the smallest
+ * |node - cb|^2 of the nodes left out. */
+static void screen_nodes(const double *nodes, int first, int count, int stride,
+                         const double cb[3], double rb2, node_batch *b, double *nearest_out)
+{
+  int n = b->n;
+  double nearest = *nearest_out;
+  for (int i = 0; i < count; i++) {
+    const int k = first + i * stride;
+    const double *x = &nodes[3 * k];
+    const double d0 = x[0] - cb[0], d1 = x[1] - cb[1], d2 = x[2] - cb[2];
+    const double r2 = d0 * d0 + d1 * d1 + d2 * d2;
+    const int in = r2 <= rb2;
+    b->node[n] = k;
+    n += in;
+    nearest = !in && r2 < nearest ? r2 : nearest;
+  }
+  b->n = n;
+  *nearest_out = nearest;
+}
+
+/* Level-set lookups of a screened batch (Algorithm 1 for a grid) at q = M node + t (B's
+ * frame), the SDF kind dispatched once per batch. */
+static void lookup_batch(const lsdem_sdf *sdfB, const double M[9], const double t[3],
+                         node_batch *b)
+{
+  for (int i = 0; i < b->n; i++) lsdem_affine3(M, t, &b->x[3 * i], &b->q[3 * i]);
+  if (b->cached)
+    lsdem_grid_eval_many_cached(&sdfB->grid, b->n, b->q, b->phi, b->grad, b->cell);
+  else
+    lsdem_sdf_eval_many(sdfB, b->n, b->q, b->phi, b->grad);
+}
+
+/* Looks the batch up, then adds its penetrating nodes to the manifold; empties the batch.
+ * While a list is built, the nodes that may come to touch join it; the listed nodes (and
+ * their cells, when B is a grid) are kept in the output list. */
+static void detect_batch(detection *restrict dt, node_batch *b)
+{
+  node_list *L = &dt->list;
+  const lsdem_shape *A = dt->A;
+  b->cached = L->cached;
+  lookup_batch(&dt->B->sdf, dt->M, dt->t, b);
+  dt->m->ntested += b->n;
+  for (int i = 0; i < b->n; i++) {
+    const int listed = L->use || (L->building && b->phi[i] < L->reach);
+    if (!listed) {
+      if (L->building) nodelist_margin(L, b->phi[i] / L->lip); /* phi >= L s: L > 0 here */
+      continue;
+    }
+    if (L->out) nodelist_keep(L, b->node[i], &b->x[3 * i], &b->cell[i]);
+  }
+  int at[NODE_BATCH], npen = 0; /* the penetrating ones, gathered without a branch per node */
+  for (int i = 0; i < b->n; i++) {
+    at[npen] = i;
+    npen += b->phi[i] < 0.0;
+  }
+  const lsdem_pose *pb = dt->pb;
+  for (int m = 0; m < npen; m++) {
+    const int i = at[m], k = b->node[i];
+    double p[3], n[3];
+    lsdem_affine3(pb->R, pb->x, &b->q[3 * i], p); /* world position of the node */
+    lsdem_mat_vec(pb->R, &b->grad[3 * i], n);     /* world normal, outward from B */
+    add_point(dt->m, &dt->motion, k, p, n, -b->phi[i], A->node_area ? A->node_area[k] : 1.0);
+  }
+  b->n = 0;
+}
+
+/* detect_batch for screened nodes: their coordinates from A, their cells from the input
+ * list's entries where kept. */
+static void screened_batch(detection *restrict dt, node_batch *b)
+{
+  for (int i = 0; i < b->n; i++) {
+    memcpy(&b->x[3 * i], &dt->A->nodes[3 * b->node[i]], 3 * sizeof(double));
+    if (dt->list.cached) nodelist_cell_of(&dt->list, b->node[i], &b->cell[i]);
+  }
+  detect_batch(dt, b);
+}
+
+/* For a distance B: no point of the ball of radius r about centre (A's frame, mapped to
+ * B's by q = M x + t) is inside B when phi_B(q) > r (1-Lipschitz). This is how a wall
+ * (unbounded: no bounding sphere) skips a grain, or a cluster, with one evaluation
+ * instead of one per node. The relative margin covers round-off in phi at the nodes. */
+static double ball_clearance(const lsdem_sdf *sdfB, const double M[9], const double t[3],
+                             const double centre[3], double r)
+{
+  double q[3], g[3];
+  lsdem_affine3(M, t, centre, q);
+  const double scale = fabs(q[0]) + fabs(q[1]) + fabs(q[2]) + r;
+  return lsdem_sdf_eval(sdfB, q, g) - r - 1e-12 * scale;
+}
+
+/* Node range [start, end) of cluster cl of A when it may touch B (or of all of A when
+ * A has no clusters); returns 0 when the cluster's sphere is clear of B's bounding
+ * sphere widened by `widen` (cb: B's centre in A's frame) or, for a distance B, of B's
+ * solid by more than `clear`. A cluster left out of a list being built gives the list a
+ * margin: how far it is from touching. */
+static int cluster_range(detection *dt, int cl, double widen, int distance, double clear,
+                         const double cb[3], int *start, int *end)
+{
+  const lsdem_shape *A = dt->A, *B = dt->B;
+  node_list *L = &dt->list;
+  *start = 0;
+  *end = A->nnodes;
+  if (!(A->nclusters > 0 && A->cluster_start && A->cluster_sphere)) return 1;
+  const double *sph = &A->cluster_sphere[4 * cl];
+  const double d[3] = {sph[0] - cb[0], sph[1] - cb[1], sph[2] - cb[2]};
+  const double reach = B->radius + widen + sph[3];
+  if (lsdem_dot3(d, d) > reach * reach) {
+    if (L->building) nodelist_margin(L, sqrt(lsdem_dot3(d, d)) - B->radius - sph[3]);
+    return 0;
+  }
+  if (distance) {
+    const double gap = ball_clearance(&B->sdf, dt->M, dt->t, sph, sph[3]);
+    if (gap > clear) {
+      if (L->building) nodelist_margin(L, gap);
+      return 0;
+    }
+  }
+  *start = A->cluster_start[cl];
+  *end = A->cluster_start[cl + 1];
+  return 1;
+}
+
+/* Every node of A screened: clusters, then nodes against B's bounding sphere (both
+ * widened by the skin while a list is built), the kept ones looked up in batches. The
+ * kept nodes of successive clusters share a batch (more lookups to overlap); the batch is
+ * looked up when full and at the end, so nodes stay in increasing order. */
+static void detect_screened_nodes(detection *restrict dt, const double cb[3], int distance,
+                                  node_batch *batch, int stride)
+{
+  const lsdem_shape *A = dt->A;
+  const node_list *L = &dt->list;
+  const double widen = L->building ? L->skin : 0.0, rb = dt->B->radius + widen, rb2 = rb * rb;
+  const double clear = L->building && isfinite(L->reach) ? L->reach : 0.0;
+  const int nclusters = A->nclusters > 0 && A->cluster_start && A->cluster_sphere
+                            ? A->nclusters : 1;
+  double nearest = HUGE_VAL; /* squared distance from cb of the nearest node left out */
+  for (int cl = 0; cl < nclusters; cl++) {
+    int start, end;
+    if (!cluster_range(dt, cl, widen, distance, clear, cb, &start, &end)) continue;
+    int k = (start + stride - 1) / stride * stride;
+    while (k < end) {
+      const int left = (end - k + stride - 1) / stride, room = NODE_BATCH - batch->n;
+      const int count = left < room ? left : room;
+      screen_nodes(A->nodes, k, count, stride, cb, rb2, batch, &nearest);
+      k += count * stride;
+      if (batch->n == NODE_BATCH) screened_batch(dt, batch);
+    }
+  }
+  screened_batch(dt, batch);
+  if (L->building && nearest < HUGE_VAL)
+    nodelist_margin(&dt->list, sqrt(nearest) - dt->B->radius);
+}
+
+/* Only the nodes of the pair's list, in increasing order, looked up in batches: their
+ * coordinates and cells from the list's entries. An entry that names no node of A (a
+ * damaged restart file) is skipped. */
+static void detect_listed_nodes(detection *restrict dt, node_batch *batch)
+{
+  const node_list *L = &dt->list;
+  for (int e = 0; e < L->nnode_in; e++) {
+    const lsdem_nodelist_entry *h = &L->node_in[e];
+    if (h->node < 0 || h->node >= dt->A->nnodes) continue;
+    const int i = batch->n++;
+    batch->node[i] = h->node;
+    memcpy(&batch->x[3 * i], h->x, 3 * sizeof(double));
+    if (L->cached) nodelist_entry_cell(h, &batch->cell[i]);
+    if (batch->n == NODE_BATCH) detect_batch(dt, batch);
+  }
+  detect_batch(dt, batch);
+}
+
+int lsdem_detect_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
+                        const lsdem_pose *pb, const lsdem_detect_params *det, int64_t step,
+                        const lsdem_nodelist *list_in, lsdem_nodelist *list_out,
+                        lsdem_manifold *m)
+{
+  /* eq 2.1: bounding spheres of the pair */
+  double dx[3];
+  for (int i = 0; i < 3; i++) dx[i] = pb->x[i] - pa->x[i];
+  const double rb = B->radius, rab = A->radius + rb;
+  if (lsdem_dot3(dx, dx) > rab * rab) return no_contact(m, list_out);
+
+  /* cb: B's centre in A's frame (for screening). A's frame -> B's frame:
+   * q = M node + t with M = RB^T RA, t = RB^T (xA - xB). */
+  detection dt;
+  double cb[3], mdx[3] = {-dx[0], -dx[1], -dx[2]};
+  lsdem_matT_vec(pa->R, dx, cb);
+  lsdem_matT_mul(pb->R, pa->R, dt.M);
+  lsdem_matT_vec(pb->R, mdx, dt.t);
+
+  /* an unbounded distance B (a wall) has no bounding sphere to screen with: reject A's
+   * bounding sphere (about A's centroid, the origin of A's frame) and then A's clusters
+   * by B's level set instead */
+  const int distance = !isfinite(rb) && lsdem_sdf_is_distance(&B->sdf);
+  const double origin[3] = {0.0, 0.0, 0.0};
+  if (distance && ball_clearance(&B->sdf, dt.M, dt.t, origin, A->radius) > 0.0)
+    return no_contact(m, list_out);
+
+  const int stride = det->node_stride > 1 ? det->node_stride : 1;
+  dt.A = A;
+  dt.B = B;
+  dt.pb = pb;
+  dt.m = m;
+  pair_motion_of(pa, pb, &dt.motion);
+  manifold_begin(m, &dt.motion, stride);
+  nodelist_begin(&dt.list, A, &B->sdf, det, step, list_in, list_out, dt.M, dt.t);
+
+  node_batch batch;
+  batch.n = 0;
+  if (dt.list.use)
+    detect_listed_nodes(&dt, &batch);
+  else
+    detect_screened_nodes(&dt, cb, distance, &batch, stride);
+  nodelist_finish(&dt.list);
+  return m->n;
+}
+
+/* ----------------------------------------------------------- sphere paths ---- */
+
+/* One sphere contact (sphere A against B) given B's outward normal n and the depth d:
+ * the point is the middle of the overlap along the normal, p = xA - (radius - d/2) n. */
+static int sphere_point(double radius, const double n[3], double d, const lsdem_pose *pa,
+                        const pair_motion *pm, lsdem_manifold *m)
+{
+  double p[3];
+  for (int i = 0; i < 3; i++) p[i] = pa->x[i] - (radius - 0.5 * d) * n[i];
+  add_point(m, pm, 0, p, n, d, lsdem_sphere_contact_area(radius));
+  return 1;
+}
+
+/* Sphere A (centre pa->x) against any shape B with ONE level-set lookup of the sphere
+ * centre in B's frame (report §2.3.5): depth d = radius - phi_B(centre), normal = B's
+ * gradient there. */
+static int detect_sphere_shape(double radius, const lsdem_pose *pa, const lsdem_shape *B,
+                               const lsdem_pose *pb, lsdem_manifold *m)
+{
+  double dx[3];
+  for (int i = 0; i < 3; i++) dx[i] = pa->x[i] - pb->x[i];
+  const double reach = radius + B->radius;
+  if (lsdem_dot3(dx, dx) > reach * reach) return no_contact(m, NULL);
+
+  pair_motion pm;
+  pair_motion_of(pa, pb, &pm);
+  manifold_begin(m, &pm, 1);
+  m->ntested = 1;
+  double q[3], g[3], n[3];
+  lsdem_matT_vec(pb->R, dx, q);
+  const double d = radius - lsdem_sdf_eval(&B->sdf, q, g);
+  if (!(d > 0.0)) return 0;
+  lsdem_mat_vec(pb->R, g, n);
+  return sphere_point(radius, n, d, pa, &pm, m);
+}
+
+/* Analytic sphere-sphere: d = ra + rb - |xA - xB|, n = (xA - xB)/|xA - xB|. */
+static int detect_sphere_sphere(double ra, const lsdem_pose *pa, double rb,
+                                const lsdem_pose *pb, lsdem_manifold *m)
+{
+  double dx[3];
+  for (int i = 0; i < 3; i++) dx[i] = pa->x[i] - pb->x[i];
+  const double reach = ra + rb, dist2 = lsdem_dot3(dx, dx);
+  if (!(dist2 < reach * reach)) return no_contact(m, NULL);
+
+  pair_motion pm;
+  pair_motion_of(pa, pb, &pm);
+  manifold_begin(m, &pm, 1);
+  m->ntested = 1;
+  const double dist = sqrt(dist2);
+  double n[3] = {1.0, 0.0, 0.0}; /* coincident centres: any direction will do */
+  if (dist > 0.0)
+    for (int i = 0; i < 3; i++) n[i] = dx[i] / dist;
+  return sphere_point(ra, n, reach - dist, pa, &pm, m);
+}
+
+/* ----------------------------------------------------------------- dispatch ---- */
+
+static int is_sphere(const lsdem_shape *s) { return s->sdf.kind == LSDEM_SDF_SPHERE; }
+
+double lsdem_sphere_contact_area(double radius) { return M_PI * radius * radius; }
+
+lsdem_manifold lsdem_manifold_over(lsdem_contact_point *storage, int cap)
+{
+  lsdem_manifold m;
+  memset(&m, 0, sizeof m);
+  m.point = storage;
+  m.cap = cap;
+  m.stride = 1;
+  return m;
+}
+
+int lsdem_detect(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
+                 const lsdem_pose *pb, const lsdem_detect_params *det, int64_t step,
+                 const lsdem_nodelist *list_in, lsdem_nodelist *list_out, lsdem_manifold *m)
+{
+  if (!is_sphere(A))
+    return lsdem_detect_nodes(A, pa, B, pb, det, step, list_in, list_out, m);
+  if (list_out) list_out->valid = 0;
+  if (is_sphere(B)) return detect_sphere_sphere(A->sdf.a[0], pa, B->sdf.a[0], pb, m);
+  return detect_sphere_shape(A->sdf.a[0], pa, B, pb, m);
+}

@@ -1,0 +1,79 @@
+/* nodelist.h -- the node lists of detection (nodelist.c), private to core/contact:
+ * deciding whether a pair's list holds, building a new one while nodes are screened,
+ * and the cells its entries keep. The public record types are in lsdem_contact.h. */
+#ifndef LSDEM_CONTACT_NODELIST_H
+#define LSDEM_CONTACT_NODELIST_H
+
+#include "lsdem_contact.h"
+
+#include <string.h>
+
+/* The list state of one detection call. */
+typedef struct {
+  double skin;  /* s; 0: no list */
+  double reach; /* L s: a looked-up node with phi >= reach is left out (HUGE_VAL: none) */
+  double lip;   /* L (reach / skin) when finite */
+  double margin; /* while built: the least distance a left-out node must move to touch */
+  double cap;   /* the margin may not exceed this (grids: the gradient bound's limit) */
+  int use;      /* the input list holds: look up its nodes only */
+  int cached;   /* B is a grid: listed nodes' cells are kept */
+  int building; /* a new list is being built into out */
+  const lsdem_nodelist_entry *node_in; /* the input list's entries (increasing node) */
+  int nnode_in, node_cursor;
+  lsdem_nodelist *out; /* where this step's list goes, or NULL (also without a skin) */
+} node_list;
+
+/* Whether B's level set is an exact signed distance, so |phi(p) - phi(q)| <= |p - q|
+ * (also inverted). Grids are not (trilinear interpolation of samples that may be
+ * smoothed or approximate), nor is the superellipsoid's first-order distance. */
+int lsdem_sdf_is_distance(const lsdem_sdf *s);
+
+/* Decides whether in's list is used (pose of B in A's frame now: q = M x + t); when it is
+ * not and out is given, starts a new one there. */
+void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
+                    const lsdem_detect_params *det, int64_t step, const lsdem_nodelist *in,
+                    lsdem_nodelist *out, const double M[9], const double t[3]);
+/* The per-node steps are inline: they run for every looked-up node. */
+
+/* A left-out node (or cluster) that must move by d to touch B: the list holds until d. */
+static inline void nodelist_margin(node_list *L, double d)
+{
+  L->margin = d < L->margin ? d : L->margin;
+}
+
+/* Listed node k at x (A's frame) with its cell c joins the output list. */
+static inline void nodelist_keep(node_list *L, int k, const double x[3], const lsdem_grid_cell *c)
+{
+  lsdem_nodelist_entry *e = &L->out->entry[L->out->head->count++];
+  const int kept = L->cached && c && c->index >= 0 && c->index <= INT32_MAX;
+  e->node = k;
+  e->cell = kept ? (int32_t)c->index : -1;
+  if (kept)
+    memcpy(e->v, c->v, sizeof e->v);
+  else
+    memset(e->v, 0, sizeof e->v);
+  memcpy(e->x, x, sizeof e->x);
+}
+
+
+/* The cell kept in an entry. */
+static inline void nodelist_entry_cell(const lsdem_nodelist_entry *e, lsdem_grid_cell *c)
+{
+  c->index = e->cell;
+  if (e->cell >= 0) memcpy(c->v, e->v, sizeof c->v);
+}
+
+/* The cell the input list kept for node k (nodes asked in increasing order), or none. */
+static inline void nodelist_cell_of(node_list *L, int k, lsdem_grid_cell *c)
+{
+  while (L->node_cursor < L->nnode_in && L->node_in[L->node_cursor].node < k) L->node_cursor++;
+  if (L->node_cursor < L->nnode_in && L->node_in[L->node_cursor].node == k)
+    nodelist_entry_cell(&L->node_in[L->node_cursor], c);
+  else
+    c->index = -1;
+}
+
+/* Finishes the output list (its validity radius when built, its node count). */
+void nodelist_finish(node_list *L);
+
+#endif /* LSDEM_CONTACT_NODELIST_H */

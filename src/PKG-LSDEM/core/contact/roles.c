@@ -1,0 +1,13 @@
+/* roles.c -- master and slave of a pair: whose nodes are tested against whose level set
+ * (report §2.2.5: the grain with the smaller index is master), and with what weight. */
+#include "lsdem_contact.h"
+
+double lsdem_contact_roles(const lsdem_shape *a, int64_t id_a, const lsdem_shape *b,
+                           int64_t id_b, lsdem_roles_rule rule)
+{
+  if (id_a == id_b) return 0.0;
+  const int sa = a->sdf.kind == LSDEM_SDF_SPHERE, sb = b->sdf.kind == LSDEM_SDF_SPHERE;
+  if (sa != sb) return sa ? 1.0 : 0.0; /* the sphere: one lookup, no node loop */
+  if (!sa && rule == LSDEM_ROLES_TWOWAY) return 0.5;
+  return id_a < id_b ? 1.0 : 0.0;
+}

@@ -1,0 +1,49 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   LSDEM package for LAMMPS: the contact options that pair_style/pair_coeff lsdem and
+   fix wall/lsdem share, parsed and checked in one place (doc/pair_lsdem.rst,
+   doc/fix_wall_lsdem.rst):
+     the penalty law   kn ks mu, cn value, ct value, normal node|traction
+     the detection     stride N, nodelist auto|off|skin
+   Each style takes the keywords it documents (pair_style: normal, stride, nodelist;
+   pair_coeff: cn, ct; fix wall/lsdem: all of them).
+------------------------------------------------------------------------- */
+
+#ifndef LMP_LSDEM_CONTACT_OPTIONS_H
+#define LMP_LSDEM_CONTACT_OPTIONS_H
+
+#include "lsdem_kernel.h"
+
+#include <string>
+
+namespace LAMMPS_NS {
+
+class LsdemContactOptions {
+ public:
+  // keyword groups, for read_keyword's `accept`
+  enum { DAMPING = 1, NORMAL = 2, DETECT = 4 };
+  // node lists' auto skin: this fraction of the smallest bounding radius of a grain shape
+  // that has nodes (spheres have none)
+  static constexpr double NODE_SKIN_AUTO = 0.02;
+
+  lsdem_penalty_law law;
+  int stride;       // test every stride-th node (report §3.4.1)
+  double nodelist;  // node-list setting: -1 auto, 0 off, > 0 skin length
+
+  LsdemContactOptions();  // kn = 0 (to be read), per-node law, stride 1, nodelist auto
+  // kn ks mu from three arguments
+  void read_stiffness(class LAMMPS *, char **arg);
+  // key and its value when key is one of the groups in accept (cn, ct: DAMPING; normal:
+  // NORMAL; stride, nodelist: DETECT); false when it is not
+  bool read_keyword(class LAMMPS *, const char *who, const std::string &key, const char *value,
+                    int accept);
+  // kn > 0; ks, mu, cn, ct >= 0; all finite: otherwise an error naming `who` and the values
+  void check_law(class LAMMPS *, const char *who) const;
+  // the detection parameters for grains of this atom style (the auto skin from its library)
+  lsdem_detect_params detect(const class AtomVecLsdem *) const;
+  // the skin a nodelist setting gives for this atom style's shapes
+  static double node_skin(double setting, const class AtomVecLsdem *);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif

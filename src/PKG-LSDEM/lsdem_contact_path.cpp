@@ -1,0 +1,105 @@
+// clang-format off
+/* ----------------------------------------------------------------------
+   LSDEM package for LAMMPS: one grain's contacts, pose -> state -> manifold -> law ->
+   commit (lsdem_contact_path.h).
+------------------------------------------------------------------------- */
+
+#include "lsdem_contact_path.h"
+
+#include "atom.h"
+#include "atom_vec_lsdem.h"
+#include "fix_lsdem_history.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <new>
+
+using namespace LAMMPS_NS;
+
+LsdemContactPath::LsdemContactPath() : store(nullptr), points(nullptr), cap(0)
+{
+  m = lsdem_manifold_over(nullptr, 0);
+}
+
+LsdemContactPath::~LsdemContactPath()
+{
+  free(points);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void LsdemContactPath::setup(FixLsdemHistory *history, const AtomVecLsdem *avec)
+{
+  store = history;
+  int need = 1;
+  for (int s = 0; s < avec->nshapes(); s++)
+    need = std::max(need, lsdem_manifold_capacity(lsdem_library_shape(avec->library(), s)));
+  if (need > cap) {
+    free(points);
+    points = (lsdem_contact_point *) malloc(sizeof(lsdem_contact_point) * need);
+    if (!points) throw std::bad_alloc();
+    cap = need;
+  }
+  m = lsdem_manifold_over(points, cap);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void LsdemContactPath::pose_of(const Atom *atom, const AtomVecLsdem *avec, int i, lsdem_pose &p)
+{
+  for (int d = 0; d < 3; d++) {
+    p.x[d] = atom->x[i][d];
+    p.v[d] = atom->v[i][d];
+    p.omega[d] = atom->omega[i][d];
+  }
+  lsdem_quat_to_matrix(avec->quat[i], p.R);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void LsdemContactPath::begin_step()
+{
+  if (store) store->begin_step();
+}
+
+void LsdemContactPath::begin_atom()
+{
+  if (store) store->begin_atom();
+}
+
+void LsdemContactPath::end_atom(int i)
+{
+  if (store) store->end_atom(i);
+}
+
+void LsdemContactPath::end_step()
+{
+  if (store) store->end_step();
+}
+
+bool LsdemContactPath::keeps_state(int i) const
+{
+  return store && store->holds(i);
+}
+
+/* ---------------------------------------------------------------------- */
+
+int LsdemContactPath::test(int i, tagint partner, const lsdem_shape *A, const lsdem_pose &pa,
+                           const lsdem_shape *B, const lsdem_pose &pb,
+                           const lsdem_contact_params &prm, bigint step,
+                           lsdem_contact_result &res)
+{
+  if (!store || !(prm.law.mu > 0.0 || prm.detect.node_skin > 0.0)) {
+    lsdem_contact_penalty(A, &pa, B, &pb, &prm, step, nullptr, nullptr, &m, &res);
+    return res.npen;
+  }
+  lsdem_pair_state in;
+  const bool found = store->find(i, partner, in);
+  lsdem_pair_state out = store->reserve(lsdem_nodelist_capacity(A), lsdem_manifold_capacity(A));
+  lsdem_detect(A, &pa, B, &pb, &prm.detect, step, found ? &in.list : nullptr, &out.list, &m);
+  FixLsdemHistory::place_shear(out);  // behind the list just written: one stream per step
+  lsdem_penalty_apply(&m, &prm.law, prm.dt, step, found ? in.shear : nullptr,
+                      found ? in.nshear : 0, out.shear, &out.nshear, &res);
+  store->commit(partner, out);
+  return res.npen;
+}

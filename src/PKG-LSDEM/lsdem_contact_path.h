@@ -1,0 +1,59 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   LSDEM package for LAMMPS: one grain's contacts, the way pair_style lsdem and
+   fix wall/lsdem both run them: pose -> pair state -> manifold -> law -> commit.
+     the pose        of a grain from the atom arrays (pose_of);
+     the pair state  of the master (node list, shear history) from fix LSDEM_HISTORY;
+     the manifold    from the core's detection (lsdem_detect);
+     the law         the core's penalty law (lsdem_penalty_apply), whose result the style
+                     applies to the grains;
+     the commit      of the pair's new state to the store.
+   No physics here: the core does it (core/contact).
+------------------------------------------------------------------------- */
+
+#ifndef LMP_LSDEM_CONTACT_PATH_H
+#define LMP_LSDEM_CONTACT_PATH_H
+
+#include "lmptype.h"
+#include "lsdem_kernel.h"
+
+namespace LAMMPS_NS {
+
+class LsdemContactPath {
+ public:
+  LsdemContactPath();
+  ~LsdemContactPath();
+  LsdemContactPath(const LsdemContactPath &) = delete;
+  LsdemContactPath &operator=(const LsdemContactPath &) = delete;
+
+  // where pair states are kept (nullptr: nowhere), and manifold storage for the largest
+  // shape of the atom style's library; at each init
+  void setup(class FixLsdemHistory *, const class AtomVecLsdem *);
+  // the world-frame pose of atom i (local or ghost)
+  static void pose_of(const class Atom *, const class AtomVecLsdem *, int i, lsdem_pose &);
+
+  // the visit of the grains' pairs: per step, and per owned grain around its test() calls
+  void begin_step();
+  void begin_atom();
+  void end_atom(int i);
+  void end_step();
+  bool keeps_state(int i) const;  // grain i holds a pair state from the last step
+
+  // one pair: grain i's nodes (shape A at pa) against partner `partner` (B at pb); its
+  // state is read and written when the store is set and the pair needs one (friction or
+  // node lists). Returns the penetrating nodes.
+  int test(int i, tagint partner, const lsdem_shape *A, const lsdem_pose &pa,
+           const lsdem_shape *B, const lsdem_pose &pb, const lsdem_contact_params &prm,
+           bigint step, lsdem_contact_result &res);
+  // the manifold of the last test
+  const lsdem_manifold &manifold() const { return m; }
+
+ private:
+  class FixLsdemHistory *store;
+  lsdem_contact_point *points;
+  int cap;
+  lsdem_manifold m;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
