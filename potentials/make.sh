@@ -4,7 +4,7 @@
 # (Table 3.1): scale with the include snippets' voxel size k.
 #   bash potentials/make.sh [OUTDIR]     (default: this folder; ./lsdem potentials)
 #   COUNT=N  grains per sand library (default 8)
-# Takes about a minute on 2 cores (the 750-node library most of it).
+# Takes about 20 s (the 750-node library most of it).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 shape=${LSDEM_SHAPE_TOOL:-$here/../build/lsdem-shape}
@@ -30,8 +30,8 @@ sand sand_250 250 1.0
 sand sand_750 750 0.6
 
 # a sphere of diameter 30 voxels: analytic (exact level set, cheapest contact) and as a grid
-"$shape" analytic sphere.lslib sphere 15 --nodes 250 --analytic --name sphere >/dev/null 2>sphere.log
-say sphere.lslib "analytic sphere R 15, 250 nodes"
+"$shape" analytic sphere.lslib sphere 15 --nodes 400 --analytic --name sphere >/dev/null 2>sphere.log
+say sphere.lslib "analytic sphere R 15, 400 nodes"
 "$shape" analytic sphere_grid.lslib sphere 15 --nodes 400 --spacing 1 --name sphere_grid \
   >/dev/null 2>sphere_grid.log
 say sphere_grid.lslib "sphere R 15 as a grid (spacing 1), 400 nodes"
