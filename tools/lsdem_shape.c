@@ -14,6 +14,7 @@
  *   lsdem-shape pack LIB OUT.data --count N (--box X Y Z | --cylinder R H) [options]
  *                                                                     (shape_pack.c)
  *   lsdem-shape membrane PREFIX --radius RS --height H --rb RB ...     (shape_membrane.c)
+ *   lsdem-shape to-raw IMAGE.tif OUT.raw                              (shape_image.c)
  *
  * Exit status 0 on success, 1 on any error (with a message on stderr), 2 on bad usage. */
 #include "lsdem.h"
@@ -45,6 +46,7 @@ static int usage(void)
           "       lsdem-shape from-labels IMAGE OUT.lslib [--raw NX NY NZ u8|u16|u32|i32 [--big-endian]]\n"
           "                   [--voxel S] [--min-voxels N] [--nodes N | --node-spacing S] [--smooth K]\n"
           "                   [--margin M] [--seed S] [--data OUT.data --density RHO]\n"
+          "       lsdem-shape to-raw IMAGE.tif OUT.raw\n"
           "       lsdem-shape from-mesh MESH.stl|MESH.obj OUT.lslib [--spacing H] [--nodes N |\n"
           "                   --node-spacing S] [--scale S] [--name NAME] [--margin M] [--seed S] [--allow-open]\n"
           "       lsdem-shape random OUT.lslib --count K --size D [--size-spread S] [--elongation EL]\n"
@@ -500,7 +502,8 @@ int main(int argc, char **argv)
               {"to-morph", cmd_to_morph}, {"analytic", cmd_analytic}, {"merge", cmd_merge},
               {"render", cmd_render}, {"surface", cmd_surface},
               {"from-labels", cmd_from_labels}, {"from-mesh", cmd_from_mesh},
-              {"random", cmd_random}, {"pack", cmd_pack}, {"membrane", cmd_membrane}};
+              {"random", cmd_random}, {"pack", cmd_pack}, {"membrane", cmd_membrane},
+              {"to-raw", cmd_to_raw}};
   if (argc < 2) return usage();
   for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++)
     if (!strcmp(argv[1], cmds[i].name)) return cmds[i].run(argc - 2, argv + 2);

@@ -9,6 +9,7 @@ int cmd_render(int argc, char **argv);  /* shape_render.c */
 int cmd_surface(int argc, char **argv); /* shape_render.c */
 
 int cmd_from_labels(int argc, char **argv); /* shape_labels.c */
+int cmd_to_raw(int argc, char **argv);      /* shape_image.c */
 int cmd_from_mesh(int argc, char **argv);   /* shape_mesh.c */
 
 int cmd_random(int argc, char **argv); /* shape_random.c */

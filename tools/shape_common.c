@@ -1,10 +1,30 @@
 /* shape_common.c -- command-line plumbing shared by the lsdem-shape subcommands. */
+#define _POSIX_C_SOURCE 200809L /* fileno, isatty, clock_gettime */
 #include "shape_common.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+void shape_progress(const char *what, int done, int total)
+{
+  static struct timespec start;
+  if (done == 1) clock_gettime(CLOCK_MONOTONIC, &start);
+  const char *env = getenv("LSDEM_PROGRESS");
+  const int on = env ? strcmp(env, "0") != 0 : isatty(fileno(stderr));
+  if (!on || total < 20 || (done != total && (10L * done / total) == (10L * (done - 1) / total)))
+    return;
+  struct timespec now;
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  const double t = (double)(now.tv_sec - start.tv_sec) + 1e-9 * (now.tv_nsec - start.tv_nsec);
+  fprintf(stderr, "lsdem-shape: %s: %d of %d (%ld %%), %.1f s", what, done, total,
+          100L * done / total, t);
+  if (done < total) fprintf(stderr, ", about %.0f s left", t * (total - done) / done);
+  fputc('\n', stderr);
+}
 
 int parse_number(const char *s, int positive, double *v)
 {

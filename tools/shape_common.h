@@ -21,4 +21,9 @@ int shape_write_data(const char *path, const char *title, int n, const int *shap
                      double density, const double *pos, const double *quat, const double lo[3],
                      const double hi[3]);
 
+/* Progress of a long loop on stderr, at every tenth of `total` (and the last), when
+ * stderr is a terminal or LSDEM_PROGRESS=1 is set, for loops of at least 20 items:
+ * "lsdem-shape: WHAT: DONE of TOTAL (P %), T s". Call with done = 1..total. */
+void shape_progress(const char *what, int done, int total);
+
 #endif

@@ -139,6 +139,7 @@ static int build_shapes(lsdem_voxel_grain *gr, int n, const labels_options *o,
       bits = lsdem_shape_check(&b[i].shape, &r, &err) == LSDEM_OK ? r.warnings : 0;
     }
     with_warnings += bits != 0;
+    shape_progress("from-labels: shapes built", i + 1, n);
   }
   if (with_warnings > warned)
     fprintf(stderr, "lsdem-shape: warning: %d grains have quality warnings (first %d shown)\n",

@@ -6,17 +6,13 @@ watershed segmentation exported as raw binary.
 
 usage: make_labels.py OUT.raw N NB SEED
 Blobs do not touch (each keeps a one-voxel gap to the others) and stay inside the volume."""
+import os
 import sys
 
 import numpy as np
 
-
-def random_rotation(rng):
-    q = rng.normal(size=4)
-    w, x, y, z = q / np.linalg.norm(q)
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from synthetic_scan import random_rotation  # noqa: E402  (the grains of a synthetic grey scan)
 
 
 def main():

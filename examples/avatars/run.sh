@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
 # Avatars example: synthetic labelled CT volume -> shape library -> packed sample ->
 # rendering -> settling run. Called by `./lsdem example avatars` (which sets LSDEM_LMP and
-# LSDEM_SHAPE_TOOL); NP=2 by default.
+# LSDEM_SHAPE_TOOL); NP=2 by default, OUT the output folder (default out/).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 lmp=${LSDEM_LMP:-$here/../../build/lmp}
 shape=${LSDEM_SHAPE_TOOL:-$here/../../build/lsdem-shape}
 np=${NP:-2}
 n=${NGRAINS:-120}
-out=$here/out
+out=${OUT:-$here/out}
 mkdir -p "$out"
 cd "$out"
 

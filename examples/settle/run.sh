@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # Settle example: make the shape library and the grains, run lmp, plot.
 # Called by `./lsdem example settle` (which sets LSDEM_LMP and LSDEM_SHAPE_TOOL); NP=2 by default.
+# `run.sh prepare` makes the shapes and grains only (examples/python drives the run itself);
+# OUT sets the output folder (default out/).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 lmp=${LSDEM_LMP:-$here/../../build/lmp}
 shape=${LSDEM_SHAPE_TOOL:-$here/../../build/lsdem-shape}
 np=${NP:-2}
 n=${NGRAINS:-300}
-out=$here/out
+out=${OUT:-$here/out}
 mkdir -p "$out"
 cd "$out"
 
@@ -20,6 +22,7 @@ rm -f grains.lslib part*.lslib
 "$shape" merge grains.lslib part1.lslib part2.lslib part3.lslib part4.lslib >/dev/null
 rm -f part*.lslib
 /usr/bin/python3 "$here/make_grains.py" "$n" 4 0.0028 8 8 0.024 0.024 0.03 2024 > data.settle
+[ "${1:-}" = prepare ] && exit 0
 
 mpi=()
 [ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")

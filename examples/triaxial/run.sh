@@ -73,13 +73,19 @@ sed '/^Velocities/,$d' sample.data > sample_grains.data   # grains at rest
   --density "$rho" --knbb "$km" --ksbb "$km" --kouter "$km_outer" "$km_outer"
 
 # 4. consolidation and shearing
-echo "running lmp on $np rank(s): $kind grains, mu $mu (progress in $out/log.lammps)"
+echo "running lmp on $np rank(s): $kind grains, mu $mu (log in $out/log.lammps)"
+rm -f log.lammps
 "${mpi[@]}" "$lmp" -in "$here/in.triaxial" -var lib all.lslib -var data mem.data \
   -var memin mem.in -var memtri mem.tri -var mu "$mu" -var pivot "$pivot" -var rho "$rho" -var R "$R" \
   -var stride "${STRIDE:-1}" \
   ${EPSMAX:+-var epsmax $EPSMAX} \
   ${UNLOAD_AT:+-var unload_at $UNLOAD_AT} ${UNLOAD_Q:+-var unload_q $UNLOAD_Q} \
-  -log log.lammps -echo none -screen none
+  -log log.lammps -echo none -screen none &
+lmp_pid=$!
+# the deck's PROGRESS lines (strain reached, time left) on the screen as the log grows
+tail --pid=$lmp_pid -n +1 -F log.lammps 2>/dev/null | grep --line-buffered '^PROGRESS' \
+  | sed -u 's/^PROGRESS /  /' || true
+wait $lmp_pid
 grep -E '^(PIVOT|CONSOLIDATED|UNLOAD|RELOAD|SHEARED)' log.lammps
 echo "total time $((SECONDS - start)) s"
 /usr/bin/python3 "$here/plot.py" triaxial.csv "$kind"

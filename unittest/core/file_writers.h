@@ -1,6 +1,7 @@
 /* file_writers.h -- small writers of the binary formats the readers take (multi-page
- * TIFF, ASCII and binary STL), shared by the reader tests and the mutation test
- * (unittest/fuzz/mutate_readers.c) so that both start from the same valid files. */
+ * TIFF by hand and through libtiff's writer, ASCII and binary STL), shared by the reader
+ * tests and the mutation test (unittest/fuzz/mutate_readers.c) so that both start from the
+ * same valid files. */
 #ifndef LSDEM_FILE_WRITERS_H
 #define LSDEM_FILE_WRITERS_H
 
@@ -8,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <tiffio.h>
 
 /* ------------------------------------------------------------------ TIFF ---- */
 
@@ -103,6 +105,90 @@ static inline bytes make_tiff(const int n[3], const uint32_t *v, tiff_opts o, si
   }
   if (next_last) *next_last = prev_next;
   return t;
+}
+
+/* A TIFF written by libtiff itself (its encoders, not ours): n[0] x n[1] x n[2] values v,
+ * as `bits`-bit samples of `format` (SAMPLEFORMAT_UINT/INT/IEEEFP), compressed with
+ * `compression` (COMPRESSION_NONE, _LZW, _ADOBE_DEFLATE, _PACKBITS, ...), in strips of
+ * 2 rows or in 16 x 16 tiles, classic or BigTIFF, either byte
+ * order; one page per z slice, or (volume) all slices in one tiled page with ImageDepth.
+ * Returns 0 when libtiff refused. */
+typedef struct {
+  int bits, format, compression, tiled, bigtiff, big_endian, volume;
+} libtiff_opts;
+
+static inline int write_tiff_libtiff(const char *path, const int n[3], const uint32_t *v,
+                                     libtiff_opts o)
+{
+  char mode[8] = "w";
+  if (o.bigtiff) strcat(mode, "8");
+  strcat(mode, o.big_endian ? "b" : "l");
+  TIFF *t = TIFFOpen(path, mode);
+  if (!t) return 0;
+  const int bytes = o.bits / 8, pages = o.volume ? 1 : n[2], depth = o.volume ? n[2] : 1;
+  const size_t slice = (size_t)n[0] * n[1];
+  unsigned char *buf = malloc(slice * n[2] * bytes + 16 * 16 * 4 * 8);
+  int ok = buf != NULL;
+  for (int z = 0; ok && z < pages; z++) {
+    TIFFSetField(t, TIFFTAG_IMAGEWIDTH, (uint32_t)n[0]);
+    TIFFSetField(t, TIFFTAG_IMAGELENGTH, (uint32_t)n[1]);
+    if (o.volume) TIFFSetField(t, TIFFTAG_IMAGEDEPTH, (uint32_t)depth);
+    TIFFSetField(t, TIFFTAG_BITSPERSAMPLE, (uint16_t)o.bits);
+    TIFFSetField(t, TIFFTAG_SAMPLEFORMAT, (uint16_t)o.format);
+    TIFFSetField(t, TIFFTAG_SAMPLESPERPIXEL, (uint16_t)1);
+    TIFFSetField(t, TIFFTAG_PHOTOMETRIC, (uint16_t)PHOTOMETRIC_MINISBLACK);
+    TIFFSetField(t, TIFFTAG_PLANARCONFIG, (uint16_t)PLANARCONFIG_CONTIG);
+    TIFFSetField(t, TIFFTAG_COMPRESSION, (uint16_t)o.compression);
+    if (o.compression == COMPRESSION_LZW || o.compression == COMPRESSION_ADOBE_DEFLATE)
+      TIFFSetField(t, TIFFTAG_PREDICTOR, (uint16_t)(o.format == SAMPLEFORMAT_IEEEFP ? 1 : 2));
+    /* samples of this page (or volume) in host order */
+    for (size_t i = 0; i < slice * depth; i++) {
+      const uint32_t x = v[(size_t)z * slice + i];
+      unsigned char *d = buf + i * bytes;
+      if (o.format == SAMPLEFORMAT_IEEEFP && bytes == 4) {
+        const float f = (float)x;
+        memcpy(d, &f, 4);
+      } else if (o.format == SAMPLEFORMAT_IEEEFP) {
+        const double f = (double)x;
+        memcpy(d, &f, 8);
+      } else if (bytes == 1) *d = (unsigned char)x;
+      else if (bytes == 2) {
+        const uint16_t u = (uint16_t)x;
+        memcpy(d, &u, 2);
+      } else memcpy(d, &x, 4);
+    }
+    if (o.tiled) {
+      const uint32_t tw = 16, th = 16, td = 1; /* libtiff handles tiles one plane deep */
+      TIFFSetField(t, TIFFTAG_TILEWIDTH, tw);
+      TIFFSetField(t, TIFFTAG_TILELENGTH, th);
+      unsigned char *tile = malloc((size_t)tw * th * td * bytes);
+      ok = tile != NULL;
+      for (uint32_t z0 = 0; ok && z0 < (uint32_t)depth; z0 += td)
+        for (uint32_t y0 = 0; ok && y0 < (uint32_t)n[1]; y0 += th)
+          for (uint32_t x0 = 0; ok && x0 < (uint32_t)n[0]; x0 += tw) {
+            memset(tile, 0, (size_t)tw * th * td * bytes);
+            for (uint32_t k = 0; k < td && z0 + k < (uint32_t)depth; k++)
+              for (uint32_t j = 0; j < th && y0 + j < (uint32_t)n[1]; j++)
+                for (uint32_t i = 0; i < tw && x0 + i < (uint32_t)n[0]; i++)
+                  memcpy(tile + (((size_t)k * th + j) * tw + i) * bytes,
+                         buf + (((size_t)(z0 + k) * n[1] + y0 + j) * n[0] + x0 + i) * bytes,
+                         bytes);
+            ok = TIFFWriteTile(t, tile, x0, y0, z0, 0) >= 0;
+          }
+      free(tile);
+    } else {
+      TIFFSetField(t, TIFFTAG_ROWSPERSTRIP, (uint32_t)2);
+      for (int s = 0; ok && 2 * s < n[1]; s++) {
+        const int rows = 2 * s + 2 <= n[1] ? 2 : n[1] - 2 * s;
+        ok = TIFFWriteEncodedStrip(t, (uint32_t)s, buf + (size_t)2 * s * n[0] * bytes,
+                                   (tmsize_t)rows * n[0] * bytes) >= 0;
+      }
+    }
+    ok = ok && TIFFWriteDirectory(t);
+  }
+  TIFFClose(t);
+  free(buf);
+  return ok;
 }
 
 /* ------------------------------------------------------------------- STL ---- */

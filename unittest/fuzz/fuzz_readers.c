@@ -1,6 +1,6 @@
 /* fuzz_readers.c -- one input, every file reader of the core: the bytes are read as a
- * morphology file, a positions file, a rotations file, a shape library, a TIFF and a raw
- * label image, and a mesh (STL binary/ASCII or OBJ by content). Whatever a
+ * morphology file, a positions file, a rotations file, a shape library, a TIFF (through
+ * libtiff, as labels and as a grey volume) and a raw label image, and a mesh (STL binary/ASCII or OBJ by content). Whatever a
  * reader accepts is then used the way the package uses it (morph -> shape; library shapes
  * verified, every array touched, the level set evaluated), so a reader that accepts a
  * file it should have rejected shows up as a sanitizer report.
@@ -158,6 +158,17 @@ static int fuzz_images(const char *path, size_t size, fuzz_tally *t)
   int broken = contract_broken(st, &err) || (st != LSDEM_OK && img.label);
   if (st == LSDEM_OK) t->image_ok++, broken |= use_image(&img);
   lsdem_label_image_free(&img);
+  lsdem_volume vol;
+  err.msg[0] = '\0';
+  st = lsdem_tiff_read_volume(path, &vol, &err);
+  broken |= contract_broken(st, &err) || (st != LSDEM_OK && vol.data);
+  if (st == LSDEM_OK) { /* every sample is there */
+    volatile unsigned char sink = 0;
+    const size_t nb = (size_t)vol.n[0] * vol.n[1] * vol.n[2] * vol.bytes;
+    for (size_t i = 0; i < nb; i++) sink ^= ((const unsigned char *)vol.data)[i];
+    (void)sink;
+  }
+  lsdem_volume_free(&vol);
   /* raw: as 16-bit little-endian slices of 4 x 2 voxels */
   const int n[3] = {4, 2, (int)(size / 16 > 0 ? size / 16 : 1)};
   err.msg[0] = '\0';

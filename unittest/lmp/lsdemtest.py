@@ -96,7 +96,7 @@ def tan_scene(root, which, positions, rotations, box=None):
 
 def thermo(log_text, run_index=-1):
     """Thermo rows of one run (default: the last) as a list of dicts of floats; warnings
-    printed between rows are passed over."""
+    and the examples' PROGRESS lines printed between rows are passed over."""
     runs = []
     lines = log_text.splitlines()
     i = 0
@@ -107,7 +107,7 @@ def thermo(log_text, run_index=-1):
             i += 1
             while i < len(lines):
                 parts = lines[i].split()
-                if parts[:1] == ["WARNING:"]:
+                if parts[:1] in (["WARNING:"], ["PROGRESS"]):  # printed between rows
                     i += 1
                     continue
                 if len(parts) != len(header):

@@ -182,7 +182,8 @@ check("requires atom_style lsdem" in log, "atom style not checked: %s" % log[-30
 
 # ---- lsdem-shape render of the last dump frame and of the data file -----------------
 def read_png(path):
-    """(width, height, rows of RGB bytes) of an 8-bit RGB PNG, every chunk CRC checked."""
+    """(width, height, rows of RGB bytes) of an 8-bit RGB PNG, every chunk CRC checked
+    (read here with zlib, independently of libpng, which wrote it)."""
     png = open(path, "rb").read()
     check(png[:8] == b"\x89PNG\r\n\x1a\n", "%s: PNG signature" % path)
     pos, idat, chunks, size = 8, b"", [], (0, 0)
@@ -201,7 +202,32 @@ def read_png(path):
     w, h = size
     raw = zlib.decompress(idat)
     check(len(raw) == h * (1 + 3 * w), "%s: decompressed %d bytes" % (path, len(raw)))
-    return w, h, [raw[r * (1 + 3 * w) + 1:(r + 1) * (1 + 3 * w)] for r in range(h)]
+    return w, h, unfilter(raw, w, h)
+
+
+def unfilter(raw, w, h):
+    """Scanlines of 3-byte pixels from PNG's filtered rows (filter types 0-4, RFC 2083 §6):
+    libpng chooses a filter per row."""
+    rows, prev, n = [], bytearray(3 * w), 3 * w
+    for r in range(h):
+        kind, line = raw[r * (n + 1)], bytearray(raw[r * (n + 1) + 1:(r + 1) * (n + 1)])
+        for i in range(n):
+            a = line[i - 3] if i >= 3 else 0
+            b, c = prev[i], prev[i - 3] if i >= 3 else 0
+            if kind == 1:
+                line[i] = (line[i] + a) & 255
+            elif kind == 2:
+                line[i] = (line[i] + b) & 255
+            elif kind == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif kind == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        check(kind <= 4, "PNG filter type %d" % kind)
+        rows.append(bytes(line))
+        prev = line
+    return rows
 
 
 def covered(rows, w):

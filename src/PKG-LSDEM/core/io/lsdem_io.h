@@ -1,5 +1,6 @@
 /* lsdem_io.h -- files in and out (not linked into lmp): reading whole files, label images
- * (raw, TIFF), surface meshes as VTK/PLY, pictures of grains (ray-marched, PNG). */
+ * and grey-level volumes (raw; TIFF through libtiff), surface meshes as VTK/PLY, pictures
+ * of grains (ray-marched, PNG through libpng). */
 #ifndef LSDEM_IO_H
 #define LSDEM_IO_H
 
@@ -10,8 +11,6 @@ extern "C" {
 #endif
 
 /* ------------------------------------------------------------------ files ---- */
-
-    ;
 
 /* Read a whole file (at most max_bytes) into a new buffer, NUL-terminated (not counted in
  * *size); free(*data) when done. */
@@ -37,15 +36,38 @@ typedef enum { LSDEM_VOXEL_U8 = 0, LSDEM_VOXEL_U16, LSDEM_VOXEL_U32, LSDEM_VOXEL
  * rejected. */
 lsdem_status lsdem_image_read_raw(const char *path, const int n[3], lsdem_voxel_type type,
                                   int big_endian, lsdem_label_image *img, lsdem_error *err);
-/* Multi-page TIFF, one page per z slice (baseline: uncompressed, one sample per pixel,
- * 8/16/32-bit unsigned integer, strips, both byte orders). All pages must have the same
- * size. Compressed, tiled, multi-sample, float or signed pages are rejected naming the
- * tag; every offset is bounds-checked and IFD chains that loop or exceed
- * LSDEM_IMAGE_MAX_PAGES are rejected. */
+/* A TIFF label image (tiff.c, through libtiff): whatever lsdem_tiff_read_volume reads,
+ * with integer samples (unsigned or signed, 8/16/32-bit; labels <= 0 are background).
+ * Floating-point samples and u32 values above INT32_MAX are rejected naming them. */
 lsdem_status lsdem_image_read_tiff(const char *path, lsdem_label_image *img, lsdem_error *err);
-/* 1 if the file starts with a TIFF signature ("II*\0" or "MM\0*"), else 0. */
+/* 1 if the file starts with a TIFF or BigTIFF signature ("II*\0", "MM\0*", "II+\0",
+ * "MM\0+"), else 0. */
 int lsdem_image_is_tiff(const char *path);
 void lsdem_label_image_free(lsdem_label_image *img);
+
+/* ----------------------------------------------------------- grey volumes ---- */
+
+/* A 3-D image of samples as stored (a grey-level scan or labels), host byte order, x
+ * fastest, then y, then z. */
+typedef enum { LSDEM_SAMPLE_UINT = 0, LSDEM_SAMPLE_INT, LSDEM_SAMPLE_FLOAT } lsdem_sample_kind;
+typedef struct {
+  int n[3];
+  lsdem_sample_kind kind;
+  int bytes;  /* per sample: 1, 2, 4 (integers), 4 or 8 (floats) */
+  void *data; /* n[0]*n[1]*n[2]*bytes, allocated by the reader */
+} lsdem_volume;
+
+/* Any TIFF that libtiff reads: every compression it is built with (LZW, Deflate,
+ * PackBits, ...), strips or tiles, classic or BigTIFF, either byte order, 8/16/32-bit
+ * integer or 32/64-bit float samples, one sample per pixel. Pages are z slices; a page
+ * with ImageDepth > 1 (in tiles one plane deep) is a volume, and pages stack in z. All pages
+ * must share width, length and sample type; at most LSDEM_IMAGE_MAX_PAGES pages and
+ * LSDEM_IMAGE_MAX_VOXELS voxels. A damaged or unsupported file is rejected with the file,
+ * the page and libtiff's or this reader's reason. */
+lsdem_status lsdem_tiff_read_volume(const char *path, lsdem_volume *v, lsdem_error *err);
+/* "u8", "u16", "u32", "i8", "i16", "i32", "f32" or "f64". */
+const char *lsdem_volume_type_name(const lsdem_volume *v);
+void lsdem_volume_free(lsdem_volume *v);
 
 
 /* ----------------------------------------------------------- surface files ---- */
@@ -85,8 +107,7 @@ typedef struct {
 lsdem_status lsdem_render(const lsdem_shape *const *shapes, int nshapes,
                           const lsdem_render_grain *grains, int ngrains,
                           const lsdem_render_view *view, unsigned char *rgb, lsdem_error *err);
-/* An 8-bit RGB PNG (rows top first), compressed by the core's own deflate (fixed Huffman
- * codes, LZ77): no compression library needed. */
+/* An 8-bit RGB PNG (rows top first), written by libpng (png.c). */
 lsdem_status lsdem_png_write(const char *path, int width, int height, const unsigned char *rgb,
                              lsdem_error *err);
 
