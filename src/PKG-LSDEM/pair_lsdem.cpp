@@ -99,13 +99,13 @@ void PairLsdem::allocate()
 }
 
 /* ----------------------------------------------------------------------
-   pair_style lsdem [mode oneway|twoway] [normal node|traction] [stride N] [zcap N]
-                    [nodelist auto|off|skin]
+   pair_style lsdem [mode oneway|twoway] [master nodes|id] [normal node|traction]
+                    [stride N] [zcap N] [nodelist auto|off|skin]
 ------------------------------------------------------------------------- */
 
 void PairLsdem::settings(int narg, char **arg)
 {
-  mode = LSDEM_ROLES_ONEWAY;
+  bool oneway = true, by_id = false;
   global = LsdemContactOptions();
   zcap = 0;
   for (int iarg = 0; iarg < narg; iarg += 2) {
@@ -115,14 +115,20 @@ void PairLsdem::settings(int narg, char **arg)
                             LsdemContactOptions::NORMAL | LsdemContactOptions::DETECT))
       continue;
     if (key == "mode") {
-      if (val == "oneway") mode = LSDEM_ROLES_ONEWAY;
-      else if (val == "twoway") mode = LSDEM_ROLES_TWOWAY;
+      if (val == "oneway") oneway = true;
+      else if (val == "twoway") oneway = false;
       else error->all(FLERR, "pair_style lsdem: mode must be oneway or twoway, not {}", val);
+    } else if (key == "master") {
+      if (val == "nodes") by_id = false;
+      else if (val == "id") by_id = true;
+      else error->all(FLERR, "pair_style lsdem: master must be nodes or id, not {}", val);
     } else if (key == "zcap") {
       zcap = utils::inumeric(FLERR, val.c_str(), false, lmp);
       if (zcap < 0) error->all(FLERR, "pair_style lsdem: zcap must be >= 0 (0 = off)");
     } else error->all(FLERR, "pair_style lsdem: unknown keyword {}", key);
   }
+  if (by_id && !oneway) error->all(FLERR, "pair_style lsdem: master id is for mode oneway");
+  mode = !oneway ? LSDEM_ROLES_TWOWAY : by_id ? LSDEM_ROLES_ONEWAY_ID : LSDEM_ROLES_ONEWAY;
 }
 
 /* ----------------------------------------------------------------------

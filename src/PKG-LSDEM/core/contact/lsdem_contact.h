@@ -246,15 +246,27 @@ int lsdem_contact_penalty(const lsdem_shape *A, const lsdem_pose *pa, const lsde
 /* ------------------------------------------------------------- master and slave ---- */
 
 typedef enum {
-  LSDEM_ROLES_ONEWAY = 0, /* the report: the lower-ID grain's nodes against the other */
-  LSDEM_ROLES_TWOWAY = 1  /* both directions, each weighted 1/2 (action = reaction) */
+  LSDEM_ROLES_ONEWAY = 0,    /* one direction: the grain with the finer nodes relative to
+                                its partner's size tests (lsdem_contact_node_scale; ties:
+                                the lower id) */
+  LSDEM_ROLES_TWOWAY = 1,    /* both directions, each weighted 1/2 (action = reaction) */
+  LSDEM_ROLES_ONEWAY_ID = 2  /* one direction, the report's rule: the lower id tests */
 } lsdem_roles_rule;
+
+/* The scale that picks the master of a one-way pair: node spacing times bounding radius,
+ * the spacing estimated as V^(1/3) / sqrt(nnodes) (no node memory read). Grain a's nodes
+ * resolve b when a's spacing is small against b's size: s_a / R_b < s_b / R_a, i.e. the
+ * grain of the smaller s R tests. (A small grain on a large one of lower id would
+ * otherwise sink: the large grain's nodes can be farther apart than the small one is
+ * wide.) */
+double lsdem_contact_node_scale(const lsdem_shape *s);
 
 /* Weight of the test of grain a's nodes against grain b's level set (0: a does not test
  * b), for two grains with distinct ids (same ids: a periodic image of itself, 0):
  *   - a sphere against a grain with nodes: the sphere tests (1 lookup), the grain not;
  *   - two analytic spheres: the lower id (closed form, symmetric);
- *   - two grains with nodes: the lower id (oneway) or both, each 1/2 (twoway). */
+ *   - two grains with nodes: one direction by the finer nodes (ONEWAY) or the lower id
+ *     (ONEWAY_ID), or both, each 1/2 (TWOWAY). */
 double lsdem_contact_roles(const lsdem_shape *a, int64_t id_a, const lsdem_shape *b,
                            int64_t id_b, lsdem_roles_rule rule);
 

@@ -1,6 +1,14 @@
 /* roles.c -- master and slave of a pair: whose nodes are tested against whose level set
- * (report §2.2.5: the grain with the smaller index is master), and with what weight. */
+ * (report §2.2.5: the grain with the smaller index is master; here by default the grain
+ * whose nodes resolve the partner), and with what weight. */
 #include "lsdem_contact.h"
+
+#include <math.h>
+
+double lsdem_contact_node_scale(const lsdem_shape *s)
+{
+  return cbrt(s->volume) / sqrt(s->nnodes > 0 ? (double)s->nnodes : 1.0) * s->radius;
+}
 
 double lsdem_contact_roles(const lsdem_shape *a, int64_t id_a, const lsdem_shape *b,
                            int64_t id_b, lsdem_roles_rule rule)
@@ -9,5 +17,9 @@ double lsdem_contact_roles(const lsdem_shape *a, int64_t id_a, const lsdem_shape
   const int sa = a->sdf.kind == LSDEM_SDF_SPHERE, sb = b->sdf.kind == LSDEM_SDF_SPHERE;
   if (sa != sb) return sa ? 1.0 : 0.0; /* the sphere: one lookup, no node loop */
   if (!sa && rule == LSDEM_ROLES_TWOWAY) return 0.5;
+  if (!sa && rule == LSDEM_ROLES_ONEWAY) {
+    const double ka = lsdem_contact_node_scale(a), kb = lsdem_contact_node_scale(b);
+    if (ka != kb) return ka < kb ? 1.0 : 0.0; /* the same shapes: equal, the id decides */
+  }
   return id_a < id_b ? 1.0 : 0.0;
 }
