@@ -112,15 +112,17 @@ else:
     check("unstable" in log and ("grain 1" in log or "grain 2" in log),
           "inside: a failure must name the grain and say it became unstable")
 # ---- 4. a small cube wholly inside a ball of lower ID, mode oneway -----------------------
-# The ball's nodes are all outside the cube, so the one-way test (the ball's nodes in the
-# cube) finds nothing and no force acts; setup still warns, naming both grains and the mode,
-# from the reverse test (the cube's nodes ~0.3 deep in the ball). Mode twoway pushes it out.
+# With the report's master rule (master id) the ball's nodes are all outside the cube, so
+# the one-way test (the ball's nodes in the cube) finds nothing and no force acts; setup
+# still warns, naming both grains and the mode, from the reverse test (the cube's nodes
+# ~0.3 deep in the ball). The default (master nodes: the small cube's nodes test the ball)
+# and mode twoway push it out.
 cd.box_library("small.lslib", 0.12, 0.01, 60)
 if not os.path.exists("ball_small.lslib"):
     shape_tool("merge", "ball_small.lslib", lib, "small.lslib")
 cd.write_data("embedded.data", (-4, 4, -4, 4, -4, 4),
               [cd.Grain((0, 0, 0)), cd.Grain((0.05, 0.0, 0.0), shape=2)])
-for mode in ("oneway", "twoway"):
+for mode in ("oneway master id", "oneway", "twoway"):
     rc, log = run_lmp(cd.head("ball_small.lslib", "embedded.data") + """
 pair_style lsdem mode %s
 pair_coeff * * %g %g 0.5
@@ -129,17 +131,17 @@ fix nve all nve/lsdem
 timestep %.10g
 thermo_style custom step ke c_pe[4]
 run 0
-""" % (mode, KN, 0.9 * KN, 0.01 * math.sqrt(VOL / KN)), cwd=os.path.abspath("embedded_" + mode))
+""" % (mode, KN, 0.9 * KN, 0.01 * math.sqrt(VOL / KN)), cwd=os.path.abspath("embedded_" + mode.replace(" ", "_")))
     warned = [l for l in log.splitlines()
               if "deepest: grains 1 and 2" in l or "deepest: grains 2 and 1" in l]
     check(len(warned) == 1, "embedded, %s: setup warning names grains 1 and 2: %s"
           % (mode, log[-800:]))
     rows = thermo(log)
     pen = rows[0]["c_pe[4]"] if rows else -1
-    if mode == "oneway":
+    if mode == "oneway master id":
         check(warned and "mode oneway does not test" in warned[0] and pen == 0,
               "oneway: no penetrating node found (%s), and the warning says why" % pen)
     else:
         check(warned and "Large repulsive forces" in warned[0] and pen > 0,
-              "twoway: the cube's nodes are found (%s penetrating)" % pen)
+              "%s: the cube's nodes are found (%s penetrating)" % (mode, pen))
 finish()

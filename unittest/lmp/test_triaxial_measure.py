@@ -46,7 +46,7 @@ for k in range(3):
             grains.append(Grain(x, q=q, shape=1 + (i + j + k) % 2))
 write_data("pack.data", (0, L, 0, L, -1, 6), grains)
 
-WALLS = """pair_style lsdem
+WALLS = """pair_style lsdem master id
 pair_coeff * * 1000 900 0.3
 neighbor 0.1 bin
 fix bottom all wall/lsdem plane 0 0 0 0 0 1 1000 900 0.3
