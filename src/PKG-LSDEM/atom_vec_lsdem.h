@@ -73,6 +73,19 @@ class AtomVecLsdem : public AtomVec {
   // Costs one MPI_Allreduce of an int when nothing is wrong. file, line: FLERR of the caller.
   static void stop_if_any_rank(class LAMMPS *, const char *file, int line,
                                const std::string &mesg);
+  // A problem a style finds on this rank between collective checks (a grain through a
+  // wall, fix wall/lsdem), stopped at the next check of fix nve/lsdem (stop_if_any_rank,
+  // which takes it): the first one is kept.
+  void defer_stop(const std::string &mesg)
+  {
+    if (deferred_stop.empty()) deferred_stop = mesg;
+  }
+  std::string take_deferred_stop()
+  {
+    std::string m;
+    m.swap(deferred_stop);
+    return m;
+  }
 
  private:
   Storage *store;
@@ -83,6 +96,7 @@ class AtomVecLsdem : public AtomVec {
   double *radius, *rmass;
   double **omega;
   double rmass_one;  // saved by pack_data_pre for pack_data_post
+  std::string deferred_stop;
 
   void register_peratom(const char *, void *, int, int);
   std::string body_mismatch(int) const;

@@ -141,9 +141,11 @@ void FixNVELsdem::initial_integrate(int /*vflag*/)
     }
     if (bad < 0 && (what = grain_problem(i, dt))) bad = i;
   }
-  // all ranks stop together, so that the message and everything written reach the files
-  AtomVecLsdem::stop_if_any_rank(lmp, FLERR,
-                                 bad < 0 ? std::string() : unstable_message(bad, dt, what));
+  // all ranks stop together, so that the message and everything written reach the files;
+  // a problem another style found since the last check (a grain through a wall) first
+  std::string found = avec->take_deferred_stop();
+  if (found.empty() && bad >= 0) found = unstable_message(bad, dt, what);
+  AtomVecLsdem::stop_if_any_rank(lmp, FLERR, found);
 }
 
 /* ----------------------------------------------------------------------

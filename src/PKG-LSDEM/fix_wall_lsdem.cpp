@@ -17,6 +17,7 @@
 #include "domain.h"
 #include "error.h"
 #include "fix_lsdem_history.h"
+#include "force.h"
 #include "input.h"
 #include "lsdem_input.h"
 #include "math_const.h"
@@ -478,10 +479,59 @@ void FixWallLsdem::post_force(int /*vflag*/)
         add_contact(i, res);
       }
     }
+    if (mask[i] & groupbit) check_crossing(i, *bp);
     path.end_atom(i);
   }
   path.end_step();
   if (pivot) reduce_pivot_load();
+}
+
+/* ----------------------------------------------------------------------
+   a grain whose centre is behind the wall's surface, or will be at the next step (moved
+   by its velocity after this step's force, this wall's included: v + dt f / m), goes
+   through the wall: the contact cannot hold it, and where the wall is the box's face
+   LAMMPS deletes it at the next reneighbouring and reports it only as lost. Found here
+   (no communication) for every candidate (every grain that can reach the wall before the
+   next reneighbouring, see candidates_can_last), stopped at the next check of
+   fix nve/lsdem, naming the grain, the wall, the step and the time step that would hold
+   it (|v_n| dt <= 0.1 R)
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::check_crossing(int i, const lsdem_pose &w)
+{
+  // d: the centre's distance in front of the wall's surface; n: the direction in which d
+  // grows at the centre (plane: its normal; container: towards its axis)
+  const double *x = atom->x[i];
+  const double dt = update->dt, kick = dt * force->ftm2v / atom->rmass[i];
+  double v[3], rel[3], n[3], d;
+  for (int k = 0; k < 3; k++) v[k] = atom->v[i][k] + kick * atom->f[i][k];
+  for (int k = 0; k < 3; k++) rel[k] = x[k] - w.x[k];
+  if (wallstyle == PLANE) {
+    for (int k = 0; k < 3; k++) n[k] = w.R[3 * k + 2];
+    d = lsdem_dot3(rel, n);
+  } else {
+    const double ax[3] = {w.R[2], w.R[5], w.R[8]}, along = lsdem_dot3(rel, ax);
+    double radial[3];
+    for (int k = 0; k < 3; k++) radial[k] = rel[k] - along * ax[k];
+    const double rho = sqrt(lsdem_dot3(radial, radial));
+    d = wall.sdf.a[0] - rho;
+    for (int k = 0; k < 3; k++) n[k] = rho > 0.0 ? -radial[k] / rho : 0.0;
+  }
+  double wv[3], vr[3];  // the wall's velocity at the grain's centre, and the grain's relative
+  lsdem_cross3(w.omega, rel, wv);
+  for (int k = 0; k < 3; k++) vr[k] = v[k] - w.v[k] - wv[k];
+  const double vn = lsdem_dot3(vr, n);  // < 0: towards the wall
+  if (d >= 0.0 && d + vn * dt >= 0.0) return;
+  const double R = atom->radius[i], dt_hold = vn < 0.0 ? 0.1 * R / -vn : 0.0;
+  avec->defer_stop(fmt::format(
+      "fix wall/lsdem {}: grain {} {} at step {}: its centre is {:.6g} {} the wall's surface "
+      "and it moves at {:.6g} {} the wall (after this step's force); the contact cannot hold "
+      "a grain that moves a large part of its radius {:.6g} through the wall in one step: a "
+      "time step below {:.6g} would (|v_n| dt <= 0.1 R; now {:.6g}), or a stiffer wall, or "
+      "slow the grain down",
+      id, atom->tag[i], d < 0.0 ? "went through the wall" : "would go through the wall",
+      update->ntimestep, fabs(d), d < 0.0 ? "behind" : "in front of", fabs(vn),
+      vn < 0.0 ? "towards" : "away from", R, dt_hold, dt));
 }
 
 /* ---------------------------------------------------------------------- */

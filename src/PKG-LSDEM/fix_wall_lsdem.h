@@ -101,6 +101,7 @@ class FixWallLsdem : public Fix {
   void check_plane_in_box() const;
 
   bool may_touch(int, double margin) const;
+  void check_crossing(int, const lsdem_pose &wall);
   void set_plane_frame(const double n[3]);
   void set_axis_frame();
 };

@@ -1,9 +1,11 @@
 """Extreme cases end in a stable run or a clear error naming the grain -- never a silent
 blow-up (issue: mass ratio 1000, a grain squeezed between two walls, a grain created inside
-another, also wholly inside a lower-ID grain in mode oneway, which tests only its nodes). 'Stable' is checked against physics, not just a finished run: force balance,
-ordering of the grains, finite energies."""
+another, also wholly inside a lower-ID grain in mode oneway, which tests only its nodes; a
+fast grain that would pass through a wall between two steps). 'Stable' is checked against
+physics, not just a finished run: force balance, ordering of the grains, finite energies."""
 import math
 import os
+import re
 
 import contact_decks as cd
 from lsdemtest import check, finish, near, run_lmp, shape_tool, thermo
@@ -144,4 +146,45 @@ run 0
     else:
         check(warned and "Large repulsive forces" in warned[0] and pen > 0,
               "%s: the cube's nodes are found (%s penetrating)" % (mode, pen))
+
+# ---- 5. a fast grain oblique to a plane wall on the box face (#22.3) ----------------------
+# Moving 0.45 of its bounding radius per step (under the runaway limit of 0.5) towards a
+# soft wall at x = -3 (the box face), it enters the wall faster than the contact can stop
+# it: its centre passes the wall's surface at the next step, and LAMMPS deleted it there
+# with only "Lost atoms". The wall stops the run first, naming grain, wall, step and the
+# time step that would hold it (0.1 R / |v_n|). The same grain against a stiff wall
+# bounces off (no false alarm).
+dt = 1e-3
+r_cube = 0.5 * math.sqrt(3.0)
+speed = 0.45 * r_cube / dt
+vx, vy = -speed * math.cos(0.5), speed * math.sin(0.5)
+cd.write_data("fast.data", (-3, 3, -3, 3, -3, 3),
+              [cd.Grain((-3 + r_cube + 0.5 * speed * dt * math.cos(0.5), 0.0, 0.0),
+                        v=(vx, vy, 0.0))])
+for kn_wall, name in ((50.0, "fast_soft"), (2.0e4, "fast_stiff")):
+    rc, log = run_lmp(cd.head(cube, "fast.data", boundary="f f f") + """
+pair_style lsdem
+pair_coeff * * %g %g 0.5
+fix side all wall/lsdem plane -3 0 0 1 0 0 %g %g 0.0
+fix nve all nve/lsdem
+variable xc equal x[1]
+thermo_style custom step v_xc
+thermo 1
+timestep %g
+run 8
+""" % (KN, KN, kn_wall, kn_wall, dt), cwd=os.path.abspath(name), expect_fail=(name == "fast_soft"))
+    if name == "fast_stiff":
+        rows = thermo(log)
+        check(rc == 0 and rows and rows[-1]["v_xc"] > rows[-2]["v_xc"] > -3 + r_cube,
+              "fast grain, stiff wall: it should bounce back, got rc %d:\n%s" % (rc, log[-600:]))
+        continue
+    m = re.search(r"fix wall/lsdem side: grain 1 would go through the wall at step (\d+): its "
+                  r"centre is \S+ in front of the wall's surface and it moves at (\S+) towards "
+                  r"the wall .* its radius (\S+) through .* a time step below (\S+) would", log)
+    check(rc != 0 and m is not None and "Lost atoms" not in log,
+          "fast grain, soft wall: expected the wall's stop naming grain 1 and wall side, got:\n%s"
+          % log[-1200:])
+    if m:
+        near(float(m.group(4)), 0.1 * float(m.group(3)) / float(m.group(2)), rtol=1e-5,
+             msg="fast grain: the time step that holds it, 0.1 R / |v_n|")
 finish()
