@@ -20,6 +20,7 @@
 #include "error.h"
 #include "force.h"
 #include "lsdem_input.h"
+#include "modify.h"
 #include "pair.h"
 #include "update.h"
 
@@ -33,7 +34,7 @@ using namespace FixConst;
 /* ---------------------------------------------------------------------- */
 
 FixNVELsdem::FixNVELsdem(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), xi(0.0), avec(nullptr)
+  Fix(lmp, narg, arg), xi(0.0), avec(nullptr), spheres_rotate(true), fixed_spin(0)
 {
   time_integrate = 1;
 
@@ -44,6 +45,13 @@ FixNVELsdem::FixNVELsdem(LAMMPS *lmp, int narg, char **arg) :
         error->all(FLERR, "Illegal fix nve/lsdem command: damping needs a value");
       xi = LsdemInput::number(FLERR, arg[iarg + 1], "fix nve/lsdem", "damping", lmp);
       if (xi < 0.0) error->all(FLERR, "Illegal fix nve/lsdem command: damping {} < 0", xi);
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "spheres") == 0) {
+      const std::string val = iarg + 1 < narg ? arg[iarg + 1] : "";
+      if (val == "rotate") spheres_rotate = true;
+      else if (val == "fixed") spheres_rotate = false;
+      else error->all(FLERR, "Illegal fix nve/lsdem command: spheres must be rotate or fixed, "
+                      "not '{}'", val);
       iarg += 2;
     } else error->all(FLERR, "Illegal fix nve/lsdem command: unknown keyword {}", arg[iarg]);
   }
@@ -67,6 +75,11 @@ void FixNVELsdem::init()
   if (!avec) error->all(FLERR, "Fix nve/lsdem requires atom_style lsdem");
   if (utils::strmatch(update->integrate_style, "^respa"))
     error->all(FLERR, "Fix nve/lsdem does not support run_style respa");
+  // a flexible membrane's balls keep 3 degrees of freedom (report §3.3.2): their spin would
+  // only feed the friction of the membrane's contacts
+  fixed_spin = 0;
+  for (int k = 0; k < modify->nfix; k++)
+    if (strcmp(modify->fix[k]->style, "membrane/lsdem") == 0) fixed_spin |= modify->fix[k]->groupbit;
   check_timestep();
 }
 
@@ -126,11 +139,18 @@ void FixNVELsdem::initial_integrate(int /*vflag*/)
     const double fs[3] = {ftm2v * f[i][0], ftm2v * f[i][1], ftm2v * f[i][2]};
 
     if (avec->shape_of(i)->sdf.kind == LSDEM_SDF_SPHERE) {
-      // spheres (membrane balls, report §3.3.2) keep 3 degrees of freedom: their rotation
-      // is constrained, so torque is ignored, quat is unchanged and omega is held at zero
-      // (a spin left from a data file would otherwise feed the contacts' friction)
-      lsdem_step_translation(x[i], v[i], fs, rmass[i], xi, dt);
-      omega[i][0] = omega[i][1] = omega[i][2] = 0.0;
+      const double ts[3] = {ftm2v * torque[i][0], ftm2v * torque[i][1], ftm2v * torque[i][2]};
+      if (spheres_rotate && !(mask[i] & fixed_spin)) {
+        // analytic spheres turn about their centre: one moment of inertia, no gyroscopic term
+        lsdem_step_sphere(x[i], v[i], avec->quat[i], omega[i], fs, ts, rmass[i],
+                          avec->inertia[i][0], xi, dt);
+      } else {
+        // 3 degrees of freedom (membrane balls, report §3.3.2, or spheres fixed): torque is
+        // ignored, quat is unchanged and omega is held at zero (a spin left from a data file
+        // would otherwise feed the contacts' friction)
+        lsdem_step_translation(x[i], v[i], fs, rmass[i], xi, dt);
+        omega[i][0] = omega[i][1] = omega[i][2] = 0.0;
+      }
     } else {
       const double ts[3] = {ftm2v * torque[i][0], ftm2v * torque[i][1], ftm2v * torque[i][2]};
       double *q = avec->quat[i];

@@ -29,6 +29,8 @@ class FixNVELsdem : public Fix {
  private:
   double xi;  // global damping, 1/time (eqs 2.18, 2.20)
   class AtomVecLsdem *avec;
+  bool spheres_rotate;  // analytic spheres turn (keyword spheres, default rotate)
+  int fixed_spin;       // group bits of atoms that keep 3 degrees of freedom: membrane balls
 
   void check_timestep();
   const char *grain_problem(int, double) const;

@@ -15,6 +15,20 @@ extern "C" {
 void lsdem_step_translation(double x[3], double v[3], const double f[3], double mass,
                             double xi, double dt);
 
+/* The rotation of a body with one moment of inertia I about the axes it turns about (a
+ * sphere; a pivoting platen): the centred difference of eq 2.18 in the world frame,
+ * omega <- [(1 - xi dt/2) omega + dt torque / I] / (1 + xi dt/2) (Euler's equation, eq 2.20,
+ * without its gyroscopic terms, which vanish for equal moments), then q (body -> world)
+ * advanced from n to n+1 by omega^{n+1/2} over dt (eq 2.28). omega and torque world-frame. */
+void lsdem_step_spin(double q[4], double omega[3], const double torque[3], double inertia,
+                     double xi, double dt);
+/* One step of an analytic sphere (isotropic moment of inertia I, report §2.3.5): the
+ * translation of lsdem_step_translation and the rotation of lsdem_step_spin (x, v, omega at
+ * the levels of lsdem_step_body; omega and torque world-frame, as LAMMPS keeps them). */
+void lsdem_step_sphere(double x[3], double v[3], double q[4], double omega[3],
+                       const double force[3], const double torque[3], double mass,
+                       double inertia, double xi, double dt);
+
 /* Predictor-corrector Euler equations in the principal frame (report eqs 2.21-2.25).
  * omega: body-frame angular velocity at n-1/2, updated to n+1/2.
  * dw_prev: the previous step's corrector increment (Delta omega^{n-1}), updated.

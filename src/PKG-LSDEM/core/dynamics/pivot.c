@@ -26,14 +26,10 @@ void lsdem_step_pivot(double q[4], double omega[3], const double torque_p[3],
                       const double axis[3], double inertia, double damping, double dt)
 {
   double t[3] = {torque_p[0], torque_p[1], torque_p[2]};
-  double angle[3] = {0.0, 0.0, 0.0}; /* small-angle increment, not kept */
-  double omega_body[3];
   remove_along(t, axis);
   remove_along(omega, axis);
   /* omega^{n+1/2} = [(1 - c dt / 2I) omega^{n-1/2} + dt T / I] / (1 + c dt / 2I) */
-  lsdem_step_translation(angle, omega, t, inertia, damping / inertia, dt);
-  lsdem_quat_rotate_inv(q, omega, omega_body); /* world -> body with q^n */
-  lsdem_quat_advance(q, omega_body, dt);       /* q^n -> q^{n+1} */
+  lsdem_step_spin(q, omega, t, inertia, damping / inertia, dt);
 }
 
 void lsdem_pivot_pose(const double pivot[3], const double v_p[3], const double q[4],

@@ -17,6 +17,23 @@ void lsdem_step_translation(double x[3], double v[3], const double f[3], double 
   }
 }
 
+void lsdem_step_spin(double q[4], double omega[3], const double torque[3], double inertia,
+                     double xi, double dt)
+{
+  double turned[3] = {0.0, 0.0, 0.0}, omega_body[3]; /* small-angle increment, not kept */
+  lsdem_step_translation(turned, omega, torque, inertia, xi, dt);
+  lsdem_quat_rotate_inv(q, omega, omega_body); /* world -> body with q^n */
+  lsdem_quat_advance(q, omega_body, dt);       /* q^n -> q^{n+1} */
+}
+
+void lsdem_step_sphere(double x[3], double v[3], double q[4], double omega[3],
+                       const double force[3], const double torque[3], double mass,
+                       double inertia, double xi, double dt)
+{
+  lsdem_step_translation(x, v, force, mass, xi, dt);
+  lsdem_step_spin(q, omega, torque, inertia, xi, dt);
+}
+
 /* dt * angular acceleration from Euler's equations with damping (eq 2.20), evaluated
  * at the body-frame angular velocity w: the bracket of eqs 2.22 and 2.24. */
 static void euler_increment(const double w[3], const double torque[3],
