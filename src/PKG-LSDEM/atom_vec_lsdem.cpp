@@ -107,8 +107,8 @@ int find_repeated_ids(int n, char *inbuf, int &flag, int *& /*proclist*/, char *
 }
 
 // names accepted by compute property/atom, in property index order
-const char *const property_names[] = {"qw", "qx", "qy", "qz", "shape",
-                                      "inertia1", "inertia2", "inertia3"};
+const char *const property_names[] = {"qw",       "qx",       "qy",       "qz",   "shape",
+                                      "inertia1", "inertia2", "inertia3", "nodes"};
 const int nproperty = sizeof(property_names) / sizeof(property_names[0]);
 
 }    // namespace
@@ -557,8 +557,10 @@ void AtomVecLsdem::pack_property_atom(int index, double *buf, int nvalues, int g
       buf[n] = quat[i][index];
     } else if (index == 4) {
       buf[n] = shape[i] + 1;
-    } else {
+    } else if (index < 8) {
       buf[n] = inertia[i][index - 5];
+    } else {
+      buf[n] = shape_of(i)->nnodes;  // the grain's share of contact work: a balance weight
     }
   }
 }

@@ -46,7 +46,7 @@ ComputeContactLsdem::~ComputeContactLsdem()
 
 void ComputeContactLsdem::init()
 {
-  pair = dynamic_cast<PairLsdem *>(force->pair_match("lsdem", 1));
+  pair = PairLsdem::of(force);
   if (!pair) error->all(FLERR, "Compute contact/lsdem requires pair_style lsdem");
 }
 
@@ -78,11 +78,10 @@ void ComputeContactLsdem::compute_local()
 {
   invoked_local = update->ntimestep;
   check_current();
-  const int n = pair->ncontacts();
-  const PairLsdem::Contact *c = pair->contacts();
   int rows = 0;
-  for (int k = 0; k < n; k++)
-    if (selected(c[k].i, c[k].j)) rows++;
+  pair->each_contact([&](const PairLsdem::Contact &c) {
+    if (selected(c.i, c.j)) rows++;
+  });
   if (rows > nmax_local) {
     nmax_local = rows;
     memory->destroy(alocal);
@@ -92,17 +91,17 @@ void ComputeContactLsdem::compute_local()
   size_local_rows = rows;
 
   int m = 0;
-  for (int k = 0; k < n; k++) {
-    if (!selected(c[k].i, c[k].j)) continue;
+  pair->each_contact([&](const PairLsdem::Contact &c) {
+    if (!selected(c.i, c.j)) return;
     double *row = alocal[m++];
-    row[0] = (double) atom->tag[c[k].i];
-    row[1] = (double) atom->tag[c[k].j];
+    row[0] = (double) atom->tag[c.i];
+    row[1] = (double) atom->tag[c.j];
     for (int d = 0; d < 3; d++) {
-      row[2 + d] = c[k].res.point[d];
-      row[5 + d] = c[k].scale * c[k].res.force[d];
+      row[2 + d] = c.res.point[d];
+      row[5 + d] = c.scale * c.res.force[d];
     }
-    row[8] = (double) c[k].res.npen;
-  }
+    row[8] = (double) c.res.npen;
+  });
 }
 
 /* ---------------------------------------------------------------------- */

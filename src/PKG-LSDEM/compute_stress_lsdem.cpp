@@ -71,7 +71,7 @@ ComputeStressLsdem::~ComputeStressLsdem()
 
 void ComputeStressLsdem::init()
 {
-  pair = dynamic_cast<PairLsdem *>(force->pair_match("lsdem", 1));
+  pair = PairLsdem::of(force);
   walls.clear();
   for (const auto &wid : wall_ids) {
     int ifix = modify->find_fix(wid);
@@ -112,14 +112,13 @@ void ComputeStressLsdem::add_pair_contacts(double M[9]) const
                update->ntimestep, pair->contacts_step());
   const int *mask = atom->mask;
   double **x = atom->x;
-  const PairLsdem::Contact *c = pair->contacts();
-  for (int k = 0; k < pair->ncontacts(); k++) {
-    const double s = c[k].scale;
-    const double fi[3] = {s * c[k].res.force[0], s * c[k].res.force[1], s * c[k].res.force[2]};
+  pair->each_contact([&](const PairLsdem::Contact &c) {
+    const double s = c.scale;
+    const double fi[3] = {s * c.res.force[0], s * c.res.force[1], s * c.res.force[2]};
     const double fj[3] = {-fi[0], -fi[1], -fi[2]};
-    if (mask[c[k].i] & groupbit) lsdem_love_weber_add(M, fi, c[k].res.point, x[c[k].i]);
-    if (mask[c[k].j] & groupbit) lsdem_love_weber_add(M, fj, c[k].res.point, x[c[k].j]);
-  }
+    if (mask[c.i] & groupbit) lsdem_love_weber_add(M, fi, c.res.point, x[c.i]);
+    if (mask[c.j] & groupbit) lsdem_love_weber_add(M, fj, c.res.point, x[c.j]);
+  });
 }
 
 /* ---------------------------------------------------------------------- */

@@ -35,8 +35,8 @@ static void unpack_ids(int64_t v, lsdem_state_record &r)
 /* ---------------------------------------------------------------------- */
 
 FixLsdemHistory::FixLsdemHistory(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), cur(0), nmax_atom(0), sfirst(nullptr), nslice(nullptr),
-  visited(nullptr), generation(0), atom_slice(0), atom_records(0), maxrecords(0)
+  Fix(lmp, narg, arg), cur(0), nmax_atom(0), lane_of(nullptr), sfirst(nullptr),
+  nslice(nullptr), visited(nullptr), generation(0), maxrecords(0)
 {
   if (narg != 3) error->all(FLERR, "Illegal fix LSDEM_HISTORY command (internal fix)");
 
@@ -44,10 +44,12 @@ FixLsdemHistory::FixLsdemHistory(LAMMPS *lmp, int narg, char **arg) :
   create_attribute = 1;
   maxexchange_dynamic = 1;
   maxexchange = 1;
-  for (Pool &p : pool) {
-    p.slot = nullptr;
-    p.ns = p.nslot = p.maxslot = 0;
-  }
+  for (auto &lanes : pool) lanes.resize(1);
+  for (auto &lanes : pool)
+    for (Pool &p : lanes) {
+      p.slot = nullptr;
+      p.ns = p.nslot = p.maxslot = p.atom_slice = p.atom_records = p.maxrecords = 0;
+    }
   static_assert(sizeof(Slot) == 64 && sizeof(lsdem_nodelist_head) <= HEAD_SLOTS * sizeof(Slot),
                 "a list head fits two slots");
 
@@ -62,7 +64,9 @@ FixLsdemHistory::~FixLsdemHistory()
 {
   atom->delete_callback(id, Atom::GROW);
   atom->delete_callback(id, Atom::RESTART);
-  for (Pool &p : pool) memory->sfree(p.slot);
+  for (auto &lanes : pool)
+    for (Pool &p : lanes) release(p);
+  memory->destroy(lane_of);
   memory->destroy(sfirst);
   memory->destroy(nslice);
   memory->destroy(visited);
@@ -73,6 +77,13 @@ FixLsdemHistory::~FixLsdemHistory()
 int FixLsdemHistory::setmask()
 {
   return 0;
+}
+
+void FixLsdemHistory::release(Pool &p)
+{
+  memory->sfree(p.slot);
+  p.slot = nullptr;
+  p.maxslot = 0;
 }
 
 /* ----------------------------------------------------------------------
@@ -111,7 +122,7 @@ void FixLsdemHistory::slice_state(const Pool &p, const Slice &s, lsdem_pair_stat
 
 bool FixLsdemHistory::find(int i, tagint ptag, lsdem_pair_state &in) const
 {
-  const Pool &p = pool[cur];
+  const Pool &p = pool[cur][lane_of[i]];
   const Slice *s = p.slice.data() + sfirst[i];
   for (int k = 0; k < nslice[i]; k++)  // a few partners: a scan beats a binary search
     if (s[k].partner == ptag) {
@@ -123,19 +134,27 @@ bool FixLsdemHistory::find(int i, tagint ptag, lsdem_pair_state &in) const
 
 /* ---------------------------------------------------------------------- */
 
-void FixLsdemHistory::begin_step()
+void FixLsdemHistory::begin_step(int nlanes)
 {
-  Pool &next = pool[1 - cur];
-  next.ns = next.nslot = 0;
+  auto &next = pool[1 - cur];
+  for (int l = nlanes; l < (int) next.size(); l++) release(next[l]);
+  const int had = (int) next.size();
+  next.resize(nlanes);
+  for (int l = had; l < nlanes; l++) {
+    next[l].slot = nullptr;
+    next[l].maxslot = 0;
+  }
+  for (Pool &p : next) p.ns = p.nslot = p.maxrecords = 0;
   generation = generation < INT_MAX ? generation + 1 : 1;  // wraps, never to 0 (new atoms)
 }
 
 /* ---------------------------------------------------------------------- */
 
-void FixLsdemHistory::begin_atom()
+void FixLsdemHistory::begin_atom(int lane)
 {
-  atom_slice = pool[1 - cur].ns;
-  atom_records = 0;
+  Pool &next = pool[1 - cur][lane];
+  next.atom_slice = next.ns;
+  next.atom_records = 0;
 }
 
 /* ----------------------------------------------------------------------
@@ -182,25 +201,26 @@ int FixLsdemHistory::keep_pair(Pool &p, tagint ptag, const lsdem_pair_state &st)
    kernel wrote there
 ------------------------------------------------------------------------- */
 
-lsdem_pair_state FixLsdemHistory::reserve(int list_cap, int shear_cap)
+lsdem_pair_state FixLsdemHistory::reserve(int lane, int list_cap, int shear_cap)
 {
-  return pair_room(pool[1 - cur], list_cap, shear_cap);
+  return pair_room(pool[1 - cur][lane], list_cap, shear_cap);
 }
 
-void FixLsdemHistory::commit(tagint ptag, const lsdem_pair_state &out)
+void FixLsdemHistory::commit(int lane, tagint ptag, const lsdem_pair_state &out)
 {
-  atom_records += keep_pair(pool[1 - cur], ptag, out);
+  Pool &next = pool[1 - cur][lane];
+  next.atom_records += keep_pair(next, ptag, out);
 }
 
 /* ----------------------------------------------------------------------
    atom i's state := the committed pairs, ordered by partner tag
 ------------------------------------------------------------------------- */
 
-void FixLsdemHistory::end_atom(int i)
+void FixLsdemHistory::end_atom(int lane, int i)
 {
-  Pool &next = pool[1 - cur];
-  Slice *s = next.slice.data() + atom_slice;
-  const int ns = next.ns - atom_slice;
+  Pool &next = pool[1 - cur][lane];
+  Slice *s = next.slice.data() + next.atom_slice;
+  const int ns = next.ns - next.atom_slice;
   for (int a = 1; a < ns; a++) {  // few partners per grain: insertion sort
     Slice t = s[a];
     int b = a - 1;
@@ -210,10 +230,11 @@ void FixLsdemHistory::end_atom(int i)
     }
     s[b + 1] = t;
   }
-  sfirst[i] = atom_slice;
+  lane_of[i] = lane;
+  sfirst[i] = next.atom_slice;
   nslice[i] = ns;
   visited[i] = generation;
-  note_records(atom_records);
+  next.maxrecords = std::max(next.maxrecords, next.atom_records);
 }
 
 /* ----------------------------------------------------------------------
@@ -226,6 +247,7 @@ void FixLsdemHistory::end_step()
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++)
     if (visited[i] != generation) nslice[i] = 0;
+  for (const Pool &p : pool[1 - cur]) note_records(p.maxrecords);
   cur = 1 - cur;
 }
 
@@ -236,7 +258,7 @@ void FixLsdemHistory::end_step()
 
 int FixLsdemHistory::count_records(int i) const
 {
-  const Pool &p = pool[cur];
+  const Pool &p = pool[cur][lane_of[i]];
   int n = 0;
   for (int k = sfirst[i]; k < sfirst[i] + nslice[i]; k++)
     n += (p.slice[k].list_valid ? 2 + p.slice[k].nentry : 0) + p.slice[k].nshear;
@@ -255,10 +277,11 @@ void FixLsdemHistory::note_records(int n)
 void FixLsdemHistory::grow_arrays(int nmax)
 {
   if (nmax <= nmax_atom) return;
+  memory->grow(lane_of, nmax, "lsdem/history:lane_of");
   memory->grow(sfirst, nmax, "lsdem/history:sfirst");
   memory->grow(nslice, nmax, "lsdem/history:nslice");
   memory->grow(visited, nmax, "lsdem/history:visited");
-  for (int i = nmax_atom; i < nmax; i++) sfirst[i] = nslice[i] = visited[i] = 0;
+  for (int i = nmax_atom; i < nmax; i++) lane_of[i] = sfirst[i] = nslice[i] = visited[i] = 0;
   nmax_atom = nmax;
 }
 
@@ -269,6 +292,7 @@ void FixLsdemHistory::grow_arrays(int nmax)
 
 void FixLsdemHistory::copy_arrays(int i, int j, int /*delflag*/)
 {
+  lane_of[j] = lane_of[i];
   sfirst[j] = sfirst[i];
   nslice[j] = nslice[i];
   visited[j] = visited[i];
@@ -290,7 +314,7 @@ int FixLsdemHistory::pack_state(int i, double *buf)
 {
   int m = 0;
   buf[m++] = ubuf(count_records(i)).d;
-  const Pool &p = pool[cur];
+  const Pool &p = pool[cur][lane_of[i]];
   for (int k = 0; k < nslice[i]; k++) {
     const Slice &s = p.slice[sfirst[i] + k];
     lsdem_pair_state st;
@@ -321,7 +345,8 @@ int FixLsdemHistory::unpack_state(int i, const double *buf)
   auto avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
   if (!avec) error->one(FLERR, "Fix LSDEM_HISTORY requires atom_style lsdem");
   const int nnodes = avec->shape_of(i)->nnodes;
-  Pool &p = pool[cur];
+  Pool &p = pool[cur][0];  // exchange and restart are serial: the first lane
+  lane_of[i] = 0;
   sfirst[i] = p.ns;
   nslice[i] = 0;
   records.resize(std::max(records.size(), (size_t) n));
@@ -410,9 +435,10 @@ int FixLsdemHistory::maxsize_restart()
 
 double FixLsdemHistory::memory_usage()
 {
-  double bytes = (double) nmax_atom * 3 * sizeof(int);
-  for (const Pool &p : pool)
-    bytes += (double) p.slice.size() * sizeof(Slice) + (double) p.maxslot * sizeof(Slot);
+  double bytes = (double) nmax_atom * 4 * sizeof(int);
+  for (const auto &lanes : pool)
+    for (const Pool &p : lanes)
+      bytes += (double) p.slice.size() * sizeof(Slice) + (double) p.maxslot * sizeof(Slot);
   bytes += (double) records.size() * sizeof(lsdem_state_record);
   return bytes;
 }

@@ -14,15 +14,18 @@
    slots), its list entries, its shear entries (the layout of earlier versions in memory
    too, so that a step reads one stream and writes one). A step reads the current pool and
    writes the next one, so the kernel writes its output where it will be read next step
-   (no copy). Use per step:
-     begin_step();
-     for each owned grain i:
-       begin_atom();
+   (no copy). A pool is split into lanes, one per thread (pair_style lsdem/omp): each
+   lane is written by one thread only and each grain's state lies in one lane, so that
+   writing is race-free by construction (a pair's state has one owner, its master's
+   lane); reading (find) is of the current pool only. Use per step:
+     begin_step(nlanes);
+     for each owned grain i, by the thread of lane L:
+       begin_atom(L);
        for each partner j: find(i, tag_j, in) -> this pair's state (the kernel's input);
-                           reserve(list_cap, shear_cap) -> room for the kernel's output;
-                           commit(tag_j, out);
-       end_atom(i);  // i's state := the committed pairs; untouched pairs are dropped
-     end_step();     // grains not visited lose their state
+                           reserve(L, list_cap, shear_cap) -> room for the kernel's output;
+                           commit(L, tag_j, out);
+       end_atom(L, i);  // i's state := the committed pairs; untouched pairs are dropped
+     end_step();        // grains not visited lose their state
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -48,14 +51,14 @@ class FixLsdemHistory : public Fix {
   int setmask() override;
 
   // per-step interface for the contact styles
-  void begin_step();
+  void begin_step(int nlanes = 1);
   bool find(int i, tagint partner, lsdem_pair_state &in) const;
   bool holds(int i) const { return nslice[i] > 0; }  // atom i keeps state
-  void begin_atom();
-  lsdem_pair_state reserve(int list_cap, int shear_cap);  // out.shear: see place_shear
+  void begin_atom(int lane);
+  lsdem_pair_state reserve(int lane, int list_cap, int shear_cap);  // out.shear: place_shear
   static void place_shear(lsdem_pair_state &out);  // after detection: behind the list
-  void commit(tagint partner, const lsdem_pair_state &out);
-  void end_atom(int i);
+  void commit(int lane, tagint partner, const lsdem_pair_state &out);
+  void end_atom(int lane, int i);
   void end_step();
   void grow_arrays(int) override;
   void copy_arrays(int, int, int) override;
@@ -80,22 +83,24 @@ class FixLsdemHistory : public Fix {
     tagint partner;
     int first, list_valid, nentry, nshear;
   };
-  struct Pool {    // the states of all atoms, one after the other
+  struct Pool {    // one lane: the states of its atoms, one after the other
     std::vector<Slice> slice;
     Slot *slot;
     int ns, nslot, maxslot;  // used; slots allocated
+    int atom_slice;          // where the atom being visited starts (while written)
+    int atom_records;        // and the records its committed pairs take
+    int maxrecords;          // the largest state written to this lane this step
   };
-  Pool pool[2];
+  std::vector<Pool> pool[2];  // the lanes of the two pools
   int cur;                    // pool[cur] holds the states; pool[1 - cur] is written
   int nmax_atom;              // length of the per-atom arrays
-  int *sfirst, *nslice;       // per atom: its slices in pool[cur]
+  int *lane_of, *sfirst, *nslice;  // per atom: its slices in pool[cur][lane_of]
   int *visited, generation;   // atoms visited since begin_step() carry its generation
-  int atom_slice;             // where the atom being visited starts in the next pool
-  int atom_records;           // and the records its committed pairs take
   int maxrecords;             // largest state seen, in records (sizes exchange buffers)
   std::vector<lsdem_state_record> records;  // scratch for packing and unpacking
 
   void pool_room(Pool &p, int ns, int nslot);
+  void release(Pool &p);
   lsdem_pair_state pair_room(Pool &p, int list_cap, int shear_cap);
   static int keep_pair(Pool &p, tagint partner, const lsdem_pair_state &st);
   static void slice_state(const Pool &p, const Slice &s, lsdem_pair_state &st);

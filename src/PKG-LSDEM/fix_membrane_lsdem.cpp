@@ -26,7 +26,7 @@
 #include "memory.h"
 #include "modify.h"
 #include "neighbor.h"
-#include "pair.h"
+#include "pair_lsdem.h"
 #include "update.h"
 #include "variable.h"
 
@@ -281,7 +281,7 @@ void FixMembraneLsdem::init()
       error->all(FLERR, "fix membrane/lsdem: variable {} must be equal-style", pstr);
   }
   if (knb <= 0.0) {
-    Pair *pair = force->pair_match("lsdem", 1);
+    Pair *pair = PairLsdem::of(force);
     int dim;
     double *kmax = pair ? (double *) pair->extract("kn_max", dim) : nullptr;
     if (!kmax || *kmax <= 0.0)

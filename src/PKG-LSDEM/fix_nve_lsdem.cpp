@@ -117,6 +117,29 @@ void FixNVELsdem::check_timestep()
 
 void FixNVELsdem::initial_integrate(int /*vflag*/)
 {
+  const char *what = nullptr;
+  const int bad = step_grains(0, integrated_count(), what);
+  stop_if_unstable(bad, what);
+}
+
+/* ----------------------------------------------------------------------
+   the local atoms this fix integrates are among the first n (the group's atoms first
+   when it is atom_modify first)
+------------------------------------------------------------------------- */
+
+int FixNVELsdem::integrated_count() const
+{
+  return igroup == atom->firstgroup ? atom->nfirst : atom->nlocal;
+}
+
+/* ----------------------------------------------------------------------
+   one step of the group's local grains from..to-1; returns the first of them found
+   unstable (what: how), or -1. Grains are independent: threads share them out
+   (fix nve/lsdem/omp)
+------------------------------------------------------------------------- */
+
+int FixNVELsdem::step_grains(int from, int to, const char *&what)
+{
   double **x = atom->x;
   double **v = atom->v;
   double **f = atom->f;
@@ -124,15 +147,13 @@ void FixNVELsdem::initial_integrate(int /*vflag*/)
   double **torque = atom->torque;
   double *rmass = atom->rmass;
   int *mask = atom->mask;
-  int nlocal = atom->nlocal;
-  if (igroup == atom->firstgroup) nlocal = atom->nfirst;
 
   const double dt = update->dt;
   const double ftm2v = force->ftm2v;
-  int bad = -1;  // the first grain of this rank found unstable, and how
-  const char *what = nullptr;
+  int bad = -1;
+  what = nullptr;
 
-  for (int i = 0; i < nlocal; i++) {
+  for (int i = from; i < to; i++) {
     if (!(mask[i] & groupbit)) continue;
 
     // force and torque in velocity units: f dt/m and M dt/I then come out as velocities
@@ -161,10 +182,19 @@ void FixNVELsdem::initial_integrate(int /*vflag*/)
     }
     if (bad < 0 && (what = grain_problem(i, dt))) bad = i;
   }
-  // all ranks stop together, so that the message and everything written reach the files;
-  // a problem another style found since the last check (a grain through a wall) first
+  return bad;
+}
+
+/* ----------------------------------------------------------------------
+   all ranks stop together, so that the message and everything written reach the files;
+   a problem another style found since the last check (a grain through a wall) first,
+   then grain bad (>= 0) of this rank
+------------------------------------------------------------------------- */
+
+void FixNVELsdem::stop_if_unstable(int bad, const char *what)
+{
   std::string found = avec->take_deferred_stop();
-  if (found.empty() && bad >= 0) found = unstable_message(bad, dt, what);
+  if (found.empty() && bad >= 0) found = unstable_message(bad, update->dt, what);
   AtomVecLsdem::stop_if_any_rank(lmp, FLERR, found);
 }
 

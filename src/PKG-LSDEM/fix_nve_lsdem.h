@@ -26,6 +26,11 @@ class FixNVELsdem : public Fix {
   void init() override;
   void initial_integrate(int) override;
 
+ protected:
+  int integrated_count() const;
+  int step_grains(int from, int to, const char *&what);
+  void stop_if_unstable(int bad, const char *what);
+
  private:
   double xi;  // global damping, 1/time (eqs 2.18, 2.20)
   class AtomVecLsdem *avec;

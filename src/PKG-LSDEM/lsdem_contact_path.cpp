@@ -16,7 +16,7 @@
 
 using namespace LAMMPS_NS;
 
-LsdemContactPath::LsdemContactPath() : store(nullptr), points(nullptr), cap(0)
+LsdemContactPath::LsdemContactPath() : store(nullptr), lane(0), points(nullptr), cap(0)
 {
   m = lsdem_manifold_over(nullptr, 0);
 }
@@ -28,9 +28,10 @@ LsdemContactPath::~LsdemContactPath()
 
 /* ---------------------------------------------------------------------- */
 
-void LsdemContactPath::setup(FixLsdemHistory *history, const AtomVecLsdem *avec)
+void LsdemContactPath::setup(FixLsdemHistory *history, const AtomVecLsdem *avec, int lane_id)
 {
   store = history;
+  lane = lane_id;
   int need = 1;
   for (int s = 0; s < avec->nshapes(); s++)
     need = std::max(need, lsdem_manifold_capacity(lsdem_library_shape(avec->library(), s)));
@@ -57,19 +58,19 @@ void LsdemContactPath::pose_of(const Atom *atom, const AtomVecLsdem *avec, int i
 
 /* ---------------------------------------------------------------------- */
 
-void LsdemContactPath::begin_step()
+void LsdemContactPath::begin_step(int nlanes)
 {
-  if (store) store->begin_step();
+  if (store) store->begin_step(nlanes);
 }
 
 void LsdemContactPath::begin_atom()
 {
-  if (store) store->begin_atom();
+  if (store) store->begin_atom(lane);
 }
 
 void LsdemContactPath::end_atom(int i)
 {
-  if (store) store->end_atom(i);
+  if (store) store->end_atom(lane, i);
 }
 
 void LsdemContactPath::end_step()
@@ -95,11 +96,12 @@ int LsdemContactPath::test(int i, tagint partner, const lsdem_shape *A, const ls
   }
   lsdem_pair_state in;
   const bool found = store->find(i, partner, in);
-  lsdem_pair_state out = store->reserve(lsdem_nodelist_capacity(A), lsdem_manifold_capacity(A));
+  lsdem_pair_state out =
+      store->reserve(lane, lsdem_nodelist_capacity(A), lsdem_manifold_capacity(A));
   lsdem_detect(A, &pa, B, &pb, &prm.detect, step, found ? &in.list : nullptr, &out.list, &m);
   FixLsdemHistory::place_shear(out);  // behind the list just written: one stream per step
   lsdem_penalty_apply(&m, &prm.law, prm.dt, step, found ? in.shear : nullptr,
                       found ? in.nshear : 0, out.shear, &out.nshear, &res);
-  store->commit(partner, out);
+  store->commit(lane, partner, out);
   return res.npen;
 }

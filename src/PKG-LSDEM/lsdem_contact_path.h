@@ -25,14 +25,16 @@ class LsdemContactPath {
   LsdemContactPath(const LsdemContactPath &) = delete;
   LsdemContactPath &operator=(const LsdemContactPath &) = delete;
 
-  // where pair states are kept (nullptr: nowhere), and manifold storage for the largest
-  // shape of the atom style's library; at each init
-  void setup(class FixLsdemHistory *, const class AtomVecLsdem *);
+  // where pair states are kept (nullptr: nowhere) and in which of its lanes this path
+  // writes (one per thread), and manifold storage for the largest shape of the atom
+  // style's library; at each init
+  void setup(class FixLsdemHistory *, const class AtomVecLsdem *, int lane = 0);
   // the world-frame pose of atom i (local or ghost)
   static void pose_of(const class Atom *, const class AtomVecLsdem *, int i, lsdem_pose &);
 
-  // the visit of the grains' pairs: per step, and per owned grain around its test() calls
-  void begin_step();
+  // the visit of the grains' pairs: per step (once, for all lanes), and per owned grain
+  // around its test() calls (by the lane's thread)
+  void begin_step(int nlanes = 1);
   void begin_atom();
   void end_atom(int i);
   void end_step();
@@ -49,6 +51,7 @@ class LsdemContactPath {
 
  private:
   class FixLsdemHistory *store;
+  int lane;
   lsdem_contact_point *points;
   int cap;
   lsdem_manifold m;

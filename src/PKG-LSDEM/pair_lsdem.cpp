@@ -43,8 +43,7 @@ PairLsdem::PairLsdem(LAMMPS *lmp) :
   onerad(nullptr), maxrad(nullptr), kn_max(0.0), avec(nullptr), fix_history(nullptr),
   nmax_atom(0), pose(nullptr), shape(nullptr), ncount(nullptr),
   master_built(0), nmax_master(0), maxmaster(0), master_first(nullptr), master_num(nullptr),
-  master_j(nullptr), master_scale_of(nullptr), contact(nullptr), ncontact(0), maxcontact(0),
-  contact_step(-1), ntested_pairs(0), ntested_nodes(0), npen_nodes(0)
+  master_j(nullptr), master_scale_of(nullptr), nlanes(1), contact_step(-1)
 {
   single_enable = 0;
   finitecutflag = 1;
@@ -75,11 +74,19 @@ PairLsdem::~PairLsdem()
   memory->sfree(pose);
   memory->sfree(shape);
   memory->destroy(ncount);
-  memory->sfree(contact);
   memory->destroy(master_first);
   memory->destroy(master_num);
   memory->destroy(master_j);
   memory->destroy(master_scale_of);
+}
+
+/* ---------------------------------------------------------------------- */
+
+PairLsdem *PairLsdem::of(Force *force)
+{
+  Pair *p = force->pair_match("lsdem", 1);
+  if (!p) p = force->pair_match("lsdem/omp", 1);
+  return dynamic_cast<PairLsdem *>(p);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -208,7 +215,17 @@ void PairLsdem::init_style()
     fix_history = dynamic_cast<FixLsdemHistory *>(fix);
     if (!fix_history) error->all(FLERR, "Fix ID {} is reserved for pair lsdem", HISTORY_ID);
   }
-  path.setup(fix_history, avec);
+  set_lanes(1);
+}
+
+/* ----------------------------------------------------------------------
+   n lanes (threads) with their contact paths set up for this run
+------------------------------------------------------------------------- */
+
+void PairLsdem::set_lanes(int n)
+{
+  while ((int) lanes.size() < n) lanes.emplace_back(new Lane);
+  for (int l = 0; l < (int) lanes.size(); l++) lanes[l]->path.setup(fix_history, avec, l);
 }
 
 /* ----------------------------------------------------------------------
@@ -277,41 +294,31 @@ inline bool PairLsdem::bounding_spheres_overlap(int i, int j) const
 void PairLsdem::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
-  update_poses();
-
-  ncontact = 0;
-  ntested_pairs = ntested_nodes = npen_nodes = 0;
-  contact_step = update->ntimestep;
-
+  begin_force_call(1);
+  update_poses(0, atom->nlocal + atom->nghost);
   if (neighbor->ago == 0 || !master_built) build_master_pairs();  // the list was just built
-  const int inum = list->inum;
-  const int *ilist = list->ilist;
-  path.begin_step();
-  for (int ii = 0; ii < inum; ii++) {
-    const int i = ilist[ii];
-    path.begin_atom();
-    const int *js = master_j + master_first[i];
-    const double *scales = master_scale_of + master_first[i];
-    for (int k = 0; k < master_num[i]; k++) {
-      const int j = js[k];
-      if (bounding_spheres_overlap(i, j)) test_pair(i, j, scales[k], contact_step);
-    }
-    path.end_atom(i);
-  }
-  path.end_step();
-
-  apply_contacts();
+  test_pairs(*lanes[0], 0, list->inum);
+  end_force_call();
+  if (zcap > 0) coordination(1);
+  apply_contacts(*lanes[0], atom->f, atom->torque);
   tally_workload();
   if (update->setupflag) report_overlaps();
   if (vflag_fdotr) virial_fdotr_compute();
 }
 
 /* ----------------------------------------------------------------------
-   poses and shapes of all local+ghost grains for this force call
+   a force call's start: its lanes emptied, the pair states' pool opened for them
 ------------------------------------------------------------------------- */
 
-void PairLsdem::update_poses()
+void PairLsdem::begin_force_call(int n)
 {
+  nlanes = n;
+  for (int l = 0; l < n; l++) {
+    Lane &lane = *lanes[l];
+    lane.contact.clear();
+    lane.ntested_pairs = lane.ntested_nodes = lane.npen_nodes = 0;
+  }
+  contact_step = update->ntimestep;
   if (atom->nmax > nmax_atom) {
     nmax_atom = atom->nmax;
     pose = (lsdem_pose *) memory->srealloc(pose, sizeof(lsdem_pose) * nmax_atom, "pair:pose");
@@ -320,8 +327,41 @@ void PairLsdem::update_poses()
     memory->destroy(ncount);
     memory->create(ncount, nmax_atom, "pair:ncount");
   }
-  const int nall = atom->nlocal + atom->nghost;
-  for (int i = 0; i < nall; i++) {
+  lanes[0]->path.begin_step(n);
+}
+
+void PairLsdem::end_force_call()
+{
+  lanes[0]->path.end_step();
+}
+
+/* ----------------------------------------------------------------------
+   the master pairs of the local grains ilist[iifrom..iito), by one lane
+------------------------------------------------------------------------- */
+
+void PairLsdem::test_pairs(Lane &lane, int iifrom, int iito)
+{
+  const int *ilist = list->ilist;
+  for (int ii = iifrom; ii < iito; ii++) {
+    const int i = ilist[ii];
+    lane.path.begin_atom();
+    const int *js = master_j + master_first[i];
+    const double *scales = master_scale_of + master_first[i];
+    for (int k = 0; k < master_num[i]; k++) {
+      const int j = js[k];
+      if (bounding_spheres_overlap(i, j)) test_pair(lane, i, j, scales[k]);
+    }
+    lane.path.end_atom(i);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   poses and shapes of local+ghost grains from..to-1 for this force call
+------------------------------------------------------------------------- */
+
+void PairLsdem::update_poses(int from, int to)
+{
+  for (int i = from; i < to; i++) {
     LsdemContactPath::pose_of(atom, avec, i, pose[i]);
     shape[i] = avec->shape_of(i);
   }
@@ -375,26 +415,24 @@ void PairLsdem::build_master_pairs()
    i's nodes (or i's sphere) against j's level set, through the shared contact path
 ------------------------------------------------------------------------- */
 
-void PairLsdem::test_pair(int i, int j, double scale, bigint step)
+void PairLsdem::test_pair(Lane &lane, int i, int j, double scale)
 {
   lsdem_contact_result res;
-  path.test(i, atom->tag[j], shape[i], pose[i], shape[j], pose[j],
-            params[atom->type[i]][atom->type[j]], step, res);
-  ntested_pairs++;
-  ntested_nodes += res.ntested;
-  npen_nodes += res.npen;
-  if (res.npen > 0) add_contact(i, j, scale, res);
+  lane.path.test(i, atom->tag[j], shape[i], pose[i], shape[j], pose[j],
+                 params[atom->type[i]][atom->type[j]], contact_step, res);
+  lane.ntested_pairs++;
+  lane.ntested_nodes += res.ntested;
+  lane.npen_nodes += res.npen;
+  if (res.npen > 0) add_contact(lane, i, j, scale, res);
 }
 
 /* ---------------------------------------------------------------------- */
 
-void PairLsdem::add_contact(int i, int j, double scale, const lsdem_contact_result &res)
+void PairLsdem::add_contact(Lane &lane, int i, int j, double scale,
+                            const lsdem_contact_result &res)
 {
-  if (ncontact == maxcontact) {
-    maxcontact = std::max(64, 2 * maxcontact);
-    contact = (Contact *) memory->srealloc(contact, sizeof(Contact) * maxcontact, "pair:contact");
-  }
-  Contact &c = contact[ncontact++];
+  lane.contact.emplace_back();
+  Contact &c = lane.contact.back();
   c.i = i;
   c.j = j;
   // the test made by the one-way master decides whether the pair is in contact
@@ -409,24 +447,22 @@ void PairLsdem::add_contact(int i, int j, double scale, const lsdem_contact_resu
    by zcap/count of the busier grain, equally on both sides (action = reaction).
 ------------------------------------------------------------------------- */
 
-void PairLsdem::apply_contacts()
+void PairLsdem::apply_contacts(Lane &lane, double **f, double **torque) const
 {
-  if (zcap > 0) coordination(1);
-  double **f = atom->f, **torque = atom->torque;
-  for (int c = 0; c < ncontact; c++) {
-    Contact &k = contact[c];
-    if (zcap > 0) {
+  for (Contact &k : lane.contact) {
+    if (zcap > 0) {  // kept in the contact: compute contact/lsdem reports the scaled force
       double busiest = std::max(ncount[k.i], ncount[k.j]);
       if (busiest > zcap) k.scale *= zcap / busiest;
     }
+    const double scale = k.scale;
     // each grain's force and torque is a sum of these terms, over local contacts and
     // the ghosts' share LAMMPS sums back: rounded to the quanta, every order gives the
     // same sum (the same on any rank count, lsdem_quantum_for)
     double fk[3], ta[3], tb[3];
     for (int d = 0; d < 3; d++) {
-      fk[d] = lsdem_quantize(k.scale * k.res.force[d], force_q);
-      ta[d] = lsdem_quantize(k.scale * k.res.torque_a[d], torque_q);
-      tb[d] = lsdem_quantize(k.scale * k.res.torque_b[d], torque_q);
+      fk[d] = lsdem_quantize(scale * k.res.force[d], force_q);
+      ta[d] = lsdem_quantize(scale * k.res.torque_a[d], torque_q);
+      tb[d] = lsdem_quantize(scale * k.res.torque_b[d], torque_q);
     }
     for (int d = 0; d < 3; d++) {
       f[k.i][d] += fk[d];
@@ -446,11 +482,12 @@ const double *PairLsdem::coordination(int to_ghosts)
 {
   const int nall = atom->nlocal + atom->nghost;
   for (int i = 0; i < nall; i++) ncount[i] = 0.0;
-  for (int c = 0; c < ncontact; c++)
-    if (contact[c].counts) {
-      ncount[contact[c].i] += 1.0;
-      ncount[contact[c].j] += 1.0;
-    }
+  for (int l = 0; l < nlanes; l++)
+    for (const Contact &k : lanes[l]->contact)
+      if (k.counts) {
+        ncount[k.i] += 1.0;
+        ncount[k.j] += 1.0;
+      }
   comm->reverse_comm_pair(this);
   if (to_ghosts) comm->forward_comm_pair(this);
   return ncount;
@@ -463,11 +500,15 @@ const double *PairLsdem::coordination(int to_ghosts)
 void PairLsdem::tally_workload()
 {
   double ncontacting = 0.0;
-  for (int c = 0; c < ncontact; c++) ncontacting += contact[c].counts;
-  pvector[0] = (double) ntested_pairs;
+  for (int k = 0; k < 4; k++) pvector[k] = 0.0;
+  for (int l = 0; l < nlanes; l++) {
+    const Lane &lane = *lanes[l];
+    for (const Contact &k : lane.contact) ncontacting += k.counts;
+    pvector[0] += (double) lane.ntested_pairs;
+    pvector[2] += (double) lane.ntested_nodes;
+    pvector[3] += (double) lane.npen_nodes;
+  }
   pvector[1] = ncontacting;
-  pvector[2] = (double) ntested_nodes;
-  pvector[3] = (double) npen_nodes;
 }
 
 /* ----------------------------------------------------------------------
@@ -487,7 +528,8 @@ double PairLsdem::reverse_depth(int i, int j)
   prm.law.mu = 0.0;
   prm.detect.node_skin = 0.0;  // no state: nothing read or kept
   lsdem_contact_result res;
-  path.test(j, atom->tag[i], shape[j], pose[j], shape[i], pose[i], prm, update->ntimestep, res);
+  lanes[0]->path.test(j, atom->tag[i], shape[j], pose[j], shape[i], pose[i], prm,
+                      update->ntimestep, res);
   return res.npen > 0 ? res.max_depth : 0.0;
 }
 
@@ -511,8 +553,8 @@ void PairLsdem::report_overlaps()
     info[3] = req;
     info[4] = reverse ? 1.0 : 0.0;
   };
-  for (int c = 0; c < ncontact; c++)
-    consider(contact[c].i, contact[c].j, contact[c].res.max_depth, false);
+  for (int l = 0; l < nlanes; l++)
+    for (const Contact &k : lanes[l]->contact) consider(k.i, k.j, k.res.max_depth, false);
   // a pair tested one way only (scale 1: mode oneway, or a sphere master) sees the master's
   // nodes only: a slave deep in (or wholly inside) its master shows in the reverse test
   for (int ii = 0; ii < list->inum; ii++) {
@@ -655,7 +697,7 @@ double PairLsdem::radii2cut(double r1, double r2)
 double PairLsdem::memory_usage()
 {
   double bytes = (double) nmax_atom * (sizeof(lsdem_pose) + sizeof(lsdem_shape *) + sizeof(double));
-  bytes += (double) maxcontact * sizeof(Contact);
+  for (const auto &lane : lanes) bytes += (double) lane->contact.capacity() * sizeof(Contact);
   bytes += (double) nmax_master * 2 * sizeof(int);
   bytes += (double) maxmaster * (sizeof(int) + sizeof(double));
   return bytes;

@@ -23,6 +23,9 @@ PairStyle(lsdem,PairLsdem);
 #include "lsdem_contact_path.h"
 #include "lsdem_kernel.h"
 
+#include <memory>
+#include <vector>
+
 namespace LAMMPS_NS {
 
 class PairLsdem : public Pair {
@@ -37,6 +40,8 @@ class PairLsdem : public Pair {
 
   PairLsdem(class LAMMPS *);
   ~PairLsdem() override;
+  // the pair style lsdem (or lsdem/omp) of this run, alone or in pair_style hybrid; nullptr
+  static PairLsdem *of(class Force *);
   void compute(int, int) override;
   void settings(int, char **) override;
   void coeff(int, char **) override;
@@ -56,9 +61,14 @@ class PairLsdem : public Pair {
   double atom2cut(int) override;
   double radii2cut(double, double) override;
 
-  // read-only access for compute contact/lsdem
-  int ncontacts() const { return ncontact; }
-  const Contact *contacts() const { return contact; }
+  // read-only access for compute contact/lsdem and compute stress/lsdem: the contacts of
+  // the last force call, lane by lane (one lane per thread of pair_style lsdem/omp), in
+  // the neighbor list's order of their masters
+  template <class Visit> void each_contact(Visit visit) const
+  {
+    for (int l = 0; l < nlanes; l++)
+      for (const Contact &c : lanes[l]->contact) visit(c);
+  }
   bigint contacts_step() const { return contact_step; }
   const double *coordination(int to_ghosts);
 
@@ -74,7 +84,17 @@ class PairLsdem : public Pair {
 
   class AtomVecLsdem *avec;
   class FixLsdemHistory *fix_history;  // nullptr when mu == 0 for every type pair
-  LsdemContactPath path;               // each pair's state, manifold, law, commit
+
+  // one thread's share of a force call (pair_style lsdem/omp; one lane without threads):
+  // its contact path (manifold storage, the history's lane), the contacts it found, its
+  // workload counters
+  struct Lane {
+    LsdemContactPath path;
+    std::vector<Contact> contact;
+    bigint ntested_pairs = 0, ntested_nodes = 0, npen_nodes = 0;
+  };
+  std::vector<std::unique_ptr<Lane>> lanes;
+  int nlanes;  // lanes used by the last force call
 
   // per local+ghost atom, refreshed every force call; grown only when nmax grows
   int nmax_atom;
@@ -90,17 +110,18 @@ class PairLsdem : public Pair {
   int *master_j;
   double *master_scale_of;
 
-  Contact *contact;
-  int ncontact, maxcontact;
   bigint contact_step;
-  bigint ntested_pairs, ntested_nodes, npen_nodes;  // workload of the last force call
 
   void allocate();
-  void update_poses();
+  void set_lanes(int);
+  void begin_force_call(int nlanes);
+  void update_poses(int from, int to);
   void build_master_pairs();
-  void test_pair(int, int, double, bigint);
-  void add_contact(int, int, double, const lsdem_contact_result &);
-  void apply_contacts();
+  void test_pairs(Lane &, int iifrom, int iito);
+  void test_pair(Lane &, int, int, double);
+  void add_contact(Lane &, int, int, double, const lsdem_contact_result &);
+  void end_force_call();
+  void apply_contacts(Lane &, double **f, double **torque) const;
   void tally_workload();
   void check_periodic_length() const;
   bool bounding_spheres_overlap(int, int) const;

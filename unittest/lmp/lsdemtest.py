@@ -31,8 +31,10 @@ def mpi_prefix(np):
     return [MPIEXEC, "--allow-run-as-root", "--oversubscribe", "-np", str(np)]
 
 
-def run_lmp(deck, np=1, vars=None, cwd=None, expect_fail=False, log="log.lammps", timeout=600):
-    """Run lmp on `deck` (input text, or the path of an existing input file).
+def run_lmp(deck, np=1, vars=None, cwd=None, expect_fail=False, log="log.lammps", timeout=600,
+            args=None):
+    """Run lmp on `deck` (input text, or the path of an existing input file), with extra
+    command-line arguments args (e.g. -sf omp -pk omp 2).
 
     Returns (returncode, log_text). The log is also left in cwd/log. When expect_fail is
     False a non-zero exit is recorded as a failed check (with the tail of the output)."""
@@ -47,6 +49,7 @@ def run_lmp(deck, np=1, vars=None, cwd=None, expect_fail=False, log="log.lammps"
     cmd = mpi_prefix(np) + [LMP, "-in", infile, "-log", log, "-screen", "none"]
     for k, v in (vars or {}).items():
         cmd += ["-var", str(k), str(v)]
+    cmd += [str(a) for a in (args or [])]
     p = subprocess.run(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                        timeout=timeout, text=True)
     logpath = os.path.join(cwd, log)

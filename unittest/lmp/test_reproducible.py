@@ -1,73 +1,19 @@
 """The same answer on any rank count and across restarts, bit for bit (issue #22.1).
 
-A pile of 200 angular grains falls into a box under strong gravity and piles up (grains
+A pile of 140 angular grains falls into a box under strong gravity and piles up (grains
 with several contacts, many grain-grain and wall contacts, friction history and node
 lists): run on 1, 2, 3 (uneven) and 4 ranks, every grain's position, velocity, angular
 velocity and orientation after 1,500 steps, and the floor's load and the contact counts
 at every output step, are bit-identical (LAMMPS's own sum of the kinetic energy over ranks
 agrees to round-off); so is a run stopped after 750 steps on 2 ranks and continued from
-its restart file on 3; and the symmetric two-way mode on 1 and 2 ranks. Before forces were summed order-free (each contact's force and
-torque rounded to a power-of-two quantum, so that every partial sum is exact), the
-same deck differed between rank counts from the first output step with contacts."""
+its restart file on 3; and the symmetric two-way mode on 1 and 2 ranks. Before forces
+were summed order-free (each contact's force and torque rounded to a power-of-two
+quantum, so that every partial sum is exact), the same deck differed between rank counts
+from the first output step with contacts. The pile is pile_deck.py's."""
 import os
 
-from lsdemtest import run_lmp, thermo, check, near, finish, shape_tool
-
-STEPS, HALF, EVERY = 1500, 750, 300
-if not os.path.exists("pile.lslib"):
-    shape_tool("random", "pile.lslib", "--count", 6, "--size", 1.0, "--size-spread", 0.2,
-               "--elongation", 0.7, "--flatness", 0.7, "--angularity", 0.15,
-               "--roughness", 0.02, "--seed", 11, "--nodes", 100, "--spacing", 0.06)
-if not os.path.exists("pile.data"):
-    shape_tool("pack", "pile.lslib", "pile.data", "--count", 200, "--box", 6, 6, 9,
-               "--density", 1.0, "--seed", 5)
-LIB, DATA = os.path.abspath("pile.lslib"), os.path.abspath("pile.data")
-
-# strong gravity and a short time: the grains land within a few hundred steps
-CONTACT = """pair_coeff      * * 1.0e4 0.9e4 0.5 cn 2.0
-neighbor        0.1 bin
-neigh_modify    delay 0 every 1 check yes
-fix             floor all wall/lsdem plane 0 0 0 0 0 1 1.0e4 0.9e4 0.5 cn 2.0
-fix             wx0 all wall/lsdem plane 0 0 0 1 0 0 1.0e4 0.9e4 0.5 cn 2.0
-fix             wx1 all wall/lsdem plane 6 0 0 -1 0 0 1.0e4 0.9e4 0.5 cn 2.0
-fix             wy0 all wall/lsdem plane 0 0 0 0 1 0 1.0e4 0.9e4 0.5 cn 2.0
-fix             wy1 all wall/lsdem plane 0 6 0 0 -1 0 1.0e4 0.9e4 0.5 cn 2.0
-fix             grav all gravity 100.0 vector 0 0 -1
-fix             integrate all nve/lsdem damping 1.0
-timestep        2.0e-4
-compute         w all pair lsdem
-compute         q all property/atom qw qx qy qz
-thermo_style    custom step ke c_w[2] c_w[4] f_floor[3]
-thermo_modify   norm no format float %.17g
-thermo          {every}
-"""
-DUMP = ("dump            d all custom {steps} final.dump id x y z vx vy vz omegax omegay "
-        "omegaz c_q[1] c_q[2] c_q[3] c_q[4]\n"
-        "dump_modify     d sort id format float %.17g\n")
-
-
-def deck(mode, steps, restart=None):
-    return ("units lj\natom_style lsdem library %s\nboundary f f f\nnewton on\n"
-            "comm_modify vel yes\nread_data %s\npair_style lsdem mode %s\n" % (LIB, DATA, mode)
-            + CONTACT.format(every=EVERY) + ("" if restart else DUMP.format(steps=steps))
-            + "run %d\n" % steps + ("write_restart %s\n" % restart if restart else ""))
-
-
-def continued(steps):
-    return ("read_restart half.restart\n" + CONTACT.format(every=EVERY)
-            + DUMP.format(steps=STEPS) + "run %d\n" % steps)
-
-
-def run(name, text, np):
-    rc, log = run_lmp(text, np=np, cwd=os.path.abspath(name))
-    dump = os.path.join(os.path.abspath(name), "final.dump")
-    # the frame of the last step (a dump every STEPS steps: the run's end)
-    atoms = open(dump).read().split("ITEM: ATOMS")[-1] if os.path.exists(dump) else None
-    # the package's sums (the floor's load, contact counts) are exact; LAMMPS's own
-    # reductions over ranks (thermo ke) sum in rank order: compared to round-off below
-    rows = [(r["Step"], r["f_floor[3]"], r["c_w[2]"], r["c_w[4]"]) for r in thermo(log)]
-    return atoms, rows, thermo(log)
-
+from lsdemtest import run_lmp, check, near, finish
+from pile_deck import STEPS, HALF, EVERY, run, deck, continued
 
 ref_atoms, ref_rows, ref_thermo = run("oneway-np1", deck("oneway", STEPS), 1)
 if check(ref_atoms and len(ref_rows) == STEPS // EVERY + 1, "the serial pile ran"):

@@ -1,0 +1,61 @@
+// clang-format off
+/* ----------------------------------------------------------------------
+   LSDEM package for LAMMPS: fix nve/lsdem/omp (fix_nve_lsdem_omp.h).
+------------------------------------------------------------------------- */
+
+#include "fix_nve_lsdem_omp.h"
+
+#include "comm.h"
+
+#include "omp_compat.h"
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
+
+#include <algorithm>
+
+using namespace LAMMPS_NS;
+
+/* ---------------------------------------------------------------------- */
+
+void FixNVELsdemOMP::init()
+{
+  FixNVELsdem::init();
+  first_bad.assign(comm->nthreads, -1);
+  why.assign(comm->nthreads, nullptr);
+}
+
+/* ----------------------------------------------------------------------
+   each thread steps a contiguous run of the grains; the unstable grain reported is the
+   first in atom order, as without threads
+------------------------------------------------------------------------- */
+
+void FixNVELsdemOMP::initial_integrate(int /*vflag*/)
+{
+  const int n = integrated_count();
+  const int nthreads = comm->nthreads;
+  if ((int) first_bad.size() < nthreads) {  // package omp changed between runs
+    first_bad.resize(nthreads);
+    why.resize(nthreads);
+  }
+
+#if defined(_OPENMP)
+#pragma omp parallel LMP_DEFAULT_NONE
+#endif
+  {
+#if defined(_OPENMP)
+    const int tid = omp_get_thread_num();
+#else
+    const int tid = 0;
+#endif
+    const int chunk = 1 + n / nthreads;
+    const int from = tid * chunk, to = std::min(n, from + chunk);
+    first_bad[tid] = from < to ? step_grains(from, to, why[tid]) : -1;
+  }
+  for (int t = 0; t < nthreads; t++)
+    if (first_bad[t] >= 0) {
+      stop_if_unstable(first_bad[t], why[t]);
+      return;
+    }
+  stop_if_unstable(-1, nullptr);
+}
