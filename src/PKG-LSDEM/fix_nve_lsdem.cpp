@@ -21,7 +21,7 @@
 #include "force.h"
 #include "lsdem_input.h"
 #include "modify.h"
-#include "pair.h"
+#include "pair_lsdem.h"
 #include "update.h"
 
 #include <algorithm>
@@ -34,7 +34,8 @@ using namespace FixConst;
 /* ---------------------------------------------------------------------- */
 
 FixNVELsdem::FixNVELsdem(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), xi(0.0), avec(nullptr), spheres_rotate(true), fixed_spin(0)
+  Fix(lmp, narg, arg), xi(0.0), avec(nullptr), spheres_rotate(true), fixed_spin(0),
+  warned_dt(0.0)
 {
   time_integrate = 1;
 
@@ -84,33 +85,47 @@ void FixNVELsdem::init()
 }
 
 /* ----------------------------------------------------------------------
-   warn when dt > 0.2 sqrt(m_min / kn): the lightest grain on the stiffest contact
-   spring then gets fewer than ~30 steps per oscillation period
+   warn when dt > 0.2 sqrt(m / k) for some grain of the group: m its mass, k the normal
+   stiffness of the stiffest contact it can form, a flat face pressing many node springs
+   at once (PairLsdem::stiffest_contact; a wall of the same kn alike). Its contact period
+   2 pi sqrt(m / k) then spans fewer than ~30 steps. The grain with the smallest bound
+   (lowest rank on a tie) is named.
 ------------------------------------------------------------------------- */
 
 void FixNVELsdem::check_timestep()
 {
-  if (!force->pair) return;
-  int dim = -1;
-  const double *kn = (const double *) force->pair->extract("kn_max", dim);
-  if (!kn || dim != 0 || !(*kn > 0.0)) return;
-
-  double mmin = HUGE_VAL;
-  for (int i = 0; i < atom->nlocal; i++)
-    if (atom->mask[i] & groupbit) mmin = std::min(mmin, atom->rmass[i]);
-  double mmin_all;
-  MPI_Allreduce(&mmin, &mmin_all, 1, MPI_DOUBLE, MPI_MIN, world);
-  if (mmin_all == HUGE_VAL) return;
-
-  const double dtmax = 0.2 * std::sqrt(mmin_all / (*kn * force->ftm2v));
-  // suggestion: dtmax rounded down to two significant digits
-  const double decade = std::pow(10.0, std::floor(std::log10(dtmax)) - 1.0);
-  const double suggest = std::floor(dtmax / decade) * decade;
-  if (update->dt > dtmax && comm->me == 0)
-    error->warning(FLERR, "Fix nve/lsdem: timestep {:.6g} > 0.2*sqrt(m_min/kn) = {:.6g} "
-                   "(lightest grain mass m_min = {:.6g}, contact stiffness kn = {:.6g} from "
-                   "the pair style); suggest timestep {:.2g}",
-                   update->dt, dtmax, mmin_all, *kn, suggest);
+  PairLsdem *pair = PairLsdem::of(force);
+  if (!pair) return;
+  struct { double dt; int rank; } mine = {HUGE_VAL, comm->me}, least;
+  double worst[4] = {0.0, 0.0, 0.0, 0.0};  // its tag, mass, stiffness, node springs
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(atom->mask[i] & groupbit)) continue;
+    double nodes;
+    const double k = pair->stiffest_contact(avec->shape[i], nodes);
+    if (!(k > 0.0)) continue;
+    const double dt = 0.2 * std::sqrt(atom->rmass[i] / (k * force->ftm2v));
+    if (dt < mine.dt) {
+      mine.dt = dt;
+      worst[0] = (double) atom->tag[i];
+      worst[1] = atom->rmass[i];
+      worst[2] = k;
+      worst[3] = nodes;
+    }
+  }
+  MPI_Allreduce(&mine, &least, 1, MPI_DOUBLE_INT, MPI_MINLOC, world);
+  if (least.dt == HUGE_VAL || update->dt <= least.dt || update->dt == warned_dt) return;
+  warned_dt = update->dt;
+  MPI_Bcast(worst, 4, MPI_DOUBLE, least.rank, world);
+  // suggestion: the bound rounded down to two significant digits
+  const double decade = std::pow(10.0, std::floor(std::log10(least.dt)) - 1.0);
+  const double suggest = std::floor(least.dt / decade) * decade;
+  if (comm->me == 0)
+    error->warning(FLERR, "Fix nve/lsdem: timestep {:.6g} > 0.2*sqrt(m/k) = {:.6g} for grain "
+                   "{} (mass m = {:.6g}; k = {:.6g}: the pair style's kn {:.6g} times the {:.6g} "
+                   "{} one flat contact of its shape presses); suggest timestep {:.2g}",
+                   update->dt, least.dt, (tagint) worst[0], worst[1], worst[2],
+                   worst[2] / worst[3], worst[3],
+                   pair->traction() ? "node area" : "nodes", suggest);
 }
 
 /* ---------------------------------------------------------------------- */

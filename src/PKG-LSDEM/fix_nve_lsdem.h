@@ -36,6 +36,7 @@ class FixNVELsdem : public Fix {
   class AtomVecLsdem *avec;
   bool spheres_rotate;  // analytic spheres turn (keyword spheres, default rotate)
   int fixed_spin;       // group bits of atoms that keep 3 degrees of freedom: membrane balls
+  double warned_dt;     // the time step last warned about (init runs at every run and write)
 
   void check_timestep();
   const char *grain_problem(int, double) const;

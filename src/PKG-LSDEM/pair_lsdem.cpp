@@ -40,7 +40,7 @@ static const char HISTORY_ID[] = "LSDEM_PAIR_HISTORY";
 
 PairLsdem::PairLsdem(LAMMPS *lmp) :
   Pair(lmp), mode(LSDEM_ROLES_ONEWAY), zcap(0), params(nullptr),
-  onerad(nullptr), maxrad(nullptr), kn_max(0.0), avec(nullptr), fix_history(nullptr),
+  onerad(nullptr), maxrad(nullptr), kn_max(0.0), kn_law_max(0.0), avec(nullptr), fix_history(nullptr),
   nmax_atom(0), pose(nullptr), shape(nullptr), ncount(nullptr),
   master_built(0), nmax_master(0), maxmaster(0), master_first(nullptr), master_num(nullptr),
   master_j(nullptr), master_scale_of(nullptr), nlanes(1), contact_step(-1)
@@ -261,13 +261,25 @@ double PairLsdem::init_one(int i, int j)
    largest per-node normal stiffness (force/length) of any type pair
 ------------------------------------------------------------------------- */
 
-double PairLsdem::stiffest_node_spring() const
+double PairLsdem::stiffest_node_spring()
 {
-  double kmax = 0.0;
+  kn_law_max = 0.0;
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++)
-      if (setflag[i][j]) kmax = std::max(kmax, params[i][j].law.kn);
-  return LsdemContactOptions::node_spring(kmax, global.law.normal, global.stride, avec);
+      if (setflag[i][j]) kn_law_max = std::max(kn_law_max, params[i][j].law.kn);
+  if ((int) flat_nodes.size() != avec->nshapes()) flat_nodes.assign(avec->nshapes(), -1.0);
+  return LsdemContactOptions::node_spring(kn_law_max, global.law.normal, global.stride, avec);
+}
+
+/* ---------------------------------------------------------------------- */
+
+double PairLsdem::stiffest_contact(int s, double &nodes)
+{
+  if (flat_nodes[s] < 0.0)  // once per shape (the normal law is the style's): a node scan
+    flat_nodes[s] = lsdem_flat_contact_nodes(lsdem_library_shape(avec->library(), s),
+                                             global.law.normal);
+  nodes = flat_nodes[s];
+  return kn_law_max * nodes;
 }
 
 /* ---------------------------------------------------------------------- */

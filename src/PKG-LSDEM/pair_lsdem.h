@@ -70,6 +70,11 @@ class PairLsdem : public Pair {
       for (const Contact &c : lanes[l]->contact) visit(c);
   }
   bigint contacts_step() const { return contact_step; }
+  // the normal stiffness of the stiffest contact a grain of library shape s can form: the
+  // stiffest type pair's kn times the node springs one flat contact presses
+  // (lsdem_flat_contact_nodes, returned in `nodes`); for fix nve/lsdem's time-step check
+  double stiffest_contact(int s, double &nodes);
+  bool traction() const { return global.law.normal == LSDEM_NORMAL_TRACTION; }
   const double *coordination(int to_ghosts);
 
  protected:
@@ -79,7 +84,9 @@ class PairLsdem : public Pair {
 
   lsdem_contact_params **params;  // per type pair
   double *onerad, *maxrad;        // largest bounding radius per type (local, global)
-  double kn_max;                  // stiffest per-node normal spring, for dt checks
+  double kn_max;                  // stiffest per-node normal spring (quanta, membrane)
+  double kn_law_max;              // stiffest type pair's kn (per node or per area)
+  std::vector<double> flat_nodes; // per library shape: lsdem_flat_contact_nodes, -1 = not yet
   lsdem_quantum force_q, torque_q;  // order-free sums of the grains' forces and torques
 
   class AtomVecLsdem *avec;
@@ -127,7 +134,7 @@ class PairLsdem : public Pair {
   bool bounding_spheres_overlap(int, int) const;
   double reverse_depth(int, int);
   void report_overlaps();
-  double stiffest_node_spring() const;
+  double stiffest_node_spring();
 };
 
 }    // namespace LAMMPS_NS

@@ -150,30 +150,58 @@ check(open("run.dump").read().count("ITEM: TIMESTEP") == nfail,
       "dump frames before the error must be flushed")
 check(re.search(r"^\s+%d\s" % (nfail - 1), log, re.M), "log thermo rows must be flushed")
 
-# ---- time-step warning from the pair style's contact stiffness -----------------------
+# ---- time-step warning from the stiffest contact a grain can form ----------------------
+# An analytic ball presses one contact point: k = kn. A box presses a whole face of nodes
+# on a flat partner: k = kn x (its face's nodes), which the warning names and bases the
+# bound on, so a time step that passes 0.2 sqrt(m/kn) for the box is still flagged.
 kn = 1e5
-m = gd.closed_form(2)[0]
-dtmax = 0.2 * math.sqrt(m / kn)
-ball = [dict(id=1, shape=2, density=1.0, x=(0.0, 0.0, 0.0), q=(1, 0, 0, 0)),
-        dict(id=2, shape=1, density=1.0, x=(5.0, 5.0, 5.0), q=(1, 0, 0, 0))]
-gd.write_data("pair.data", ball)
+WARN = re.compile(r"timestep (\S+) > 0\.2\*sqrt\(m/k\) = (\S+) for grain (\d+) \(mass m = "
+                  r"(\S+); k = (\S+): the pair style's kn (\S+) times the (\S+) nodes one flat "
+                  r"contact of its shape presses\); suggest timestep (\S+)")
 
 
-def pair_deck(timestep):
+def pair_deck(grains, timestep):
+    gd.write_data("pair.data", grains)
     return (HEAD + "atom_modify map array\nnewton on\ncomm_modify vel yes\n"
             "read_data pair.data\ntimestep %r\npair_style lsdem\npair_coeff * * %r %r 0.0\n"
             "fix 1 all nve/lsdem\nrun 1\n" % (timestep, kn, kn))
 
 
-rc, log = run_lmp(pair_deck(0.005))
-want = ("timestep 0.005 > 0.2*sqrt(m_min/kn) = %.6g (lightest grain mass m_min = %.6g, "
-        "contact stiffness kn = %.6g" % (dtmax, m, kn))
-check(want in log, "time-step warning missing: " + want + "\n" + log[-1500:])
+def warning(log):
+    m = WARN.search(log)
+    return m and [float(v) for v in m.groups()]
+
+
+def close(a, b):  # the warning prints 6 significant digits
+    return abs(a - b) <= 1e-5 * abs(b)
+
+
+ball = dict(id=1, shape=2, density=1.0, x=(0.0, 0.0, 0.0), q=(1, 0, 0, 0))
+ell = dict(id=2, shape=1, density=1.0, x=(5.0, 5.0, 5.0), q=(1, 0, 0, 0))
+m = gd.closed_form(2)[0]
+dtmax = 0.2 * math.sqrt(m / kn)
+rc, log = run_lmp(pair_deck([ball, ell], 0.005))
+w = warning(log)
+check(w and w[2] == 1 and close(w[1], dtmax) and close(w[3], m)
+      and close(w[4], kn) and w[6] == 1,
+      "time-step warning for the ball (one node, dt %.6g): %s\n%s" % (dtmax, w, log[-1500:]))
 decade = 10.0 ** (math.floor(math.log10(dtmax)) - 1)
 suggest = math.floor(dtmax / decade) * decade
-check(suggest <= dtmax and ("suggest timestep %.2g" % suggest) in log,
-      "suggested time step %.2g (<= %.6g) missing" % (suggest, dtmax))
-rc, log = run_lmp(pair_deck(0.5 * dtmax))
+check(w and close(w[7], suggest) and suggest <= dtmax,
+      "suggested time step %.2g (<= %.6g): %s" % (suggest, dtmax, w))
+rc, log = run_lmp(pair_deck([ball, ell], 0.5 * dtmax))
 check("Fix nve/lsdem: timestep" not in log, "no time-step warning for a small time step")
+
+# the box (half-extents 1 x 0.5 x 0.3, 30 nodes asked): its largest face, 2 x 1 of the
+# 7.6 surface, holds about a quarter of its nodes
+box = dict(id=3, shape=3, density=1.0, x=(0.0, 0.0, 0.0), q=(1, 0, 0, 0))
+mbox = gd.closed_form(3)[0]
+one_node = 0.2 * math.sqrt(mbox / kn)
+rc, log = run_lmp(pair_deck([box], 0.6 * one_node))
+w = warning(log)
+check(w and w[2] == 3 and 3 <= w[6] <= 20 and close(w[4], kn * w[6])
+      and close(w[1], 0.2 * math.sqrt(mbox / (kn * w[6]))) and w[1] < 0.6 * one_node,
+      "a box's flat face presses several nodes: dt below 0.2 sqrt(m/kn) = %.6g flagged: %s\n%s"
+      % (one_node, w, log[-1500:]))
 
 finish()

@@ -180,6 +180,18 @@ int lsdem_detect_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_s
 /* The sphere path's tributary area under the traction law: the cross-section pi r^2. */
 double lsdem_sphere_contact_area(double radius);
 
+/* The stiffest contact shape s can form, in node springs: the most nodes one flat contact
+ * (a wall, a flat face of a partner) presses at once. Over the six principal axes and
+ * LSDEM_FLAT_CONTACT_DIRECTIONS directions u of a Fibonacci sphere, the nodes within
+ * LSDEM_FLAT_CONTACT_DEPTH x the bounding radius of the shape's extreme along u
+ * (u . node >= max u . node - depth): the largest count (normal law per node) or summed
+ * node area (traction). The contact's normal stiffness is up to kn times this: a node
+ * stride presses every stride-th node with stride times the spring, the same. An analytic
+ * sphere (one contact point): 1, or its contact area. Principal frame, no allocation. */
+#define LSDEM_FLAT_CONTACT_DIRECTIONS 120
+#define LSDEM_FLAT_CONTACT_DEPTH 0.02
+double lsdem_flat_contact_nodes(const lsdem_shape *s, lsdem_normal_law normal);
+
 /* ---------------------------------------------------------------- penalty law ---- */
 
 /* Per-node tangential history (report eq 2.8): the shear force carried by node `node`
