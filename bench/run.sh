@@ -29,7 +29,7 @@
 # time over A's per pair and their mean, last line `time_ratio_B_over_A=<x>`. (One run after
 # the other varies by up to +-15 % on a shared machine; two at once see the same conditions.)
 # --report REPORT_BIN (repeatable): the same side by side against the report code's own
-# benchmark driver, built outside this repository (bench/report_code.md says how): its input
+# benchmark driver, built outside this repository (bench/README.md says how): its input
 # folder and parameter file are written into the run's folder, it runs on one core and this
 # build's lmp on the other, LSDEM repeated until the report code's step loop ends, then the
 # cores swapped, K pairs per binary; CPU time of the step loops (LAMMPS's loop time x its CPU
