@@ -131,9 +131,9 @@ void ComputeStressLsdem::add_wall_contacts(double M[9]) const
     if (w->contacts_step() != update->ntimestep)
       error->all(FLERR, "compute stress/lsdem needs wall forces of step {} from fix {}",
                  update->ntimestep, w->id);
-    const FixWallLsdem::Contact *c = w->contacts();
-    for (int k = 0; k < w->ncontacts(); k++)
-      if (mask[c[k].i] & groupbit) lsdem_love_weber_add(M, c[k].force, c[k].point, x[c[k].i]);
+    w->each_contact([&](const FixWallLsdem::Contact &c) {
+      if (mask[c.i] & groupbit) lsdem_love_weber_add(M, c.force, c.point, x[c.i]);
+    });
   }
 }
 

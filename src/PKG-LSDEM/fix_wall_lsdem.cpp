@@ -42,11 +42,10 @@ static constexpr tagint WALL_PARTNER = -1;
 /* ---------------------------------------------------------------------- */
 
 FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), axis(2), fix_history(nullptr), avec(nullptr), fall_valid(0),
-  moving(false), pivot(false), pivot_h(0.0), pivot_inertia(0.0),
-  pivot_damping(0.0),
-  cand(nullptr), ncand(0), maxcand(0), cand_nlocal(0), cand_built(-1),
-  contact(nullptr), ncontact(0), maxcontact(0), contact_step(-1)
+  Fix(lmp, narg, arg), nlanes(1), ncand(0), axis(2), fix_history(nullptr), avec(nullptr),
+  fall_valid(0), moving(false), contact_step(-1), pivot(false), pivot_h(0.0),
+  pivot_inertia(0.0), pivot_damping(0.0), cand(nullptr), maxcand(0), cand_nlocal(0),
+  cand_built(-1)
 {
   for (int d = 0; d < 3; d++) {
     vstr[d] = nullptr;
@@ -190,7 +189,6 @@ FixWallLsdem::~FixWallLsdem()
 {
   for (int d = 0; d < 3; d++) delete[] vstr[d];
   delete[] extlist;
-  memory->destroy(contact);
   memory->destroy(cand);
   if (fix_history && modify) {
     int ifix = modify->find_fix(history_id);
@@ -229,7 +227,7 @@ void FixWallLsdem::init()
   prm.dt = update->dt;
   prm.detect = opts.detect(avec);
   if (!fix_history) prm.detect.node_skin = 0.0;
-  path.setup(fix_history, avec);
+  set_lanes(1);
   LsdemContactOptions::sum_quanta(
       LsdemContactOptions::node_spring(opts.law.kn, opts.law.normal, opts.stride, avec), avec,
       force_q, torque_q);
@@ -421,51 +419,80 @@ void FixWallLsdem::find_candidates()
   const double margin = keep ? neighbor->skin : 0.0;
   ncand = 0;
   for (int i = 0; i < nlocal; i++)
-    if (may_touch(i, margin) || path.keeps_state(i))
+    if (may_touch(i, margin) || lanes[0]->path.keeps_state(i))
       cand[ncand++] = i;
   cand_built = keep ? neighbor->lastcall : -1;
   cand_nlocal = nlocal;
   for (int d = 0; d < 3; d++) cand_wall_x[d] = wpose.x[d];
 }
 
+/* ----------------------------------------------------------------------
+   n lanes with their contact paths set up for this run (one per thread)
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::set_lanes(int n)
+{
+  while ((int) lanes.size() < n) lanes.emplace_back(new Lane);
+  for (int l = 0; l < (int) lanes.size(); l++) lanes[l]->path.setup(fix_history, avec, l);
+}
+
 /* ---------------------------------------------------------------------- */
 
 void FixWallLsdem::post_force(int /*vflag*/)
 {
+  lsdem_pose tilting;
+  const lsdem_pose *w = begin_force_call(1, tilting);
+  visit_candidates(*lanes[0], 0, ncand, *w);
+  end_force_call();
+}
+
+/* ----------------------------------------------------------------------
+   a force call's start: the candidates, the lanes emptied, the pair states' pool opened
+   for them; returns the wall as the contact kernel sees it (a tilting platen's point
+   moves with P plus its rotation about P, into `tilting`)
+------------------------------------------------------------------------- */
+
+const lsdem_pose *FixWallLsdem::begin_force_call(int n, lsdem_pose &tilting)
+{
+  fall_valid = 0;
+  contact_step = update->ntimestep;
+  nlanes = n;
+  for (int l = 0; l < n; l++) {
+    Lane &lane = *lanes[l];
+    for (int d = 0; d < 3; d++) lane.f[d] = lane.t[d] = 0.0;
+    lane.contact.clear();
+    lane.crossing.clear();
+  }
+  if (!candidates_hold()) find_candidates();
+  lanes[0]->path.begin_step(n);
+  if (!pivot) return &wpose;
+  lsdem_pivot_pose(pivot_x, wpose.v, pivot_q, pivot_omega, pivot_h, &tilting);
+  return &tilting;
+}
+
+/* ----------------------------------------------------------------------
+   candidates [from, to) against wall pose w, by the lane's thread: each grain's contact
+   through the shared path, its force and torque added to the grain (owned: one thread
+   writes it) and, rounded to the quanta, to the lane's total on the wall, so that the
+   wall's totals over lanes and ranks are the same in any order (lsdem_quantum_for)
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::visit_candidates(Lane &lane, int from, int to, const lsdem_pose &w)
+{
   double **f = atom->f, **torque = atom->torque;
   const int *mask = atom->mask;
   const bigint step = update->ntimestep;
-
-  flocal[0] = flocal[1] = flocal[2] = 0.0;
-  tlocal[0] = tlocal[1] = tlocal[2] = 0.0;
-  fall_valid = 0;
-
-  // the wall as the contact kernel sees it: a tilting platen's point moves with P plus
-  // its rotation about P
-  lsdem_pose tilting;
-  const lsdem_pose *bp = &wpose;
-  if (pivot) {
-    lsdem_pivot_pose(pivot_x, wpose.v, pivot_q, pivot_omega, pivot_h, &tilting);
-    bp = &tilting;
-  }
-  ncontact = 0;
-  contact_step = step;
-
-  if (!candidates_hold()) find_candidates();
-  path.begin_step();
-  for (int c = 0; c < ncand; c++) {
+  for (int c = from; c < to; c++) {
     const int i = cand[c];
     const bool test = (mask[i] & groupbit) && may_touch(i, 0.0);
-    if (!test && !path.keeps_state(i)) continue;  // far, nothing kept
-    path.begin_atom();
+    if (!test && !lane.path.keeps_state(i)) continue;  // far, nothing kept
+    lane.path.begin_atom();
     if (test) {
       lsdem_pose p;
       LsdemContactPath::pose_of(atom, avec, i, p);
       lsdem_contact_result res;
-      path.test(i, WALL_PARTNER, avec->shape_of(i), p, &wall, *bp, prm, step, res);
+      lane.path.test(i, WALL_PARTNER, avec->shape_of(i), p, &wall, w, prm, step, res);
       if (res.npen > 0) {
-        // rounded to the quanta, the wall's totals over the grains (summed over ranks)
-        // are the same in any order (lsdem_quantum_for)
         double fk[3], ta[3], tb[3];
         lsdem_quantize3(res.force, force_q, fk);
         lsdem_quantize3(res.torque_a, torque_q, ta);
@@ -473,16 +500,36 @@ void FixWallLsdem::post_force(int /*vflag*/)
         for (int d = 0; d < 3; d++) {
           f[i][d] += fk[d];
           torque[i][d] += ta[d];
-          flocal[d] -= fk[d];
-          tlocal[d] += tb[d];
+          lane.f[d] -= fk[d];
+          lane.t[d] += tb[d];
         }
-        add_contact(i, res);
+        add_contact(lane, i, res);
       }
     }
-    if (mask[i] & groupbit) check_crossing(i, *bp);
-    path.end_atom(i);
+    if ((mask[i] & groupbit) && lane.crossing.empty()) lane.crossing = crossing(i, w);
+    lane.path.end_atom(i);
   }
-  path.end_step();
+}
+
+/* ----------------------------------------------------------------------
+   a force call's end: the lanes' totals (exact sums, any order), the first grain through
+   the wall in candidate order (stopped at fix nve/lsdem's next check), the pivot's load
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::end_force_call()
+{
+  lanes[0]->path.end_step();
+  for (int d = 0; d < 3; d++) flocal[d] = tlocal[d] = 0.0;
+  for (int l = 0; l < nlanes; l++)
+    for (int d = 0; d < 3; d++) {
+      flocal[d] += lanes[l]->f[d];
+      tlocal[d] += lanes[l]->t[d];
+    }
+  for (int l = 0; l < nlanes; l++)
+    if (!lanes[l]->crossing.empty()) {
+      avec->defer_stop(lanes[l]->crossing);
+      break;
+    }
   if (pivot) reduce_pivot_load();
 }
 
@@ -497,7 +544,7 @@ void FixWallLsdem::post_force(int /*vflag*/)
    it (|v_n| dt <= 0.1 R)
 ------------------------------------------------------------------------- */
 
-void FixWallLsdem::check_crossing(int i, const lsdem_pose &w)
+std::string FixWallLsdem::crossing(int i, const lsdem_pose &w) const
 {
   // d: the centre's distance in front of the wall's surface; n: the direction in which d
   // grows at the centre (plane: its normal; container: towards its axis)
@@ -521,9 +568,9 @@ void FixWallLsdem::check_crossing(int i, const lsdem_pose &w)
   lsdem_cross3(w.omega, rel, wv);
   for (int k = 0; k < 3; k++) vr[k] = v[k] - w.v[k] - wv[k];
   const double vn = lsdem_dot3(vr, n);  // < 0: towards the wall
-  if (d >= 0.0 && d + vn * dt >= 0.0) return;
+  if (d >= 0.0 && d + vn * dt >= 0.0) return std::string();
   const double R = atom->radius[i], dt_hold = vn < 0.0 ? 0.1 * R / -vn : 0.0;
-  avec->defer_stop(fmt::format(
+  return fmt::format(
       "fix wall/lsdem {}: grain {} {} at step {}: its centre is {:.6g} {} the wall's surface "
       "and it moves at {:.6g} {} the wall (after this step's force); the contact cannot hold "
       "a grain that moves a large part of its radius {:.6g} through the wall in one step: a "
@@ -531,19 +578,15 @@ void FixWallLsdem::check_crossing(int i, const lsdem_pose &w)
       "slow the grain down",
       id, atom->tag[i], d < 0.0 ? "went through the wall" : "would go through the wall",
       update->ntimestep, fabs(d), d < 0.0 ? "behind" : "in front of", fabs(vn),
-      vn < 0.0 ? "towards" : "away from", R, dt_hold, dt));
+      vn < 0.0 ? "towards" : "away from", R, dt_hold, dt);
 }
 
 /* ---------------------------------------------------------------------- */
 
-void FixWallLsdem::add_contact(int i, const lsdem_contact_result &res)
+void FixWallLsdem::add_contact(Lane &lane, int i, const lsdem_contact_result &res)
 {
-  if (ncontact == maxcontact) {
-    maxcontact = maxcontact ? 2 * maxcontact : 256;
-    contact = (Contact *) memory->srealloc(contact, sizeof(Contact) * maxcontact,
-                                           "wall/lsdem:contact");
-  }
-  Contact &c = contact[ncontact++];
+  lane.contact.emplace_back();
+  Contact &c = lane.contact.back();
   c.i = i;
   for (int d = 0; d < 3; d++) {
     c.force[d] = res.force[d];

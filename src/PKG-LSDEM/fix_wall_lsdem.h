@@ -21,7 +21,9 @@ FixStyle(wall/lsdem,FixWallLsdem);
 #include "lsdem_contact_path.h"
 #include "lsdem_kernel.h"
 
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace LAMMPS_NS {
 
@@ -43,11 +45,32 @@ class FixWallLsdem : public Fix {
     int i;                          // local index of the grain
     double force[3], point[3];      // force of the wall on the grain, contact point
   };
-  int ncontacts() const { return ncontact; }
-  const Contact *contacts() const { return contact; }
+  template <class Visit> void each_contact(Visit visit) const
+  {
+    for (int l = 0; l < nlanes; l++)
+      for (const Contact &c : lanes[l]->contact) visit(c);
+  }
   bigint contacts_step() const { return contact_step; }
   void write_restart(FILE *) override;
   void restart(char *) override;
+
+ protected:
+  // one thread's share of a force call (fix wall/lsdem/omp: one lane per thread): its
+  // grains' pair states, contacts, force and torque on the wall, and the first of its
+  // grains that goes through the wall
+  struct Lane {
+    LsdemContactPath path;
+    double f[3], t[3];
+    std::vector<Contact> contact;
+    std::string crossing;
+  };
+  std::vector<std::unique_ptr<Lane>> lanes;
+  int nlanes;  // lanes used by the last force call
+  void set_lanes(int);
+  const lsdem_pose *begin_force_call(int nlanes, lsdem_pose &tilting);
+  void visit_candidates(Lane &, int from, int to, const lsdem_pose &w);
+  void end_force_call();
+  int ncand;   // candidate grains of this step (visit_candidates' range)
 
  private:
   enum { PLANE, CYLINDER };
@@ -60,7 +83,6 @@ class FixWallLsdem : public Fix {
   lsdem_quantum force_q, torque_q;  // order-free sums of the wall's force and torque
   std::string history_id;
   class FixLsdemHistory *fix_history;  // nullptr when mu == 0 and node lists are off
-  LsdemContactPath path;       // each grain's state, manifold, law, commit
   class AtomVecLsdem *avec;
 
   double flocal[3], fall[3];   // force of the grains on the wall: this rank, all ranks
@@ -69,8 +91,6 @@ class FixWallLsdem : public Fix {
   int vvar[3];
   bool moving;                 // a velocity is set (constant or variable)
 
-  Contact *contact;
-  int ncontact, maxcontact;
   bigint contact_step;
   // pivot (plane only, report §3.2.1): the plate tilts about P, h behind its face
   bool pivot;
@@ -85,10 +105,10 @@ class FixWallLsdem : public Fix {
   // grains that may touch the wall until the next reneighbouring (local indices), built
   // with the neighbour skin as margin; rebuilt every step when that does not hold
   int *cand;
-  int ncand, maxcand, cand_nlocal;
+  int maxcand, cand_nlocal;
   bigint cand_built;           // neighbor->lastcall when cand was built; -1: stale
   double cand_wall_x[3];       // the wall's point then
-  void add_contact(int, const lsdem_contact_result &);
+  void add_contact(Lane &, int, const lsdem_contact_result &);
   bool candidates_can_last() const;
   bool candidates_hold() const;
   void find_candidates();
@@ -101,7 +121,7 @@ class FixWallLsdem : public Fix {
   void check_plane_in_box() const;
 
   bool may_touch(int, double margin) const;
-  void check_crossing(int, const lsdem_pose &wall);
+  std::string crossing(int, const lsdem_pose &wall) const;
   void set_plane_frame(const double n[3]);
   void set_axis_frame();
 };

@@ -152,8 +152,9 @@ run 0
 # soft wall at x = -3 (the box face), it enters the wall faster than the contact can stop
 # it: its centre passes the wall's surface at the next step, and LAMMPS deleted it there
 # with only "Lost atoms". The wall stops the run first, naming grain, wall, step and the
-# time step that would hold it (0.1 R / |v_n|). The same grain against a stiff wall
-# bounces off (no false alarm).
+# time step that would hold it (0.1 R / |v_n|); so does fix wall/lsdem/omp on 2 threads,
+# which finds it in a thread's lane. The same grain against a stiff wall bounces off (no
+# false alarm).
 dt = 1e-3
 r_cube = 0.5 * math.sqrt(3.0)
 speed = 0.45 * r_cube / dt
@@ -161,7 +162,8 @@ vx, vy = -speed * math.cos(0.5), speed * math.sin(0.5)
 cd.write_data("fast.data", (-3, 3, -3, 3, -3, 3),
               [cd.Grain((-3 + r_cube + 0.5 * speed * dt * math.cos(0.5), 0.0, 0.0),
                         v=(vx, vy, 0.0))])
-for kn_wall, name in ((50.0, "fast_soft"), (2.0e4, "fast_stiff")):
+for kn_wall, name, args in ((50.0, "fast_soft", None), (2.0e4, "fast_stiff", None),
+                            (50.0, "fast_soft_omp2", ["-sf", "omp", "-pk", "omp", "2"])):
     rc, log = run_lmp(cd.head(cube, "fast.data", boundary="f f f") + """
 pair_style lsdem
 pair_coeff * * %g %g 0.5
@@ -172,7 +174,8 @@ thermo_style custom step v_xc
 thermo 1
 timestep %g
 run 8
-""" % (KN, KN, kn_wall, kn_wall, dt), cwd=os.path.abspath(name), expect_fail=(name == "fast_soft"))
+""" % (KN, KN, kn_wall, kn_wall, dt), cwd=os.path.abspath(name),
+                      expect_fail=name.startswith("fast_soft"), args=args)
     if name == "fast_stiff":
         rows = thermo(log)
         check(rc == 0 and rows and rows[-1]["v_xc"] > rows[-2]["v_xc"] > -3 + r_cube,
@@ -182,8 +185,8 @@ run 8
                   r"centre is \S+ in front of the wall's surface and it moves at (\S+) towards "
                   r"the wall .* its radius (\S+) through .* a time step below (\S+) would", log)
     check(rc != 0 and m is not None and "Lost atoms" not in log,
-          "fast grain, soft wall: expected the wall's stop naming grain 1 and wall side, got:\n%s"
-          % log[-1200:])
+          "%s: expected the wall's stop naming grain 1 and wall side, got:\n%s"
+          % (name, log[-1200:]))
     if m:
         near(float(m.group(4)), 0.1 * float(m.group(3)) / float(m.group(2)), rtol=1e-5,
              msg="fast grain: the time step that holds it, 0.1 R / |v_n|")
