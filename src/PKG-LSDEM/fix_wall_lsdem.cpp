@@ -41,7 +41,7 @@ static constexpr tagint WALL_PARTNER = -1;
 
 FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), axis(2), fix_history(nullptr), avec(nullptr), fall_valid(0),
-  moving(false), pivot(false), pivot_h(0.0), pivot_inertia(0.0),
+  moving(false), passive(false), pivot(false), pivot_h(0.0), pivot_inertia(0.0),
   pivot_damping(0.0),
   cand(nullptr), ncand(0), maxcand(0), cand_nlocal(0), cand_built(-1),
   contact(nullptr), ncontact(0), maxcontact(0), contact_step(-1)
@@ -447,6 +447,7 @@ void FixWallLsdem::post_force(int /*vflag*/)
   }
   ncontact = 0;
   contact_step = step;
+  if (passive) return;  // fix impulse/lsdem resolves this wall's contacts
 
   if (!candidates_hold()) find_candidates();
   path.begin_step();

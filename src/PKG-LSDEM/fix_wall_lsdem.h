@@ -49,6 +49,16 @@ class FixWallLsdem : public Fix {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
+  // for fix impulse/lsdem, which takes the wall over (report §4.4.1): its level set, its
+  // pose now (moved in initial_integrate; pose.v its velocity), its friction and detection
+  // parameters; whether it is a pivoting platen; passive = no penalty forces of its own
+  const lsdem_shape &wall_shape() const { return wall; }
+  const lsdem_pose &wall_pose() const { return wpose; }
+  double wall_friction() const { return opts.law.mu; }
+  const lsdem_detect_params &wall_detect() const { return prm.detect; }
+  bool wall_pivots() const { return pivot; }
+  void set_passive(bool on) { passive = on; }
+
  private:
   enum { PLANE, CYLINDER };
   int wallstyle;
@@ -68,6 +78,7 @@ class FixWallLsdem : public Fix {
   char *vstr[3];               // velocity components given as equal-style variables
   int vvar[3];
   bool moving;                 // a velocity is set (constant or variable)
+  bool passive;                // taken over by fix impulse/lsdem: no forces of its own
 
   Contact *contact;
   int ncontact, maxcontact;
