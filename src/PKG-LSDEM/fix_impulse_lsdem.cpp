@@ -52,6 +52,9 @@ enum {
   V_T_DETECT, V_T_ISLANDS, V_T_ETM, V_T_WALLS, V_T_COMM, V_SIZE
 };
 
+// relative round-off of a velocity below which an approach counts as none
+static constexpr double ROUNDOFF = 1.0e-12;
+
 static const char USAGE[] = "fix ID group impulse/lsdem e mu [keyword value ...]";
 
 /* ---------------------------------------------------------------------- */
@@ -331,6 +334,9 @@ void FixImpulseLsdem::final_integrate()
     MPI_Allreduce(&corrected, &all, 1, MPI_INT, MPI_SUM, world);
     t_comm += MPI_Wtime() - t0;
     now.corrections += corrected;
+    if (getenv("IMPDBG") && update->ntimestep % 100 == 0)
+      fprintf(stderr, "step %ld pass %d coll %d islands %d largest %d iter %ld corrected %d\n",
+              (long) update->ntimestep, pass, ncoll, st.islands, st.largest, (long) st.iterations, all);
     if (all == 0) break;
     if (pass + 1 < max_passes) forward_velocities();
   }
@@ -516,17 +522,27 @@ void FixImpulseLsdem::add_wall_contacts()
 
 /* ----------------------------------------------------------------------
    the contacts ETM must resolve now: grain pairs approaching, walls approaching faster
-   than the resting speed (slower ones are the wall correction's, report §4.4.1)
+   than the resting speed (slower ones are the wall correction's, report §4.4.1). An
+   approach slower than the ETM tolerance times the resting speed, or than the round-off
+   of the contact's velocities, is none: ETM's tolerance is relative to the island's
+   fastest approach, and an island whose fastest is round-off would never converge
 ------------------------------------------------------------------------- */
 
 int FixImpulseLsdem::select_collisions()
 {
   coll.clear();
+  const double floor = etm.velocity_tol * wall_prm.rest_speed;
   for (const LsdemImpulseContact &c : contacts) {
-    const double un = lsdem_impulse_normal_velocity(body.data(), &c.c);
-    const bool hit = c.j < 0 ? lsdem_wall_classify(un, wall_prm.rest_speed) == LSDEM_WALL_COLLIDING
-                             : un < 0.0;
-    if (hit) coll.push_back(c);
+    double ua[3], ub[3];
+    lsdem_impulse_point_velocity(&body[c.c.a], c.c.point, ua);
+    lsdem_impulse_point_velocity(&body[c.c.b], c.c.point, ub);
+    const double un = c.c.normal[0] * (ua[0] - ub[0]) + c.c.normal[1] * (ua[1] - ub[1]) +
+        c.c.normal[2] * (ua[2] - ub[2]);
+    const double noise = ROUNDOFF * (std::sqrt(ua[0] * ua[0] + ua[1] * ua[1] + ua[2] * ua[2]) +
+                                     std::sqrt(ub[0] * ub[0] + ub[1] * ub[1] + ub[2] * ub[2]));
+    if (!(un < -std::max(floor, noise))) continue;
+    if (c.j < 0 && lsdem_wall_classify(un, wall_prm.rest_speed) != LSDEM_WALL_COLLIDING) continue;
+    coll.push_back(c);
   }
   return (int) coll.size();
 }
