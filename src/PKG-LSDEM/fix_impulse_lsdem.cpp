@@ -49,7 +49,7 @@ using MathConst::MY_PI;
 enum {
   V_ISLANDS, V_LARGEST, V_CROSS, V_ITERATIONS, V_PASSES, V_CORRECTIONS, V_COLLISIONS,
   V_ROUNDS, V_KE, V_ABSORBED, V_DISSIPATED, V_RELEASED, V_TOTAL_DISSIPATED, V_TOTAL_DAMPED,
-  V_T_DETECT, V_T_ISLANDS, V_T_ETM, V_T_WALLS, V_T_COMM, V_SIZE
+  V_T_DETECT, V_T_ISLANDS, V_T_ETM, V_T_WALLS, V_T_COMM, V_DEPTH, V_WALL_DEPTH, V_SIZE
 };
 
 // relative round-off of a velocity below which an approach counts as none
@@ -62,7 +62,7 @@ static const char USAGE[] = "fix ID group impulse/lsdem e mu [keyword value ...]
 FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), restitution(0.0), friction(0.0), xi(0.0), max_passes(10),
   rest_setting(-1.0), glue_setting(-1.0), glue_angle(15.0 * MY_PI / 180.0), cfl(0.5),
-  cfl_stop(0), avec(nullptr), pair(nullptr), islands(nullptr), total_dissipated(0.0),
+  cfl_stop(0), wall_etm(0), avec(nullptr), pair(nullptr), islands(nullptr), total_dissipated(0.0),
   total_damped(0.0), total_truncated(0.0), t_detect(0.0), t_islands(0.0), t_etm(0.0),
   t_walls(0.0), t_comm(0.0), pair_seconds0(0.0), reduced_step(-1), cfl_warned(false)
 {
@@ -146,6 +146,10 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
       if (!(deg >= 0.0 && deg < 90.0))
         error->all(FLERR, "fix impulse/lsdem: glue_angle = {} must be in [0, 90) degrees", val);
       glue_angle = deg * MY_PI / 180.0;
+    } else if (key == "wall_etm") {
+      if (strcmp(val, "yes") == 0) wall_etm = 1;
+      else if (strcmp(val, "no") == 0) wall_etm = 0;
+      else error->all(FLERR, "fix impulse/lsdem: wall_etm must be yes or no, not {}", val);
     } else if (key == "rest") {
       rest_setting = strcmp(val, "auto") == 0 ? -1.0 : number();
       if (strcmp(val, "auto") != 0 && !(rest_setting >= 0.0))
@@ -298,50 +302,60 @@ void FixImpulseLsdem::final_integrate()
   gather_contacts();
   t_detect += MPI_Wtime() - t0;
 
-  for (int pass = 0; pass < max_passes; pass++) {
-    const int ncoll = select_collisions();
-    LsdemIslandStats st;
-    st.clear();
-    const std::string mesg = islands->resolve(coll.data(), ncoll, body.data(), moving.data(),
-                                              etm, st);
-    if (pass == 0) {
-      now.first = st;
-      now.collisions = ncoll;
-    }
-    now.iterations += st.iterations;
-    now.largest = std::max(now.largest, st.largest);
-    now.rounds = std::max(now.rounds, st.rounds);
-    now.absorbed += st.absorbed;
-    now.dissipated += st.dissipated;
-    now.released += st.released;
-    total_dissipated += st.dissipated;
-    total_truncated += st.truncated;
-    t_islands += st.t_islands;
-    t_etm += st.t_etm;
-    t_comm += st.t_comm;
-    AtomVecLsdem::stop_if_any_rank(
-        lmp, FLERR, mesg.empty() ? mesg : fmt::format(
-            "Fix impulse/lsdem: step {}, pass {}: {}. Fix keywords: iterations (now {}), rounds "
-            "(now {}), alpha, beta, damping", update->ntimestep, pass + 1, mesg,
-            etm.max_iterations, etm.max_rounds));
-    forward_velocities();
-
+  bool corrected = true;
+  for (int pass = 0; pass < max_passes && corrected; pass++) {
+    resolve_islands(pass);
     t0 = MPI_Wtime();
-    int corrected = correct_walls(), all = 0;
+    const int mine = correct_walls();
     t_walls += MPI_Wtime() - t0;
-    now.passes++;
+    int all = 0;
     t0 = MPI_Wtime();
-    MPI_Allreduce(&corrected, &all, 1, MPI_INT, MPI_SUM, world);
+    MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_SUM, world);
     t_comm += MPI_Wtime() - t0;
-    now.corrections += corrected;
-    if (getenv("IMPDBG") && update->ntimestep % 100 == 0)
-      fprintf(stderr, "step %ld pass %d coll %d islands %d largest %d iter %ld corrected %d\n",
-              (long) update->ntimestep, pass, ncoll, st.islands, st.largest, (long) st.iterations, all);
-    if (all == 0) break;
-    if (pass + 1 < max_passes) forward_velocities();
+    now.passes++;
+    now.corrections += mine;
+    corrected = all > 0;
+    if (corrected) forward_velocities();
   }
+  // the cap reached with corrections in the last pass: the collisions they made are
+  // resolved, so that no grain approaches another as the step ends
+  if (corrected) resolve_islands(max_passes);
   check_cfl();
   damp_and_drift();
+}
+
+/* ----------------------------------------------------------------------
+   one ETM pass over the islands, velocities sent to the ghosts after it
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::resolve_islands(int pass)
+{
+  const int napproach = select_collisions();
+  LsdemIslandStats st;
+  st.clear();
+  const std::string mesg = islands->resolve(coll.data(), (int) coll.size(), body.data(),
+                                            moving.data(), etm, st);
+  if (pass == 0) {
+    now.first = st;
+    now.collisions = napproach;
+  }
+  now.iterations += st.iterations;
+  now.largest = std::max(now.largest, st.largest);
+  now.rounds = std::max(now.rounds, st.rounds);
+  now.absorbed += st.absorbed;
+  now.dissipated += st.dissipated;
+  now.released += st.released;
+  total_dissipated += st.dissipated;
+  total_truncated += st.truncated;
+  t_islands += st.t_islands;
+  t_etm += st.t_etm;
+  t_comm += st.t_comm;
+  AtomVecLsdem::stop_if_any_rank(
+      lmp, FLERR, mesg.empty() ? mesg : fmt::format(
+          "Fix impulse/lsdem: step {}, pass {}: {}. Fix keywords: iterations (now {}), rounds "
+          "(now {}), alpha, beta, damping", update->ntimestep, pass + 1, mesg,
+          etm.max_iterations, etm.max_rounds));
+  forward_velocities();
 }
 
 /* ----------------------------------------------------------------------
@@ -465,7 +479,9 @@ void FixImpulseLsdem::add_glued(int i, int j, tagint ta, tagint tb, int bindex,
   const int n = lsdem_impulse_glue(&m, i, bindex, mu, restitution, &gp, glued.data(),
                                    group.data(), &err);
   if (n < 0) error->one(FLERR, "Fix impulse/lsdem: {}", err.msg);
+  double &deepest = j < 0 ? now.wall_depth : now.depth;
   for (int k = 0; k < n; k++) {
+    deepest = std::max(deepest, glued[k].depth);
     LsdemImpulseContact c;
     c.i = i;
     c.j = j;
@@ -521,17 +537,23 @@ void FixImpulseLsdem::add_wall_contacts()
 }
 
 /* ----------------------------------------------------------------------
-   the contacts ETM must resolve now: grain pairs approaching, walls approaching faster
-   than the resting speed (slower ones are the wall correction's, report §4.4.1). An
-   approach slower than the ETM tolerance times the resting speed, or than the round-off
-   of the contact's velocities, is none: ETM's tolerance is relative to the island's
-   fastest approach, and an island whose fastest is round-off would never converge
+   the contacts of this pass's islands: every contact between two grains (an island is a
+   chain of touching grains, report §4.5: impulses propagate along it, so a contact that
+   does not approach now takes part when the solve makes it approach), a wall's when it
+   approaches faster than the resting speed (a collision), and with wall_etm yes its
+   resting contacts too, inelastic (e = 0); other wall contacts are the wall correction's
+   (report §4.4.1). A contact approaches when faster than the ETM tolerance times the
+   resting speed and than the round-off of its velocities (ETM's tolerance is relative to
+   an island's fastest approach: an island whose fastest is round-off would never
+   converge); an island with no approaching contact is left alone. Returns the number of
+   approaching contacts.
 ------------------------------------------------------------------------- */
 
 int FixImpulseLsdem::select_collisions()
 {
   coll.clear();
   const double floor = etm.velocity_tol * wall_prm.rest_speed;
+  int napproach = 0;
   for (const LsdemImpulseContact &c : contacts) {
     double ua[3], ub[3];
     lsdem_impulse_point_velocity(&body[c.c.a], c.c.point, ua);
@@ -540,11 +562,16 @@ int FixImpulseLsdem::select_collisions()
         c.c.normal[2] * (ua[2] - ub[2]);
     const double noise = ROUNDOFF * (std::sqrt(ua[0] * ua[0] + ua[1] * ua[1] + ua[2] * ua[2]) +
                                      std::sqrt(ub[0] * ub[0] + ub[1] * ub[1] + ub[2] * ub[2]));
-    if (!(un < -std::max(floor, noise))) continue;
-    if (c.j < 0 && lsdem_wall_classify(un, wall_prm.rest_speed) != LSDEM_WALL_COLLIDING) continue;
+    const bool approaching = un < -std::max(floor, noise);
+    const bool resting = c.j < 0 &&
+        lsdem_wall_classify(un, wall_prm.rest_speed) != LSDEM_WALL_COLLIDING;
+    if (resting && !(wall_etm && approaching)) continue;
     coll.push_back(c);
+    coll.back().approaching = approaching;
+    if (resting) coll.back().c.restitution = 0.0;
+    napproach += approaching;
   }
-  return (int) coll.size();
+  return napproach;
 }
 
 /* ----------------------------------------------------------------------
@@ -680,7 +707,7 @@ double FixImpulseLsdem::kinetic_energy(int i) const
 void FixImpulseLsdem::reduce_output()
 {
   if (reduced_step == update->ntimestep) return;
-  double sum[14], max[9];
+  double sum[14], max[11];
   double ke = 0.0;
   for (int i = 0; i < atom->nlocal; i++)
     if (atom->mask[i] & groupbit) ke += kinetic_energy(i);
@@ -705,10 +732,12 @@ void FixImpulseLsdem::reduce_output()
   max[5] = t_etm;
   max[6] = t_walls;
   max[7] = t_comm;
-  max[8] = 0.0;
-  double s[14], m[9];
+  max[8] = now.depth;
+  max[9] = now.wall_depth;
+  max[10] = 0.0;
+  double s[14], m[11];
   MPI_Allreduce(sum, s, 14, MPI_DOUBLE, MPI_SUM, world);
-  MPI_Allreduce(max, m, 9, MPI_DOUBLE, MPI_MAX, world);
+  MPI_Allreduce(max, m, 11, MPI_DOUBLE, MPI_MAX, world);
   reduced[V_ISLANDS] = s[0];
   reduced[V_CROSS] = s[1];
   reduced[V_ITERATIONS] = s[2];
@@ -728,6 +757,8 @@ void FixImpulseLsdem::reduce_output()
   reduced[V_T_ETM] = m[5];
   reduced[V_T_WALLS] = m[6];
   reduced[V_T_COMM] = m[7];
+  reduced[V_DEPTH] = m[8];
+  reduced[V_WALL_DEPTH] = m[9];
   reduced_step = update->ntimestep;
 }
 
@@ -738,7 +769,9 @@ void FixImpulseLsdem::reduce_output()
    10 energy absorbed in compression, 11 dissipated at restitution, 12 released in
    separation (this step), 13 dissipated at contacts and 14 by global damping since the
    start, 15-19 seconds since the run's setup in detection, islands, ETM, walls and
-   communication (largest rank)
+   communication (largest rank), 20 the deepest penetration between two grains and 21 of
+   a grain into a wall at the step's start (the impulse method's error: it resolves
+   velocities, not overlaps)
 ------------------------------------------------------------------------- */
 
 double FixImpulseLsdem::compute_vector(int n)

@@ -55,6 +55,7 @@ class FixImpulseLsdem : public Fix {
   double glue_angle;         // radians
   double cfl;                // largest |v| dt per bounding radius
   int cfl_stop;              // 1: stop, 0: warn
+  int wall_etm;              // 1: resting wall contacts also in ETM (inelastic)
 
   // what it works with (found at init)
   class AtomVecLsdem *avec;
@@ -78,12 +79,13 @@ class FixImpulseLsdem : public Fix {
     bigint iterations;        // ETM iterations, all passes
     int largest, rounds, passes, corrections, collisions;
     double absorbed, dissipated, released;
+    double depth, wall_depth;  // deepest grain-grain and grain-wall penetration
   } now;
   double total_dissipated, total_damped, total_truncated;  // this rank's share since start
   double t_detect, t_islands, t_etm, t_walls, t_comm;      // seconds since setup
   double pair_seconds0;
   bigint reduced_step;
-  double reduced[20];
+  double reduced[24];
   bool cfl_warned;
 
   void check_integrators();
@@ -97,6 +99,7 @@ class FixImpulseLsdem : public Fix {
   void add_wall_contacts();
   void add_glued(int i, int j, tagint ta, tagint tb, int bindex, const lsdem_manifold &m,
                  double mu, double glue);
+  void resolve_islands(int pass);
   int select_collisions();
   int correct_walls();
   void check_cfl();

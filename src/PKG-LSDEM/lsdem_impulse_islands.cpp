@@ -131,6 +131,8 @@ void LsdemImpulseIslands::contact_item(const LsdemImpulseContact &c, const lsdem
   it.key = c.key;
   if (!moving[c.i]) it.flags |= A_FIXED;
   if (c.j < 0 || !moving[c.j]) it.flags |= B_FIXED;
+  const int fixed = it.flags;
+  if (c.approaching) it.flags |= APPROACHING;
   double *d = it.d;
   for (int k = 0; k < 3; k++) {
     d[k] = c.c.point[k];
@@ -139,8 +141,8 @@ void LsdemImpulseIslands::contact_item(const LsdemImpulseContact &c, const lsdem
   d[6] = c.c.depth;
   d[7] = c.c.mu;
   d[8] = c.c.restitution;
-  if (it.flags) {
-    const lsdem_impulse_body &f = body[(it.flags & A_FIXED) ? c.c.a : c.c.b];
+  if (fixed) {
+    const lsdem_impulse_body &f = body[(fixed & A_FIXED) ? c.c.a : c.c.b];
     for (int k = 0; k < 3; k++) {
       d[9 + k] = f.x[k];
       d[12 + k] = f.v[k];
@@ -416,6 +418,9 @@ std::string LsdemImpulseIslands::solve_island(const Item *it, int n, const lsdem
   lsdem_error err;
   int nb = 0;
   while (nb < n && it[nb].kind == BODY) nb++;
+  bool approaching = false;
+  for (int k = nb; k < n; k++) approaching |= (it[k].flags & APPROACHING) != 0;
+  if (!approaching) return std::string();  // nothing to resolve; velocities unchanged
   bodies.resize(nb);
   for (int k = 0; k < nb; k++)
     if (grain_body(it[k], bodies[k], &err) != LSDEM_OK)

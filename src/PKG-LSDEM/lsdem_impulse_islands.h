@@ -41,6 +41,7 @@ struct LsdemImpulseContact {
   int i, j;                 // atom index (local or ghost) of a and b; b a wall: -1 - w
   tagint ta, tb;            // their tags (a wall: -(w + 1))
   int key;                  // the contact's place among its pair's contacts (gluing order)
+  int approaching;          // 1: it approaches now (an island without one is left alone)
   lsdem_impulse_contact c;  // c.a, c.b: indices into the step's bodies (atoms, then walls)
 };
 
@@ -58,7 +59,7 @@ class LsdemImpulseIslands : protected Pointers {
   LsdemImpulseIslands(class LAMMPS *, class Fix *comm_fix, class AtomVecLsdem *);
   ~LsdemImpulseIslands() override;
 
-  // Resolve collisions coll[0..n) (contacts held here). body: the step's bodies (atoms
+  // Resolve the islands of contacts coll[0..n) (held here) that have an approaching one. body: the step's bodies (atoms
   // local and ghost, then walls), with current velocities; moving[i]: atom i is
   // integrated (in the group), else it acts as a wall of prescribed velocity. New
   // velocities are written to atom->v, atom->omega of owned grains. Collective. Returns
@@ -82,14 +83,15 @@ class LsdemImpulseIslands : protected Pointers {
     int32_t owner;   // body: owning rank
     int32_t index;   // body: local index there
     int32_t key;     // contact: its place among its pair's contacts
-    int32_t flags;   // body: LOCKED; contact: A_FIXED, B_FIXED (that side a prescribed body)
+    int32_t flags;   // body: LOCKED; contact: A_FIXED, B_FIXED (that side a prescribed
+                     // body), APPROACHING
     int32_t spans;   // 1: the island spans ranks
     double d[18];    // body: mass, I0[3], q[4], x[3], v[3], omega[3];
                      // contact: point[3], normal[3], depth, mu, e, then the prescribed
                      // side's x[3], v[3], omega[3]
   };
   enum { BODY = 0, CONTACT = 1 };
-  enum { LOCKED = 1, A_FIXED = 1, B_FIXED = 2 };
+  enum { LOCKED = 1, A_FIXED = 1, B_FIXED = 2, APPROACHING = 4 };
   // a grain's body in the solver (also the fix's step bodies): spheres keep no rotation
   static lsdem_status grain_body(const Item &, lsdem_impulse_body &, lsdem_error *);
   // the record of owned or ghost grain i, its state now (atom arrays)
