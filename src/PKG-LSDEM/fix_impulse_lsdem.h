@@ -102,6 +102,7 @@ class FixImpulseLsdem : public Fix {
   void resolve_islands(int pass);
   int select_collisions();
   int correct_walls();
+  void limit_push_out(lsdem_manifold &, double dt) const;
   void check_cfl();
   void damp_and_drift();
   lsdem_pose wall_pose_now(int w) const;

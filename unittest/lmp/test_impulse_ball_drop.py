@@ -5,7 +5,11 @@ A sphere of radius 0.1 released from rest with its lowest point h0 = 1 above a p
 is e^2 times the energy absorbed) within 1 % for e = 1, 0.65 and 0.3; the impact is one ETM
 collision with the wall (approach far above the resting speed). With e = 0.3 and a coarse
 time step the bounces die out and the ball then rests on the plane: it neither sinks into it
-nor jitters (the wall correction of resting contact, report §4.4.1)."""
+nor jitters (the wall correction of resting contact, report §4.4.1). A ball placed 0.01 deep
+into the plane (a start from a penalty run's overlaps) is lifted out no faster than a fall
+through the overlap, sqrt(2 g 0.01), not thrown off at 0.01 / dt, and is out within a few
+hundred steps."""
+import math
 import os
 
 from impulse_decks import header, library
@@ -51,4 +55,23 @@ check(late and min(zs) > R - 2 * G * 1e-6 and max(zs) < R + 2 * G * 1e-6,
       % (min(zs), max(zs), R, 2 * G * 1e-6))
 check(all(abs(r["v_vz"]) < 2 * G * 1e-3 for r in late),
       "the ball at rest does not jitter: |vz| up to %g" % max(abs(r["v_vz"]) for r in late))
+# placed 0.01 into the plane, dt 1e-4: d / dt would be 100, the resting speed is 2 g dt
+with open("sunk.data", "w") as f:
+    f.write("ball\n\n1 atoms\n1 atom types\n\n-1 1 xlo xhi\n-1 1 ylo yhi\n-0.5 2 zlo zhi\n\n"
+            "Atoms # lsdem\n\n1 1 1 1.0 0 0 %r 1 0 0 0\n" % (R - 0.01))
+deck = (header(LIB, "sunk.data") + "fix floor all wall/lsdem plane 0 0 0 0 0 1 1.0e4 0 0\n"
+        + "fix grav all gravity %r vector 0 0 -1\n" % G + "fix imp all impulse/lsdem 0.3 0.0\n"
+        + "timestep 1e-4\nvariable z equal z[1]\nvariable vz equal vz[1]\n"
+        + "thermo_style custom step v_z v_vz\nthermo_modify format float %.15g\n"
+        + "thermo 1\nrun 3000\n")
+_, log = run_lmp(deck, cwd=os.path.abspath("sunk"))
+rows = thermo(log)
+if check(rows, "sunk ball ran"):
+    fastest = max(r["v_vz"] for r in rows)
+    out = next((r["Step"] for r in rows if r["v_z"] >= R - 1e-6), None)
+    cap = math.sqrt(2 * G * 0.01)
+    print("sunk ball: fastest lift %.4g (sqrt(2 g d) %.4g, d / dt 100), out at step %s"
+          % (fastest, cap, out))
+    check(fastest <= cap * (1 + 1e-6), "lifted out no faster than a fall through the overlap")
+    check(out is not None and out < 1000, "out of the plane within 1000 steps")
 finish()
