@@ -12,17 +12,12 @@ ranks and the label exchange takes rounds. A run stopped after 250 steps on 2 ra
 continued from its restart file on 3 is the uninterrupted run (no contact history)."""
 import os
 
+from grain_decks import pile
 from impulse_decks import header
-from lsdemtest import run_lmp, thermo, check, near, finish, shape_tool
+from lsdemtest import run_lmp, thermo, check, near, finish
 
 STEPS, HALF, EVERY = 500, 250, 50
-if not os.path.exists("pile.lslib"):
-    shape_tool("random", "pile.lslib", "--count", 6, "--size", 1.0, "--size-spread", 0.2,
-               "--elongation", 0.7, "--flatness", 0.7, "--angularity", 0.15,
-               "--roughness", 0.02, "--seed", 11, "--nodes", 100, "--spacing", 0.06)
-if not os.path.exists("pile.data"):
-    shape_tool("pack", "pile.lslib", "pile.data", "--count", 200, "--box", 6, 6, 9,
-               "--density", 1.0, "--seed", 5)
+pile()
 
 SCENE = """fix floor all wall/lsdem plane 0 0 0 0 0 1 1.0e4 0 0.5
 fix wx0 all wall/lsdem plane 0 0 0 1 0 0 1.0e4 0 0.5
