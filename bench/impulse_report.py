@@ -4,10 +4,11 @@ method at dt and the impulse method at multiples of dt, from the runs' logs and 
 
   impulse_report.py OUTDIR GRAINS TAG...   (TAG: penalty, impulse_x<m>, impulse_x<m>_np2)
 
-Prints a table (CPU time = the run's loop time; speed-up over the penalty run; mound height
-and spread, examples/container_release/mound.py, and their difference from the penalty run;
-islands, ETM iterations and passes per step sampled at the thermo rows; label-exchange rounds
-and the deepest grain-grain penetration seen) and writes impulse.csv, impulse_error.png (error
+Prints a table (loop s = the run's loop time, wall clock, and LAMMPS's CPU use of it: below
+100 % the machine was shared and the loop time is inflated; speed-up over the penalty run;
+mound height and spread, examples/container_release/mound.py, and their difference from the
+penalty run; islands, ETM iterations and passes per step sampled at the thermo rows;
+label-exchange rounds and the deepest grain-grain penetration seen) and writes impulse.csv, impulse_error.png (error
 in height and spread against run time) and, from lsdem-shape renders when present,
 impulse_mounds.png."""
 import csv
@@ -21,11 +22,12 @@ from mound import mound  # noqa: E402
 
 
 def log_figures(path):
-    """Loop time, steps, ranks and the thermo rows of a LAMMPS log."""
+    """Loop time, steps, ranks, CPU use (%) and the thermo rows of a LAMMPS log."""
     text = open(path).read()
     m = re.search(r"Loop time of ([\d.e+-]+) on (\d+) procs for (\d+) steps", text)
     if not m:
         raise SystemExit("%s: no 'Loop time' line (the run did not finish)" % path)
+    use = re.search(r"([\d.]+)% CPU use", text)
     rows, header = [], None
     for ln in text.splitlines():
         parts = ln.split()
@@ -39,7 +41,8 @@ def log_figures(path):
                 header = None
         elif header and not ln.startswith("WARNING"):
             header = None
-    return float(m.group(1)), int(m.group(2)), int(m.group(3)), rows
+    return (float(m.group(1)), int(m.group(2)), int(m.group(3)),
+            float(use.group(1)) if use else float("nan"), rows)
 
 
 def mean(vals):
@@ -50,9 +53,9 @@ def main():
     out, grains, tags = sys.argv[1], int(sys.argv[2]), sys.argv[3:]
     runs = []
     for tag in tags:
-        seconds, procs, steps, rows = log_figures(os.path.join(out, "log.%s" % tag))
+        seconds, procs, steps, use, rows = log_figures(os.path.join(out, "log.%s" % tag))
         h, s, n = mound(os.path.join(out, "mound_%s.dump" % tag))
-        r = dict(tag=tag, seconds=seconds, procs=procs, steps=steps, height=h, spread=s,
+        r = dict(tag=tag, seconds=seconds, use=use, procs=procs, steps=steps, height=h, spread=s,
                  grains=n, us=1e6 * seconds * procs / (grains * steps))
         imp = [x for x in rows if "f_integrate[1]" in x and x["Step"] > 0]
         if imp:
@@ -68,12 +71,14 @@ def main():
     if ref is None:
         raise SystemExit("no penalty run among %s" % tags)
 
-    cols = ("run", "ranks", "steps", "CPU s", "us/grain-step", "speed-up", "height", "spread",
+    cols = ("run", "ranks", "steps", "loop s", "CPU use %", "us/grain-step", "speed-up",
+            "height", "spread",
             "dH %", "dS %", "islands", "largest", "ETM it/step", "passes", "rounds", "depth")
     print(" | ".join(cols))
     table = []
     for r in runs:
-        row = [r["tag"], r["procs"], r["steps"], "%.4g" % r["seconds"], "%.2f" % r["us"],
+        row = [r["tag"], r["procs"], r["steps"], "%.4g" % r["seconds"], "%.0f" % r["use"],
+               "%.2f" % r["us"],
                "%.2f" % (ref["seconds"] / r["seconds"]), "%.3f" % r["height"],
                "%.3f" % r["spread"], "%+.1f" % (100 * (r["height"] / ref["height"] - 1)),
                "%+.1f" % (100 * (r["spread"] / ref["spread"] - 1))]

@@ -309,6 +309,7 @@ void FixImpulseLsdem::final_integrate()
   t_detect += MPI_Wtime() - t0;
 
   bool corrected = true;
+  wall_seen.assign((size_t) atom->nlocal * walls.size(), WallSeen());
   for (int pass = 0; pass < max_passes && corrected; pass++) {
     resolve_islands(pass);
     t0 = MPI_Wtime();
@@ -583,12 +584,13 @@ int FixImpulseLsdem::select_collisions()
 
 /* ----------------------------------------------------------------------
    every grain against every wall at its predicted pose; resting contacts corrected
-   (lsdem_wall_correct). Returns the corrections made on this rank.
+   (lsdem_wall_correct). A grain whose velocities are those it had when last checked in
+   this step, and which was not corrected then, is not checked again: its predicted pose,
+   so its manifold and its result, are the same. Returns the corrections made on this rank.
 ------------------------------------------------------------------------- */
 
 int FixImpulseLsdem::correct_walls()
 {
-  const double dt = update->dt;
   int corrected = 0;
   for (size_t w = 0; w < walls.size(); w++) {
     const lsdem_pose wp = walls[w]->wall_pose();  // at the end of the step
@@ -598,32 +600,49 @@ int FixImpulseLsdem::correct_walls()
     prm.mu = walls[w]->wall_friction();
     for (int i = 0; i < atom->nlocal; i++) {
       if (!moving[i] || !(atom->mask[i] & walls[w]->groupbit)) continue;
-      // the centre's predicted position first: the turn of the orientation costs more
-      const double xp[3] = {atom->x[i][0] + dt * body[i].v[0], atom->x[i][1] + dt * body[i].v[1],
-                            atom->x[i][2] + dt * body[i].v[2]};
-      if (!may_touch_wall((int) w, wp, xp, atom->radius[i])) continue;
-      lsdem_pose gp;
-      lsdem_impulse_predict_pose(atom->x[i], avec->quat[i], body[i].v, body[i].omega,
-                                 avec->inertia[i], dt, &gp);
-      lsdem_manifold m = lsdem_manifold_over(wpoints.data(), (int) wpoints.size());
-      if (lsdem_detect(avec->shape_of(i), &gp, &walls[w]->wall_shape(), &wp, &det,
-                       update->ntimestep, nullptr, nullptr, &m) == 0)
+      WallSeen &seen = wall_seen[(size_t) i * walls.size() + w];
+      if (seen.clear && memcmp(seen.v, body[i].v, sizeof seen.v) == 0 &&
+          memcmp(seen.omega, body[i].omega, sizeof seen.omega) == 0)
         continue;
-      limit_push_out(m, dt);
-      lsdem_wall_result res;
-      lsdem_error err;
-      if (lsdem_wall_correct(&body[i], &m, dt, &prm, &res, &err) != LSDEM_OK)
-        error->one(FLERR, "Fix impulse/lsdem: step {}, grain {}, wall {}: {}",
-                   update->ntimestep, atom->tag[i], walls[w]->id, err.msg);
-      if (res.kind != LSDEM_WALL_RESTING) continue;
-      corrected++;
-      for (int d = 0; d < 3; d++) {
-        atom->v[i][d] = body[i].v[d];
-        atom->omega[i][d] = body[i].omega[d];
-      }
+      memcpy(seen.v, body[i].v, sizeof seen.v);
+      memcpy(seen.omega, body[i].omega, sizeof seen.omega);
+      seen.clear = !correct_grain(i, (int) w, wp, det, prm);
+      corrected += !seen.clear;
     }
   }
   return corrected;
+}
+
+/* grain i against wall w (pose wp, detection det, correction prm) at the grain's predicted
+   pose; 1 when it was corrected (a resting contact), its new velocities in atom->v, omega */
+
+int FixImpulseLsdem::correct_grain(int i, int w, const lsdem_pose &wp,
+                                   const lsdem_detect_params &det, const lsdem_wall_params &prm)
+{
+  const double dt = update->dt;
+  // the centre's predicted position first: the turn of the orientation costs more
+  const double xp[3] = {atom->x[i][0] + dt * body[i].v[0], atom->x[i][1] + dt * body[i].v[1],
+                        atom->x[i][2] + dt * body[i].v[2]};
+  if (!may_touch_wall(w, wp, xp, atom->radius[i])) return 0;
+  lsdem_pose gp;
+  lsdem_impulse_predict_pose(atom->x[i], avec->quat[i], body[i].v, body[i].omega,
+                             avec->inertia[i], dt, &gp);
+  lsdem_manifold m = lsdem_manifold_over(wpoints.data(), (int) wpoints.size());
+  if (lsdem_detect(avec->shape_of(i), &gp, &walls[w]->wall_shape(), &wp, &det,
+                   update->ntimestep, nullptr, nullptr, &m) == 0)
+    return 0;
+  limit_push_out(m, dt);
+  lsdem_wall_result res;
+  lsdem_error err;
+  if (lsdem_wall_correct(&body[i], &m, dt, &prm, &res, &err) != LSDEM_OK)
+    error->one(FLERR, "Fix impulse/lsdem: step {}, grain {}, wall {}: {}",
+               update->ntimestep, atom->tag[i], walls[w]->id, err.msg);
+  if (res.kind != LSDEM_WALL_RESTING) return 0;
+  for (int d = 0; d < 3; d++) {
+    atom->v[i][d] = body[i].v[d];
+    atom->omega[i][d] = body[i].omega[d];
+  }
+  return 1;
 }
 
 /* ----------------------------------------------------------------------
@@ -887,5 +906,6 @@ double FixImpulseLsdem::memory_usage()
   double bytes = (double) body.capacity() * sizeof(lsdem_impulse_body) + moving.capacity();
   bytes += (double) (contacts.capacity() + coll.capacity()) * sizeof(LsdemImpulseContact);
   bytes += (double) wpoints.capacity() * sizeof(lsdem_contact_point);
+  bytes += (double) wall_seen.capacity() * sizeof(WallSeen);
   return bytes + islands->memory_usage();
 }

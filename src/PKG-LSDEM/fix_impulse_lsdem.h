@@ -72,6 +72,13 @@ class FixImpulseLsdem : public Fix {
   std::vector<int32_t> group;
   std::vector<lsdem_contact_point> wpoints;  // manifold of one grain against one wall
   lsdem_wall_params wall_prm;                // this step's (mu set per wall)
+  // per local grain and wall: its velocities when last checked this step, and whether it
+  // was clear then (not corrected: the same velocities give the same result)
+  struct WallSeen {
+    double v[3], omega[3];
+    bool clear = false;
+  };
+  std::vector<WallSeen> wall_seen;
 
   // what the step did (this rank), reduced over ranks when output asks
   struct Step {
@@ -102,6 +109,8 @@ class FixImpulseLsdem : public Fix {
   void resolve_islands(int pass);
   int select_collisions();
   int correct_walls();
+  int correct_grain(int i, int w, const lsdem_pose &wp, const lsdem_detect_params &det,
+                    const lsdem_wall_params &prm);
   void limit_push_out(lsdem_manifold &, double dt) const;
   void check_cfl();
   void damp_and_drift();

@@ -107,6 +107,10 @@ class LsdemImpulseIslands : protected Pointers {
     int64_t label;
     int32_t count, rank;
   };
+  struct Order {  // an Item's sort key and its place in items
+    int64_t label, ta, tb;
+    int32_t kind, key, at;
+  };
 
   class Fix *fix;
   class AtomVecLsdem *avec;
@@ -120,7 +124,8 @@ class LsdemImpulseIslands : protected Pointers {
   char *involved, *crossed;      // in a collision; (root:) its island spans ranks
   std::vector<int32_t> pairs, mbody;
   std::vector<int64_t> mlabel;
-  std::vector<Item> items, sent, got;
+  std::vector<Item> items, sorted, sent, got;
+  std::vector<Order> order;
   std::vector<Result> results, back;
   std::vector<Query> queries, answers;
   std::vector<int> proclist;

@@ -45,7 +45,9 @@ for t in tags:
     loops[t] = (float(m.group(1)), int(m.group(2)), int(m.group(3)))
     check(int(rows[t]["steps"]) == loops[t][2] and int(rows[t]["ranks"]) == loops[t][1],
           "%s: steps and ranks from its log" % t)
-    near(float(rows[t]["CPU s"]), loops[t][0], rtol=1e-3, msg="%s: loop time from its log" % t)
+    near(float(rows[t]["loop s"]), loops[t][0], rtol=1e-3, msg="%s: loop time from its log" % t)
+    use = re.search(r"([\d.]+)% CPU use", open("out/log.%s" % t).read()).group(1)
+    near(float(rows[t]["CPU use %"]), float(use), atol=0.5, msg="%s: CPU use from its log" % t)
     grains = last_frame("out/mound_%s.dump" % t)
     near(float(rows[t]["height"]), pct([g["z"] for g in grains], 99), atol=1e-3,
          msg="%s: height from its dump" % t)
