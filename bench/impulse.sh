@@ -2,7 +2,7 @@
 # Impulse against penalty LS-DEM on the container release (report §4.6.1, Table 4.1/4.2).
 #
 #   bench/impulse.sh [OUTDIR] [--grains N] [--time T] [--muls "1 4 8 16"] [--np2 M|none]
-#                    [--impulse-opts "keyword value ..."] [--fill-time T]
+#                    [--impulse-opts "keyword value ..."] [--fill-time T] [--reuse]
 #
 # examples/container_release makes the scene (N angular grains, default 1600, four sizes,
 # mass ratio 30), settles it in a smooth cylinder (penalty, --fill-time s, default 2.5) and
@@ -14,7 +14,8 @@
 # iterations, passes, label rounds, penetration) and writes into OUTDIR (default
 # bench/out/impulse): impulse.csv, impulse_error.png (error against run time),
 # impulse_mounds.png (renderings), the logs, the final dumps. Timings on a shared machine
-# vary by +-20 %.
+# vary by +-20 %. --reuse continues an interrupted benchmark in OUTDIR: the scene and fill
+# are kept when filled.data exists, and every run whose log has its "Loop time" is kept.
 # Environment: LSDEM_LMP, LSDEM_SHAPE_TOOL, LSDEM_BUILD_DIR.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -22,7 +23,7 @@ ex=$here/../examples/container_release
 build=${LSDEM_BUILD_DIR:-$here/../build}
 lmp=${LSDEM_LMP:-$build/lmp}
 shape=${LSDEM_SHAPE_TOOL:-$build/lsdem-shape}
-out="" grains=1600 t_end=8 muls="1 4 8 16" np2="" opts="" t_fill=2.5
+out="" grains=1600 t_end=8 muls="1 4 8 16" np2="" opts="" t_fill=2.5 reuse=0
 bad() { echo "bench/impulse.sh: $*" >&2; exit 2; }
 number() { [[ "$2" =~ ^[0-9]+([.][0-9]+)?([eE][-+]?[0-9]+)?$ ]] || bad "$1 needs a positive number, not '$2'"; }
 while [ $# -gt 0 ]; do
@@ -36,6 +37,7 @@ while [ $# -gt 0 ]; do
     --np2) [[ "${2:-}" =~ ^([1-9][0-9]*|none)$ ]] || bad "--np2 needs a multiple or none, not '${2:-}'"
            np2=$2; shift 2 ;;
     --impulse-opts) opts=${2:-}; shift 2 ;;
+    --reuse) reuse=1; shift ;;
     -*) bad "unknown option $1" ;;
     *) [ -z "$out" ] || bad "one OUTDIR only ($out, $1)"; out=$1; shift ;;
   esac
@@ -46,8 +48,13 @@ out=${out:-$here/out/impulse}
 mkdir -p "$out"
 cd "$out"
 
-echo "== scene: $grains grains (examples/container_release/make_scene.sh)"
-LSDEM_SHAPE_TOOL=$shape bash "$ex/make_scene.sh" . "$grains"
+kept() { [ "$reuse" = 1 ] && [ -f "$1" ] && { [ -z "${2:-}" ] || grep -q "$2" "$1"; }; }
+if kept filled.data; then
+  echo "== scene and fill: kept ($out/filled.data)"
+else
+  echo "== scene: $grains grains (examples/container_release/make_scene.sh)"
+  LSDEM_SHAPE_TOOL=$shape bash "$ex/make_scene.sh" . "$grains"
+fi
 # dt = 0.1 sqrt(m_min / kn) (report eq 4.47), m_min from the smallest shape at density 2.65
 dt=$(/usr/bin/python3 - "$shape" <<'EOF'
 import subprocess, sys
@@ -61,9 +68,11 @@ steps() { /usr/bin/python3 -c "print(round($1 / $2))"; }
 echo "dt = $dt (0.1 sqrt(m_min/kn)); release $t_end s = $(steps "$t_end" "$dt") penalty steps"
 
 mpi2=(mpirun --allow-run-as-root --oversubscribe -np 2)
-echo "== fill: $t_fill s in the container (penalty, 2 ranks)"
-"${mpi2[@]}" "$lmp" -in "$ex/in.fill" -var dt "$dt" -var nsteps "$(steps "$t_fill" "$dt")" \
-  -log log.fill -screen none
+if ! kept filled.data; then
+  echo "== fill: $t_fill s in the container (penalty, 2 ranks)"
+  "${mpi2[@]}" "$lmp" -in "$ex/in.fill" -var dt "$dt" -var nsteps "$(steps "$t_fill" "$dt")" \
+    -log log.fill -screen none
+fi
 
 release() {  # tag method dt-multiple ranks
   local tag=$1 method=$2 m=$3 np=$4 mpi=()
@@ -71,9 +80,13 @@ release() {  # tag method dt-multiple ranks
   local d
   d=$(/usr/bin/python3 -c "print('%.6g' % ($dt * $m))")
   echo "== $tag: $method, dt = $d, $(steps "$t_end" "$d") steps, $np rank(s)"
-  "${mpi[@]}" "$lmp" -in "$ex/in.release" -var method "$method" -var dt "$d" \
-    -var nsteps "$(steps "$t_end" "$d")" -var tag "$tag" -var impulse_opts "$opts" \
-    -log "log.$tag" -screen none
+  if kept "log.$tag" "^Loop time"; then
+    echo "(kept: log.$tag)"
+  else
+    "${mpi[@]}" "$lmp" -in "$ex/in.release" -var method "$method" -var dt "$d" \
+      -var nsteps "$(steps "$t_end" "$d")" -var tag "$tag" -var impulse_opts "$opts" \
+      -log "log.$tag" -screen none
+  fi
   grep "^Loop time" "log.$tag"
   "$shape" render grains.lslib "mound_$tag.dump" "render_$tag.png" --view y --size 480 300 \
     >/dev/null 2>&1 || true
