@@ -43,7 +43,7 @@ static constexpr tagint WALL_PARTNER = -1;
 
 FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), nlanes(1), ncand(0), axis(2), fix_history(nullptr), avec(nullptr),
-  fall_valid(0), moving(false), contact_step(-1), pivot(false), pivot_h(0.0),
+  fall_valid(0), moving(false), passive(false), contact_step(-1), pivot(false), pivot_h(0.0),
   pivot_inertia(0.0), pivot_damping(0.0), cand(nullptr), maxcand(0), cand_nlocal(0),
   cand_built(-1)
 {
@@ -440,10 +440,22 @@ void FixWallLsdem::set_lanes(int n)
 
 void FixWallLsdem::post_force(int /*vflag*/)
 {
+  if (passive) {  // fix impulse/lsdem resolves this wall's contacts: none of its own
+    fall_valid = 0;
+    contact_step = update->ntimestep;
+    nlanes = 0;
+    for (int d = 0; d < 3; d++) flocal[d] = tlocal[d] = 0.0;
+    return;
+  }
   lsdem_pose tilting;
-  const lsdem_pose *w = begin_force_call(1, tilting);
-  visit_candidates(*lanes[0], 0, ncand, *w);
+  const lsdem_pose *w = begin_force_call(lanes_for_call(), tilting);
+  visit_all(*w);
   end_force_call();
+}
+
+void FixWallLsdem::visit_all(const lsdem_pose &w)
+{
+  visit_candidates(*lanes[0], 0, ncand, w);
 }
 
 /* ----------------------------------------------------------------------

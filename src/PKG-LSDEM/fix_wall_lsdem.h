@@ -54,6 +54,16 @@ class FixWallLsdem : public Fix {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
+  // for fix impulse/lsdem, which takes the wall over (report §4.4.1): its level set, its
+  // pose now (moved in initial_integrate; pose.v its velocity), its friction and detection
+  // parameters; whether it is a pivoting platen; passive = no penalty forces of its own
+  const lsdem_shape &wall_shape() const { return wall; }
+  const lsdem_pose &wall_pose() const { return wpose; }
+  double wall_friction() const { return opts.law.mu; }
+  const lsdem_detect_params &wall_detect() const { return prm.detect; }
+  bool wall_pivots() const { return pivot; }
+  void set_passive(bool on) { passive = on; }
+
  protected:
   // one thread's share of a force call (fix wall/lsdem/omp: one lane per thread): its
   // grains' pair states, contacts, force and torque on the wall, and the first of its
@@ -67,6 +77,8 @@ class FixWallLsdem : public Fix {
   std::vector<std::unique_ptr<Lane>> lanes;
   int nlanes;  // lanes used by the last force call
   void set_lanes(int);
+  virtual int lanes_for_call() const { return 1; }
+  virtual void visit_all(const lsdem_pose &w);  // the candidates, by lanes_for_call() lanes
   const lsdem_pose *begin_force_call(int nlanes, lsdem_pose &tilting);
   void visit_candidates(Lane &, int from, int to, const lsdem_pose &w);
   void end_force_call();
@@ -90,6 +102,7 @@ class FixWallLsdem : public Fix {
   char *vstr[3];               // velocity components given as equal-style variables
   int vvar[3];
   bool moving;                 // a velocity is set (constant or variable)
+  bool passive;                // taken over by fix impulse/lsdem: no forces of its own
 
   bigint contact_step;
   // pivot (plane only, report §3.2.1): the plate tilts about P, h behind its face

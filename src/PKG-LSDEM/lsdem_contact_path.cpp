@@ -105,3 +105,22 @@ int LsdemContactPath::test(int i, tagint partner, const lsdem_shape *A, const ls
   store->commit(lane, partner, out);
   return res.npen;
 }
+
+/* ---------------------------------------------------------------------- */
+
+int LsdemContactPath::detect(int i, tagint partner, const lsdem_shape *A, const lsdem_pose &pa,
+                             const lsdem_shape *B, const lsdem_pose &pb,
+                             const lsdem_detect_params &det, bigint step)
+{
+  if (!store || !(det.node_skin > 0.0)) {
+    lsdem_detect(A, &pa, B, &pb, &det, step, nullptr, nullptr, &m);
+    return m.n;
+  }
+  lsdem_pair_state in;
+  const bool found = store->find(i, partner, in);
+  lsdem_pair_state out = store->reserve(lane, lsdem_nodelist_capacity(A), 0);
+  lsdem_detect(A, &pa, B, &pb, &det, step, found ? &in.list : nullptr, &out.list, &m);
+  out.nshear = 0;
+  store->commit(lane, partner, out);
+  return m.n;
+}

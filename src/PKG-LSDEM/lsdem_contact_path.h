@@ -46,7 +46,13 @@ class LsdemContactPath {
   int test(int i, tagint partner, const lsdem_shape *A, const lsdem_pose &pa,
            const lsdem_shape *B, const lsdem_pose &pb, const lsdem_contact_params &prm,
            bigint step, lsdem_contact_result &res);
-  // the manifold of the last test
+  // detection alone (no law, no shear history): grain i's manifold against its partner,
+  // with the pair's node list kept when the store is set and det.node_skin > 0 (impulse
+  // mode, pair_style lsdem/impulse). Returns the manifold's points.
+  int detect(int i, tagint partner, const lsdem_shape *A, const lsdem_pose &pa,
+             const lsdem_shape *B, const lsdem_pose &pb, const lsdem_detect_params &det,
+             bigint step);
+  // the manifold of the last test or detect
   const lsdem_manifold &manifold() const { return m; }
 
  private:

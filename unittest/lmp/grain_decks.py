@@ -39,6 +39,20 @@ def library(path="grains.lslib"):
     return path
 
 
+def pile(lib="pile.lslib", data="pile.data"):
+    """The angular pile of the rank, thread, balance and impulse tests: six random shapes
+    (100 nodes) and the 140 of 200 grains that fit loosely in a 6 x 6 x 9 box (made once).
+    Returns both paths."""
+    if not os.path.exists(lib):
+        shape_tool("random", lib, "--count", 6, "--size", 1.0, "--size-spread", 0.2,
+                   "--elongation", 0.7, "--flatness", 0.7, "--angularity", 0.15,
+                   "--roughness", 0.02, "--seed", 11, "--nodes", 100, "--spacing", 0.06)
+    if not os.path.exists(data):
+        shape_tool("pack", lib, data, "--count", 200, "--box", 6, 6, 9, "--density", 1.0,
+                   "--seed", 5)
+    return os.path.abspath(lib), os.path.abspath(data)
+
+
 def write_data(path, grains, box=(-10.0, 10.0, -10.0, 10.0, -10.0, 10.0)):
     """grains: list of dicts with id, shape, density, x, q (and optional v, w, type)."""
     lines = ["LAMMPS data file (grain tests)", "", "%d atoms" % len(grains), "1 atom types",

@@ -6,25 +6,26 @@ walls. deck() writes its input; run() runs it and returns the final frame of eve
 step."""
 import os
 
-from lsdemtest import run_lmp, thermo, shape_tool
+from grain_decks import pile
+from lsdemtest import run_lmp, thermo
 
 STEPS, HALF, EVERY = 1500, 750, 300
-if not os.path.exists("pile.lslib"):
-    shape_tool("random", "pile.lslib", "--count", 6, "--size", 1.0, "--size-spread", 0.2,
-               "--elongation", 0.7, "--flatness", 0.7, "--angularity", 0.15,
-               "--roughness", 0.02, "--seed", 11, "--nodes", 100, "--spacing", 0.06)
-if not os.path.exists("pile.data"):
-    shape_tool("pack", "pile.lslib", "pile.data", "--count", 200, "--box", 6, 6, 9,
-               "--density", 1.0, "--seed", 5)
-    # the grains stay in 6 x 6 x 9 (walls at 0 and 6), the box's edges are powers of two
-    # from 0: LAMMPS's balance shift converts positions to box fractions and back, which is
-    # exact only then (test_balance, doc/howto_parallel.rst)
-    text = open("pile.data").read()
-    for old, new in (("0 6 xlo xhi", "0 8 xlo xhi"), ("0 6 ylo yhi", "0 8 ylo yhi"),
-                     ("0 9 zlo zhi", "0 16 zlo zhi")):
-        text = text.replace(old, new)
-    open("pile.data", "w").write(text)
-LIB, DATA = os.path.abspath("pile.lslib"), os.path.abspath("pile.data")
+def pile_in_power_of_two_box():
+    """grain_decks.pile()'s grains (they stay in 6 x 6 x 9, walls at 0 and 6) in a box whose
+    edges are powers of two from 0: LAMMPS's balance shift converts positions to box
+    fractions and back, which is exact only then (test_balance, doc/howto_parallel.rst)."""
+    fresh = not os.path.exists("pile.data")
+    lib, data = pile()
+    if fresh:
+        text = open(data).read()
+        for old, new in (("0 6 xlo xhi", "0 8 xlo xhi"), ("0 6 ylo yhi", "0 8 ylo yhi"),
+                         ("0 9 zlo zhi", "0 16 zlo zhi")):
+            text = text.replace(old, new)
+        open(data, "w").write(text)
+    return lib, data
+
+
+LIB, DATA = pile_in_power_of_two_box()
 
 # strong gravity and a short time: the grains land within a few hundred steps
 CONTACT = """pair_coeff      * * 1.0e4 0.9e4 0.5 cn 2.0

@@ -24,16 +24,20 @@ void FixWallLsdemOMP::init()
   set_lanes(comm->nthreads);
 }
 
+/* ---------------------------------------------------------------------- */
+
+int FixWallLsdemOMP::lanes_for_call() const
+{
+  return comm->nthreads;
+}
+
 /* ----------------------------------------------------------------------
    fix wall/lsdem's force call with its candidates split among the threads
 ------------------------------------------------------------------------- */
 
-void FixWallLsdemOMP::post_force(int /*vflag*/)
+void FixWallLsdemOMP::visit_all(const lsdem_pose &w)
 {
-  const int nthreads = comm->nthreads;
-  if ((int) lanes.size() < nthreads) set_lanes(nthreads);  // package omp changed
-  lsdem_pose tilting;
-  const lsdem_pose *w = begin_force_call(nthreads, tilting);
+  const int nthreads = comm->nthreads;  // lanes set up for them at init
   const int n = ncand;
 
 #if defined(_OPENMP)
@@ -47,7 +51,6 @@ void FixWallLsdemOMP::post_force(int /*vflag*/)
 #endif
     const int chunk = 1 + n / nthreads;
     const int from = std::min(n, tid * chunk), to = std::min(n, from + chunk);
-    visit_candidates(*lanes[tid], from, to, *w);
+    visit_candidates(*lanes[tid], from, to, w);
   }
-  end_force_call();
 }

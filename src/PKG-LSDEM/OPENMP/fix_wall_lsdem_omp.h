@@ -26,7 +26,10 @@ class FixWallLsdemOMP : public FixWallLsdem {
  public:
   FixWallLsdemOMP(class LAMMPS *lmp, int narg, char **arg) : FixWallLsdem(lmp, narg, arg) {}
   void init() override;
-  void post_force(int) override;
+
+ protected:
+  int lanes_for_call() const override;
+  void visit_all(const lsdem_pose &w) override;
 };
 
 }    // namespace LAMMPS_NS

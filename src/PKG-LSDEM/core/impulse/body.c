@@ -58,15 +58,6 @@ lsdem_status lsdem_impulse_body_wall(lsdem_impulse_body *b, int64_t id, const do
   return LSDEM_OK;
 }
 
-void lsdem_impulse_point_velocity(const lsdem_impulse_body *b, const double p[3],
-                                  double u[3])
-{
-  double r[3], wr[3];
-  lsdem_sub3(p, b->x, r);
-  lsdem_cross3(b->omega, r, wr);
-  for (int i = 0; i < 3; i++) u[i] = b->v[i] + wr[i]; /* eq 4.7 */
-}
-
 void lsdem_impulse_apply(lsdem_impulse_body *b, const double p[3], const double P[3])
 {
   if (lsdem_impulse_body_is_wall(b)) return;
@@ -107,16 +98,6 @@ void lsdem_impulse_collision_matrix(const lsdem_impulse_body *a,
   lsdem_impulse_point_response(a, p, Ma);
   lsdem_impulse_point_response(b, p, Mb);
   for (int i = 0; i < 9; i++) K[i] = Ma[i] + Mb[i]; /* eq 4.13 */
-}
-
-double lsdem_impulse_relative_velocity(const lsdem_impulse_body *bodies,
-                                       const lsdem_impulse_contact *c, double u[3])
-{
-  double ua[3], ub[3];
-  lsdem_impulse_point_velocity(&bodies[c->a], c->point, ua);
-  lsdem_impulse_point_velocity(&bodies[c->b], c->point, ub);
-  lsdem_sub3(ua, ub, u);
-  return lsdem_dot3(c->normal, u);
 }
 
 double lsdem_impulse_normal_velocity(const lsdem_impulse_body *bodies,

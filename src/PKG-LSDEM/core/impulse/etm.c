@@ -18,7 +18,14 @@
  * Keys: compression u~ = w u_n, w = m_a m_b / (m_a + m_b) (§4.4.3) or 1, most negative
  * first; separation -W, largest energy first. Every velocity a key depends on is
  * refreshed after a group for the contacts of the group's bodies (a body -> contacts
- * table; walls are skipped, their velocity never changes). */
+ * table; walls are skipped, their velocity never changes), each contact once per group
+ * (a stamp): refreshing it again, its velocities unchanged, would leave the queue as it
+ * is. A round's search for approaching contacts (lines 34-35) looks only at contacts on
+ * bodies that an impulse moved since the last compression ended: that compression left
+ * every contact not approaching (it ends with the queue empty, every key refreshed after
+ * its bodies moved), and a contact whose bodies kept their velocities still is not. Both
+ * only skip work whose result is known: the queues, and so the velocities, are bit for
+ * bit those of refreshing every contact every time. */
 #include "lsdem_impulse.h"
 #include "queue.h"
 
@@ -44,7 +51,10 @@ struct lsdem_etm {
   etm_contact *c;
   int32_t *adj_start, *adj; /* contacts of body i: adj[adj_start[i] .. adj_start[i+1]) */
   int32_t *group, *stack;   /* a popped group; the heap walk's stack */
-  double *du, *un0, *P;     /* per group member: increment, u_n before, impulse (3) */
+  int64_t *stamp;           /* per contact: the iteration that last refreshed it */
+  char *moved;              /* per body: an impulse changed it since the last compression */
+  double *du, *un0, *ub, *P; /* per group member: increment, u_n before, u before (3),
+                                impulse (3) */
   double *share;            /* per group member: its share 1 / (alpha n) of the increment */
   int32_t *load;            /* per body: group members pushing on it (0 between groups) */
   lsdem_etm_queue q;
@@ -93,8 +103,8 @@ static size_t round_up(size_t n) { return (n + WS_ALIGN - 1) / WS_ALIGN * WS_ALI
 
 /* The layout of the workspace: offsets from its aligned start. */
 typedef struct {
-  size_t contacts, key, du, un0, P, share, heap, pos, group, stack, adj_start, adj, load,
-      total;
+  size_t contacts, key, du, un0, ub, P, share, heap, pos, group, stack, stamp, adj_start,
+      adj, load, moved, total;
 } ws_layout;
 
 static ws_layout layout_of(int nbodies, int ncontacts)
@@ -106,15 +116,18 @@ static ws_layout layout_of(int nbodies, int ncontacts)
   L.key = at, at += round_up(nc * sizeof(double));
   L.du = at, at += round_up(nc * sizeof(double));
   L.un0 = at, at += round_up(nc * sizeof(double));
+  L.ub = at, at += round_up(3 * nc * sizeof(double));
   L.P = at, at += round_up(3 * nc * sizeof(double));
   L.share = at, at += round_up(nc * sizeof(double));
   L.heap = at, at += round_up(nc * sizeof(int32_t));
   L.pos = at, at += round_up(nc * sizeof(int32_t));
   L.group = at, at += round_up(nc * sizeof(int32_t));
   L.stack = at, at += round_up(nc * sizeof(int32_t));
+  L.stamp = at, at += round_up(nc * sizeof(int64_t));
   L.adj_start = at, at += round_up((nb + 1) * sizeof(int32_t));
   L.adj = at, at += round_up(2 * nc * sizeof(int32_t));
   L.load = at, at += round_up(nb * sizeof(int32_t));
+  L.moved = at, at += round_up(nb);
   L.total = at;
   return L;
 }
@@ -148,7 +161,8 @@ static void prepare_contact(lsdem_etm *s, int32_t k)
 }
 
 /* The group's increments du[g] (0: none), each the Coulomb-limited impulse of its
- * contact (eqs 4.14-4.20) from the velocities before the group, removing the slip in the
+ * contact (eqs 4.14-4.20) from the velocities before the group (ub[3 g], u_n in un0[g],
+ * as the phase found them), removing the slip in the
  * same shares as the increment (alpha share = 1/n), applied together on a and (reaction,
  * eq 4.6) b in the group's order. Returns in du[g] the normal work of member g,
  * P_n (u_n before + u_n after) / 2 (eq 4.21), with u_n before in un0[g]. */
@@ -157,11 +171,10 @@ static void apply_group(lsdem_etm *s, int32_t ng)
   for (int32_t g = 0; g < ng; g++) {
     const int32_t k = s->group[g];
     const etm_contact *c = &s->c[k];
-    double u[3], *P = &s->P[3 * g];
-    relative_velocity(s, k, u);
+    double *P = &s->P[3 * g];
     if (s->du[g] > 0.0)
-      lsdem_coulomb_impulse(c->K, s->contacts[k].normal, u, s->du[g], s->contacts[k].mu,
-                            s->p.alpha * s->share[g], P);
+      lsdem_coulomb_impulse(c->K, s->contacts[k].normal, &s->ub[3 * g], s->du[g],
+                            s->contacts[k].mu, s->p.alpha * s->share[g], P);
     else
       P[0] = P[1] = P[2] = 0.0;
   }
@@ -170,6 +183,7 @@ static void apply_group(lsdem_etm *s, int32_t ng)
     const double *P = &s->P[3 * g], minus[3] = {-P[0], -P[1], -P[2]};
     lsdem_impulse_apply(&s->bodies[ct->a], ct->point, P);
     lsdem_impulse_apply(&s->bodies[ct->b], ct->point, minus);
+    s->moved[ct->a] = s->moved[ct->b] = 1;
   }
   for (int32_t g = 0; g < ng; g++) {
     const int32_t k = s->group[g];
@@ -190,7 +204,8 @@ static void refresh_approach(lsdem_etm *s, int32_t k)
     lsdem_etm_queue_remove(&s->q, k);
 }
 
-/* After a group: the keys of every contact of the group's (moving) bodies. */
+/* After a group: the keys of every contact of the group's (moving) bodies, each once
+ * (stamped with the iteration). */
 static void refresh_group(lsdem_etm *s, int32_t ng)
 {
   for (int32_t g = 0; g < ng; g++) {
@@ -198,8 +213,12 @@ static void refresh_group(lsdem_etm *s, int32_t ng)
     const int32_t ends[2] = {ct->a, ct->b};
     for (int e = 0; e < 2; e++) {
       if (lsdem_impulse_body_is_wall(&s->bodies[ends[e]])) continue;
-      for (int32_t j = s->adj_start[ends[e]]; j < s->adj_start[ends[e] + 1]; j++)
-        refresh_approach(s, s->adj[j]);
+      for (int32_t j = s->adj_start[ends[e]]; j < s->adj_start[ends[e] + 1]; j++) {
+        const int32_t k = s->adj[j];
+        if (s->stamp[k] == s->iterations) continue;
+        s->stamp[k] = s->iterations;
+        refresh_approach(s, k);
+      }
     }
   }
 }
@@ -276,6 +295,11 @@ lsdem_status lsdem_etm_begin(lsdem_etm **out, void *ws, size_t wsize,
   s->load = (int32_t *)(base + L.load);
   memset(s->load, 0, (size_t)nbodies * sizeof *s->load);
   s->stack = (int32_t *)(base + L.stack);
+  s->ub = (double *)(base + L.ub);
+  s->stamp = (int64_t *)(base + L.stamp);
+  memset(s->stamp, 0, (size_t)ncontacts * sizeof *s->stamp); /* iterations count from 1 */
+  s->moved = base + L.moved;
+  memset(s->moved, 1, (size_t)nbodies); /* the first search looks at every contact */
   s->adj_start = (int32_t *)(base + L.adj_start);
   s->adj = (int32_t *)(base + L.adj);
   lsdem_etm_queue_init(&s->q, ncontacts, (int32_t *)(base + L.heap),
@@ -386,7 +410,8 @@ static int32_t next_group(lsdem_etm *s, const char *phase, double *kmin, lsdem_s
 
 int lsdem_etm_approaching(lsdem_etm *s)
 {
-  for (int32_t k = 0; k < s->ncontacts; k++) refresh_approach(s, k);
+  for (int32_t k = 0; k < s->ncontacts; k++)
+    if (s->moved[s->contacts[k].a] || s->moved[s->contacts[k].b]) refresh_approach(s, k);
   return s->q.n;
 }
 
@@ -396,13 +421,13 @@ lsdem_status lsdem_etm_compress(lsdem_etm *s, lsdem_error *err)
   s->rounds++;
   s->round_absorbed = 0.0;
   while (s->q.n > 0) {
-    double kmin, u[3];
+    double kmin;
     lsdem_status st = LSDEM_OK;
     const int32_t ng = next_group(s, "compression", &kmin, &st, err);
     if (ng == 0) return st;
     for (int32_t g = 0; g < ng; g++) {
       const int32_t k = s->group[g];
-      const double un = s->un0[g] = relative_velocity(s, k, u);
+      const double un = s->un0[g] = relative_velocity(s, k, &s->ub[3 * g]);
       double du = -kmin * s->share[g] / s->c[k].weight; /* line 9, raising u~ towards 0 */
       if (du > -un || -un - du <= s->vtol) du = -un; /* no overshoot; no tiny remainder */
       s->du[g] = du;
@@ -416,6 +441,7 @@ lsdem_status lsdem_etm_compress(lsdem_etm *s, lsdem_error *err)
     refresh_group(s, ng);
     assert(lsdem_etm_queue_valid(&s->q, s->ncontacts));
   }
+  memset(s->moved, 0, (size_t)s->nbodies); /* no contact approaches now */
   return LSDEM_OK;
 }
 
@@ -447,7 +473,7 @@ lsdem_status lsdem_etm_separate(lsdem_etm *s, lsdem_error *err)
       truncate_energy(s, k);
   }
   while (s->q.n > 0) {
-    double kmin, u[3];
+    double kmin;
     lsdem_status st = LSDEM_OK;
     const int32_t ng = next_group(s, "separation", &kmin, &st, err);
     if (ng == 0) return st;
@@ -458,7 +484,8 @@ lsdem_status lsdem_etm_separate(lsdem_etm *s, lsdem_error *err)
       /* eq 4.30 (for eq 4.29) from u_n >= 0: a contact still approaching would take the
        * elastic reversal -u_n -> u_n on top of its share, and the reversals of a group,
        * applied together, would add up on a shared body far beyond its stored energy */
-      const double un = fmax(s->un0[g] = relative_velocity(s, s->group[g], u), 0.0);
+      const double un =
+          fmax(s->un0[g] = relative_velocity(s, s->group[g], &s->ub[3 * g]), 0.0);
       s->du[g] = -un + sqrt(un * un + 2.0 * give * c->knn);
     }
     apply_group(s, ng);

@@ -72,9 +72,16 @@ static inline int lsdem_impulse_body_is_wall(const lsdem_impulse_body *b)
 {
   return b->inv_mass == 0.0;
 }
-/* Velocity of the body's material point at p: v + omega x (p - x)  (eq 4.7). */
-void lsdem_impulse_point_velocity(const lsdem_impulse_body *b, const double p[3],
-                                  double u[3]);
+/* Velocity of the body's material point at p: v + omega x (p - x)  (eq 4.7). Inline: ETM
+ * evaluates it several times per contact and iteration. */
+static inline void lsdem_impulse_point_velocity(const lsdem_impulse_body *b,
+                                                const double p[3], double u[3])
+{
+  double r[3], wr[3];
+  lsdem_sub3(p, b->x, r);
+  lsdem_cross3(b->omega, r, wr);
+  for (int i = 0; i < 3; i++) u[i] = b->v[i] + wr[i]; /* eq 4.7 */
+}
 /* Impulse P applied at p: v += P/m (eq 4.31), omega += I^-1 ((p - x) x P) (eq 4.32).
  * No effect on a wall. */
 void lsdem_impulse_apply(lsdem_impulse_body *b, const double p[3], const double P[3]);
@@ -103,9 +110,17 @@ typedef struct {
 } lsdem_impulse_contact;
 
 /* Relative velocity u = u_a - u_b at the contact (eq 4.7); returns its normal part
- * u_n = n . u (< 0: approaching). */
-double lsdem_impulse_relative_velocity(const lsdem_impulse_body *bodies,
-                                       const lsdem_impulse_contact *c, double u[3]);
+ * u_n = n . u (< 0: approaching). Inline, as lsdem_impulse_point_velocity. */
+static inline double lsdem_impulse_relative_velocity(const lsdem_impulse_body *bodies,
+                                                     const lsdem_impulse_contact *c,
+                                                     double u[3])
+{
+  double ua[3], ub[3];
+  lsdem_impulse_point_velocity(&bodies[c->a], c->point, ua);
+  lsdem_impulse_point_velocity(&bodies[c->b], c->point, ub);
+  lsdem_sub3(ua, ub, u);
+  return lsdem_dot3(c->normal, u);
+}
 /* u_n alone. */
 double lsdem_impulse_normal_velocity(const lsdem_impulse_body *bodies,
                                      const lsdem_impulse_contact *c);

@@ -1,0 +1,911 @@
+// clang-format off
+/* ----------------------------------------------------------------------
+   LSDEM package: level-set discrete element method for LAMMPS.
+
+   fix impulse/lsdem e mu [keywords] (doc/fix_impulse_lsdem.rst). One step, in
+   final_integrate, where f and torque hold this step's external forces at the positions
+   the pair style just detected contacts at (report Figure 4.4, core/impulse/lsdem_impulse.h):
+     1. kick: v, omega += dt f/m, dt I^-1 torque (owned grains), sent to the ghosts;
+     2. contacts: pair_style lsdem/impulse's manifolds and each grain's against each wall
+        at the current poses, glued (report §4.3.3);
+     3. passes, at most `passes` (report: 10): the collisions (grain pairs approaching,
+        walls approaching faster than the resting speed) resolved by ETM on islands
+        (lsdem_impulse_islands); then every grain against every wall at its predicted
+        pose, resting contacts corrected (report §4.4.1); a pass with no correction ends
+        the loop, otherwise the corrected velocities go to the ghosts and the collisions
+        they make are resolved in the next pass;
+     4. the CFL check, damping (eqs 4.44-4.46), drift (eqs 4.38, 4.40).
+   Positions and velocities are then those of the step's end, as thermo and dumps print
+   them. Nothing is carried between steps but the positions and velocities: a run
+   continued from a restart file is the uninterrupted run.
+------------------------------------------------------------------------- */
+
+#include "fix_impulse_lsdem.h"
+
+#include "atom.h"
+#include "atom_vec_lsdem.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "fix_wall_lsdem.h"
+#include "force.h"
+#include "group.h"
+#include "lsdem_contact_path.h"
+#include "math_const.h"
+#include "memory.h"
+#include "modify.h"
+#include "pair_lsdem_impulse.h"
+#include "update.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+using MathConst::MY_PI;
+
+// output vector (f_ID[1..N]); see compute_vector and doc/fix_impulse_lsdem.rst
+enum {
+  V_ISLANDS, V_LARGEST, V_CROSS, V_ITERATIONS, V_PASSES, V_CORRECTIONS, V_COLLISIONS,
+  V_ROUNDS, V_KE, V_ABSORBED, V_DISSIPATED, V_RELEASED, V_TOTAL_DISSIPATED, V_TOTAL_DAMPED,
+  V_T_DETECT, V_T_ISLANDS, V_T_ETM, V_T_WALLS, V_T_COMM, V_DEPTH, V_WALL_DEPTH, V_SIZE
+};
+
+// relative round-off of a velocity below which an approach counts as none
+static constexpr double ROUNDOFF = 1.0e-12;
+
+static const char USAGE[] = "fix ID group impulse/lsdem e mu [keyword value ...]";
+
+/* ---------------------------------------------------------------------- */
+
+FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
+  Fix(lmp, narg, arg), restitution(0.0), friction(0.0), xi(0.0), max_passes(10),
+  rest_setting(-1.0), glue_setting(-1.0), glue_angle(15.0 * MY_PI / 180.0), cfl(0.5),
+  cfl_stop(0), wall_etm(0), avec(nullptr), pair(nullptr), islands(nullptr), total_dissipated(0.0),
+  total_damped(0.0), total_truncated(0.0), t_detect(0.0), t_islands(0.0), t_etm(0.0),
+  t_walls(0.0), t_comm(0.0), pair_seconds0(0.0), reduced_step(-1), cfl_warned(false)
+{
+  if (narg < 5) error->all(FLERR, "Illegal fix impulse/lsdem command: {}", USAGE);
+  time_integrate = 1;
+  vector_flag = 1;
+  size_vector = V_SIZE;
+  global_freq = 1;
+  extvector = 0;
+  restart_global = 1;
+  comm_forward = 6;
+  comm_reverse = 1;
+  memset(&now, 0, sizeof(now));
+  // the core's defaults but alpha 1 and tolerance 1e-3: a pile's islands of ~1000 grains
+  // took 1e6 iterations (and more) to reach the core's 1e-6; a residual approach of 1e-3
+  // of the island's fastest, taken up again at the next step, moves a grain by 1e-3 u dt
+  lsdem_etm_params_default(&etm);
+  etm.alpha = 1.0;
+  etm.velocity_tol = 1e-3;
+  etm.energy_tol = 1e-6;
+
+  restitution = utils::numeric(FLERR, arg[3], false, lmp);
+  friction = utils::numeric(FLERR, arg[4], false, lmp);
+  if (!(restitution >= 0.0 && restitution <= 1.0))
+    error->all(FLERR, "fix impulse/lsdem: restitution e = {} must be in [0, 1] (Stronge's "
+               "coefficient: the energy released is e^2 times the energy absorbed)", arg[3]);
+  if (!(friction >= 0.0) || !std::isfinite(friction))
+    error->all(FLERR, "fix impulse/lsdem: friction mu = {} must be >= 0 and finite", arg[4]);
+
+  for (int iarg = 5; iarg < narg; iarg += 2) {
+    const std::string key = arg[iarg];
+    const int nval = key == "cfl" ? 2 : 1;
+    if (iarg + nval >= narg)
+      error->all(FLERR, "fix impulse/lsdem: keyword {} needs {} value{}", key, nval,
+                 nval > 1 ? "s" : "");
+    const char *val = arg[iarg + 1];
+    auto number = [&]() { return utils::numeric(FLERR, val, false, lmp); };
+    auto count = [&]() { return utils::bnumeric(FLERR, val, false, lmp); };
+    if (key == "damping") {
+      xi = number();
+      if (!(xi >= 0.0) || !std::isfinite(xi))
+        error->all(FLERR, "fix impulse/lsdem: damping xi = {} must be >= 0 (1/time)", val);
+    } else if (key == "alpha") {
+      etm.alpha = number();
+      if (!(etm.alpha >= 1.0) || !std::isfinite(etm.alpha))
+        error->all(FLERR, "fix impulse/lsdem: alpha = {} must be >= 1 (each increment is "
+                   "1/(alpha n) of the largest deficit; 1 resolves a lone contact at once)", val);
+    } else if (key == "beta") {
+      etm.beta = number();
+      if (!(etm.beta >= 0.0 && etm.beta < 1.0))
+        error->all(FLERR, "fix impulse/lsdem: beta = {} must be in [0, 1) (similarity of "
+                   "contacts taken together)", val);
+    } else if (key == "iterations") {
+      etm.max_iterations = count();
+      if (etm.max_iterations < 1)
+        error->all(FLERR, "fix impulse/lsdem: iterations = {} must be >= 1 (ETM cap per island)", val);
+    } else if (key == "rounds") {
+      etm.max_rounds = utils::inumeric(FLERR, val, false, lmp);
+      if (etm.max_rounds < 1)
+        error->all(FLERR, "fix impulse/lsdem: rounds = {} must be >= 1 (compression-separation "
+                   "rounds per island)", val);
+    } else if (key == "passes") {
+      max_passes = utils::inumeric(FLERR, val, false, lmp);
+      if (max_passes < 1)
+        error->all(FLERR, "fix impulse/lsdem: passes = {} must be >= 1 (wall-correction passes "
+                   "per step; the report used 10)", val);
+    } else if (key == "share") {
+      if (strcmp(val, "bodies") == 0) etm.share = LSDEM_ETM_SHARE_BODIES;
+      else if (strcmp(val, "group") == 0) etm.share = LSDEM_ETM_SHARE_GROUP;
+      else error->all(FLERR, "fix impulse/lsdem: share must be bodies or group, not {}", val);
+    } else if (key == "weighted") {
+      if (strcmp(val, "yes") == 0) etm.mass_weighted = 1;
+      else if (strcmp(val, "no") == 0) etm.mass_weighted = 0;
+      else error->all(FLERR, "fix impulse/lsdem: weighted must be yes or no, not {}", val);
+    } else if (key == "tolerance") {
+      etm.velocity_tol = number();
+      if (!(etm.velocity_tol > 0.0 && etm.velocity_tol < 1.0))
+        error->all(FLERR, "fix impulse/lsdem: tolerance = {} must be in (0, 1) (relative "
+                   "approach speed left)", val);
+      etm.energy_tol = etm.velocity_tol * etm.velocity_tol;
+    } else if (key == "glue") {
+      glue_setting = strcmp(val, "auto") == 0 ? -1.0 : number();
+      if (strcmp(val, "auto") != 0 && !(glue_setting >= 0.0))
+        error->all(FLERR, "fix impulse/lsdem: glue = {} must be auto or a distance >= 0", val);
+    } else if (key == "glue_angle") {
+      const double deg = number();
+      if (!(deg >= 0.0 && deg < 90.0))
+        error->all(FLERR, "fix impulse/lsdem: glue_angle = {} must be in [0, 90) degrees", val);
+      glue_angle = deg * MY_PI / 180.0;
+    } else if (key == "wall_etm") {
+      if (strcmp(val, "yes") == 0) wall_etm = 1;
+      else if (strcmp(val, "no") == 0) wall_etm = 0;
+      else error->all(FLERR, "fix impulse/lsdem: wall_etm must be yes or no, not {}", val);
+    } else if (key == "rest") {
+      rest_setting = strcmp(val, "auto") == 0 ? -1.0 : number();
+      if (strcmp(val, "auto") != 0 && !(rest_setting >= 0.0))
+        error->all(FLERR, "fix impulse/lsdem: rest = {} must be auto or a speed >= 0", val);
+    } else if (key == "cfl") {
+      cfl = number();
+      if (!(cfl > 0.0) || !std::isfinite(cfl))
+        error->all(FLERR, "fix impulse/lsdem: cfl fraction = {} must be > 0", val);
+      const std::string act = arg[iarg + 2];
+      if (act == "warn") cfl_stop = 0;
+      else if (act == "stop") cfl_stop = 1;
+      else error->all(FLERR, "fix impulse/lsdem: cfl action must be warn or stop, not {}", act);
+    } else error->all(FLERR, "fix impulse/lsdem: unknown keyword {}", key);
+    iarg += nval - 1;
+  }
+
+  avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
+  if (!avec) error->all(FLERR, "Fix impulse/lsdem requires atom_style lsdem");
+  islands = new LsdemImpulseIslands(lmp, this, avec);
+}
+
+/* ---------------------------------------------------------------------- */
+
+FixImpulseLsdem::~FixImpulseLsdem()
+{
+  delete islands;
+  for (FixWallLsdem *w : walls)
+    if (modify && modify->find_fix(w->id) >= 0) w->set_passive(false);
+}
+
+int FixImpulseLsdem::setmask()
+{
+  return FINAL_INTEGRATE;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixImpulseLsdem::init()
+{
+  if (utils::strmatch(update->integrate_style, "^respa"))
+    error->all(FLERR, "Fix impulse/lsdem does not support run_style respa");
+  pair = dynamic_cast<PairLsdemImpulse *>(force->pair_match("lsdem/impulse", 1));
+  if (!pair)
+    error->all(FLERR, "Fix impulse/lsdem requires pair_style lsdem/impulse (contact detection "
+               "without penalty forces){}", force->pair_style
+                   ? fmt::format("; pair_style {} is set", force->pair_style) : "");
+  if (domain->xperiodic || domain->yperiodic || domain->zperiodic)
+    error->all(FLERR, "Fix impulse/lsdem: periodic boundaries are not supported (an island "
+               "wrapping around the box has no single position per grain); use boundary f "
+               "or s and walls");
+  if (xi * update->dt > 1.0)
+    error->all(FLERR, "Fix impulse/lsdem: damping xi * timestep = {} * {} = {} must be <= 1 "
+               "(report eq 4.46)", xi, update->dt, xi * update->dt);
+  check_integrators();
+  find_walls();
+  set_glue();
+  int cap = 1;
+  for (int s = 0; s < avec->nshapes(); s++)
+    cap = std::max(cap, lsdem_manifold_capacity(lsdem_library_shape(avec->library(), s)));
+  wpoints.resize(cap);
+  glued.resize(cap);
+  group.resize(cap);
+}
+
+/* ----------------------------------------------------------------------
+   a grain has one time integrator: no other fix with time_integrate may share grains
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::check_integrators()
+{
+  for (int f = 0; f < modify->nfix; f++) {
+    Fix *other = modify->fix[f];
+    if (other == this || !other->time_integrate) continue;
+    bigint shared = 0, all = 0;
+    for (int i = 0; i < atom->nlocal; i++)
+      if ((atom->mask[i] & groupbit) && (atom->mask[i] & other->groupbit)) shared++;
+    MPI_Allreduce(&shared, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+    if (all > 0)
+      error->all(FLERR, "Fix impulse/lsdem {}: fix {} ({}, group {}) also integrates {} of "
+                 "its grains; a grain takes one time integrator (unfix {}, or give the two "
+                 "fixes disjoint groups)", id, other->id, other->style,
+                 lmp->group->names[other->igroup], all, other->id);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   the fix wall/lsdem walls become this fix's: passive (no penalty force), their contacts
+   resolved here
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::find_walls()
+{
+  walls.clear();
+  for (int f = 0; f < modify->nfix; f++) {
+    FixWallLsdem *w = dynamic_cast<FixWallLsdem *>(modify->fix[f]);
+    if (!w) continue;
+    if (w->wall_pivots())
+      error->all(FLERR, "Fix impulse/lsdem: fix wall/lsdem {} pivots (keyword pivot), which "
+                 "impulse mode does not support; use a fixed or moving wall", w->id);
+    w->set_passive(true);
+    walls.push_back(w);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   gluing distance per shape: the user's, or (auto) twice the shape's node spacing, the
+   square root of its mean node area (spheres: a single point, nothing to glue)
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::set_glue()
+{
+  glue_of_shape.assign(avec->nshapes(), 0.0);
+  for (int s = 0; s < avec->nshapes(); s++) {
+    const lsdem_shape *sh = lsdem_library_shape(avec->library(), s);
+    if (glue_setting >= 0.0) {
+      glue_of_shape[s] = glue_setting;
+      continue;
+    }
+    if (sh->nnodes == 0 || !sh->node_area) continue;
+    double area = 0.0;
+    for (int k = 0; k < sh->nnodes; k++) area += sh->node_area[k];
+    glue_of_shape[s] = 2.0 * std::sqrt(area / sh->nnodes);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixImpulseLsdem::setup(int /*vflag*/)
+{
+  t_detect = t_islands = t_etm = t_walls = t_comm = 0.0;
+  pair_seconds0 = pair->detect_seconds();
+  memset(&now, 0, sizeof(now));
+  reduced_step = -1;
+  cfl_warned = false;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixImpulseLsdem::final_integrate()
+{
+  if (pair->touches_step() != update->ntimestep)
+    error->all(FLERR, "Fix impulse/lsdem: pair_style lsdem/impulse found no contacts at step "
+               "{} (its last call was at step {}); the pair style must run every step",
+               update->ntimestep, pair->touches_step());
+  memset(&now, 0, sizeof(now));
+  make_bodies();
+  kick();
+  forward_velocities();
+  double t0 = MPI_Wtime();
+  gather_contacts();
+  t_detect += MPI_Wtime() - t0;
+
+  bool corrected = true;
+  wall_seen.assign((size_t) atom->nlocal * walls.size(), WallSeen());
+  for (int pass = 0; pass < max_passes && corrected; pass++) {
+    resolve_islands(pass);
+    t0 = MPI_Wtime();
+    const int mine = correct_walls();
+
+    t_walls += MPI_Wtime() - t0;
+    int all = 0;
+    t0 = MPI_Wtime();
+    MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_SUM, world);
+    t_comm += MPI_Wtime() - t0;
+    now.passes++;
+    now.corrections += mine;
+    corrected = all > 0;
+    if (corrected) forward_velocities();
+  }
+  // the cap reached with corrections in the last pass: the collisions they made are
+  // resolved, so that no grain approaches another as the step ends
+  if (corrected) resolve_islands(max_passes);
+  check_cfl();
+  damp_and_drift();
+}
+
+/* ----------------------------------------------------------------------
+   one ETM pass over the islands, velocities sent to the ghosts after it
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::resolve_islands(int pass)
+{
+  const int napproach = select_collisions();
+  LsdemIslandStats st;
+  st.clear();
+  const std::string mesg = islands->resolve(coll.data(), (int) coll.size(), body.data(),
+                                            moving.data(), etm, st);
+  if (pass == 0) {
+    now.first = st;
+    now.collisions = napproach;
+  }
+  now.iterations += st.iterations;
+  now.largest = std::max(now.largest, st.largest);
+  now.rounds = std::max(now.rounds, st.rounds);
+  now.absorbed += st.absorbed;
+  now.dissipated += st.dissipated;
+  now.released += st.released;
+  total_dissipated += st.dissipated;
+  total_truncated += st.truncated;
+  t_islands += st.t_islands;
+  t_etm += st.t_etm;
+  t_comm += st.t_comm;
+  AtomVecLsdem::stop_if_any_rank(
+      lmp, FLERR, mesg.empty() ? mesg : fmt::format(
+          "Fix impulse/lsdem: step {}, pass {}: {}. Fix keywords: iterations (now {}), rounds "
+          "(now {}), alpha, beta, damping", update->ntimestep, pass + 1, mesg,
+          etm.max_iterations, etm.max_rounds));
+  forward_velocities();
+}
+
+/* ----------------------------------------------------------------------
+   the step's bodies: every atom (local and ghost) as a grain of the group, or else a body
+   of prescribed velocity; then the walls at their current poses
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::make_bodies()
+{
+  const int nall = atom->nlocal + atom->nghost;
+  body.resize(nall + walls.size());
+  moving.resize(nall);
+  std::string bad;
+  lsdem_error err;
+  LsdemImpulseIslands::Item it;
+  for (int i = 0; i < nall; i++) {
+    moving[i] = (atom->mask[i] & groupbit) ? 1 : 0;
+    if (moving[i]) {
+      islands->body_item(i, it);
+      if (LsdemImpulseIslands::grain_body(it, body[i], &err) != LSDEM_OK && bad.empty() &&
+          i < atom->nlocal)
+        bad = fmt::format("Fix impulse/lsdem: step {}: grain {}: {}", update->ntimestep,
+                          atom->tag[i], err.msg);
+    } else {
+      lsdem_impulse_body_wall(&body[i], atom->tag[i], atom->x[i], atom->v[i], atom->omega[i],
+                              nullptr);
+    }
+  }
+  for (size_t w = 0; w < walls.size(); w++) {
+    const lsdem_pose p = wall_pose_now((int) w);
+    lsdem_impulse_body_wall(&body[nall + w], -(int64_t) (w + 1), p.x, p.v, p.omega, nullptr);
+  }
+  AtomVecLsdem::stop_if_any_rank(lmp, FLERR, bad);
+}
+
+/* ----------------------------------------------------------------------
+   wall w where the grains' current poses meet it: it moved to the end of this step in
+   initial_integrate (fix wall/lsdem), the grains move in final_integrate
+------------------------------------------------------------------------- */
+
+lsdem_pose FixImpulseLsdem::wall_pose_now(int w) const
+{
+  lsdem_pose p = walls[w]->wall_pose();
+  for (int d = 0; d < 3; d++) p.x[d] -= update->dt * p.v[d];
+  return p;
+}
+
+/* ----------------------------------------------------------------------
+   external forces over dt (eqs 4.37, 4.39); the resting speed with the walls from the
+   largest external acceleration of the group (auto) or the user's
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::kick()
+{
+  const double dt = update->dt, ftm2v = force->ftm2v;
+  double amax = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!moving[i]) continue;
+    const double f[3] = {ftm2v * atom->f[i][0], ftm2v * atom->f[i][1], ftm2v * atom->f[i][2]};
+    const double t[3] = {ftm2v * atom->torque[i][0], ftm2v * atom->torque[i][1],
+                         ftm2v * atom->torque[i][2]};
+    lsdem_impulse_kick(&body[i], f, t, dt);  // a sphere: no rotation (its body has none)
+    for (int d = 0; d < 3; d++) {
+      atom->v[i][d] = body[i].v[d];
+      atom->omega[i][d] = body[i].omega[d];
+    }
+    amax = std::max(amax, std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) / atom->rmass[i]);
+  }
+  double rest = rest_setting;
+  if (rest < 0.0) {
+    double all = 0.0;
+    MPI_Allreduce(&amax, &all, 1, MPI_DOUBLE, MPI_MAX, world);
+    rest = 2.0 * all * dt;
+  }
+  // lsdem_wall_params_default's rule in terms of the resting speed: depth_tol = 1 % of the
+  // depth a resting grain sinks by in one step
+  wall_prm.rest_speed = rest;
+  wall_prm.depth_tol = 0.005 * rest * dt;
+  wall_prm.mu = 0.0;
+}
+
+/* ----------------------------------------------------------------------
+   owned grains' velocities to their ghost copies, then into the step's bodies
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::forward_velocities()
+{
+  const double t0 = MPI_Wtime();
+  comm->forward_comm_fix(this, 6);
+  t_comm += MPI_Wtime() - t0;
+  const int nall = atom->nlocal + atom->nghost;
+  for (int i = 0; i < nall; i++)
+    for (int d = 0; d < 3; d++) {
+      body[i].v[d] = atom->v[i][d];
+      body[i].omega[d] = atom->omega[i][d];
+    }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixImpulseLsdem::gather_contacts()
+{
+  contacts.clear();
+  add_pair_contacts();
+  add_wall_contacts();
+}
+
+/* manifold m of a and b, glued (report §4.3.3), as contacts; bindex: b's body index */
+
+void FixImpulseLsdem::add_glued(int i, int j, tagint ta, tagint tb, int bindex,
+                                const lsdem_manifold &m, double mu, double glue)
+{
+  lsdem_glue_params gp;
+  gp.distance = glue;
+  gp.max_angle = glue_angle;
+  if ((int) glued.size() < m.n) {
+    glued.resize(m.n);
+    group.resize(m.n);
+  }
+  lsdem_error err;
+  const int n = lsdem_impulse_glue(&m, i, bindex, mu, restitution, &gp, glued.data(),
+                                   group.data(), &err);
+  if (n < 0) error->one(FLERR, "Fix impulse/lsdem: {}", err.msg);
+  double &deepest = j < 0 ? now.wall_depth : now.depth;
+  for (int k = 0; k < n; k++) {
+    deepest = std::max(deepest, glued[k].depth);
+    LsdemImpulseContact c;
+    c.i = i;
+    c.j = j;
+    c.ta = ta;
+    c.tb = tb;
+    c.key = k;
+    c.c = glued[k];
+    contacts.push_back(c);
+  }
+}
+
+void FixImpulseLsdem::add_pair_contacts()
+{
+  for (int k = 0; k < pair->ntouches(); k++) {
+    const PairLsdemImpulse::Touch &t = pair->touch_at(k);
+    if (!moving[t.i] && !moving[t.j]) continue;
+    const lsdem_manifold m = pair->manifold(k);
+    add_glued(t.i, t.j, atom->tag[t.i], atom->tag[t.j], t.j, m, friction,
+              glue_of_shape[avec->shape[t.i]]);
+  }
+}
+
+/* cheap rejection: the grain's bounding sphere at x does not reach the wall's solid */
+
+bool FixImpulseLsdem::may_touch_wall(int w, const lsdem_pose &p, const double x[3], double r) const
+{
+  const double rel[3] = {x[0] - p.x[0], x[1] - p.x[1], x[2] - p.x[2]};
+  double local[3], grad[3];
+  for (int k = 0; k < 3; k++)
+    local[k] = rel[0] * p.R[k] + rel[1] * p.R[3 + k] + rel[2] * p.R[6 + k];
+  return lsdem_sdf_eval(&walls[w]->wall_shape().sdf, local, grad) < r;
+}
+
+void FixImpulseLsdem::add_wall_contacts()
+{
+  const int nall = atom->nlocal + atom->nghost;
+  for (size_t w = 0; w < walls.size(); w++) {
+    const lsdem_pose wp = wall_pose_now((int) w);
+    lsdem_detect_params det = walls[w]->wall_detect();
+    det.node_skin = 0.0;
+    for (int i = 0; i < atom->nlocal; i++) {
+      if (!moving[i] || !(atom->mask[i] & walls[w]->groupbit)) continue;
+      if (!may_touch_wall((int) w, wp, atom->x[i], atom->radius[i])) continue;
+      lsdem_pose gp;
+      LsdemContactPath::pose_of(atom, avec, i, gp);
+      lsdem_manifold m = lsdem_manifold_over(wpoints.data(), (int) wpoints.size());
+      if (lsdem_detect(avec->shape_of(i), &gp, &walls[w]->wall_shape(), &wp, &det,
+                       update->ntimestep, nullptr, nullptr, &m) > 0)
+        add_glued(i, -1 - (int) w, atom->tag[i], -(tagint) (w + 1), nall + (int) w, m,
+                  walls[w]->wall_friction(), glue_of_shape[avec->shape[i]]);
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   the contacts of this pass's islands: every contact between two grains (an island is a
+   chain of touching grains, report §4.5: impulses propagate along it, so a contact that
+   does not approach now takes part when the solve makes it approach), a wall's when it
+   approaches faster than the resting speed (a collision), and with wall_etm yes its
+   resting contacts too, inelastic (e = 0); other wall contacts are the wall correction's
+   (report §4.4.1). A contact approaches when faster than the ETM tolerance times the
+   resting speed and than the round-off of its velocities (ETM's tolerance is relative to
+   an island's fastest approach: an island whose fastest is round-off would never
+   converge); an island with no approaching contact is left alone. Returns the number of
+   approaching contacts.
+------------------------------------------------------------------------- */
+
+int FixImpulseLsdem::select_collisions()
+{
+  coll.clear();
+  const double floor = etm.velocity_tol * wall_prm.rest_speed;
+  int napproach = 0;
+  for (const LsdemImpulseContact &c : contacts) {
+    double ua[3], ub[3];
+    lsdem_impulse_point_velocity(&body[c.c.a], c.c.point, ua);
+    lsdem_impulse_point_velocity(&body[c.c.b], c.c.point, ub);
+    const double un = c.c.normal[0] * (ua[0] - ub[0]) + c.c.normal[1] * (ua[1] - ub[1]) +
+        c.c.normal[2] * (ua[2] - ub[2]);
+    const double noise = ROUNDOFF * (std::sqrt(ua[0] * ua[0] + ua[1] * ua[1] + ua[2] * ua[2]) +
+                                     std::sqrt(ub[0] * ub[0] + ub[1] * ub[1] + ub[2] * ub[2]));
+    const bool approaching = un < -std::max(floor, noise);
+    const bool resting = c.j < 0 &&
+        lsdem_wall_classify(un, wall_prm.rest_speed) != LSDEM_WALL_COLLIDING;
+    if (resting && !(wall_etm && approaching)) continue;
+    coll.push_back(c);
+    coll.back().approaching = approaching;
+    if (resting) coll.back().c.restitution = 0.0;
+    napproach += approaching;
+  }
+  return napproach;
+}
+
+/* ----------------------------------------------------------------------
+   every grain against every wall at its predicted pose; resting contacts corrected
+   (lsdem_wall_correct). A grain whose velocities are those it had when last checked in
+   this step, and which was not corrected then, is not checked again: its predicted pose,
+   so its manifold and its result, are the same. Returns the corrections made on this rank.
+------------------------------------------------------------------------- */
+
+int FixImpulseLsdem::correct_walls()
+{
+  int corrected = 0;
+  for (size_t w = 0; w < walls.size(); w++) {
+    const lsdem_pose wp = walls[w]->wall_pose();  // at the end of the step
+    lsdem_detect_params det = walls[w]->wall_detect();
+    det.node_skin = 0.0;
+    lsdem_wall_params prm = wall_prm;
+    prm.mu = walls[w]->wall_friction();
+    for (int i = 0; i < atom->nlocal; i++) {
+      if (!moving[i] || !(atom->mask[i] & walls[w]->groupbit)) continue;
+      WallSeen &seen = wall_seen[(size_t) i * walls.size() + w];
+      if (seen.clear && memcmp(seen.v, body[i].v, sizeof seen.v) == 0 &&
+          memcmp(seen.omega, body[i].omega, sizeof seen.omega) == 0)
+        continue;
+      memcpy(seen.v, body[i].v, sizeof seen.v);
+      memcpy(seen.omega, body[i].omega, sizeof seen.omega);
+      seen.clear = !correct_grain(i, (int) w, wp, det, prm);
+      corrected += !seen.clear;
+    }
+  }
+  return corrected;
+}
+
+/* grain i against wall w (pose wp, detection det, correction prm) at the grain's predicted
+   pose; 1 when it was corrected (a resting contact), its new velocities in atom->v, omega */
+
+int FixImpulseLsdem::correct_grain(int i, int w, const lsdem_pose &wp,
+                                   const lsdem_detect_params &det, const lsdem_wall_params &prm)
+{
+  const double dt = update->dt;
+  // the centre's predicted position first: the turn of the orientation costs more
+  const double xp[3] = {atom->x[i][0] + dt * body[i].v[0], atom->x[i][1] + dt * body[i].v[1],
+                        atom->x[i][2] + dt * body[i].v[2]};
+  if (!may_touch_wall(w, wp, xp, atom->radius[i])) return 0;
+  lsdem_pose gp;
+  lsdem_impulse_predict_pose(atom->x[i], avec->quat[i], body[i].v, body[i].omega,
+                             avec->inertia[i], dt, &gp);
+  lsdem_manifold m = lsdem_manifold_over(wpoints.data(), (int) wpoints.size());
+  if (lsdem_detect(avec->shape_of(i), &gp, &walls[w]->wall_shape(), &wp, &det,
+                   update->ntimestep, nullptr, nullptr, &m) == 0)
+    return 0;
+  limit_push_out(m, dt);
+  lsdem_wall_result res;
+  lsdem_error err;
+  if (lsdem_wall_correct(&body[i], &m, dt, &prm, &res, &err) != LSDEM_OK)
+    error->one(FLERR, "Fix impulse/lsdem: step {}, grain {}, wall {}: {}",
+               update->ntimestep, atom->tag[i], walls[w]->id, err.msg);
+  if (res.kind != LSDEM_WALL_RESTING) return 0;
+  for (int d = 0; d < 3; d++) {
+    atom->v[i][d] = body[i].v[d];
+    atom->omega[i][d] = body[i].omega[d];
+  }
+  return 1;
+}
+
+/* ----------------------------------------------------------------------
+   The correction lifts the deepest point clear of the wall at the next step: from its
+   depth at the predicted pose d it raises the normal velocity u_n by d / dt, to d0 / dt,
+   d0 = d + u_n dt the overlap the grain has now. An overlap the grain did not make in this
+   step (a start from a penalty run's state, a grain placed into a wall: d0 far above the
+   resting speed times dt) would be thrown off at d0 / dt, faster than anything else in the
+   scene (a settled column's 0.005 at dt 1.7e-4: 30, where it fell at 0.002 per step). So
+   the lift is capped at the larger of the resting speed and sqrt(2 a d0), the speed of a fall
+   through the overlap under the external acceleration a (rest = 2 a dt): the kinetic
+   energy it gives is at most the work gravity would do over the overlap; the manifold's
+   depths are scaled so that u_n becomes that, and the rest of the overlap goes in the
+   next steps.
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::limit_push_out(lsdem_manifold &m, double dt) const
+{
+  int k = 0;
+  for (int j = 1; j < m.n; j++)
+    if (m.point[j].depth > m.point[k].depth) k = j;
+  const lsdem_contact_point &p = m.point[k];
+  const double un = p.vrel[0] * p.normal[0] + p.vrel[1] * p.normal[1] + p.vrel[2] * p.normal[2];
+  const double d0 = std::max(p.depth + un * dt, 0.0);
+  const double rest = wall_prm.rest_speed, accel = rest / (2.0 * dt);
+  const double cap = std::max(rest, std::sqrt(2.0 * accel * d0));
+  if (!(d0 / dt > cap) || !(p.depth > 0.0)) return;
+  const double scale = std::max(cap - un, 0.0) * dt / p.depth;  // u_n + d' / dt = cap
+  for (int j = 0; j < m.n; j++) m.point[j].depth *= scale;
+}
+
+/* ----------------------------------------------------------------------
+   CFL: a grain that would move more than cfl x its bounding radius in one step can pass
+   through another (report §4.3.4); warn (once per run) or stop
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::check_cfl()
+{
+  struct {
+    double ratio;
+    int rank;
+  } mine = {0.0, comm->me}, worst;
+  double info[4] = {0.0, 0.0, 0.0, 0.0};  // tag, speed, radius, x of the worst grain
+  const double dt = update->dt;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!moving[i]) continue;
+    const double *v = atom->v[i];
+    const double speed = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    const double ratio = speed * dt / atom->radius[i];
+    if (!(ratio <= mine.ratio)) {  // NaN counts as the worst
+      mine.ratio = std::isfinite(ratio) ? ratio : HUGE_VAL;
+      info[0] = (double) atom->tag[i];
+      info[1] = speed;
+      info[2] = atom->radius[i];
+    }
+  }
+  MPI_Allreduce(&mine, &worst, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
+  if (worst.ratio <= cfl || (cfl_warned && !cfl_stop)) return;
+  MPI_Bcast(info, 4, MPI_DOUBLE, worst.rank, world);
+  const std::string mesg = fmt::format(
+      "Fix impulse/lsdem: step {}: grain {} moves |v| dt = {:.6g} * {:.6g} = {:.6g} in one "
+      "step, {:.3g} of its bounding radius {:.6g} (cfl {}): it may pass through a partner. "
+      "Use a timestep below {:.3g}", update->ntimestep, (tagint) info[0], info[1], dt,
+      info[1] * dt, worst.ratio, info[2], cfl, cfl * info[2] / info[1]);
+  if (cfl_stop) error->all(FLERR, mesg);
+  if (comm->me == 0) error->warning(FLERR, mesg + " (further CFL warnings of this run are not "
+                                    "printed)");
+  cfl_warned = true;
+}
+
+/* ----------------------------------------------------------------------
+   global damping (eqs 4.44-4.46), then positions and orientations (eqs 4.38, 4.40)
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::damp_and_drift()
+{
+  const double dt = update->dt;
+  lsdem_error err;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!moving[i]) continue;
+    lsdem_impulse_body &b = body[i];
+    for (int d = 0; d < 3; d++) {
+      b.v[d] = atom->v[i][d];
+      b.omega[d] = atom->omega[i][d];
+    }
+    const double before = kinetic_energy(i);
+    if (lsdem_impulse_damp(&b, xi, dt, &err) != LSDEM_OK) error->one(FLERR, err.msg);
+    for (int d = 0; d < 3; d++) {
+      atom->v[i][d] = b.v[d];
+      atom->omega[i][d] = b.omega[d];
+    }
+    total_damped += before - kinetic_energy(i);
+    if (avec->shape_of(i)->sdf.kind == LSDEM_SDF_SPHERE) {
+      for (int d = 0; d < 3; d++) {
+        atom->x[i][d] += dt * atom->v[i][d];
+        atom->omega[i][d] = 0.0;
+      }
+    } else {
+      lsdem_impulse_drift(atom->x[i], avec->quat[i], atom->omega[i], atom->v[i],
+                          avec->inertia[i], dt);
+    }
+  }
+}
+
+/* 1/2 m v^2 + 1/2 omega . I omega of atom i (I from its principal moments and quat) */
+
+double FixImpulseLsdem::kinetic_energy(int i) const
+{
+  const double *v = atom->v[i];
+  double wb[3];
+  lsdem_quat_rotate_inv(avec->quat[i], atom->omega[i], wb);
+  const double *I = avec->inertia[i];
+  return 0.5 * atom->rmass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) +
+      0.5 * (I[0] * wb[0] * wb[0] + I[1] * wb[1] * wb[1] + I[2] * wb[2] * wb[2]);
+}
+
+/* ----------------------------------------------------------------------
+   the output vector over all ranks, once per step
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::reduce_output()
+{
+  if (reduced_step == update->ntimestep) return;
+  double sum[14], max[11];
+  double ke = 0.0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (atom->mask[i] & groupbit) ke += kinetic_energy(i);
+  sum[0] = now.first.islands;
+  sum[1] = now.first.cross;
+  sum[2] = (double) now.iterations;
+  sum[3] = now.corrections;
+  sum[4] = now.collisions;
+  sum[5] = ke;
+  sum[6] = now.absorbed;
+  sum[7] = now.dissipated;
+  sum[8] = now.released;
+  sum[9] = total_dissipated;
+  sum[10] = total_damped;
+  sum[11] = total_truncated;
+  sum[12] = sum[13] = 0.0;
+  max[0] = now.largest;
+  max[1] = now.passes;
+  max[2] = now.rounds;
+  max[3] = t_detect + pair->detect_seconds() - pair_seconds0;
+  max[4] = t_islands;
+  max[5] = t_etm;
+  max[6] = t_walls;
+  max[7] = t_comm;
+  max[8] = now.depth;
+  max[9] = now.wall_depth;
+  max[10] = 0.0;
+  double s[14], m[11];
+  MPI_Allreduce(sum, s, 14, MPI_DOUBLE, MPI_SUM, world);
+  MPI_Allreduce(max, m, 11, MPI_DOUBLE, MPI_MAX, world);
+  reduced[V_ISLANDS] = s[0];
+  reduced[V_CROSS] = s[1];
+  reduced[V_ITERATIONS] = s[2];
+  reduced[V_CORRECTIONS] = s[3];
+  reduced[V_COLLISIONS] = s[4];
+  reduced[V_KE] = s[5];
+  reduced[V_ABSORBED] = s[6];
+  reduced[V_DISSIPATED] = s[7];
+  reduced[V_RELEASED] = s[8];
+  reduced[V_TOTAL_DISSIPATED] = s[9];
+  reduced[V_TOTAL_DAMPED] = s[10];
+  reduced[V_LARGEST] = m[0];
+  reduced[V_PASSES] = m[1];
+  reduced[V_ROUNDS] = m[2];
+  reduced[V_T_DETECT] = m[3];
+  reduced[V_T_ISLANDS] = m[4];
+  reduced[V_T_ETM] = m[5];
+  reduced[V_T_WALLS] = m[6];
+  reduced[V_T_COMM] = m[7];
+  reduced[V_DEPTH] = m[8];
+  reduced[V_WALL_DEPTH] = m[9];
+  reduced_step = update->ntimestep;
+}
+
+/* ----------------------------------------------------------------------
+   1 islands (first pass), 2 largest island (grains), 3 islands spanning ranks (first
+   pass), 4 ETM iterations, 5 wall-correction passes, 6 wall corrections, 7 collisions
+   (first pass), 8 label-exchange rounds (largest pass), 9 kinetic energy of the group,
+   10 energy absorbed in compression, 11 dissipated at restitution, 12 released in
+   separation (this step), 13 dissipated at contacts and 14 by global damping since the
+   start, 15-19 seconds since the run's setup in detection, islands, ETM, walls and
+   communication (largest rank), 20 the deepest penetration between two grains and 21 of
+   a grain into a wall at the step's start (the impulse method's error: it resolves
+   velocities, not overlaps)
+------------------------------------------------------------------------- */
+
+double FixImpulseLsdem::compute_vector(int n)
+{
+  reduce_output();
+  return reduced[n];
+}
+
+/* ----------------------------------------------------------------------
+   restart: the energy totals (all ranks' shares; read back onto rank 0)
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::write_restart(FILE *fp)
+{
+  double mine[3] = {total_dissipated, total_damped, total_truncated}, all[3];
+  MPI_Allreduce(mine, all, 3, MPI_DOUBLE, MPI_SUM, world);
+  if (comm->me == 0) {
+    int size = 3 * sizeof(double);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(all, sizeof(double), 3, fp);
+  }
+}
+
+void FixImpulseLsdem::restart(char *buf)
+{
+  const double *list = (const double *) buf;
+  const bool root = comm->me == 0;
+  total_dissipated = root ? list[0] : 0.0;
+  total_damped = root ? list[1] : 0.0;
+  total_truncated = root ? list[2] : 0.0;
+}
+
+/* ----------------------------------------------------------------------
+   ghost communication: velocities (6 values), or the islands' labels and flags
+------------------------------------------------------------------------- */
+
+int FixImpulseLsdem::pack_forward_comm(int n, int *list, double *buf, int, int *)
+{
+  if (islands->exchanging()) return islands->pack_forward(n, list, buf);
+  int m = 0;
+  for (int k = 0; k < n; k++) {
+    const int j = list[k];
+    for (int d = 0; d < 3; d++) buf[m++] = atom->v[j][d];
+    for (int d = 0; d < 3; d++) buf[m++] = atom->omega[j][d];
+  }
+  return m;
+}
+
+void FixImpulseLsdem::unpack_forward_comm(int n, int first, double *buf)
+{
+  if (islands->exchanging()) return islands->unpack_forward(n, first, buf);
+  int m = 0;
+  for (int i = first; i < first + n; i++) {
+    for (int d = 0; d < 3; d++) atom->v[i][d] = buf[m++];
+    for (int d = 0; d < 3; d++) atom->omega[i][d] = buf[m++];
+  }
+}
+
+int FixImpulseLsdem::pack_reverse_comm(int n, int first, double *buf)
+{
+  return islands->pack_reverse(n, first, buf);
+}
+
+void FixImpulseLsdem::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  islands->unpack_reverse(n, list, buf);
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixImpulseLsdem::memory_usage()
+{
+  double bytes = (double) body.capacity() * sizeof(lsdem_impulse_body) + moving.capacity();
+  bytes += (double) (contacts.capacity() + coll.capacity()) * sizeof(LsdemImpulseContact);
+  bytes += (double) wpoints.capacity() * sizeof(lsdem_contact_point);
+  bytes += (double) wall_seen.capacity() * sizeof(WallSeen);
+  return bytes + islands->memory_usage();
+}

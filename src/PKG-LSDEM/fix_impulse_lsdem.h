@@ -1,0 +1,126 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   LSDEM package: level-set discrete element method for LAMMPS.
+
+   fix impulse/lsdem: impulse-based LS-DEM (report chapter 4). The time integrator of its
+   group (in place of fix nve/lsdem): external forces kick the velocities, the collisions
+   found by pair_style lsdem/impulse and against the fix wall/lsdem walls are resolved by
+   the Energy Tracking Method on contact islands (across ranks: lsdem_impulse_islands),
+   resting contacts with the walls are corrected at the predicted positions (report
+   §4.4.1), then damping and the symplectic Euler drift. The physics is the core's
+   (core/impulse); this file is the step's glue.
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(impulse/lsdem,FixImpulseLsdem);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_IMPULSE_LSDEM_H
+#define LMP_FIX_IMPULSE_LSDEM_H
+
+#include "fix.h"
+#include "lsdem_impulse_islands.h"
+#include "lsdem_kernel.h"
+
+#include <string>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixImpulseLsdem : public Fix {
+ public:
+  FixImpulseLsdem(class LAMMPS *, int, char **);
+  ~FixImpulseLsdem() override;
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void final_integrate() override;
+  double compute_vector(int) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
+  double memory_usage() override;
+
+ private:
+  // what the user sets
+  double restitution, friction, xi;
+  lsdem_etm_params etm;
+  int max_passes;            // wall-correction passes per step (report: 10)
+  double rest_setting;       // resting speed with walls; < 0: auto, 2 |a| dt
+  double glue_setting;       // gluing distance; < 0: auto, twice a shape's node spacing
+  double glue_angle;         // radians
+  double cfl;                // largest |v| dt per bounding radius
+  int cfl_stop;              // 1: stop, 0: warn
+  int wall_etm;              // 1: resting wall contacts also in ETM (inelastic)
+
+  // what it works with (found at init)
+  class AtomVecLsdem *avec;
+  class PairLsdemImpulse *pair;
+  std::vector<class FixWallLsdem *> walls;
+  LsdemImpulseIslands *islands;
+  std::vector<double> glue_of_shape;
+
+  // per-step storage, grown only
+  std::vector<lsdem_impulse_body> body;    // atoms (local, ghost), then the walls
+  std::vector<char> moving;                // per atom: in the group
+  std::vector<LsdemImpulseContact> contacts, coll;
+  std::vector<lsdem_impulse_contact> glued;
+  std::vector<int32_t> group;
+  std::vector<lsdem_contact_point> wpoints;  // manifold of one grain against one wall
+  lsdem_wall_params wall_prm;                // this step's (mu set per wall)
+  // per local grain and wall: its velocities when last checked this step, and whether it
+  // was clear then (not corrected: the same velocities give the same result)
+  struct WallSeen {
+    double v[3], omega[3];
+    bool clear = false;
+  };
+  std::vector<WallSeen> wall_seen;
+
+  // what the step did (this rank), reduced over ranks when output asks
+  struct Step {
+    LsdemIslandStats first;   // the first pass's islands
+    bigint iterations;        // ETM iterations, all passes
+    int largest, rounds, passes, corrections, collisions;
+    double absorbed, dissipated, released;
+    double depth, wall_depth;  // deepest grain-grain and grain-wall penetration
+  } now;
+  double total_dissipated, total_damped, total_truncated;  // this rank's share since start
+  double t_detect, t_islands, t_etm, t_walls, t_comm;      // seconds since setup
+  double pair_seconds0;
+  bigint reduced_step;
+  double reduced[24];
+  bool cfl_warned;
+
+  void check_integrators();
+  void find_walls();
+  void set_glue();
+  void make_bodies();
+  void kick();
+  void forward_velocities();
+  void gather_contacts();
+  void add_pair_contacts();
+  void add_wall_contacts();
+  void add_glued(int i, int j, tagint ta, tagint tb, int bindex, const lsdem_manifold &m,
+                 double mu, double glue);
+  void resolve_islands(int pass);
+  int select_collisions();
+  int correct_walls();
+  int correct_grain(int i, int w, const lsdem_pose &wp, const lsdem_detect_params &det,
+                    const lsdem_wall_params &prm);
+  void limit_push_out(lsdem_manifold &, double dt) const;
+  void check_cfl();
+  void damp_and_drift();
+  lsdem_pose wall_pose_now(int w) const;
+  bool may_touch_wall(int w, const lsdem_pose &wall, const double x[3], double r) const;
+  double kinetic_energy(int i) const;
+  void reduce_output();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,158 @@
+// clang-format off
+/* ----------------------------------------------------------------------
+   LSDEM package: level-set discrete element method for LAMMPS.
+
+   pair_style lsdem/impulse (doc/pair_lsdem_impulse.rst): detection only. Everything but
+   the force is pair_style lsdem's (neighbor list, poses, master pairs, node lists through
+   the shared contact path); the manifolds are kept for fix impulse/lsdem.
+------------------------------------------------------------------------- */
+
+#include "pair_lsdem_impulse.h"
+
+#include "atom.h"
+#include "error.h"
+#include "memory.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "update.h"
+
+#include <algorithm>
+#include <cstring>
+#include <mpi.h>
+
+using namespace LAMMPS_NS;
+
+/* ---------------------------------------------------------------------- */
+
+PairLsdemImpulse::PairLsdemImpulse(LAMMPS *lmp) : PairLsdem(lmp), touch_step(-1), seconds(0.0)
+{
+  comm_forward = comm_reverse = 0;
+}
+
+/* ----------------------------------------------------------------------
+   pair_style lsdem/impulse [stride N] [nodelist auto|off|skin]
+------------------------------------------------------------------------- */
+
+void PairLsdemImpulse::settings(int narg, char **arg)
+{
+  mode = LSDEM_ROLES_ONEWAY;
+  global = LsdemContactOptions();
+  zcap = 0;
+  for (int iarg = 0; iarg < narg; iarg += 2) {
+    if (iarg + 1 >= narg)
+      error->all(FLERR, "pair_style lsdem/impulse: keyword {} needs a value", arg[iarg]);
+    if (!global.read_keyword(lmp, "pair_style lsdem/impulse", arg[iarg], arg[iarg + 1],
+                             LsdemContactOptions::DETECT))
+      error->all(FLERR, "pair_style lsdem/impulse: unknown keyword {} (allowed: stride, "
+                 "nodelist; restitution and friction belong to fix impulse/lsdem)", arg[iarg]);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   pair_coeff I J: the type pair touches (no law: fix impulse/lsdem has it)
+------------------------------------------------------------------------- */
+
+void PairLsdemImpulse::coeff(int narg, char **arg)
+{
+  if (narg != 2)
+    error->all(FLERR, "pair_coeff for lsdem/impulse: expected I J and nothing else (the "
+               "impulse law's restitution and friction are fix impulse/lsdem keywords)");
+  if (!allocated) allocate();
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++)
+    for (int j = std::max(jlo, i); j <= jhi; j++) {
+      memset(&params[i][j], 0, sizeof(lsdem_contact_params));
+      setflag[i][j] = 1;
+      count++;
+    }
+  if (count == 0) error->all(FLERR, "Incorrect args for pair coefficients");
+}
+
+/* bounding-sphere rejection (report eq 2.1) */
+
+static inline bool spheres_overlap(const lsdem_pose &a, const lsdem_pose &b, double rsum)
+{
+  const double d[3] = {a.x[0] - b.x[0], a.x[1] - b.x[1], a.x[2] - b.x[2]};
+  return d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < rsum * rsum;
+}
+
+/* ----------------------------------------------------------------------
+   every master pair whose bounding spheres overlap: its manifold, no force
+------------------------------------------------------------------------- */
+
+void PairLsdemImpulse::compute(int eflag, int vflag)
+{
+  const double t0 = MPI_Wtime();
+  ev_init(eflag, vflag);
+  begin_force_call(1);
+  update_poses(0, atom->nlocal + atom->nghost);
+  touch.clear();
+  points.clear();
+  touch_step = update->ntimestep;
+
+  if (neighbor->ago == 0 || !master_built) build_master_pairs();
+  const int inum = list->inum;
+  const int *ilist = list->ilist;
+  LsdemContactPath &path = lanes[0]->path;
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    path.begin_atom();
+    const int *js = master_j + master_first[i];
+    for (int k = 0; k < master_num[i]; k++) {
+      const int j = js[k];
+      if (!spheres_overlap(pose[i], pose[j], atom->radius[i] + atom->radius[j])) continue;
+      const lsdem_contact_params &p = params[atom->type[i]][atom->type[j]];
+      if (path.detect(i, atom->tag[j], shape[i], pose[i], shape[j], pose[j], p.detect,
+                      touch_step) > 0)
+        keep(i, j, path.manifold());
+    }
+    path.end_atom(i);
+  }
+  end_force_call();
+  seconds += MPI_Wtime() - t0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairLsdemImpulse::keep(int i, int j, const lsdem_manifold &m)
+{
+  Touch t;
+  t.i = i;
+  t.j = j;
+  t.first = (int) points.size();
+  t.n = m.n;
+  t.stride = m.stride;
+  for (int d = 0; d < 3; d++) {
+    t.xa[d] = m.xa[d];
+    t.dab[d] = m.dab[d];
+  }
+  touch.push_back(t);
+  points.insert(points.end(), m.point, m.point + m.n);
+}
+
+/* ---------------------------------------------------------------------- */
+
+lsdem_manifold PairLsdemImpulse::manifold(int k)
+{
+  const Touch &t = touch[k];
+  lsdem_manifold m = lsdem_manifold_over(points.data() + t.first, t.n);
+  m.n = t.n;
+  m.stride = t.stride;
+  for (int d = 0; d < 3; d++) {
+    m.xa[d] = t.xa[d];
+    m.dab[d] = t.dab[d];
+  }
+  m.ntested = 0;
+  return m;
+}
+
+/* ---------------------------------------------------------------------- */
+
+double PairLsdemImpulse::memory_usage()
+{
+  return PairLsdem::memory_usage() + (double) touch.capacity() * sizeof(Touch) +
+      (double) points.capacity() * sizeof(lsdem_contact_point);
+}

@@ -1,0 +1,98 @@
+"""Impulse mode on any rank count and across restarts (fix impulse/lsdem, islands across
+ranks, report §4.5).
+
+140 angular grains fall into a box under strong gravity and pile up: islands of many grains
+that span the ranks' sub-domains (found by label exchange through ghost communication,
+solved on the rank holding most of their contacts). On 1, 2, 3 (uneven) and 4 ranks every
+grain's position, velocity, angular velocity and orientation after 500 steps is the same,
+bit for bit (each island is assembled in the order of global ids wherever it is solved),
+and so are the fix's island counts, ETM iterations and wall corrections at every output
+step (energies summed over ranks to round-off); with more than one rank some islands span
+ranks and the label exchange takes rounds. A run stopped after 250 steps on 2 ranks and
+continued from its restart file on 3 is the uninterrupted run (no contact history)."""
+import os
+
+from grain_decks import pile
+from impulse_decks import header
+from lsdemtest import run_lmp, thermo, check, near, finish
+
+STEPS, HALF, EVERY = 500, 250, 50
+pile()
+
+SCENE = """fix floor all wall/lsdem plane 0 0 0 0 0 1 1.0e4 0 0.5
+fix wx0 all wall/lsdem plane 0 0 0 1 0 0 1.0e4 0 0.5
+fix wx1 all wall/lsdem plane 6 0 0 -1 0 0 1.0e4 0 0.5
+fix wy0 all wall/lsdem plane 0 0 0 0 1 0 1.0e4 0 0.5
+fix wy1 all wall/lsdem plane 0 6 0 0 -1 0 1.0e4 0 0.5
+fix grav all gravity 100.0 vector 0 0 -1
+fix imp all impulse/lsdem 0.5 0.5 damping 1.0 alpha 1 tolerance 1e-3 passes 3
+timestep 1e-3
+compute q all property/atom qw qx qy qz
+thermo_style custom step ke f_imp[1] f_imp[2] f_imp[3] f_imp[4] f_imp[5] f_imp[6] f_imp[7] &
+             f_imp[8] f_imp[10] f_imp[13] f_imp[20]
+thermo_modify norm no format float %.17g
+thermo {every}
+"""
+DUMP = ("dump d all custom {steps} final.dump id x y z vx vy vz omegax omegay omegaz c_q[1] "
+        "c_q[2] c_q[3] c_q[4]\ndump_modify d sort id format float %.17g\n")
+EXACT = ("f_imp[1]", "f_imp[2]", "f_imp[4]", "f_imp[5]", "f_imp[6]", "f_imp[7]", "f_imp[20]")
+
+
+def deck(steps, restart=None):
+    text = header("pile.lslib", "pile.data") + SCENE.format(every=EVERY)
+    if restart:
+        return text + "run %d\nwrite_restart %s\n" % (steps, restart)
+    return text + DUMP.format(steps=steps) + "run %d\n" % steps
+
+
+def continued(steps):
+    # the lines of header() after read_data: pair style and neighbor settings
+    after = header("pile.lslib", "pile.data").split("read_data")[1].split("\n", 1)[1]
+    return ("read_restart half.restart\n" + after + SCENE.format(every=EVERY)
+            + DUMP.format(steps=STEPS) + "run %d\n" % steps)
+
+
+def run(name, text, np):
+    _, log = run_lmp(text, np=np, cwd=os.path.abspath(name))
+    dump = os.path.join(os.path.abspath(name), "final.dump")
+    atoms = open(dump).read().split("ITEM: ATOMS")[-1] if os.path.exists(dump) else None
+    return atoms, thermo(log)
+
+
+ref_atoms, ref = run("np1", deck(STEPS), 1)
+if check(ref_atoms and len(ref) == STEPS // EVERY + 1, "the serial pile ran"):
+    last = ref[-1]
+    check(last["f_imp[2]"] > 100 and last["f_imp[6]"] > 10,
+          "a pile worth testing: largest island %d grains, %d wall corrections"
+          % (last["f_imp[2]"], last["f_imp[6]"]))
+    check(all(r["f_imp[3]"] == 0 and r["f_imp[8]"] == 0 for r in ref),
+          "one rank: no island spans ranks, no label exchange")
+for np in (2, 3, 4):
+    atoms, rows = run("np%d" % np, deck(STEPS), np)
+    check(atoms == ref_atoms, "np=%d: grains differ from the serial run" % np)
+    check(len(rows) == len(ref), "np=%d: thermo rows" % np)
+    for r, s in zip(rows, ref):
+        for col in EXACT:
+            check(r[col] == s[col], "np=%d step %d: %s %r vs %r" % (np, r["Step"], col, r[col],
+                                                                    s[col]))
+        for col in ("KinEng", "f_imp[10]", "f_imp[13]"):
+            near(r[col], s[col], rtol=1e-10, atol=1e-300,
+                 msg="np=%d step %d: %s" % (np, r["Step"], col))
+    cross = max(r["f_imp[3]"] for r in rows)
+    rounds = max(r["f_imp[8]"] for r in rows)
+    print("np=%d: up to %d islands span ranks, up to %d label-exchange rounds per pass"
+          % (np, cross, rounds))
+    check(cross > 0 and rounds >= 2, "np=%d: islands span ranks (%d), labels exchanged in %d "
+          "rounds" % (np, cross, rounds))
+
+# stopped on 2 ranks, continued from the restart on 3
+run_lmp(deck(HALF, restart="half.restart"), np=2, cwd=os.path.abspath("restart"))
+atoms, rows = run("restart", continued(STEPS - HALF), 3)
+check(atoms == ref_atoms, "restart 2 -> 3 ranks: grains differ from the uninterrupted run")
+if check(rows, "restarted run"):
+    for col in EXACT:
+        check(rows[-1][col] == ref[-1][col], "restart: last row %s %r vs %r"
+              % (col, rows[-1][col], ref[-1][col]))
+    near(rows[-1]["f_imp[13]"], ref[-1]["f_imp[13]"], rtol=1e-10,
+         msg="restart: total dissipated energy carried over")
+finish()
