@@ -161,11 +161,11 @@ static void prepare_contact(lsdem_etm *s, int32_t k)
 }
 
 /* The group's increments du[g] (0: none), each the Coulomb-limited impulse of its
- * contact (eqs 4.14-4.20) from the velocities before the group (ub[3 g], u_n in un0[g],
- * as the phase found them), removing the slip in the
- * same shares as the increment (alpha share = 1/n), applied together on a and (reaction,
- * eq 4.6) b in the group's order. Returns in du[g] the normal work of member g,
- * P_n (u_n before + u_n after) / 2 (eq 4.21), with u_n before in un0[g]. */
+ * contact (eqs 4.14-4.20) from the velocities before the group (ub[3 g], as the phase
+ * measured them), removing the slip in the same shares as the increment (alpha share =
+ * 1/n), applied together on a and (reaction, eq 4.6) b in the group's order. Returns in
+ * du[g] the normal work of member g, P_n (u_n before + u_n after) / 2 (eq 4.21), with u_n
+ * before in un0[g]. */
 static void apply_group(lsdem_etm *s, int32_t ng)
 {
   for (int32_t g = 0; g < ng; g++) {

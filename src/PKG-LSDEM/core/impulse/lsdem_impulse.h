@@ -273,7 +273,10 @@ lsdem_status lsdem_etm_begin(lsdem_etm **s, void *ws, size_t wsize,
                              lsdem_impulse_body *bodies, int nbodies,
                              const lsdem_impulse_contact *contacts, int ncontacts,
                              const lsdem_etm_params *p, lsdem_error *err);
-/* Lines 34-35 (and 4 on the first call): queue the approaching contacts; their number. */
+/* Lines 34-35 (and 4 on the first call): queue the approaching contacts; their number.
+ * Only contacts on bodies an impulse moved since the last completed compression are
+ * measured (the others are known not to approach): between the calls the bodies'
+ * velocities are the solver's alone. */
 int lsdem_etm_approaching(lsdem_etm *s);
 /* Compression phase, lines 6-17; starts a round when anything approaches. */
 lsdem_status lsdem_etm_compress(lsdem_etm *s, lsdem_error *err);
