@@ -66,13 +66,18 @@ def reference_collision(p, c, substeps=50):
     relative motion of two equal masses in the x-y plane (reduced mass m/2), normal force
     kn d - cn v_n never attractive, tangential spring decremented by ks v_t h, turned into
     each new tangent plane with its length kept and capped at mu times the normal force;
-    semi-implicit Euler with `substeps` steps per time step of the codes' collision runs
-    (10,000 per contact), so its own time error is negligible against theirs. Sphere 1
-    starts at (-R, 0) with velocity (vn, vt) / 2, sphere 2 opposite (scenes.py)."""
+    the spheres turn about z, each with the torque -cr n x f of the force f on sphere 2
+    applied cr = R - d/2 from either centre (the same on both, so both keep one spin w,
+    which slows the contact point's tangential velocity by 2 cr w); semi-implicit Euler
+    with `substeps` steps per time step of the codes' collision runs (10,000 per contact),
+    so its own time error is negligible against theirs. Sphere 1 starts at (-R, 0) with
+    velocity (vn, vt) / 2, sphere 2 opposite (scenes.py), neither spinning."""
     R, m = RADII[0], p["mass1"]
+    inertia = 0.4 * m * R * R
     h = p["dt_collide"] / substeps
     rx, ry = 2 * R, 0.0  # x2 - x1
     ux, uy = -c["vn"], -c["vt"]  # v2 - v1
+    w = 0.0  # spin of each sphere about z
     sx = sy = 0.0  # tangential spring, force on sphere 2
     rows, t = [], 0
     while True:
@@ -80,9 +85,11 @@ def reference_collision(p, c, substeps=50):
         fx = fy = 0.0
         if dist < 2 * R:
             nx, ny = rx / dist, ry / dist
+            cr = R - 0.5 * (2 * R - dist)
             un = ux * nx + uy * ny
             fn = max(p["kn"] * (2 * R - dist) - c["cn"] * un, 0.0)
-            tx, ty = ux - un * nx, uy - un * ny
+            # contact point of 2 relative to 1: u - cr (w1 + w2) z x n
+            tx, ty = ux - un * nx + 2 * cr * w * ny, uy - un * ny - 2 * cr * w * nx
             s_len = math.hypot(sx, sy)
             sn = sx * nx + sy * ny  # turn the spring into the tangent plane, length kept
             px, py = sx - sn * nx, sy - sn * ny
@@ -96,6 +103,7 @@ def reference_collision(p, c, substeps=50):
                 scale = c["mu"] * fn / s_len if s_len > 0 else 0.0
                 sx, sy = sx * scale, sy * scale
             fx, fy = fn * nx + sx, fn * ny + sy
+            w += -cr * (nx * fy - ny * fx) / inertia * h
         else:
             sx = sy = 0.0
         ux += 2 * fx / m * h  # force f on sphere 2, -f on sphere 1

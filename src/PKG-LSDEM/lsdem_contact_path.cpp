@@ -90,8 +90,8 @@ int LsdemContactPath::test(int i, tagint partner, const lsdem_shape *A, const ls
                            const lsdem_contact_params &prm, bigint step,
                            lsdem_contact_result &res)
 {
-  if (A->sdf.kind == LSDEM_SDF_SPHERE && B->sdf.kind == LSDEM_SDF_SPHERE)
-    return test_spheres(i, partner, A->sdf.a[0], pa, B->sdf.a[0], pb, prm, step, res);
+  if (A->sdf.kind == LSDEM_SDF_SPHERE)
+    return test_sphere(i, partner, A->sdf.a[0], pa, B, pb, prm, step, res);
   if (!store || !(prm.law.mu > 0.0 || prm.detect.node_skin > 0.0)) {
     lsdem_contact_penalty(A, &pa, B, &pb, &prm, step, nullptr, nullptr, &m, &res);
     return res.npen;
@@ -109,25 +109,25 @@ int LsdemContactPath::test(int i, tagint partner, const lsdem_shape *A, const ls
 }
 
 /* ----------------------------------------------------------------------
-   two analytic spheres: the core's closed form (lsdem_contact_spheres), the same result
-   as the general path's; only friction needs a state (spheres keep no node list), one
-   shear entry
+   an analytic sphere: its one contact point by the core (lsdem_contact_sphere), the same
+   result as the general path's; only friction needs a state (a sphere keeps no node
+   list), one shear entry
 ------------------------------------------------------------------------- */
 
-int LsdemContactPath::test_spheres(int i, tagint partner, double ra, const lsdem_pose &pa,
-                                   double rb, const lsdem_pose &pb,
-                                   const lsdem_contact_params &prm, bigint step,
-                                   lsdem_contact_result &res)
+int LsdemContactPath::test_sphere(int i, tagint partner, double ra, const lsdem_pose &pa,
+                                  const lsdem_shape *B, const lsdem_pose &pb,
+                                  const lsdem_contact_params &prm, bigint step,
+                                  lsdem_contact_result &res)
 {
   if (!store || !(prm.law.mu > 0.0))
-    return lsdem_contact_spheres(ra, &pa, rb, &pb, &prm.law, prm.dt, step, nullptr, 0, nullptr,
-                                 nullptr, &res);
+    return lsdem_contact_sphere(ra, &pa, B, &pb, &prm.law, prm.dt, step, nullptr, 0, nullptr,
+                                nullptr, &res);
   lsdem_pair_state in;
   const bool found = store->find(i, partner, in);
   lsdem_pair_state out = store->reserve(lane, 0, 1);
   FixLsdemHistory::place_shear(out);
-  lsdem_contact_spheres(ra, &pa, rb, &pb, &prm.law, prm.dt, step, found ? in.shear : nullptr,
-                        found ? in.nshear : 0, out.shear, &out.nshear, &res);
+  lsdem_contact_sphere(ra, &pa, B, &pb, &prm.law, prm.dt, step, found ? in.shear : nullptr,
+                       found ? in.nshear : 0, out.shear, &out.nshear, &res);
   store->commit(lane, partner, out);
   return res.npen;
 }

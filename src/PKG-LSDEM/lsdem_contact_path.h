@@ -42,17 +42,17 @@ class LsdemContactPath {
 
   // one pair: grain i's nodes (shape A at pa) against partner `partner` (B at pb); its
   // state is read and written when the store is set and the pair needs one (friction or
-  // node lists). Two analytic spheres take the core's closed form (lsdem_contact_spheres:
-  // the same result, without manifold or shapes). Returns the penetrating nodes.
+  // node lists). An analytic sphere A takes the core's one-point path (lsdem_contact_sphere:
+  // the same result, without a manifold). Returns the penetrating nodes.
   int test(int i, tagint partner, const lsdem_shape *A, const lsdem_pose &pa,
            const lsdem_shape *B, const lsdem_pose &pb, const lsdem_contact_params &prm,
            bigint step, lsdem_contact_result &res);
 
  private:
-  // test() for two analytic spheres of radii ra and rb
-  int test_spheres(int i, tagint partner, double ra, const lsdem_pose &pa, double rb,
-                   const lsdem_pose &pb, const lsdem_contact_params &prm, bigint step,
-                   lsdem_contact_result &res);
+  // test() for an analytic sphere A of radius ra
+  int test_sphere(int i, tagint partner, double ra, const lsdem_pose &pa, const lsdem_shape *B,
+                  const lsdem_pose &pb, const lsdem_contact_params &prm, bigint step,
+                  lsdem_contact_result &res);
 
   class FixLsdemHistory *store;
   int lane;

@@ -372,51 +372,51 @@ static double outside_distance(const lsdem_sdf *sdf, const double c[3], double n
   return best;
 }
 
-/* Sphere A (centre pa->x) against any shape B with ONE level-set lookup of the sphere
- * centre in B's frame (report §2.3.5): depth d = radius - phi_B(centre), normal = B's
- * gradient there; for a centre outside B's grid, its distance found by descent over the
- * grid's box (outside_distance). */
-static int detect_sphere_shape(double radius, const lsdem_pose *pa, const lsdem_shape *B,
-                               const lsdem_pose *pb, lsdem_manifold *m)
+static int is_sphere(const lsdem_shape *s) { return s->sdf.kind == LSDEM_SDF_SPHERE; }
+
+/* Sphere B in closed form (sphere_pair_overlap); any other B with ONE level-set lookup of
+ * the sphere centre in B's frame (report §2.3.5): depth d = radius - phi_B(centre), normal
+ * = B's gradient there; for a centre outside B's grid, its distance found by descent over
+ * the grid's box (outside_distance). */
+int lsdem_sphere_overlap(double radius, const lsdem_pose *pa, const lsdem_shape *B,
+                         const lsdem_pose *pb, double n[3], double *d, int *lookups)
 {
+  if (is_sphere(B)) return *lookups = sphere_pair_overlap(radius, pa->x, B->sdf.a[0], pb->x, n, d);
   double dx[3];
   for (int i = 0; i < 3; i++) dx[i] = pa->x[i] - pb->x[i];
   const double reach = radius + B->radius;
-  if (lsdem_dot3(dx, dx) > reach * reach) return no_contact(m, NULL);
+  *lookups = 0;
+  if (lsdem_dot3(dx, dx) > reach * reach) return 0;
 
-  pair_motion pm;
-  pair_motion_of(pa, pb, &pm);
-  manifold_begin(m, &pm, 1);
-  m->ntested = 1;
-  double q[3], g[3], n[3];
+  double q[3], g[3];
+  *lookups = 1;
   lsdem_matT_vec(pb->R, dx, q);
-  double d;
   if (B->sdf.kind == LSDEM_SDF_GRID && !B->sdf.inverted &&
       !lsdem_grid_box_contains(&B->sdf.grid, q))
-    d = radius - outside_distance(&B->sdf, q, g, &m->ntested);
+    *d = radius - outside_distance(&B->sdf, q, g, lookups);
   else
-    d = radius - lsdem_sdf_eval(&B->sdf, q, g);
-  if (!(d > 0.0)) return 0;
+    *d = radius - lsdem_sdf_eval(&B->sdf, q, g);
+  if (!(*d > 0.0)) return 0;
   lsdem_mat_vec(pb->R, g, n);
-  return sphere_point(radius, n, d, pa, &pm, m);
+  return 1;
 }
 
-/* Analytic sphere-sphere (sphere_pair_overlap). */
-static int detect_sphere_sphere(double ra, const lsdem_pose *pa, double rb,
-                                const lsdem_pose *pb, lsdem_manifold *m)
+/* Sphere A against any B (lsdem_sphere_overlap) as a manifold of one point. */
+static int detect_sphere(double radius, const lsdem_pose *pa, const lsdem_shape *B,
+                         const lsdem_pose *pb, lsdem_manifold *m)
 {
   double n[3], d;
-  if (!sphere_pair_overlap(ra, pa->x, rb, pb->x, n, &d)) return no_contact(m, NULL);
+  int lookups;
+  const int touch = lsdem_sphere_overlap(radius, pa, B, pb, n, &d, &lookups);
+  if (lookups == 0) return no_contact(m, NULL);
   pair_motion pm;
   pair_motion_of(pa, pb, &pm);
   manifold_begin(m, &pm, 1);
-  m->ntested = 1;
-  return sphere_point(ra, n, d, pa, &pm, m);
+  m->ntested = lookups;
+  return touch ? sphere_point(radius, n, d, pa, &pm, m) : 0;
 }
 
 /* ----------------------------------------------------------------- dispatch ---- */
-
-static int is_sphere(const lsdem_shape *s) { return s->sdf.kind == LSDEM_SDF_SPHERE; }
 
 double lsdem_sphere_contact_area(double radius) { return M_PI * radius * radius; }
 
@@ -437,6 +437,5 @@ int lsdem_detect(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *
   if (!is_sphere(A))
     return lsdem_detect_nodes(A, pa, B, pb, det, step, list_in, list_out, m);
   if (list_out) list_out->valid = 0;
-  if (is_sphere(B)) return detect_sphere_sphere(A->sdf.a[0], pa, B->sdf.a[0], pb, m);
-  return detect_sphere_shape(A->sdf.a[0], pa, B, pb, m);
+  return detect_sphere(A->sdf.a[0], pa, B, pb, m);
 }

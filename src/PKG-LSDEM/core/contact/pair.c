@@ -1,6 +1,6 @@
 /* pair.c -- one pair end to end: detection into a manifold, then the penalty law, with the
  * pair's node list and shear history carried from the last step to this one; and the same
- * for two analytic spheres in closed form, without a manifold. */
+ * for an analytic sphere's one contact point, without a manifold. */
 #include "point.h"
 
 #include <stddef.h>
@@ -19,19 +19,20 @@ int lsdem_contact_penalty(const lsdem_shape *A, const lsdem_pose *pa, const lsde
   return res->npen;
 }
 
-/* The sphere path of lsdem_detect (sphere_pair_overlap, sphere_contact_point: one point,
+/* The sphere path of lsdem_detect (lsdem_sphere_overlap, sphere_contact_point: one point,
  * node 0, stride 1, the cross-section as its area) and lsdem_penalty_apply on that one
  * point, formula by formula (point.h). */
-int lsdem_contact_spheres(double ra, const lsdem_pose *pa, double rb, const lsdem_pose *pb,
-                          const lsdem_penalty_law *law, double dt, int64_t step,
-                          const lsdem_shear_hist *hist_in, int n_in, lsdem_shear_hist *hist_out,
-                          int *n_out, lsdem_contact_result *res)
+int lsdem_contact_sphere(double ra, const lsdem_pose *pa, const lsdem_shape *B,
+                         const lsdem_pose *pb, const lsdem_penalty_law *law, double dt,
+                         int64_t step, const lsdem_shear_hist *hist_in, int n_in,
+                         lsdem_shear_hist *hist_out, int *n_out, lsdem_contact_result *res)
 {
   static const lsdem_contact_result no_result; /* all zero */
   *res = no_result;
   if (n_out) *n_out = 0;
   double n[3], d;
-  if (!sphere_pair_overlap(ra, pa->x, rb, pb->x, n, &d)) return 0;
+  const int touch = lsdem_sphere_overlap(ra, pa, B, pb, n, &d, &res->ntested);
+  if (!touch) return 0;
 
   pair_motion pm;
   lsdem_contact_point c;
@@ -56,7 +57,6 @@ int lsdem_contact_spheres(double ra, const lsdem_pose *pa, double rb, const lsde
   double weight = 0.0;
   law_sum_point(res, &weight, r, f, fn, p, d); /* eqs 2.14-2.16 */
   res->npen = 1;
-  res->ntested = 1;
   law_finish(res, weight, pm.dab);
   return 1;
 }

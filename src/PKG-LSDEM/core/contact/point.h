@@ -1,7 +1,7 @@
 /* point.h -- one contact point, private to core/contact: the pair's relative motion and a
  * point's geometry (detect.c), and the penalty law at one point (eqs 2.2-2.16, penalty.c).
  * Inline, so that the batched loops of detection and of the law and the two-sphere kernel
- * (sphere.c) run the same arithmetic, bit for bit: each formula is written once, here. */
+ * (pair.c) run the same arithmetic, bit for bit: each formula is written once, here. */
 #ifndef LSDEM_CONTACT_POINT_H
 #define LSDEM_CONTACT_POINT_H
 
@@ -78,6 +78,14 @@ static inline void sphere_contact_point(double r, const double xa[3], const doub
 {
   for (int i = 0; i < 3; i++) p[i] = xa[i] - (r - 0.5 * d) * n[i];
 }
+
+/* The overlap of an analytic sphere (centre pa->x, radius) with B: B's outward normal n and
+ * the depth d there (report §2.3.5: two spheres in closed form, any other B with one lookup
+ * of the centre in B's level set, detect.c). Returns 1 when they overlap; *lookups counts
+ * the level-set lookups made (0: beyond B's bounding sphere; two spheres: 1 when they
+ * overlap, else 0). */
+int lsdem_sphere_overlap(double radius, const lsdem_pose *pa, const lsdem_shape *B,
+                         const lsdem_pose *pb, double n[3], double *d, int *lookups);
 
 /* -------------------------------------------------------------------- law ---- */
 
