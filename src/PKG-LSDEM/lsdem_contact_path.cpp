@@ -53,7 +53,14 @@ void LsdemContactPath::pose_of(const Atom *atom, const AtomVecLsdem *avec, int i
     p.v[d] = atom->v[i][d];
     p.omega[d] = atom->omega[i][d];
   }
-  lsdem_quat_to_matrix(avec->quat[i], p.R);
+  if (avec->shape_of(i)->sdf.kind == LSDEM_SDF_SPHERE) {
+    // an analytic sphere's level set is the same in every orientation: no lookup in it
+    // needs its turn (the sphere tests its partners; only a setup check looks up in it)
+    static const double identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    std::copy(identity, identity + 9, p.R);
+  } else {
+    lsdem_quat_to_matrix(avec->quat[i], p.R);
+  }
 }
 
 /* ---------------------------------------------------------------------- */

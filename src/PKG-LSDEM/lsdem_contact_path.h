@@ -29,7 +29,8 @@ class LsdemContactPath {
   // writes (one per thread), and manifold storage for the largest shape of the atom
   // style's library; at each init
   void setup(class FixLsdemHistory *, const class AtomVecLsdem *, int lane = 0);
-  // the world-frame pose of atom i (local or ghost)
+  // the world-frame pose of atom i (local or ghost); an analytic sphere's R is the identity
+  // (its level set does not turn with it)
   static void pose_of(const class Atom *, const class AtomVecLsdem *, int i, lsdem_pose &);
 
   // the visit of the grains' pairs: per step (once, for all lanes), and per owned grain
