@@ -3,9 +3,13 @@
 Usage: compare.py OUTDIR
 
 Reads OUTDIR/params.txt, OUTDIR/settle.data and the logs run.sh wrote
-(collide_<case>.<code>.log, settle.<code>.log, code = lsdem or liggghts); prints a table,
-writes OUTDIR/comparison.csv and OUTDIR/comparison.png, and prints last
+(collide_<case>.<code>.log, settle.<code>.log, code = lsdem or liggghts) and the settling
+runs' CPU times (settle.<code>.log.cpu); prints a table, writes OUTDIR/comparison.csv and
+OUTDIR/comparison.png, and prints last, on one line,
   collision_max_rel_diff=<a> settle_zcm_rel_diff=<b> us_per_grain_step_lsdem=<c> us_per_grain_step_liggghts=<d>
+  cpu_us_per_grain_step_lsdem=<e> cpu_us_per_grain_step_liggghts=<f>
+(c, d: per grain-step from the run loop's wall time; e, f: from the whole process's CPU
+time, setup included)
 
 Independent references: each collision is integrated here from the contact law alone, with
 time steps 50 times shorter than the codes' (reference_collision; the elastic case must give
@@ -59,6 +63,19 @@ def loop_seconds(path):
         if line.startswith("Loop time of"):
             return float(line.split()[3])
     raise SystemExit("compare.py: no 'Loop time' in %s (did the run finish?)" % path)
+
+
+def cpu_seconds(path):
+    """User + system CPU seconds of a run, from the second line of bash's `times` that run.sh
+    writes beside its log ("0m12.345s 0m0.067s": the run's user and system time). On a
+    machine shared with other work a run's wall time counts the time it waited for a core,
+    its CPU time does not."""
+    line = open(path).read().splitlines()[1]
+    seconds = 0.0
+    for field in line.split():
+        minutes, rest = field.rstrip("s").split("m")
+        seconds += 60.0 * float(minutes) + float(rest)
+    return seconds
 
 
 def reference_collision(p, c, substeps=50):
@@ -218,10 +235,12 @@ def main(outdir):
 
     series = {code: thermo_rows(os.path.join(outdir, "settle.%s.log" % code)) for code in CODES}
     n = int(params["grains"])
-    us = {}
+    us, us_cpu = {}, {}
     for code in CODES:
         steps = series[code][-1]["Step"] - series[code][0]["Step"]
         us[code] = 1e6 * loop_seconds(os.path.join(outdir, "settle.%s.log" % code)) / (steps * n)
+        us_cpu[code] = 1e6 * cpu_seconds(os.path.join(outdir, "settle.%s.log.cpu" % code)) / (
+            steps * n)
     zcm = {code: series[code][-1]["zcm"] for code in CODES}
     zmax = {code: series[code][-1]["zmax"] for code in CODES}
     ke = {code: series[code][-1]["KinEng"] for code in CODES}
@@ -232,11 +251,11 @@ def main(outdir):
     floor = -series["lsdem"][-1]["f_floor[3]"]
     t_end = series["lsdem"][-1]["Step"] * params["dt"]
     print("settling (%d spheres, %.3f s):" % (n, t_end))
-    print("  %-9s %14s %14s %14s %16s" % ("code", "zcm (mm)", "top (mm)", "KE (J)",
-                                           "us/grain-step"))
+    print("  %-9s %14s %14s %14s %16s %16s" % ("code", "zcm (mm)", "top (mm)", "KE (J)",
+                                                "us/grain-step", "CPU us/gr-step"))
     for code in CODES:
-        print("  %-9s %14.4f %14.4f %14.3e %16.4f" % (code, 1e3 * zcm[code], 1e3 * zmax[code],
-                                                      ke[code], us[code]))
+        print("  %-9s %14.4f %14.4f %14.3e %16.4f %16.4f" % (
+            code, 1e3 * zcm[code], 1e3 * zmax[code], ke[code], us[code], us_cpu[code]))
     print("  LSDEM walls' vertical force %.6g N (floor %.6g N) against the spheres' weight"
           " %.6g N: ratio %.6f" % (walls, floor, weight, walls / weight))
 
@@ -254,10 +273,13 @@ def main(outdir):
             w.writerow(["settle", code, "zmax", zmax[code], ""])
             w.writerow(["settle", code, "ke_end", ke[code], ""])
             w.writerow(["settle", code, "us_per_grain_step", us[code], ""])
+            w.writerow(["settle", code, "cpu_us_per_grain_step", us_cpu[code], ""])
         w.writerow(["settle", "lsdem", "walls_vertical_force", walls, weight])
     plot(outdir, series, params)
     print("collision_max_rel_diff=%.3g settle_zcm_rel_diff=%.3g us_per_grain_step_lsdem=%.4g "
-          "us_per_grain_step_liggghts=%.4g" % (coll_diff, zdiff, us["lsdem"], us["liggghts"]))
+          "us_per_grain_step_liggghts=%.4g cpu_us_per_grain_step_lsdem=%.4g "
+          "cpu_us_per_grain_step_liggghts=%.4g" % (coll_diff, zdiff, us["lsdem"], us["liggghts"],
+                                                   us_cpu["lsdem"], us_cpu["liggghts"]))
 
 
 if __name__ == "__main__":
