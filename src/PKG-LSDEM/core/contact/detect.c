@@ -381,7 +381,8 @@ static int is_sphere(const lsdem_shape *s) { return s->sdf.kind == LSDEM_SDF_SPH
 int lsdem_sphere_overlap(double radius, const lsdem_pose *pa, const lsdem_shape *B,
                          const lsdem_pose *pb, double n[3], double *d, int *lookups)
 {
-  if (is_sphere(B)) return *lookups = sphere_pair_overlap(radius, pa->x, B->sdf.a[0], pb->x, n, d);
+  if (is_sphere(B))
+    return *lookups = sphere_pair_overlap(radius, pa->x, B->sdf.a[0], pb->x, n, d);
   double dx[3];
   for (int i = 0; i < 3; i++) dx[i] = pa->x[i] - pb->x[i];
   const double reach = radius + B->radius;
