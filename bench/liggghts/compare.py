@@ -3,9 +3,13 @@
 Usage: compare.py OUTDIR
 
 Reads OUTDIR/params.txt, OUTDIR/settle.data and the logs run.sh wrote
-(collide_<case>.<code>.log, settle.<code>.log, code = lsdem or liggghts); prints a table,
-writes OUTDIR/comparison.csv and OUTDIR/comparison.png, and prints last
+(collide_<case>.<code>.log, settle.<code>.log, code = lsdem or liggghts) and the settling
+runs' CPU times (settle.<code>.log.cpu); prints a table, writes OUTDIR/comparison.csv and
+OUTDIR/comparison.png, and prints last, on one line,
   collision_max_rel_diff=<a> settle_zcm_rel_diff=<b> us_per_grain_step_lsdem=<c> us_per_grain_step_liggghts=<d>
+  cpu_us_per_grain_step_lsdem=<e> cpu_us_per_grain_step_liggghts=<f>
+(c, d: per grain-step from the run loop's wall time; e, f: from the whole process's CPU
+time, setup included)
 
 Independent references: each collision is integrated here from the contact law alone, with
 time steps 50 times shorter than the codes' (reference_collision; the elastic case must give
@@ -61,18 +65,36 @@ def loop_seconds(path):
     raise SystemExit("compare.py: no 'Loop time' in %s (did the run finish?)" % path)
 
 
+def cpu_seconds(path):
+    """User + system CPU seconds of a run, from the second line of bash's `times` that run.sh
+    writes beside its log ("0m12.345s 0m0.067s": the run's user and system time). On a
+    machine shared with other work a run's wall time counts the time it waited for a core,
+    its CPU time does not."""
+    line = open(path).read().splitlines()[1]
+    seconds = 0.0
+    for field in line.split():
+        minutes, rest = field.rstrip("s").split("m")
+        seconds += 60.0 * float(minutes) + float(rest)
+    return seconds
+
+
 def reference_collision(p, c, substeps=50):
     """Thermo-like rows of an independent integration of the two-sphere collision: the
     relative motion of two equal masses in the x-y plane (reduced mass m/2), normal force
     kn d - cn v_n never attractive, tangential spring decremented by ks v_t h, turned into
     each new tangent plane with its length kept and capped at mu times the normal force;
-    semi-implicit Euler with `substeps` steps per time step of the codes' collision runs
-    (10,000 per contact), so its own time error is negligible against theirs. Sphere 1
-    starts at (-R, 0) with velocity (vn, vt) / 2, sphere 2 opposite (scenes.py)."""
+    the spheres turn about z, each with the torque -cr n x f of the force f on sphere 2
+    applied cr = R - d/2 from either centre (the same on both, so both keep one spin w,
+    which slows the contact point's tangential velocity by 2 cr w); semi-implicit Euler
+    with `substeps` steps per time step of the codes' collision runs (10,000 per contact),
+    so its own time error is negligible against theirs. Sphere 1 starts at (-R, 0) with
+    velocity (vn, vt) / 2, sphere 2 opposite (scenes.py), neither spinning."""
     R, m = RADII[0], p["mass1"]
+    inertia = 0.4 * m * R * R
     h = p["dt_collide"] / substeps
     rx, ry = 2 * R, 0.0  # x2 - x1
     ux, uy = -c["vn"], -c["vt"]  # v2 - v1
+    w = 0.0  # spin of each sphere about z
     sx = sy = 0.0  # tangential spring, force on sphere 2
     rows, t = [], 0
     while True:
@@ -80,9 +102,11 @@ def reference_collision(p, c, substeps=50):
         fx = fy = 0.0
         if dist < 2 * R:
             nx, ny = rx / dist, ry / dist
+            cr = R - 0.5 * (2 * R - dist)
             un = ux * nx + uy * ny
             fn = max(p["kn"] * (2 * R - dist) - c["cn"] * un, 0.0)
-            tx, ty = ux - un * nx, uy - un * ny
+            # contact point of 2 relative to 1: u - cr (w1 + w2) z x n
+            tx, ty = ux - un * nx + 2 * cr * w * ny, uy - un * ny - 2 * cr * w * nx
             s_len = math.hypot(sx, sy)
             sn = sx * nx + sy * ny  # turn the spring into the tangent plane, length kept
             px, py = sx - sn * nx, sy - sn * ny
@@ -96,6 +120,7 @@ def reference_collision(p, c, substeps=50):
                 scale = c["mu"] * fn / s_len if s_len > 0 else 0.0
                 sx, sy = sx * scale, sy * scale
             fx, fy = fn * nx + sx, fn * ny + sy
+            w += -cr * (nx * fy - ny * fx) / inertia * h
         else:
             sx = sy = 0.0
         ux += 2 * fx / m * h  # force f on sphere 2, -f on sphere 1
@@ -210,10 +235,12 @@ def main(outdir):
 
     series = {code: thermo_rows(os.path.join(outdir, "settle.%s.log" % code)) for code in CODES}
     n = int(params["grains"])
-    us = {}
+    us, us_cpu = {}, {}
     for code in CODES:
         steps = series[code][-1]["Step"] - series[code][0]["Step"]
         us[code] = 1e6 * loop_seconds(os.path.join(outdir, "settle.%s.log" % code)) / (steps * n)
+        us_cpu[code] = 1e6 * cpu_seconds(os.path.join(outdir, "settle.%s.log.cpu" % code)) / (
+            steps * n)
     zcm = {code: series[code][-1]["zcm"] for code in CODES}
     zmax = {code: series[code][-1]["zmax"] for code in CODES}
     ke = {code: series[code][-1]["KinEng"] for code in CODES}
@@ -224,11 +251,11 @@ def main(outdir):
     floor = -series["lsdem"][-1]["f_floor[3]"]
     t_end = series["lsdem"][-1]["Step"] * params["dt"]
     print("settling (%d spheres, %.3f s):" % (n, t_end))
-    print("  %-9s %14s %14s %14s %16s" % ("code", "zcm (mm)", "top (mm)", "KE (J)",
-                                           "us/grain-step"))
+    print("  %-9s %14s %14s %14s %16s %16s" % ("code", "zcm (mm)", "top (mm)", "KE (J)",
+                                                "us/grain-step", "CPU us/gr-step"))
     for code in CODES:
-        print("  %-9s %14.4f %14.4f %14.3e %16.4f" % (code, 1e3 * zcm[code], 1e3 * zmax[code],
-                                                      ke[code], us[code]))
+        print("  %-9s %14.4f %14.4f %14.3e %16.4f %16.4f" % (
+            code, 1e3 * zcm[code], 1e3 * zmax[code], ke[code], us[code], us_cpu[code]))
     print("  LSDEM walls' vertical force %.6g N (floor %.6g N) against the spheres' weight"
           " %.6g N: ratio %.6f" % (walls, floor, weight, walls / weight))
 
@@ -246,10 +273,13 @@ def main(outdir):
             w.writerow(["settle", code, "zmax", zmax[code], ""])
             w.writerow(["settle", code, "ke_end", ke[code], ""])
             w.writerow(["settle", code, "us_per_grain_step", us[code], ""])
+            w.writerow(["settle", code, "cpu_us_per_grain_step", us_cpu[code], ""])
         w.writerow(["settle", "lsdem", "walls_vertical_force", walls, weight])
     plot(outdir, series, params)
     print("collision_max_rel_diff=%.3g settle_zcm_rel_diff=%.3g us_per_grain_step_lsdem=%.4g "
-          "us_per_grain_step_liggghts=%.4g" % (coll_diff, zdiff, us["lsdem"], us["liggghts"]))
+          "us_per_grain_step_liggghts=%.4g cpu_us_per_grain_step_lsdem=%.4g "
+          "cpu_us_per_grain_step_liggghts=%.4g" % (coll_diff, zdiff, us["lsdem"], us["liggghts"],
+                                                   us_cpu["lsdem"], us_cpu["liggghts"]))
 
 
 if __name__ == "__main__":

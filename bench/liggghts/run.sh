@@ -42,10 +42,12 @@ out=$(cd "$out" && pwd)
 /usr/bin/python3 "$here/scenes.py" "$out" "$tool" --grains "$grains" --seed "$seed"
 param() { awk -v k="$1" '$1 == k { print $2 }' "$out/params.txt"; }
 common=(-var kn "$(param kn)" -var ks "$(param ks)" -log none -screen none)
-# in_out LOG CMD...: run CMD in $out; when it fails, say so with the end of its log
+# in_out LOG CMD...: run CMD in $out, its CPU time into LOG.cpu (bash's `times` in the
+# subshell that ran it: its own, then its child's user and system time); when it fails, say
+# so with the end of its log
 in_out() {
   local log=$1; shift
-  (cd "$out" && "$@" -log "$log") && return 0
+  (cd "$out" && "$@" -log "$log" && times > "$log.cpu") && return 0
   echo "run.sh: $(basename "$1") failed; the end of $out/$log:" >&2
   tail -n 15 "$out/$log" >&2 2>/dev/null || echo "(no log written)" >&2
   exit 1

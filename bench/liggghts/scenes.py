@@ -14,8 +14,8 @@ Writes to OUTDIR:
 Units: SI. The contact parameters are chosen so that the two codes' laws coincide: a linear
 normal spring kn and absolute viscous damping cn (force = kn d - cn v_n, never attractive),
 a tangential spring ks with history capped at mu times the normal force, no tangential
-damping, no rotation (LSDEM's analytic spheres do not rotate; LIGGGHTS runs fix nve, which
-leaves omega at 0)."""
+damping; the spheres rotate (LSDEM's fix nve/lsdem, LIGGGHTS's fix nve/sphere), both codes
+taking the contact point in the middle of the overlap, R - d/2 from each centre."""
 import math
 import os
 import random

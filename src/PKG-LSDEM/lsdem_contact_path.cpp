@@ -53,7 +53,14 @@ void LsdemContactPath::pose_of(const Atom *atom, const AtomVecLsdem *avec, int i
     p.v[d] = atom->v[i][d];
     p.omega[d] = atom->omega[i][d];
   }
-  lsdem_quat_to_matrix(avec->quat[i], p.R);
+  if (avec->shape_of(i)->sdf.kind == LSDEM_SDF_SPHERE) {
+    // an analytic sphere's level set is the same in every orientation: no lookup in it
+    // needs its turn (the sphere tests its partners; only a setup check looks up in it)
+    static const double identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    std::copy(identity, identity + 9, p.R);
+  } else {
+    lsdem_quat_to_matrix(avec->quat[i], p.R);
+  }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -90,6 +97,8 @@ int LsdemContactPath::test(int i, tagint partner, const lsdem_shape *A, const ls
                            const lsdem_contact_params &prm, bigint step,
                            lsdem_contact_result &res)
 {
+  if (A->sdf.kind == LSDEM_SDF_SPHERE)
+    return test_sphere(i, partner, A->sdf.a[0], pa, B, pb, prm, step, res);
   if (!store || !(prm.law.mu > 0.0 || prm.detect.node_skin > 0.0)) {
     lsdem_contact_penalty(A, &pa, B, &pb, &prm, step, nullptr, nullptr, &m, &res);
     return res.npen;
@@ -123,4 +132,28 @@ int LsdemContactPath::detect(int i, tagint partner, const lsdem_shape *A, const 
   out.nshear = 0;
   store->commit(lane, partner, out);
   return m.n;
+}
+
+/* ----------------------------------------------------------------------
+   an analytic sphere: its one contact point by the core (lsdem_contact_sphere), the same
+   result as the general path's; only friction needs a state (a sphere keeps no node
+   list), one shear entry
+------------------------------------------------------------------------- */
+
+int LsdemContactPath::test_sphere(int i, tagint partner, double ra, const lsdem_pose &pa,
+                                  const lsdem_shape *B, const lsdem_pose &pb,
+                                  const lsdem_contact_params &prm, bigint step,
+                                  lsdem_contact_result &res)
+{
+  if (!store || !(prm.law.mu > 0.0))
+    return lsdem_contact_sphere(ra, &pa, B, &pb, &prm.law, prm.dt, step, nullptr, 0, nullptr,
+                                nullptr, &res);
+  lsdem_pair_state in;
+  const bool found = store->find(i, partner, in);
+  lsdem_pair_state out = store->reserve(lane, 0, 1);
+  FixLsdemHistory::place_shear(out);
+  lsdem_contact_sphere(ra, &pa, B, &pb, &prm.law, prm.dt, step, found ? in.shear : nullptr,
+                       found ? in.nshear : 0, out.shear, &out.nshear, &res);
+  store->commit(lane, partner, out);
+  return res.npen;
 }

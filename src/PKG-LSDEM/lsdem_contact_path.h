@@ -29,7 +29,8 @@ class LsdemContactPath {
   // writes (one per thread), and manifold storage for the largest shape of the atom
   // style's library; at each init
   void setup(class FixLsdemHistory *, const class AtomVecLsdem *, int lane = 0);
-  // the world-frame pose of atom i (local or ghost)
+  // the world-frame pose of atom i (local or ghost); an analytic sphere's R is the identity
+  // (its level set does not turn with it)
   static void pose_of(const class Atom *, const class AtomVecLsdem *, int i, lsdem_pose &);
 
   // the visit of the grains' pairs: per step (once, for all lanes), and per owned grain
@@ -42,7 +43,8 @@ class LsdemContactPath {
 
   // one pair: grain i's nodes (shape A at pa) against partner `partner` (B at pb); its
   // state is read and written when the store is set and the pair needs one (friction or
-  // node lists). Returns the penetrating nodes.
+  // node lists). An analytic sphere A takes the core's one-point path (lsdem_contact_sphere:
+  // the same result, without a manifold). Returns the penetrating nodes.
   int test(int i, tagint partner, const lsdem_shape *A, const lsdem_pose &pa,
            const lsdem_shape *B, const lsdem_pose &pb, const lsdem_contact_params &prm,
            bigint step, lsdem_contact_result &res);
@@ -56,6 +58,11 @@ class LsdemContactPath {
   const lsdem_manifold &manifold() const { return m; }
 
  private:
+  // test() for an analytic sphere A of radius ra
+  int test_sphere(int i, tagint partner, double ra, const lsdem_pose &pa, const lsdem_shape *B,
+                  const lsdem_pose &pb, const lsdem_contact_params &prm, bigint step,
+                  lsdem_contact_result &res);
+
   class FixLsdemHistory *store;
   int lane;
   lsdem_contact_point *points;

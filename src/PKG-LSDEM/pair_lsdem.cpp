@@ -424,33 +424,28 @@ void PairLsdem::build_master_pairs()
 }
 
 /* ----------------------------------------------------------------------
-   i's nodes (or i's sphere) against j's level set, through the shared contact path
+   i's nodes (or i's sphere) against j's level set, through the shared contact path; the
+   result is written in place of a new contact, which is kept when they touch
 ------------------------------------------------------------------------- */
 
 void PairLsdem::test_pair(Lane &lane, int i, int j, double scale)
 {
-  lsdem_contact_result res;
-  lane.path.test(i, atom->tag[j], shape[i], pose[i], shape[j], pose[j],
-                 params[atom->type[i]][atom->type[j]], contact_step, res);
-  lane.ntested_pairs++;
-  lane.ntested_nodes += res.ntested;
-  lane.npen_nodes += res.npen;
-  if (res.npen > 0) add_contact(lane, i, j, scale, res);
-}
-
-/* ---------------------------------------------------------------------- */
-
-void PairLsdem::add_contact(Lane &lane, int i, int j, double scale,
-                            const lsdem_contact_result &res)
-{
   lane.contact.emplace_back();
   Contact &c = lane.contact.back();
+  const int npen = lane.path.test(i, atom->tag[j], shape[i], pose[i], shape[j], pose[j],
+                                  params[atom->type[i]][atom->type[j]], contact_step, c.res);
+  lane.ntested_pairs++;
+  lane.ntested_nodes += c.res.ntested;
+  lane.npen_nodes += npen;
+  if (npen == 0) {
+    lane.contact.pop_back();
+    return;
+  }
   c.i = i;
   c.j = j;
   // the test made by the one-way master decides whether the pair is in contact
   c.counts = (scale == 1.0 || atom->tag[i] < atom->tag[j]) ? 1 : 0;
   c.scale = scale;
-  c.res = res;
 }
 
 /* ----------------------------------------------------------------------

@@ -36,6 +36,7 @@ class PairLsdem : public Pair {
     int counts;     // 1 if this test decides the pair's contact status (coordination)
     double scale;   // factor applied to res's forces (two-way half, zcap)
     lsdem_contact_result res;
+    Contact() {}  // left unset: a test fills it (PairLsdem::test_pair)
   };
 
   PairLsdem(class LAMMPS *);
@@ -126,7 +127,6 @@ class PairLsdem : public Pair {
   void build_master_pairs();
   void test_pairs(Lane &, int iifrom, int iito);
   void test_pair(Lane &, int, int, double);
-  void add_contact(Lane &, int, int, double, const lsdem_contact_result &);
   void end_force_call();
   void apply_contacts(Lane &, double **f, double **torque) const;
   void tally_workload();

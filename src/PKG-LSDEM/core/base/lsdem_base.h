@@ -50,6 +50,9 @@ void lsdem_quat_rotate_inv(const double q[4], const double v[3], double out[3]);
 /* q <- q * exp(omega_body * dt / 2): exact update for a body-frame angular velocity
  * held constant over dt (solution of the quaternion rate equation, report eq 2.28). */
 void lsdem_quat_advance(double q[4], const double omega_body[3], double dt);
+/* q <- exp(omega * dt / 2) * q: the same update for a world-frame angular velocity omega
+ * (= R omega_body), without taking omega to the body frame. */
+void lsdem_quat_turn(double q[4], const double omega[3], double dt);
 /* Rodrigues' formula (report eq 2.9): rotate v about the unit axis k by angle theta. */
 void lsdem_rodrigues(const double v[3], const double k[3], double theta, double out[3]);
 /* Rotate v by the rotation that takes unit vector n_old onto unit vector n_new

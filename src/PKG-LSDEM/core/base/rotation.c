@@ -110,21 +110,37 @@ void lsdem_quat_rotate_inv(const double q[4], const double v[3], double out[3])
   lsdem_quat_rotate(qc, v, out);
 }
 
-/* Report eq 2.28 solved exactly for constant body-frame omega over dt:
- * dq/dt = q (0, omega)/2  =>  q(t+dt) = q(t) exp((0, omega) dt/2), and
- * exp((0, a)) = (cos|a|, sin|a| a/|a|). sin(x)/x uses its Taylor series near 0. */
-void lsdem_quat_advance(double q[4], const double omega_body[3], double dt)
+/* Report eq 2.28 solved exactly for constant omega over dt: dq/dt = q (0, omega_body)/2
+ * => q(t+dt) = q(t) exp((0, omega_body) dt/2), and exp((0, a)) = (cos|a|, sin|a| a/|a|);
+ * the same rotation from the left with the world-frame omega = R omega_body, q(t+dt) =
+ * exp((0, omega) dt/2) q(t). sin(x)/x uses its Taylor series near 0. */
+static void quat_exp_half(const double omega[3], double dt, double e[4])
 {
   const double half = 0.5 * dt;
-  const double a[3] = {omega_body[0] * half, omega_body[1] * half, omega_body[2] * half};
+  const double a[3] = {omega[0] * half, omega[1] * half, omega[2] * half};
   const double th2 = lsdem_dot3(a, a);
   const double th = sqrt(th2);
   const double sinc = th < 1e-4 ? 1.0 - th2 / 6.0 : sin(th) / th;
-  const double e[4] = {cos(th), sinc * a[0], sinc * a[1], sinc * a[2]};
-  double r[4];
+  e[0] = cos(th);
+  for (int i = 0; i < 3; i++) e[i + 1] = sinc * a[i];
+}
+
+void lsdem_quat_advance(double q[4], const double omega_body[3], double dt)
+{
+  double e[4], r[4];
+  quat_exp_half(omega_body, dt, e);
   lsdem_quat_multiply(q, e, r);
   for (int i = 0; i < 4; i++) q[i] = r[i];
   lsdem_quat_normalize(q); /* only removes round-off drift */
+}
+
+void lsdem_quat_turn(double q[4], const double omega[3], double dt)
+{
+  double e[4], r[4];
+  quat_exp_half(omega, dt, e);
+  lsdem_quat_multiply(e, q, r);
+  for (int i = 0; i < 4; i++) q[i] = r[i];
+  lsdem_quat_normalize(q);
 }
 
 /* ------------------------------------------------------ vector rotations ---- */

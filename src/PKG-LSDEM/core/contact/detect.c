@@ -5,31 +5,10 @@
  * Frames: node coordinates are in A's principal frame, cb (B's centre) too; q, g (a node
  * and B's level-set gradient) in B's principal frame; the manifold is world frame. */
 #include "nodelist.h"
+#include "point.h"
 
 #include <math.h>
 #include <string.h>
-
-/* --------------------------------------------------------------- pair motion ---- */
-
-/* The pair's motion as the manifold's relative velocities need it (world frame), with
- * ra = p - xA the arm of a contact point p from A's centroid: the velocity of A's material
- * point at p relative to B's is v0 + dw x ra (report eq 2.6: vA + wA x ra - vB - wB x
- * (ra + dab) with dab = xA - xB, so v0 = vA - vB - wB x dab and dw = wA - wB). */
-typedef struct {
-  double xa[3], dab[3], v0[3], dw[3];
-} pair_motion;
-
-static inline void pair_motion_of(const lsdem_pose *pa, const lsdem_pose *pb, pair_motion *m)
-{
-  double wb_dab[3];
-  for (int i = 0; i < 3; i++) {
-    m->xa[i] = pa->x[i];
-    m->dab[i] = pa->x[i] - pb->x[i];
-    m->dw[i] = pa->omega[i] - pb->omega[i];
-  }
-  lsdem_cross3(pb->omega, m->dab, wb_dab);
-  for (int i = 0; i < 3; i++) m->v0[i] = pa->v[i] - pb->v[i] - wb_dab[i];
-}
 
 /* An empty manifold for the pair (no points yet). */
 static void manifold_begin(lsdem_manifold *m, const pair_motion *pm, int stride)
@@ -44,21 +23,13 @@ static void manifold_begin(lsdem_manifold *m, const pair_motion *pm, int stride)
 }
 
 /* Appends a point at p (world) with B's outward normal n, depth d > 0 and area. */
-static inline __attribute__((always_inline)) void add_point(lsdem_manifold *restrict m, const pair_motion *restrict pm, int node,
-                      const double p[3], const double n[3], double d, double area)
+static inline __attribute__((always_inline)) void add_point(lsdem_manifold *restrict m,
+                                                            const pair_motion *restrict pm,
+                                                            int node, const double p[3],
+                                                            const double n[3], double d,
+                                                            double area)
 {
-  lsdem_contact_point *c = &m->point[m->n++];
-  double r[3];
-  c->node = node;
-  for (int i = 0; i < 3; i++) {
-    c->point[i] = p[i];
-    c->normal[i] = n[i];
-    r[i] = p[i] - pm->xa[i];
-  }
-  c->depth = d;
-  c->area = area;
-  lsdem_cross3(pm->dw, r, c->vrel); /* eq 2.6 (see pair_motion) */
-  for (int i = 0; i < 3; i++) c->vrel[i] += pm->v0[i];
+  point_set(&m->point[m->n++], pm, node, p, n, d, area);
 }
 
 static int no_contact(lsdem_manifold *m, lsdem_nodelist *list_out)
@@ -322,13 +293,13 @@ int lsdem_detect_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_s
 
 /* ----------------------------------------------------------- sphere paths ---- */
 
-/* One sphere contact (sphere A against B) given B's outward normal n and the depth d:
- * the point is the middle of the overlap along the normal, p = xA - (radius - d/2) n. */
+/* One sphere contact (sphere A against B) given B's outward normal n and the depth d, at
+ * the middle of the overlap (sphere_contact_point). */
 static int sphere_point(double radius, const double n[3], double d, const lsdem_pose *pa,
                         const pair_motion *pm, lsdem_manifold *m)
 {
   double p[3];
-  for (int i = 0; i < 3; i++) p[i] = pa->x[i] - (radius - 0.5 * d) * n[i];
+  sphere_contact_point(radius, pa->x, n, d, p);
   add_point(m, pm, 0, p, n, d, lsdem_sphere_contact_area(radius));
   return 1;
 }
@@ -401,58 +372,52 @@ static double outside_distance(const lsdem_sdf *sdf, const double c[3], double n
   return best;
 }
 
-/* Sphere A (centre pa->x) against any shape B with ONE level-set lookup of the sphere
- * centre in B's frame (report §2.3.5): depth d = radius - phi_B(centre), normal = B's
- * gradient there; for a centre outside B's grid, its distance found by descent over the
- * grid's box (outside_distance). */
-static int detect_sphere_shape(double radius, const lsdem_pose *pa, const lsdem_shape *B,
-                               const lsdem_pose *pb, lsdem_manifold *m)
+static int is_sphere(const lsdem_shape *s) { return s->sdf.kind == LSDEM_SDF_SPHERE; }
+
+/* Sphere B in closed form (sphere_pair_overlap); any other B with ONE level-set lookup of
+ * the sphere centre in B's frame (report §2.3.5): depth d = radius - phi_B(centre), normal
+ * = B's gradient there; for a centre outside B's grid, its distance found by descent over
+ * the grid's box (outside_distance). */
+int lsdem_sphere_overlap(double radius, const lsdem_pose *pa, const lsdem_shape *B,
+                         const lsdem_pose *pb, double n[3], double *d, int *lookups)
 {
+  if (is_sphere(B))
+    return *lookups = sphere_pair_overlap(radius, pa->x, B->sdf.a[0], pb->x, n, d);
   double dx[3];
   for (int i = 0; i < 3; i++) dx[i] = pa->x[i] - pb->x[i];
   const double reach = radius + B->radius;
-  if (lsdem_dot3(dx, dx) > reach * reach) return no_contact(m, NULL);
+  *lookups = 0;
+  if (lsdem_dot3(dx, dx) > reach * reach) return 0;
 
-  pair_motion pm;
-  pair_motion_of(pa, pb, &pm);
-  manifold_begin(m, &pm, 1);
-  m->ntested = 1;
-  double q[3], g[3], n[3];
+  double q[3], g[3];
+  *lookups = 1;
   lsdem_matT_vec(pb->R, dx, q);
-  double d;
   if (B->sdf.kind == LSDEM_SDF_GRID && !B->sdf.inverted &&
       !lsdem_grid_box_contains(&B->sdf.grid, q))
-    d = radius - outside_distance(&B->sdf, q, g, &m->ntested);
+    *d = radius - outside_distance(&B->sdf, q, g, lookups);
   else
-    d = radius - lsdem_sdf_eval(&B->sdf, q, g);
-  if (!(d > 0.0)) return 0;
+    *d = radius - lsdem_sdf_eval(&B->sdf, q, g);
+  if (!(*d > 0.0)) return 0;
   lsdem_mat_vec(pb->R, g, n);
-  return sphere_point(radius, n, d, pa, &pm, m);
+  return 1;
 }
 
-/* Analytic sphere-sphere: d = ra + rb - |xA - xB|, n = (xA - xB)/|xA - xB|. */
-static int detect_sphere_sphere(double ra, const lsdem_pose *pa, double rb,
-                                const lsdem_pose *pb, lsdem_manifold *m)
+/* Sphere A against any B (lsdem_sphere_overlap) as a manifold of one point. */
+static int detect_sphere(double radius, const lsdem_pose *pa, const lsdem_shape *B,
+                         const lsdem_pose *pb, lsdem_manifold *m)
 {
-  double dx[3];
-  for (int i = 0; i < 3; i++) dx[i] = pa->x[i] - pb->x[i];
-  const double reach = ra + rb, dist2 = lsdem_dot3(dx, dx);
-  if (!(dist2 < reach * reach)) return no_contact(m, NULL);
-
+  double n[3], d;
+  int lookups;
+  const int touch = lsdem_sphere_overlap(radius, pa, B, pb, n, &d, &lookups);
+  if (lookups == 0) return no_contact(m, NULL);
   pair_motion pm;
   pair_motion_of(pa, pb, &pm);
   manifold_begin(m, &pm, 1);
-  m->ntested = 1;
-  const double dist = sqrt(dist2);
-  double n[3] = {1.0, 0.0, 0.0}; /* coincident centres: any direction will do */
-  if (dist > 0.0)
-    for (int i = 0; i < 3; i++) n[i] = dx[i] / dist;
-  return sphere_point(ra, n, reach - dist, pa, &pm, m);
+  m->ntested = lookups;
+  return touch ? sphere_point(radius, n, d, pa, &pm, m) : 0;
 }
 
 /* ----------------------------------------------------------------- dispatch ---- */
-
-static int is_sphere(const lsdem_shape *s) { return s->sdf.kind == LSDEM_SDF_SPHERE; }
 
 double lsdem_sphere_contact_area(double radius) { return M_PI * radius * radius; }
 
@@ -473,6 +438,5 @@ int lsdem_detect(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *
   if (!is_sphere(A))
     return lsdem_detect_nodes(A, pa, B, pb, det, step, list_in, list_out, m);
   if (list_out) list_out->valid = 0;
-  if (is_sphere(B)) return detect_sphere_sphere(A->sdf.a[0], pa, B->sdf.a[0], pb, m);
-  return detect_sphere_shape(A->sdf.a[0], pa, B, pb, m);
+  return detect_sphere(A->sdf.a[0], pa, B, pb, m);
 }

@@ -255,6 +255,21 @@ int lsdem_contact_penalty(const lsdem_shape *A, const lsdem_pose *pa, const lsde
                           int64_t step, const lsdem_pair_state *in, lsdem_pair_state *out,
                           lsdem_manifold *m, lsdem_contact_result *res);
 
+/* An analytic sphere A (radius ra) against B end to end, with one contact point: B a
+ * sphere in closed form (overlap d = ra + rb - |xA - xB|, normal n along the centre line
+ * from B to A), any other B by one lookup of A's centre in B's level set (report §2.3.5);
+ * the point in the middle of the overlap, p = xA - (ra - d/2) n, and the penalty law there
+ * (eqs 2.2-2.16, weight 1, or the cross-section pi ra^2 under the traction law). The same
+ * result, bit for bit, as lsdem_detect then lsdem_penalty_apply give for the sphere,
+ * without a manifold or a node list. The pair's shear history is at most one entry (node
+ * 0): hist_in (n_in entries, as lsdem_penalty_apply reads them) and hist_out (room for
+ * one, NULL: not kept; *n_out 0 or 1). Returns 1 in contact, else 0 (res all zero but
+ * its lookups, ntested). */
+int lsdem_contact_sphere(double ra, const lsdem_pose *pa, const lsdem_shape *B,
+                         const lsdem_pose *pb, const lsdem_penalty_law *law, double dt,
+                         int64_t step, const lsdem_shear_hist *hist_in, int n_in,
+                         lsdem_shear_hist *hist_out, int *n_out, lsdem_contact_result *res);
+
 /* ------------------------------------------------------------- master and slave ---- */
 
 typedef enum {

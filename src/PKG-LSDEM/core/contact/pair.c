@@ -1,6 +1,7 @@
 /* pair.c -- one pair end to end: detection into a manifold, then the penalty law, with the
- * pair's node list and shear history carried from the last step to this one. */
-#include "lsdem_contact.h"
+ * pair's node list and shear history carried from the last step to this one; and the same
+ * for an analytic sphere's one contact point, without a manifold. */
+#include "point.h"
 
 #include <stddef.h>
 
@@ -16,4 +17,46 @@ int lsdem_contact_penalty(const lsdem_shape *A, const lsdem_pose *pa, const lsde
                       out ? out->shear : NULL, &nshear, res);
   if (out) out->nshear = nshear;
   return res->npen;
+}
+
+/* The sphere path of lsdem_detect (lsdem_sphere_overlap, sphere_contact_point: one point,
+ * node 0, stride 1, the cross-section as its area) and lsdem_penalty_apply on that one
+ * point, formula by formula (point.h). */
+int lsdem_contact_sphere(double ra, const lsdem_pose *pa, const lsdem_shape *B,
+                         const lsdem_pose *pb, const lsdem_penalty_law *law, double dt,
+                         int64_t step, const lsdem_shear_hist *hist_in, int n_in,
+                         lsdem_shear_hist *hist_out, int *n_out, lsdem_contact_result *res)
+{
+  static const lsdem_contact_result no_result; /* all zero */
+  *res = no_result;
+  if (n_out) *n_out = 0;
+  double n[3], d;
+  const int touch = lsdem_sphere_overlap(ra, pa, B, pb, n, &d, &res->ntested);
+  if (!touch) return 0;
+
+  pair_motion pm;
+  lsdem_contact_point c;
+  double p[3];
+  pair_motion_of(pa, pb, &pm);
+  sphere_contact_point(ra, pa->x, n, d, p);
+  point_set(&c, &pm, 0, p, n, d, lsdem_sphere_contact_area(ra));
+
+  double r[3], vt[3], f[3];
+  const double fn = law_normal(law, 1.0, pm.xa, &c, r, vt, f); /* eq 2.2 */
+  if (law->mu > 0.0) {                                         /* eqs 2.7-2.10 */
+    /* the pair's one entry is node 0's (entries are sorted by node, nodes >= 0) */
+    const lsdem_shear_hist *h = hist_in && n_in > 0 && hist_in[0].node == 0 ? hist_in : NULL;
+    double s[3];
+    const int fresh = law_carried_shear(h, step, n, s);
+    law_tangential(law, 1.0, dt, c.area, fn, vt, s, fresh, f);
+    if (hist_out) {
+      law_history(hist_out, 0, step, s, n);
+      if (n_out) *n_out = 1;
+    }
+  }
+  double weight = 0.0;
+  law_sum_point(res, &weight, r, f, fn, p, d); /* eqs 2.14-2.16 */
+  res->npen = 1;
+  law_finish(res, weight, pm.dab);
+  return 1;
 }

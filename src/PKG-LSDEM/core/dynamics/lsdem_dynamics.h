@@ -14,6 +14,8 @@ extern "C" {
  * v <- [(1 - xi dt/2) v + dt f / m] / (1 + xi dt/2);  x <- x + dt v. */
 void lsdem_step_translation(double x[3], double v[3], const double f[3], double mass,
                             double xi, double dt);
+/* The velocity half of lsdem_step_translation alone (eq 2.18). */
+void lsdem_step_velocity(double v[3], const double f[3], double mass, double xi, double dt);
 
 /* The rotation of a body with one moment of inertia I about the axes it turns about (a
  * sphere; a pivoting platen): the centred difference of eq 2.18 in the world frame,

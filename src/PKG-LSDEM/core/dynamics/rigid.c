@@ -5,25 +5,26 @@
  * body (principal) frame, where the inertia tensor is diagonal. */
 #include "lsdem_dynamics.h"
 
+void lsdem_step_velocity(double v[3], const double f[3], double mass, double xi, double dt)
+{
+  const double h = 0.5 * xi * dt;
+  const double inv = 1.0 / (1.0 + h);
+  for (int i = 0; i < 3; i++) v[i] = ((1.0 - h) * v[i] + dt * f[i] / mass) * inv; /* eq 2.18 */
+}
+
 /* Centred-difference translation with global damping (eqs 2.18-2.19). */
 void lsdem_step_translation(double x[3], double v[3], const double f[3], double mass,
                             double xi, double dt)
 {
-  const double h = 0.5 * xi * dt;
-  const double inv = 1.0 / (1.0 + h);
-  for (int i = 0; i < 3; i++) {
-    v[i] = ((1.0 - h) * v[i] + dt * f[i] / mass) * inv; /* eq 2.18 */
-    x[i] += dt * v[i];                                  /* eq 2.19 */
-  }
+  lsdem_step_velocity(v, f, mass, xi, dt);
+  for (int i = 0; i < 3; i++) x[i] += dt * v[i]; /* eq 2.19 */
 }
 
 void lsdem_step_spin(double q[4], double omega[3], const double torque[3], double inertia,
                      double xi, double dt)
 {
-  double turned[3] = {0.0, 0.0, 0.0}, omega_body[3]; /* small-angle increment, not kept */
-  lsdem_step_translation(turned, omega, torque, inertia, xi, dt);
-  lsdem_quat_rotate_inv(q, omega, omega_body); /* world -> body with q^n */
-  lsdem_quat_advance(q, omega_body, dt);       /* q^n -> q^{n+1} */
+  lsdem_step_velocity(omega, torque, inertia, xi, dt); /* eq 2.18 as eq 2.20, I isotropic */
+  lsdem_quat_turn(q, omega, dt);                       /* q^n -> q^{n+1}, eq 2.28 */
 }
 
 void lsdem_step_sphere(double x[3], double v[3], double q[4], double omega[3],
