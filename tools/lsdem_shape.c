@@ -15,6 +15,7 @@
  *                                                                     (shape_pack.c)
  *   lsdem-shape membrane PREFIX --radius RS --height H --rb RB ...     (shape_membrane.c)
  *   lsdem-shape to-raw IMAGE.tif OUT.raw                              (shape_image.c)
+ *   lsdem-shape voids LIB DATA (--cylinder R Z0 Z1 | --box ...) [options] (shape_voids.c)
  *
  * Exit status 0 on success, 1 on any error (with a message on stderr), 2 on bad usage. */
 #include "lsdem.h"
@@ -58,7 +59,9 @@ static int usage(void)
           "       lsdem-shape membrane PREFIX --radius RS --height H --rb RB --library LIB\n"
           "                   --shapes SHAPE_IN SHAPE_OUT [--grains GRAINS.data] [--centre X Y]\n"
           "                   [--z0 Z] [--outer F] [--density RHO] [--types T_IN T_OUT]\n"
-          "                   [--knbb K] [--ksbb K] [--kinter KN KS]\n");
+          "                   [--knbb K] [--ksbb K] [--kinter KN KS]\n"
+          "       lsdem-shape voids LIB DATA (--cylinder R Z0 Z1 | --box X0 X1 Y0 Y1 Z0 Z1)\n"
+          "                   [--centre X Y] [--inset D] [--spacing H]\n");
   return 2;
 }
 
@@ -503,7 +506,7 @@ int main(int argc, char **argv)
               {"render", cmd_render}, {"surface", cmd_surface},
               {"from-labels", cmd_from_labels}, {"from-mesh", cmd_from_mesh},
               {"random", cmd_random}, {"pack", cmd_pack}, {"membrane", cmd_membrane},
-              {"to-raw", cmd_to_raw}};
+              {"to-raw", cmd_to_raw}, {"voids", cmd_voids}};
   if (argc < 2) return usage();
   for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++)
     if (!strcmp(argv[1], cmds[i].name)) return cmds[i].run(argc - 2, argv + 2);
