@@ -80,9 +80,12 @@ nshapes=$("$shape" list grains.lslib | awk '$3 == "grid"' | wc -l)
 # 2. random loose packing in a tall cylinder (solid fraction ~0.3), then packed in a rigid mould
 #    to the requested density (in.prepare: low-friction compaction)
 hpack=$(awk -v n="$n" -v r="$R" 'BEGIN { printf "%d", 720 * n / 300 * (90 / r)^2 }')
+# deposition: grains fall at ~20 px/time (gravity 1, damping 0.05) and the platen follows at up
+# to 25 px/time, so the steps grow with the packing's height
+nprep=${NPREP:-$(awk -v h="$hpack" 'BEGIN { print (6 * h > 6000 ? int(6 * h) : 6000) }')}
 "$shape" pack grains.lslib packed.data --count "$n" --cylinder "$((R - 2))" "$hpack" --density "$rho" --seed 3
 "${mpi[@]}" "$lmp" -in "$here/in.prepare" -var lib grains.lslib -var data packed.data -var R "$R" \
-  -var sigma_prep 0.2 -var nprep "${NPREP:-6000}" -var mu_prep "$mu_prep" -var densify "$densify" -var e_target "${E_TARGET:-0}" \
+  -var sigma_prep 0.2 -var nprep "$nprep" -var damp_prep 0.05 -var mu_prep "$mu_prep" -var densify "$densify" -var e_target "${E_TARGET:-0}" \
   -var mu_final "$mu" -var rho "$rho" -log log.prepare -echo none -screen none
 H=$(awk '/^PREPARED/ { print $3 }' log.prepare)
 echo "packed: $(grep '^PREPARED' log.prepare)"
