@@ -4,7 +4,8 @@
 usage: compare.py OUT.png LABEL=triaxial.csv [LABEL=triaxial.csv ...] [--title TEXT]
 
 For each CSV (examples/triaxial's output) prints one row -- peak mobilised friction angle and
-the axial strain there, the largest dilatancy angle (eq 3.10 over a 1 % strain window), the
+the axial strain there (and the first strain within 0.5 deg of the peak: a flat-topped
+peak's argmax wanders along the plateau), the largest dilatancy angle (eq 3.10 over a 1 % strain window), the
 volumetric strain at the peak and at the end (+ = contraction), the critical-state angle (mean
 phi over the last 3 % of axial strain, from 12 % on when the run is that long) and whether the
 specimen softens after its peak and dilates; with run.sh's voids.txt next to the CSV also the
@@ -66,6 +67,9 @@ def summary(c):
     ev = [100 * e for e in c["eps_v"]]
     phi = c["phi_deg"]
     k = max(range(len(phi)), key=lambda i: phi[i])
+    # a flat-topped peak: the argmax wanders along the plateau with the noise, so also the
+    # first strain where phi comes within 0.5 deg of the peak
+    k05 = next(i for i in range(len(phi)) if phi[i] >= phi[k] - 0.5)
     end = ea[-1]
     lo = max(12.0, end - 3.0) if end >= 15.0 else end - 3.0
     crit = window_mean(ea, phi, lo, end)
@@ -80,7 +84,7 @@ def summary(c):
     psi_max, psi_at = max(psis) if psis else (float("nan"), float("nan"))
     ev_max = max(ev)
     return {
-        "peak_phi": phi[k], "eps_peak": ea[k], "crit_phi": crit, "crit_window": [lo, end],
+        "peak_phi": phi[k], "eps_peak": ea[k], "eps_peak_within_05": ea[k05], "crit_phi": crit, "crit_window": [lo, end],
         "psi_max": psi_max, "psi_max_at": psi_at, "epsv_peak": ev[k], "epsv_end": ev[-1],
         "epsv_max_contraction": ev_max, "softening": phi[k] - crit,
         "dilates": ev[-1] < ev_max - 0.5, "e0": c["e"][0] if "e" in c else None,
@@ -137,15 +141,15 @@ def main():
         fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     fig.savefig(out, dpi=120)
-    head = ("%-28s %7s %7s %7s %7s %7s %9s %9s %9s %8s %8s %7s" %
-            ("specimen", "e_mould", "e_core", "e0", "peak", "eps_pk", "psi_max", "epsv_pk", "epsv_end", "crit",
-             "soften", "dilates"))
+    head = ("%-28s %7s %7s %7s %7s %7s %7s %9s %9s %9s %8s %8s %7s" %
+            ("specimen", "e_mould", "e_core", "e0", "peak", "eps_pk", "pk-0.5", "psi_max", "epsv_pk",
+             "epsv_end", "crit", "soften", "dilates"))
     print(head)
     for label, s in rows:
         fmt = lambda v: "%.3f" % v if v is not None else "-"
-        print("%-28s %7s %7s %7s %6.1f° %6.1f%% %8.1f° %8.2f%% %8.2f%% %7.1f° %7.1f° %7s" %
+        print("%-28s %7s %7s %7s %6.1f° %6.1f%% %6.1f%% %8.1f° %8.2f%% %8.2f%% %7.1f° %7.1f° %7s" %
               (label, fmt(s["e_mould"]), fmt(s["e_core"]), fmt(s["e0"]), s["peak_phi"],
-               s["eps_peak"], s["psi_max"], s["epsv_peak"], s["epsv_end"], s["crit_phi"],
+               s["eps_peak"], s["eps_peak_within_05"], s["psi_max"], s["epsv_peak"], s["epsv_end"], s["crit_phi"],
                s["softening"], "yes" if s["dilates"] else "no"))
     json.dump({label: s for label, s in rows}, open(out.rsplit(".", 1)[0] + ".json", "w"),
               indent=1)
