@@ -28,6 +28,8 @@
 # (compute pair lsdem), memory (LAMMPS's own per-rank figure at the start of shearing, and the
 # ranks' anonymous and file-backed resident memory, sampled from /proc every 2 s), and last:
 #   us_per_grain_step=<x> node_tests_per_s=<y> mem_per_grain_bytes=<z> bytes_per_shape=<w>
+# (z: the ranks' anonymous memory while shearing less that of the same ranks with no atoms,
+# per grain; w: the library's bytes per grain shape, the memory a shape takes once touched)
 #   projected_s_to_15pct=<t> [actual_s_to_15pct=<a>]
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -165,6 +167,30 @@ libbytes=$(stat -L -c %s all.lslib)
 say "membrane: $((natoms - grains)) spheres; library of this run $((libbytes / 1048576)) MB for $ngs grain shapes; $t_mem s"
 
 # ---- 4. consolidation and shearing, with a memory sampler -------------------------------
+# memory of the ranks as the sum over them of Pss_Anon and Pss_File (smaps_rollup), every 2 s
+sample_memory() { # PID-OF-RUN OUTFILE
+  while kill -0 "$1" 2>/dev/null; do
+    pids=$( { if [ "$np" -gt 1 ]; then pgrep -P "$1" -x lmp; else echo "$1"; fi; } 2>/dev/null || true)
+    [ -n "$pids" ] && for p in $pids; do cat "/proc/$p/smaps_rollup" 2>/dev/null; done |
+      awk -v t="$(date +%s)" '/^Pss_Anon:/ { a += $2 } /^Pss_File:/ { f += $2 } /^Rss:/ { r += $2 }
+        END { if (r > 0) print t, a, f, r }' >> "$2"
+    sleep 2
+  done
+}
+# the baseline: the same ranks with LAMMPS and MPI started, the library mapped, no atoms
+cat > in.baseline <<'DECK'
+units           si
+atom_style      lsdem library all.lslib
+region          box block -1 1 -1 1 -1 1
+create_box      1 box
+shell           sleep 6
+DECK
+rm -f mem_baseline.txt
+"${mpi[@]}" "$lmp" -in in.baseline -log log.baseline -echo none -screen none &
+base_pid=$!
+sleep 1
+sample_memory "$base_pid" mem_baseline.txt
+wait "$base_pid" || true
 erate=5.0e-4 dt=0.006
 if [ "$full" = 1 ]; then
   em=$epsmax
@@ -177,17 +203,7 @@ t0=$(now)
   -var memtri mem.tri -var mu 0.6 -var rho "$rho" -var R "$R" -var ncons "$cons" -var epsmax "$em" \
   -log log.lammps -echo none -screen none &
 run_pid=$!
-# memory: every 2 s the sum over the lmp ranks of Pss_Anon and Pss_File (smaps_rollup)
-(
-  while kill -0 "$run_pid" 2>/dev/null; do
-    pids=$( { [ "$np" -gt 1 ] && pgrep -P "$run_pid" -x lmp; [ "$np" -eq 1 ] && echo "$run_pid"; } 2>/dev/null || true)
-    [ -n "$pids" ] && for p in $pids; do cat "/proc/$p/smaps_rollup" 2>/dev/null; done |
-      awk -v t="$(date +%s)" '/^Pss_Anon:/ { a += $2 } /^Pss_File:/ { f += $2 } /^Rss:/ { r += $2 }
-        END { if (r > 0) print t, a, f, r }' >> mem_samples.txt
-    grep -q '^CONSOLIDATED' log.lammps 2>/dev/null && touch .sheared_started
-    sleep 2
-  done
-) &
+sample_memory "$run_pid" mem_samples.txt &
 sampler=$!
 tail --pid=$run_pid -n +1 -F log.lammps 2>/dev/null | grep --line-buffered '^PROGRESS' \
   | sed -u 's/^PROGRESS /  /' >&2 || true
@@ -232,6 +248,9 @@ samples = [list(map(float, l.split())) for l in open("mem_samples.txt")] if \
     __import__("os").path.exists("mem_samples.txt") else []
 anon = max((s[1] for s in samples), default=float("nan")) * 1024
 filem = max((s[2] for s in samples), default=float("nan")) * 1024
+base = [list(map(float, l.split())) for l in open("mem_baseline.txt")] if \
+    __import__("os").path.exists("mem_baseline.txt") else []
+anon0 = max((s[1] for s in base), default=0.0) * 1024
 us = t_sh / (grains * n_sh) * 1e6
 steps15 = math.ceil((1.0 - math.exp(-0.15)) / (erate * dt))
 proj = t_cons + steps15 * t_sh / n_sh
@@ -241,12 +260,14 @@ print("shearing split: " + ", ".join("%s %.1f%%" % (k, 100 * v / t_sh) for k, v 
 print("workload per step: %.0f pairs within bounding spheres, %.0f contacting pairs, %.0f node "
       "lookups, %.0f penetrating nodes (%.1f lookups per grain-step)"
       % (work[0], work[1], work[2], work[3], work[2] / grains))
-print("memory: LAMMPS's own %.0f MB (%d ranks x per-rank average at the start of shearing), "
-      "%.1f KB per grain; resident anonymous %.0f MB = %.2f KB per grain; file-backed (the "
-      "mapped library's touched pages and the binary, shared) %.0f MB; library %.0f MB = "
-      "%.0f KB per distinct shape"
-      % (lmp_mb, np, lmp_mb * 1048576 / grains / 1024, anon / 1048576, anon / grains / 1024,
-         filem / 1048576, libbytes / 1048576, libbytes / ngs / 1024))
+print("memory: LAMMPS's own %.0f MB (%d ranks x per-rank average at the start of shearing) = "
+      "%.2f KB per grain; resident anonymous %.0f MB, of which %.0f MB LAMMPS and MPI with no "
+      "atoms: %.2f KB per grain of state, history, neighbour lists and the membrane; "
+      "file-backed (the library's touched pages and the binary, shared) %.0f MB; library "
+      "%.0f MB = %.0f KB per distinct shape"
+      % (lmp_mb, np, lmp_mb * 1048576 / grains / 1024, anon / 1048576, anon0 / 1048576,
+         (anon - anon0) / grains / 1024, filem / 1048576, libbytes / 1048576,
+         libbytes / ngs / 1024))
 print("projected time to 15%% axial strain (%d steps at the example's strain rate) plus "
       "consolidation: %.0f s = %.2f h on %d rank(s)" % (steps15, proj, proj / 3600, np))
 extra = ""
@@ -254,6 +275,6 @@ if full:
     m = re.search(r"^SHEARED eps_a (\S+)", log, re.M)
     extra = " actual_s_to_%s=%.0f" % ("eps%.3f" % float(m.group(1)) if m else "end", t_cons + t_sh)
 print("us_per_grain_step=%.3f node_tests_per_s=%.4g mem_per_grain_bytes=%.0f bytes_per_shape=%.0f "
-      "projected_s_to_15pct=%.0f%s" % (us, work[2] * n_sh / t_sh, anon / grains, libbytes / ngs,
+      "projected_s_to_15pct=%.0f%s" % (us, work[2] * n_sh / t_sh, (anon - anon0) / grains, libbytes / ngs,
                                         proj, extra))
 EOF
