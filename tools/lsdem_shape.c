@@ -7,6 +7,7 @@
  *   lsdem-shape analytic OUT.lslib KIND PARAMS... [--spacing H] [--nodes N] [--name NAME]
  *                        [--margin M] [--seed S] [--analytic]
  *   lsdem-shape merge OUT.lslib IN.lslib...
+ *   lsdem-shape pick OUT.lslib IN.lslib INDICES.txt
  *   lsdem-shape render LIB SAMPLE OUT.png [--size W H] [--view x|y|z|iso] [--dump FRAME]
  *                      [--colour id|shape]                          (shape_render.c)
  *   lsdem-shape surface LIB INDEX OUT.vtk|OUT.ply [--spacing H]       (shape_render.c)
@@ -15,6 +16,7 @@
  *                                                                     (shape_pack.c)
  *   lsdem-shape membrane PREFIX --radius RS --height H --rb RB ...     (shape_membrane.c)
  *   lsdem-shape to-raw IMAGE.tif OUT.raw                              (shape_image.c)
+ *   lsdem-shape voids LIB DATA (--cylinder R Z0 Z1 | --box ...) [options] (shape_voids.c)
  *
  * Exit status 0 on success, 1 on any error (with a message on stderr), 2 on bad usage. */
 #include "lsdem.h"
@@ -40,6 +42,7 @@ static int usage(void)
           "         KIND PARAMS: sphere R | ellipsoid A B C | box HX HY HZ | cylinder R HALFLEN\n"
           "                      | superellipsoid A B C E1 E2\n"
           "       lsdem-shape merge OUT.lslib IN.lslib...\n"
+          "       lsdem-shape pick OUT.lslib IN.lslib INDICES.txt\n"
           "       lsdem-shape render LIB SAMPLE OUT.png [--size W H] [--view x|y|z|iso]\n"
           "                   [--dump FRAME] [--colour id|shape]\n"
           "       lsdem-shape surface LIB INDEX OUT.vtk|OUT.ply [--spacing H]\n"
@@ -58,7 +61,9 @@ static int usage(void)
           "       lsdem-shape membrane PREFIX --radius RS --height H --rb RB --library LIB\n"
           "                   --shapes SHAPE_IN SHAPE_OUT [--grains GRAINS.data] [--centre X Y]\n"
           "                   [--z0 Z] [--outer F] [--density RHO] [--types T_IN T_OUT]\n"
-          "                   [--knbb K] [--ksbb K] [--kinter KN KS]\n");
+          "                   [--knbb K] [--ksbb K] [--kinter KN KS]\n"
+          "       lsdem-shape voids LIB DATA (--cylinder R Z0 Z1 | --box X0 X1 Y0 Y1 Z0 Z1)\n"
+          "                   [--centre X Y] [--inset D] [--spacing H]\n");
   return 2;
 }
 
@@ -493,6 +498,62 @@ static int cmd_merge(int argc, char **argv)
   return rc;
 }
 
+/* -------------------------------------------------------------------- pick ---- */
+
+/* pick OUT.lslib IN.lslib INDICES: entry j of OUT is a copy of entry INDICES[j] of IN
+ * (0-based, whitespace-separated in the file INDICES, repeats allowed): a library with one
+ * shape per grain (the CT case's memory and cache traffic) from a few templates. */
+static int cmd_pick(int argc, char **argv)
+{
+  if (argc != 3) return usage();
+  lsdem_library *lib = NULL;
+  lsdem_error err;
+  if (lsdem_library_open(argv[1], &lib, &err) != LSDEM_OK) return fail("pick", &err);
+  const int nin = lsdem_library_count(lib);
+  FILE *f = fopen(argv[2], "r");
+  int rc = f ? 0 : fail("pick: cannot open the index file", NULL), n = 0, cap = 0;
+  int *idx = NULL;
+  long v;
+  while (!rc && fscanf(f, "%ld", &v) == 1) {
+    if (v < 0 || v >= nin) {
+      fprintf(stderr, "lsdem-shape: pick: index %ld (entry %d) outside 0..%d of %s\n", v, n + 1,
+              nin - 1, argv[1]);
+      rc = 1;
+      break;
+    }
+    if (n == cap) {
+      cap = cap ? 2 * cap : 1024;
+      int *t = realloc(idx, (size_t)cap * sizeof *idx);
+      if (!t) {
+        rc = fail("pick: out of memory", NULL);
+        break;
+      }
+      idx = t;
+    }
+    idx[n++] = (int)v;
+  }
+  if (!rc && f && !feof(f)) rc = fail("pick: the index file holds something else than integers", NULL);
+  if (!rc && n == 0) rc = fail("pick: no indices", NULL);
+  if (f) fclose(f);
+  lsdem_shape *shapes = rc ? NULL : calloc((size_t)n, sizeof *shapes);
+  const char **names = rc ? NULL : calloc((size_t)n, sizeof *names);
+  if (!rc && (!shapes || !names)) rc = fail("pick: out of memory", NULL);
+  for (int k = 0; !rc && k < nin; k++)
+    if (lsdem_library_verify(lib, k, &err) != LSDEM_OK) rc = fail(argv[1], &err);
+  for (int j = 0; !rc && j < n; j++) {
+    shapes[j] = *lsdem_library_shape(lib, idx[j]);
+    names[j] = lsdem_library_name(lib, idx[j]);
+  }
+  if (!rc && lsdem_library_write(argv[0], shapes, names, n, &err) != LSDEM_OK)
+    rc = fail("pick", &err);
+  if (!rc) printf("%s: %d shapes picked from the %d of %s\n", argv[0], n, nin, argv[1]);
+  free(idx);
+  free(shapes);
+  free(names);
+  lsdem_library_close(lib);
+  return rc;
+}
+
 int main(int argc, char **argv)
 {
   static const struct {
@@ -503,7 +564,7 @@ int main(int argc, char **argv)
               {"render", cmd_render}, {"surface", cmd_surface},
               {"from-labels", cmd_from_labels}, {"from-mesh", cmd_from_mesh},
               {"random", cmd_random}, {"pack", cmd_pack}, {"membrane", cmd_membrane},
-              {"to-raw", cmd_to_raw}};
+              {"to-raw", cmd_to_raw}, {"voids", cmd_voids}, {"pick", cmd_pick}};
   if (argc < 2) return usage();
   for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++)
     if (!strcmp(argv[1], cmds[i].name)) return cmds[i].run(argc - 2, argv + 2);

@@ -16,5 +16,6 @@ int cmd_random(int argc, char **argv); /* shape_random.c */
 int cmd_pack(int argc, char **argv);   /* shape_pack.c */
 
 int cmd_membrane(int argc, char **argv); /* shape_membrane.c */
+int cmd_voids(int argc, char **argv);    /* shape_voids.c */
 
 #endif

@@ -1,5 +1,6 @@
 """Triaxial acceptance on the main example as shipped (examples/triaxial/run.sh, angular
-grains, 2 ranks, about 2-4 minutes; label 'long': CI skips it).
+grains of ~450 nodes, 2 ranks, about 10-12 minutes on this shared 2-core machine, ctest
+timeout 40 min; label 'long': CI skips it).
 
 Independent expectations, from the apparatus rather than from an earlier run:
 1. the membrane confines the grains with the applied pressure: the CSV's sigma_radial (the
