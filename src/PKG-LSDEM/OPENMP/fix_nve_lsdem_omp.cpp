@@ -7,12 +7,8 @@
 
 #include "comm.h"
 
+#include "lsdem_thread_range.h"
 #include "omp_compat.h"
-#if defined(_OPENMP)
-#include <omp.h>
-#endif
-
-#include <algorithm>
 
 using namespace LAMMPS_NS;
 
@@ -43,14 +39,8 @@ void FixNVELsdemOMP::initial_integrate(int /*vflag*/)
 #pragma omp parallel LMP_DEFAULT_NONE
 #endif
   {
-#if defined(_OPENMP)
-    const int tid = omp_get_thread_num();
-#else
-    const int tid = 0;
-#endif
-    const int chunk = 1 + n / nthreads;
-    const int from = tid * chunk, to = std::min(n, from + chunk);
-    first_bad[tid] = from < to ? step_grains(from, to, why[tid]) : -1;
+    const LsdemThreadRange r(n, nthreads);
+    first_bad[r.tid] = r.from < r.to ? step_grains(r.from, r.to, why[r.tid]) : -1;
   }
   for (int t = 0; t < nthreads; t++)
     if (first_bad[t] >= 0) {

@@ -7,12 +7,8 @@
 
 #include "comm.h"
 
+#include "lsdem_thread_range.h"
 #include "omp_compat.h"
-#if defined(_OPENMP)
-#include <omp.h>
-#endif
-
-#include <algorithm>
 
 using namespace LAMMPS_NS;
 
@@ -44,13 +40,7 @@ void FixWallLsdemOMP::visit_all(const lsdem_pose &w)
 #pragma omp parallel LMP_DEFAULT_NONE LMP_SHARED(w)
 #endif
   {
-#if defined(_OPENMP)
-    const int tid = omp_get_thread_num();
-#else
-    const int tid = 0;
-#endif
-    const int chunk = 1 + n / nthreads;
-    const int from = std::min(n, tid * chunk), to = std::min(n, from + chunk);
-    visit_candidates(*lanes[tid], from, to, w);
+    const LsdemThreadRange r(n, nthreads);
+    visit_candidates(*lanes[r.tid], r.from, r.to, w);
   }
 }
