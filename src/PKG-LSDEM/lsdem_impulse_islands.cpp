@@ -43,6 +43,11 @@ LsdemImpulseIslands::LsdemImpulseIslands(LAMMPS *lmp, Fix *comm_fix, AtomVecLsde
 LsdemImpulseIslands::~LsdemImpulseIslands()
 {
   delete irregular;
+  destroy_per_atom();
+}
+
+void LsdemImpulseIslands::destroy_per_atom()
+{
   memory->destroy(parent);
   memory->destroy(size);
   memory->destroy(id);
@@ -56,13 +61,7 @@ void LsdemImpulseIslands::grow(int n)
 {
   if (n <= nmax) return;
   nmax = std::max(n, atom->nmax);
-  memory->destroy(parent);
-  memory->destroy(size);
-  memory->destroy(id);
-  memory->destroy(label);
-  memory->destroy(xlabel);
-  memory->destroy(involved);
-  memory->destroy(crossed);
+  destroy_per_atom();
   memory->create(parent, nmax, "impulse/lsdem:parent");
   memory->create(size, nmax, "impulse/lsdem:size");
   memory->create(id, nmax, "impulse/lsdem:id");

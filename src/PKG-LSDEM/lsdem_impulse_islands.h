@@ -134,6 +134,7 @@ class LsdemImpulseIslands : protected Pointers {
   std::vector<lsdem_impulse_contact> contacts;
 
   void grow(int);
+  void destroy_per_atom();
   int label_islands(const LsdemImpulseContact *, int, const char *, LsdemIslandStats &);
   int merge_received(int lo, int hi);
   int flag_cross(LsdemIslandStats &);
