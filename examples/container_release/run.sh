@@ -26,12 +26,13 @@ echo "fill: 2.5 s in the container, penalty, dt = $dt, $np rank(s) (log in $out/
   -log log.fill -screen none
 [ "$method" = penalty ] && mul=1
 d=$(/usr/bin/python3 -c "print('%.6g' % ($dt * $mul))")
-echo "release: $t_end s, $method, dt = $d ($mul x), $(steps "$t_end" "$d") steps (log in $out/log.$method)"
+# the release's log is the example's log.lammps (and its reference logs)
+echo "release: $t_end s, $method, dt = $d ($mul x), $(steps "$t_end" "$d") steps (log in $out/log.lammps)"
 start=$SECONDS
 "${mpi[@]}" "$lmp" -in "$here/in.release" -var method "$method" -var dt "$d" \
-  -var nsteps "$(steps "$t_end" "$d")" -var impulse_opts "$opts" -log "log.$method" -screen none
+  -var nsteps "$(steps "$t_end" "$d")" -var impulse_opts "$opts" -log log.lammps -screen none
 echo "lmp took $((SECONDS - start)) s"
-grep "^Loop time" "log.$method"
+grep "^Loop time" log.lammps
 /usr/bin/python3 "$here/mound.py" "mound_$method.dump"
 "$shape" render grains.lslib "mound_$method.dump" "mound_$method.png" --view y --size 640 400 >/dev/null
-echo "results: $out/log.$method, $out/mound_$method.dump, $out/mound_$method.png"
+echo "results: $out/log.lammps, $out/mound_$method.dump, $out/mound_$method.png"
