@@ -29,11 +29,7 @@ void FixNVELsdemOMP::init()
 void FixNVELsdemOMP::initial_integrate(int /*vflag*/)
 {
   const int n = integrated_count();
-  const int nthreads = comm->nthreads;
-  if ((int) first_bad.size() < nthreads) {  // package omp changed between runs
-    first_bad.resize(nthreads);
-    why.resize(nthreads);
-  }
+  const int nthreads = comm->nthreads;  // first_bad and why sized for them at init
 
 #if defined(_OPENMP)
 #pragma omp parallel LMP_DEFAULT_NONE

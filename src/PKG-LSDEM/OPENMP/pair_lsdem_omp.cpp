@@ -43,9 +43,8 @@ void PairLsdemOMP::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   const int nall = atom->nlocal + atom->nghost;
-  const int nthreads = comm->nthreads;
+  const int nthreads = comm->nthreads;  // lanes set up for them at init_style
   const int inum = list->inum;
-  if ((int) lanes.size() < nthreads) set_lanes(nthreads);  // package omp changed
   begin_force_call(nthreads);
   update_poses(0, nall);
   if (neighbor->ago == 0 || !master_built) build_master_pairs();
