@@ -198,6 +198,8 @@ void PairLsdem::init_style()
   MPI_Allreduce(&onerad[1], &maxrad[1], ntypes, MPI_DOUBLE, MPI_MAX, world);
   check_periodic_length();
   kn_max = stiffest_node_spring();
+  // the flat-contact node counts depend on the shape alone: kept over runs
+  if ((int) flat_nodes.size() != avec->nshapes()) flat_nodes.assign(avec->nshapes(), -1.0);
   LsdemContactOptions::sum_quanta(kn_max, avec, force_q, torque_q);
 
   // history where friction is on or node lists are kept; none at all when mu == 0
@@ -267,7 +269,6 @@ double PairLsdem::stiffest_node_spring()
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++)
       if (setflag[i][j]) kn_law_max = std::max(kn_law_max, params[i][j].law.kn);
-  if ((int) flat_nodes.size() != avec->nshapes()) flat_nodes.assign(avec->nshapes(), -1.0);
   return LsdemContactOptions::node_spring(kn_law_max, global.law.normal, global.stride, avec);
 }
 
