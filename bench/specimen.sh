@@ -17,8 +17,13 @@
 #     --np P          MPI ranks for the lmp runs (default 2)
 #     --cons S        consolidation steps (default 8000, as in.triaxial)
 #     --shear S       shearing steps timed (default 2000); --full: shear to --epsmax (0.15)
-#     --jobs J        parallel lsdem-shape processes making the shapes (default 1)
-#     --keep-going    with --full: go on past a failed check of the figures
+#     --jobs J        parallel lsdem-shape processes making the shapes (default 1; each
+#                     process has its own seed, so the cached library depends on J)
+#     --resume        with --full: go on with an interrupted --full run in OUTDIR from its
+#                     newest readable checkpoint (in.triaxial writes one every 2000 shearing
+#                     steps: shear.a.restart, shear.b.restart; else consolidated.restart);
+#                     each resumed part logs to log.rK.lammps and its CSV rows to
+#                     triaxial.rK.csv; triaxial_full.csv joins them
 # Environment: LSDEM_BUILD_DIR (default ./build), LSDEM_HOME (cache, default ~/.cache/lsdem):
 # shapes and the prepared (packed) specimen are cached under $LSDEM_HOME/bench/specimen/ and
 # reused by later runs with the same grains, shapes, nodes, spacing, size and seed.
@@ -31,6 +36,7 @@
 # (z: the ranks' anonymous memory while shearing less that of the same ranks with no atoms,
 # per grain; w: the library's bytes per grain shape, the memory a shape takes once touched)
 #   projected_s_to_15pct=<t> [actual_s_to_15pct=<a>]
+# (a: the wall time of the parts' LAMMPS runs, steps redone after an interruption included)
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 top=$here/..
@@ -41,7 +47,7 @@ shape=${LSDEM_SHAPE_TOOL:-$build/lsdem-shape}
 home=${LSDEM_HOME:-$HOME/.cache/lsdem}
 
 grains=20000 shapes=2000 unique=0 nodes=750 spacing=1.0 size=31 np=2 cons=8000 shear=2000
-full=0 epsmax=0.15 jobs=1 seed=11 keep=0 outdir=
+full=0 epsmax=0.15 jobs=1 seed=11 resume=0 outdir=
 while [ $# -gt 0 ]; do
   case "$1" in
     --grains) grains=$2; shift ;;
@@ -57,7 +63,7 @@ while [ $# -gt 0 ]; do
     --epsmax) epsmax=$2; shift ;;
     --jobs) jobs=$2; shift ;;
     --seed) seed=$2; shift ;;
-    --keep-going) keep=1 ;;
+    --resume) resume=1 ;;
     -h|--help) sed -n '2,32p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "specimen.sh: unknown option $1 (--help)" >&2; exit 2 ;;
     *) [ -z "$outdir" ] || { echo "specimen.sh: one OUTDIR only" >&2; exit 2; }; outdir=$1 ;;
@@ -68,6 +74,7 @@ for v in grains shapes nodes np cons shear jobs seed; do
   [[ ${!v} =~ ^[0-9]+$ ]] && [ "${!v}" -gt 0 ] || { echo "specimen.sh: --$v wants a positive integer" >&2; exit 2; }
 done
 [ -x "$lmp" ] && [ -x "$shape" ] || { echo "specimen.sh: no lmp/lsdem-shape in $build (./lsdem build)" >&2; exit 1; }
+[ "$resume" = 0 ] || [ "$full" = 1 ] || { echo "specimen.sh: --resume goes with --full" >&2; exit 2; }
 variant=$([ "$unique" = 1 ] && echo unique || echo "k$shapes")
 outdir=${outdir:-$here/out/specimen-$grains-$variant}
 mkdir -p "$outdir"
@@ -76,7 +83,7 @@ cd "$outdir"
 mpi=()
 [ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
 say() { printf '%s\n' "$*" | tee -a summary.txt; }
-: > summary.txt
+[ "$resume" = 1 ] || : > summary.txt
 now() { date +%s.%N; }
 secs() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.1f", b - a }'; }
 
@@ -143,24 +150,30 @@ say "core void ratio (lattice, 1 d from the walls): $(awk '{ print $9 }' "$spec/
 
 # ---- 3. library of this variant, membrane ------------------------------------------------
 t0=$(now)
-"$shape" analytic ball_in.lslib sphere "$rb" --analytic >/dev/null
-"$shape" analytic ball_out.lslib sphere "$(awk -v r=$rb 'BEGIN { print 1.1 * r }')" --analytic >/dev/null
-if [ "$unique" = 1 ]; then
-  # entry i of the grains' library is a copy of grain i's template; the data file's shape
-  # column becomes i (each grain its own shape)
-  awk '/^Atoms/ { on = 1; next } on && NF >= 11 { print $3 - 1 }' "$spec/sample_grains.data" > picks.txt
-  "$shape" pick grains.lslib "$cache/shapes.lslib" picks.txt >/dev/null
-  awk '/^Atoms/ { on = 1; print; next } on && NF >= 11 { $3 = ++k } { print }' \
-    "$spec/sample_grains.data" > sample_grains.data
+if [ "$resume" = 1 ]; then
+  [ -f mem.data ] && [ -f all.lslib ] && [ -f shear_state.in ] || {
+    echo "specimen.sh: --resume: $outdir has no interrupted --full run (mem.data, all.lslib, shear_state.in)" >&2; exit 1; }
+  ngs=$("$shape" list all.lslib | awk '$3 == "grid"' | wc -l); ngs=$((ngs - 2))
 else
-  ln -sf "$cache/shapes.lslib" grains.lslib
-  cp "$spec/sample_grains.data" sample_grains.data
+  "$shape" analytic ball_in.lslib sphere "$rb" --analytic >/dev/null
+  "$shape" analytic ball_out.lslib sphere "$(awk -v r=$rb 'BEGIN { print 1.1 * r }')" --analytic >/dev/null
+  if [ "$unique" = 1 ]; then
+    # entry i of the grains' library is a copy of grain i's template; the data file's shape
+    # column becomes i (each grain its own shape)
+    awk '/^Atoms/ { on = 1; next } on && NF >= 11 { print $3 - 1 }' "$spec/sample_grains.data" > picks.txt
+    "$shape" pick grains.lslib "$cache/shapes.lslib" picks.txt >/dev/null
+    awk '/^Atoms/ { on = 1; print; next } on && NF >= 11 { $3 = ++k } { print }' \
+      "$spec/sample_grains.data" > sample_grains.data
+  else
+    ln -sf "$cache/shapes.lslib" grains.lslib
+    cp "$spec/sample_grains.data" sample_grains.data
+  fi
+  ngs=$("$shape" list grains.lslib | awk '$3 == "grid"' | wc -l)
+  "$shape" merge all.lslib grains.lslib ball_in.lslib ball_out.lslib >/dev/null
+  "$shape" membrane mem --radius "$R" --height "$H" --z0 0 --rb "$rb" --library all.lslib \
+    --shapes $((ngs + 1)) $((ngs + 2)) --types 2 3 --grains sample_grains.data \
+    --density "$rho" --knbb "$km" --ksbb "$km" --kouter "$kmo" "$kmo" > membrane.log
 fi
-ngs=$("$shape" list grains.lslib | awk '$3 == "grid"' | wc -l)
-"$shape" merge all.lslib grains.lslib ball_in.lslib ball_out.lslib >/dev/null
-"$shape" membrane mem --radius "$R" --height "$H" --z0 0 --rb "$rb" --library all.lslib \
-  --shapes $((ngs + 1)) $((ngs + 2)) --types 2 3 --grains sample_grains.data \
-  --density "$rho" --knbb "$km" --ksbb "$km" --kouter "$kmo" "$kmo" > membrane.log
 t_mem=$(secs "$t0" "$(now)")
 natoms=$(awk '/ atoms$/ { print $1; exit }' mem.data)
 libbytes=$(stat -L -c %s all.lslib)
@@ -197,31 +210,74 @@ if [ "$full" = 1 ]; then
 else
   em=$(awk -v s="$shear" -v r="$erate" -v dt="$dt" 'BEGIN { printf "%.9g", -log(1 - s * r * dt) }')
 fi
-rm -f log.lammps mem_samples.txt
+# a --full run checkpoints every 2000 shearing steps; --resume goes on from the newest
+# checkpoint that LAMMPS can read (a run killed while writing one leaves it truncated)
+resume_vars=() log=log.lammps
+if [ "$full" = 1 ]; then resume_vars=(-var checkpoint 2000); fi
+if [ "$resume" = 1 ]; then
+  from=
+  for f in $(ls -t shear.a.restart shear.b.restart 2>/dev/null) consolidated.restart; do
+    printf 'read_restart %s\n' "$f" > in.check_restart
+    if "$lmp" -in in.check_restart -log none -echo none -screen none >/dev/null 2>&1; then from=$f; break; fi
+    echo "specimen.sh: checkpoint $f does not read; trying an older one" >&2
+  done
+  [ -n "$from" ] || { echo "specimen.sh: --resume: no readable checkpoint in $outdir" >&2; exit 1; }
+  k=1; while [ -f "log.r$k.lammps" ]; do k=$((k + 1)); done
+  log=log.r$k.lammps
+  resume_vars+=(-var resume "$from" -var part ".r$k")
+  say "resuming from $from ($(date -r "$from" '+%F %T')): part r$k, log $log"
+else
+  rm -f log.r*.lammps triaxial.r*.csv parts.txt
+fi
+rm -f "$log" mem_samples.txt
 t0=$(now)
 "${mpi[@]}" "$lmp" -in "$ex/in.triaxial" -var lib all.lslib -var data mem.data -var memin mem.in \
   -var memtri mem.tri -var mu 0.6 -var rho "$rho" -var R "$R" -var ncons "$cons" -var epsmax "$em" \
-  -log log.lammps -echo none -screen none &
+  "${resume_vars[@]}" -log "$log" -echo none -screen none &
 run_pid=$!
+echo "$log $t0" >> parts.txt
 sample_memory "$run_pid" mem_samples.txt &
 sampler=$!
-tail --pid=$run_pid -n +1 -F log.lammps 2>/dev/null | grep --line-buffered '^PROGRESS' \
+tail --pid=$run_pid -n +1 -F "$log" 2>/dev/null | grep --line-buffered '^PROGRESS' \
   | sed -u 's/^PROGRESS /  /' >&2 || true
 wait "$run_pid"
 wait "$sampler" 2>/dev/null || true
-t_lmp=$(secs "$t0" "$(now)")
-grep -E '^(CONSOLIDATED|SHEARED)' log.lammps | tee -a summary.txt
+grep -E '^(CONSOLIDATED|RESUMED|SHEARED)' "$log" | tee -a summary.txt
+if [ "$full" = 1 ]; then
+  # the parts' CSV rows joined: an earlier part's rows up to the step its successor resumed
+  # from (that part's first row, which the successor repeats with fresh interval averages)
+  /usr/bin/python3 - triaxial.csv $(ls -v triaxial.r*.csv 2>/dev/null) > triaxial_full.csv <<'EOF'
+import sys
+parts = [open(f).read().splitlines() for f in sys.argv[1:]]
+rows = parts[0][1:]
+for p in parts[1:]:
+    start = float(p[1].split(",")[0])                 # eps_a of the checkpoint's row
+    rows = [r for r in rows if float(r.split(",")[0]) <= start] + p[2:]
+print("\n".join(parts[0][:1] + rows))
+EOF
+fi
 
 # ---- 5. figures ------------------------------------------------------------------------
-/usr/bin/python3 - "$grains" "$np" "$erate" "$dt" "$full" "$libbytes" "$ngs" "$t_lmp" <<'EOF' | tee -a summary.txt
-import math, re, sys
-grains, np, erate, dt, full, libbytes, ngs, t_lmp = sys.argv[1:]
+/usr/bin/python3 - "$grains" "$np" "$erate" "$dt" "$full" "$libbytes" "$ngs" "$log" <<'EOF' | tee -a summary.txt
+import math, os, re, sys, time
+grains, np, erate, dt, full, libbytes, ngs, last = sys.argv[1:]
 grains, np, full, libbytes, ngs = int(grains), int(np), int(full), int(libbytes), int(ngs)
-erate, dt, t_lmp = float(erate), float(dt), float(t_lmp)
-log = open("log.lammps").read()
-loops = [(float(m.group(1)), int(m.group(2))) for m in
-         re.finditer(r"^Loop time of (\S+) on \d+ procs for (\d+) steps", log, re.M)]
-(t_cons, n_cons), (t_sh, n_sh) = loops[0], loops[-1]
+erate, dt = float(erate), float(dt)
+
+
+def loops_of(text):
+    return [(float(m.group(1)), int(m.group(2))) for m in
+            re.finditer(r"^Loop time of (\S+) on \d+ procs for (\d+) steps", text, re.M)]
+
+
+# consolidation: the first run's first loop; shearing: the last part's last loop (the whole
+# shearing run, or what was left of it after the newest checkpoint)
+t_cons, n_cons = loops_of(open("log.lammps").read())[0]
+log = open(last).read()
+t_sh, n_sh = loops_of(log)[-1]
+# parts (one unless resumed): wall time from each part's start to its log's last write
+parts = [l.split() for l in open("parts.txt")] if os.path.exists("parts.txt") else []
+t_parts = sum(os.path.getmtime(f) - float(t0) for f, t0 in parts if os.path.exists(f))
 # LAMMPS's section split of the shearing run
 tail = log[log.rfind("Loop time of"):]
 split = {m.group(1): float(m.group(2)) for m in
@@ -273,7 +329,10 @@ print("projected time to 15%% axial strain (%d steps at the example's strain rat
 extra = ""
 if full:
     m = re.search(r"^SHEARED eps_a (\S+)", log, re.M)
-    extra = " actual_s_to_%s=%.0f" % ("eps%.3f" % float(m.group(1)) if m else "end", t_cons + t_sh)
+    extra = " actual_s_to_%s=%.0f" % ("eps%.3f" % float(m.group(1)) if m else "end", t_parts)
+    if len(parts) > 1:
+        print("%d parts (resumed %d times); wall time of the parts %.0f s, steps redone after "
+              "interruptions included" % (len(parts), len(parts) - 1, t_parts))
 print("us_per_grain_step=%.3f node_tests_per_s=%.4g mem_per_grain_bytes=%.0f bytes_per_shape=%.0f "
       "projected_s_to_15pct=%.0f%s" % (us, work[2] * n_sh / t_sh, (anon - anon0) / grains, libbytes / ngs,
                                         proj, extra))
