@@ -19,6 +19,7 @@
 #include "lsdem_input.h"
 #include "memory.h"
 #include "neighbor.h"
+#include "update.h"
 
 #include "lsdem_kernel.h"
 
@@ -30,7 +31,8 @@ using namespace LAMMPS_NS;
 /* ---------------------------------------------------------------------- */
 
 BondLsdemMembrane::BondLsdemMembrane(LAMMPS *lmp) :
-    Bond(lmp), kn(nullptr), ks(nullptr), r0(nullptr), rest(nullptr)
+    Bond(lmp), kn(nullptr), ks(nullptr), r0(nullptr), rest(nullptr), terms(nullptr),
+    maxterms(0), terms_step(-1)
 {
   axis[0] = axis[1] = 0.0;
 }
@@ -46,6 +48,7 @@ BondLsdemMembrane::~BondLsdemMembrane()
     memory->destroy(r0);
     memory->destroy(rest);
   }
+  if (!copymode) memory->destroy(terms);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -55,6 +58,28 @@ double BondLsdemMembrane::bond_force(const double *x1, const double *x2, int typ
 {
   return lsdem_membrane_bond_force(x1, x2, axis, kn[type], ks[type], r0[type],
                                    &rest[2 * type], f2);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void BondLsdemMembrane::bond_terms(int from, int to)
+{
+  double **x = atom->x;
+  int **bondlist = neighbor->bondlist;
+  for (int n = from; n < to; n++) {
+    double *t = &terms[4 * n];
+    t[3] = bond_force(x[bondlist[n][0]], x[bondlist[n][1]], bondlist[n][2], t);
+  }
+}
+
+void BondLsdemMembrane::all_bond_terms()
+{
+  bond_terms(0, neighbor->nbondlist);
+}
+
+const double *BondLsdemMembrane::force_on_atom2(int n) const
+{
+  return terms_step == update->ntimestep ? &terms[4 * n] : nullptr;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -70,10 +95,17 @@ void BondLsdemMembrane::compute(int eflag, int vflag)
   int nlocal = atom->nlocal;
   int newton_bond = force->newton_bond;
 
+  if (nbondlist > maxterms) {
+    maxterms = nbondlist;
+    memory->destroy(terms);
+    memory->create(terms, 4 * maxterms, "bond:terms");
+  }
+  all_bond_terms();
+  terms_step = update->ntimestep;
+
   for (int n = 0; n < nbondlist; n++) {
     int i1 = bondlist[n][0], i2 = bondlist[n][1], type = bondlist[n][2];
-    double f2[3];
-    double ebond = bond_force(x[i1], x[i2], type, f2);
+    const double *f2 = &terms[4 * n];
     if (newton_bond || i1 < nlocal)
       for (int k = 0; k < 3; k++) f[i1][k] -= f2[k];
     if (newton_bond || i2 < nlocal)
@@ -83,7 +115,7 @@ void BondLsdemMembrane::compute(int eflag, int vflag)
       double del[3] = {x[i1][0] - x[i2][0], x[i1][1] - x[i2][1], x[i1][2] - x[i2][2]};
       double r = sqrt(del[0] * del[0] + del[1] * del[1] + del[2] * del[2]);
       double fbond = r > 0.0 ? -kn[type] * (r - r0[type]) / r : 0.0;
-      ev_tally(i1, i2, nlocal, newton_bond, ebond, fbond, del[0], del[1], del[2]);
+      ev_tally(i1, i2, nlocal, newton_bond, f2[3], fbond, del[0], del[1], del[2]);
     }
   }
 }
@@ -220,6 +252,13 @@ double BondLsdemMembrane::single(int type, double rsq, int i, int j, double &ffo
   fforce = r > 0.0 ? -kn[type] * (r - r0[type]) / r : 0.0;
   double f2[3];
   return bond_force(atom->x[i], atom->x[j], type, f2);
+}
+
+/* ---------------------------------------------------------------------- */
+
+double BondLsdemMembrane::memory_usage()
+{
+  return Bond::memory_usage() + 4.0 * maxterms * sizeof(double);
 }
 
 /* ---------------------------------------------------------------------- */

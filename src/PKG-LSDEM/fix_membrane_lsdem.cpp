@@ -44,6 +44,8 @@ enum { ROLE_MEMBRANE = 1, ROLE_INNER = 2, ROLE_MIDDLE = 4 };
 constexpr int MIDDLE = ROLE_MEMBRANE | ROLE_MIDDLE;
 constexpr int INNER_MIDDLE = MIDDLE | ROLE_INNER;
 bool has_role(int role, int bits) { return (role & bits) == bits; }
+// triangle_vertices: the rank owns the triangle, does not, or lacks one of its vertices
+enum { TRI_OWNED = 0, TRI_NOT_OWNED = -1, TRI_MISSING = -2 };
 constexpr double MAX_RB_FRACTION = 0.2;       // r_b <= Rs / 5
 constexpr double MAX_SINK_FRACTION = 0.2;     // p A_s / knb <= 0.2 r_b
 }    // namespace
@@ -53,7 +55,7 @@ constexpr double MAX_SINK_FRACTION = 0.2;     // p A_s / knb <= 0.2 r_b
 FixMembraneLsdem::FixMembraneLsdem(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), specimen_radius(0.0), nlayers(0), ninner(0), pressure_value(0.0), knb(-1.0),
     tributary_area(0.0), checked_pressure(-1.0), on_specimen(false), specimen_share(1.0), pvar(-1), nmax(0), fpress(nullptr),
-    role(nullptr), contact_radial(0.0), middle_area(0.0), vec_step(-1), bond(nullptr)
+    role(nullptr), contact_radial(0.0), middle_area(0.0), vec_step(-1), radial_step(-1), bond(nullptr)
 {
   const char *usage = "fix ID group membrane/lsdem pressure P triangles FILE "
                       "[weights w_inner w_outer] [knb K] [surface centres|specimen]";
@@ -273,7 +275,10 @@ void FixMembraneLsdem::init()
     error->all(FLERR, "fix membrane/lsdem: the membrane must not cross a periodic boundary "
                "in x or y (use a non-periodic box: boundary f f f or m m m)");
   bond = dynamic_cast<BondLsdemMembrane *>(force->bond_match("lsdem/membrane"));
+  if (!bond) bond = dynamic_cast<BondLsdemMembrane *>(force->bond_match("lsdem/membrane/omp"));
   if (!bond) error->all(FLERR, "fix membrane/lsdem needs bond_style lsdem/membrane");
+  tvert.resize(3 * tri_layer.size());
+  tterm.resize(4 * tri_layer.size());
   if (!pstr.empty()) {
     pvar = input->variable->find(pstr.c_str());
     if (pvar < 0) error->all(FLERR, "fix membrane/lsdem: variable {} does not exist", pstr);
@@ -374,35 +379,54 @@ void FixMembraneLsdem::check_apparatus(double p)
 }
 
 /* ----------------------------------------------------------------------
-   local index of a triangle's vertex (closest image to the owner vertex), or -1 with the
-   error kept in `missing`, which the caller reports on all ranks (stop_if_any_rank)
+   local index of a triangle's vertex (closest image to the owner vertex), -1 when it is
+   neither owned nor a ghost here
 ------------------------------------------------------------------------- */
 
-int FixMembraneLsdem::vertex(tagint tag, int owner, int itri)
+int FixMembraneLsdem::vertex(tagint tag, int owner) const
 {
   int j = atom->map(tag);
-  if (j >= 0) return domain->closest_image(owner, j);
-  if (missing.empty())
-    missing = fmt::format("fix membrane/lsdem: vertex {} of triangle {} ({} {} {}) is neither "
-                          "owned nor a ghost on rank {}: the ghost cutoff is shorter than a "
-                          "triangle edge (comm_modify cutoff) or the membrane tore apart", tag,
-                          itri + 1, tri[3 * itri], tri[3 * itri + 1], tri[3 * itri + 2],
-                          comm->me);
-  return -1;
+  return j >= 0 ? domain->closest_image(owner, j) : -1;
 }
 
-/* Triangle t is computed by the rank owning its lowest-ID vertex: true on that rank, with
-   the local indices of its vertices (owned or ghost, closest images) in v; false when a
-   vertex is missing (see vertex()). */
-bool FixMembraneLsdem::owned_triangle(int t, int v[3])
+/* Triangle t is computed by the rank owning its lowest-ID vertex: TRI_OWNED on that rank,
+   with the local indices of its vertices (owned or ghost, closest images) in v;
+   TRI_NOT_OWNED elsewhere; TRI_MISSING when a vertex is not here (note_missing_vertex). */
+int FixMembraneLsdem::triangle_vertices(int t, int v[3]) const
 {
   const tagint *tg = &tri[3 * t];
   int low = tg[0] < tg[1] ? (tg[0] < tg[2] ? 0 : 2) : (tg[1] < tg[2] ? 1 : 2);
   int owner = atom->map(tg[low]);
-  if (owner < 0 || owner >= atom->nlocal) return false;
+  if (owner < 0 || owner >= atom->nlocal) return TRI_NOT_OWNED;
+  for (int k = 0; k < 3; k++) {
+    v[k] = k == low ? owner : vertex(tg[k], owner);
+    if (v[k] < 0) return TRI_MISSING;
+  }
+  return TRI_OWNED;
+}
+
+/* triangle_vertices into v; false (v[0] = TRI_NOT_OWNED or TRI_MISSING) when the triangle
+   is not this rank's to compute */
+bool FixMembraneLsdem::owned_vertices(int t, int *v) const
+{
+  int status = triangle_vertices(t, v);
+  if (status != TRI_OWNED) v[0] = status;
+  return status == TRI_OWNED;
+}
+
+/* the first missing vertex of this rank, kept in `missing`, which the caller reports on all
+   ranks (stop_if_any_rank) */
+void FixMembraneLsdem::note_missing_vertex(int t)
+{
+  if (!missing.empty()) return;
+  const tagint *tg = &tri[3 * t];
+  tagint gone = tg[0];
   for (int k = 0; k < 3; k++)
-    if ((v[k] = k == low ? owner : vertex(tg[k], owner, t)) < 0) return false;
-  return true;
+    if (atom->map(tg[k]) < 0) gone = tg[k];
+  missing = fmt::format("fix membrane/lsdem: vertex {} of triangle {} ({} {} {}) is neither "
+                        "owned nor a ghost on rank {}: the ghost cutoff is shorter than a "
+                        "triangle edge (comm_modify cutoff) or the membrane tore apart", gone,
+                        t + 1, tg[0], tg[1], tg[2], comm->me);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -432,31 +456,44 @@ double FixMembraneLsdem::specimen_area_share(const double *a, const double *b, c
 }
 
 /* ----------------------------------------------------------------------
-   report §2.3.5: each vertex of triangle T gets -w p S_T / 3; the inner layer's
-   specimen-surface shares go to column 3 (for the radial stress)
+   phase one, triangles [from, to): report §2.3.5, each vertex of triangle T gets
+   -w p S_T / 3 (p = pressure_value); the inner layer's specimen-surface share
 ------------------------------------------------------------------------- */
 
-void FixMembraneLsdem::apply_pressure(double p)
+void FixMembraneLsdem::pressure_terms(int from, int to)
+{
+  double **x = atom->x;
+  for (int t = from; t < to; t++) {
+    int *v = &tvert[3 * t];
+    if (!owned_vertices(t, v)) continue;
+    double S[3], *term = &tterm[4 * t];
+    lsdem_triangle_area_vector(x[v[0]], x[v[1]], x[v[2]], S);
+    int layer = tri_layer[t];
+    lsdem_pressure_vertex_force(S, weight[layer] * layer_scale[layer] * pressure_value, term);
+    term[3] = layer == 0 ? specimen_area_share(x[v[0]], x[v[1]], x[v[2]], S) : 0.0;
+  }
+}
+
+/* phase two: the terms onto the vertices in triangle order (shares in column 3, for the
+   radial stress), summed over ranks, onto the owned spheres' forces */
+void FixMembraneLsdem::apply_pressure()
 {
   missing.clear();
   int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
-  double **x = atom->x;
   for (int i = 0; i < nall; i++) fpress[i][0] = fpress[i][1] = fpress[i][2] = fpress[i][3] = 0.0;
-  int ntri = (int) tri_layer.size();
+  for_triangles(&FixMembraneLsdem::pressure_terms);
+  int ntri = ntriangles();
   for (int t = 0; t < ntri; t++) {
-    int v[3];
-    if (!owned_triangle(t, v)) continue;
-    double S[3], f[3];
-    lsdem_triangle_area_vector(x[v[0]], x[v[1]], x[v[2]], S);
-    int layer = tri_layer[t];
-    lsdem_pressure_vertex_force(S, weight[layer] * layer_scale[layer] * p, f);
-    double share = layer == 0 ? specimen_area_share(x[v[0]], x[v[1]], x[v[2]], S) : 0.0;
+    const int *v = &tvert[3 * t];
+    if (v[0] == TRI_MISSING) note_missing_vertex(t);
+    if (v[0] < 0) continue;
+    const double *term = &tterm[4 * t];
     for (int k = 0; k < 3; k++) {
       double *fp = fpress[v[k]];
-      fp[0] += f[0];
-      fp[1] += f[1];
-      fp[2] += f[2];
-      fp[3] += share;
+      fp[0] += term[0];
+      fp[1] += term[1];
+      fp[2] += term[2];
+      fp[3] += term[3];
     }
   }
   AtomVecLsdem::stop_if_any_rank(lmp, FLERR, missing);
@@ -470,18 +507,16 @@ void FixMembraneLsdem::apply_pressure(double p)
   }
 }
 
-/* ---------------------------------------------------------------------- */
+/* ----------------------------------------------------------------------
+   radial stress: contact force = force so far - bond forces, on the middle-ring spheres of
+   both layers (grains that reach an outer sphere through the inner layer's gaps push on the
+   membrane too; contacts between membrane spheres cancel in the sum). The grains push the
+   membrane outward: positive = compressive on the specimen. Bond forces from this step's
+   bond call (bond_style lsdem/membrane keeps them), else computed here.
+------------------------------------------------------------------------- */
 
-void FixMembraneLsdem::post_force(int /*vflag*/)
+double FixMembraneLsdem::contact_radial_sum() const
 {
-  grow();
-  if (neighbor->ago == 0) refresh_roles();
-  current_pressure();
-
-  // radial stress: contact force = force so far - bond forces, on the middle-ring spheres of
-  // both layers (grains that reach an outer sphere through the inner layer's gaps push on the
-  // membrane too; contacts between membrane spheres cancel in the sum). The grains push the
-  // membrane outward: positive = compressive on the specimen.
   int nlocal = atom->nlocal;
   double **f = atom->f, **x = atom->x;
   double radial = 0.0;
@@ -493,27 +528,79 @@ void FixMembraneLsdem::post_force(int /*vflag*/)
     bool r1 = has_role(role[i1], MIDDLE), r2 = has_role(role[i2], MIDDLE);
     if (!r1 && !r2) continue;
     double f2[3], f1[3];
-    bond->bond_force(x[i1], x[i2], bondlist[n][2], f2);
+    const double *kept = bond->force_on_atom2(n);
+    if (kept) {
+      f2[0] = kept[0];
+      f2[1] = kept[1];
+      f2[2] = kept[2];
+    } else {
+      bond->bond_force(x[i1], x[i2], bondlist[n][2], f2);
+    }
     f1[0] = -f2[0];
     f1[1] = -f2[1];
     f1[2] = -f2[2];
     if (r1) radial -= radial_projection(i1, f1);
     if (r2) radial -= radial_projection(i2, f2);
   }
-  contact_radial = radial;
+  return radial;
+}
 
-  apply_pressure(pressure_value);
+/* ---------------------------------------------------------------------- */
+
+void FixMembraneLsdem::post_force(int /*vflag*/)
+{
+  grow();
+  if (neighbor->ago == 0) refresh_roles();
+  current_pressure();
+  contact_radial = contact_radial_sum();
+  apply_pressure();
   double area = 0.0;
-  for (int i = 0; i < nlocal; i++)
+  for (int i = 0; i < atom->nlocal; i++)
     if (has_role(role[i], INNER_MIDDLE)) area += fpress[i][3];
   middle_area = area;
-  vec_step = -1;
+  vec_step = radial_step = -1;
 }
+
+/* ----------------------------------------------------------------------
+   output 2, the radial stress alone (fix ave/time samples it every step): the ranks'
+   partial sums of the last post_force, per unit area of the specimen surface, compressive
+   positive
+------------------------------------------------------------------------- */
+
+void FixMembraneLsdem::reduce_radial_stress()
+{
+  double loc[2] = {contact_radial, middle_area}, all[2];
+  MPI_Allreduce(loc, all, 2, MPI_DOUBLE, MPI_SUM, world);
+  vec[1] = all[1] > 0.0 ? all[0] / all[1] : 0.0;
+  radial_step = update->ntimestep;
+}
+
+/* ---------------------------------------------------------------------- */
 
 /* ----------------------------------------------------------------------
    volumes (eq 2.30 closed by the end-ring caps) and areas, reduced over ranks;
    positions relative to a common origin on the axis
 ------------------------------------------------------------------------- */
+
+/* phase one, triangles [from, to): the volume term of eq 2.30 and the area, positions
+   relative to a common origin on the axis */
+void FixMembraneLsdem::geometry_terms(int from, int to)
+{
+  double **x = atom->x;
+  for (int t = from; t < to; t++) {
+    int *v = &tvert[3 * t];
+    if (!owned_vertices(t, v)) continue;
+    double p[3][3], S[3];
+    for (int k = 0; k < 3; k++) {
+      p[k][0] = x[v[k]][0] - axis[0];
+      p[k][1] = x[v[k]][1] - axis[1];
+      p[k][2] = x[v[k]][2];
+    }
+    lsdem_triangle_area_vector(p[0], p[1], p[2], S);
+    tterm[4 * t] = lsdem_triangle_volume_term(p[0], p[1], p[2]);
+    tterm[4 * t + 1] = sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]);
+  }
+}
 
 void FixMembraneLsdem::compute_geometry()
 {
@@ -524,18 +611,16 @@ void FixMembraneLsdem::compute_geometry()
   // local: volume[2], area[2], caps[layer][end] = sum_v(3), sum_s(3), n, radial sums(2)
   double loc[2 + 2 + 2 * 2 * 7 + 2] = {0.0};
   double *caps = loc + 4;
-  int ntri = (int) tri_layer.size();
   auto rel = [&](int i, double *out) {
     for (int k = 0; k < 3; k++) out[k] = x[i][k] - origin[k];
   };
+  for_triangles(&FixMembraneLsdem::geometry_terms);
+  int ntri = ntriangles();
   for (int t = 0; t < ntri; t++) {
-    int v[3];
-    if (!owned_triangle(t, v)) continue;
-    double p[3][3], S[3];
-    for (int k = 0; k < 3; k++) rel(v[k], p[k]);
-    lsdem_triangle_area_vector(p[0], p[1], p[2], S);
-    loc[tri_layer[t]] += lsdem_triangle_volume_term(p[0], p[1], p[2]);
-    loc[2 + tri_layer[t]] += sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]);
+    if (tvert[3 * t] == TRI_MISSING) note_missing_vertex(t);
+    if (tvert[3 * t] < 0) continue;
+    loc[tri_layer[t]] += tterm[4 * t];
+    loc[2 + tri_layer[t]] += tterm[4 * t + 1];
   }
   int ncap = (int) cap_layer.size();
   for (int e = 0; e < ncap; e++) {
@@ -579,14 +664,18 @@ void FixMembraneLsdem::compute_geometry()
   vec[3] = lsdem_membrane_inset_volume(vol[0], A, H, rb);
   vec[4] = pressure_value;
   vec[5] = nlayers == 2 ? vol[1] : 0.0;
-  vec_step = update->ntimestep;
+  vec_step = radial_step = update->ntimestep;
 }
 
 /* ---------------------------------------------------------------------- */
 
 double FixMembraneLsdem::compute_vector(int n)
 {
-  if (vec_step != update->ntimestep) compute_geometry();
+  if (n == 1) {
+    if (radial_step != update->ntimestep) reduce_radial_stress();
+  } else if (vec_step != update->ntimestep) {
+    compute_geometry();
+  }
   return vec[n];
 }
 

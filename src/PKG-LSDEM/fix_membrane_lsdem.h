@@ -6,6 +6,9 @@
    inward normal), the enclosed volume (eq 2.30) and the radial stress of the grains on
    the membrane. Triangles come from lsdem-shape membrane; the membrane is ordinary,
    domain-decomposed atoms.
+   The triangle loops run in two phases: each triangle's vertices and terms into a buffer
+   (the part fix membrane/lsdem/omp shares among threads), then the sums and the scatter
+   onto the vertices in triangle order (serial: the same bits on any thread count).
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -26,6 +29,12 @@ FixStyle(membrane/lsdem,FixMembraneLsdem);
 namespace LAMMPS_NS {
 
 class FixMembraneLsdem : public Fix {
+ protected:
+  typedef void (FixMembraneLsdem::*TrianglePhase)(int from, int to);
+  // phase(0, ntri) (fix membrane/lsdem/omp: each thread a contiguous run of the triangles)
+  virtual void for_triangles(TrianglePhase phase) { (this->*phase)(0, ntriangles()); }
+  int ntriangles() const { return (int) tri_layer.size(); }
+
  public:
   FixMembraneLsdem(class LAMMPS *, int, char **);
   ~FixMembraneLsdem() override;
@@ -62,11 +71,17 @@ class FixMembraneLsdem : public Fix {
   double **fpress;  // pressure force (3) and inner-layer tributary area (1), reverse-summed
   int *role;        // ROLE_* bits of the atom (0: not a membrane sphere)
 
+  // per triangle, phase one of the loops: local indices of the vertices (tvert[3t] < 0:
+  // not this rank's triangle, or TRI_MISSING) and terms (pressure: force per vertex (3),
+  // specimen-area share (1); geometry: volume term, area)
+  std::vector<int> tvert;
+  std::vector<double> tterm;
+
   // radial stress, partial sums of the last post_force (this rank)
   double contact_radial, middle_area;
   // cached output
   double vec[6];
-  bigint vec_step;
+  bigint vec_step, radial_step;
 
   class BondLsdemMembrane *bond;
 
@@ -77,12 +92,18 @@ class FixMembraneLsdem : public Fix {
   void check_apparatus(double p);
   void grow();
   void refresh_roles();
-  int vertex(tagint tag, int owner, int itri);
-  bool owned_triangle(int t, int v[3]);
+  int vertex(tagint tag, int owner) const;
+  int triangle_vertices(int t, int v[3]) const;
+  bool owned_vertices(int t, int *v) const;
+  void note_missing_vertex(int t);
   double radial_projection(int i, const double *f) const;
   double specimen_area_share(const double *a, const double *b, const double *c,
                              const double *S) const;
-  void apply_pressure(double p);
+  void pressure_terms(int from, int to);
+  void geometry_terms(int from, int to);
+  void apply_pressure();
+  double contact_radial_sum() const;
+  void reduce_radial_stress();
   void compute_geometry();
 };
 

@@ -80,7 +80,8 @@ void FixNVELsdem::init()
   // only feed the friction of the membrane's contacts
   fixed_spin = 0;
   for (int k = 0; k < modify->nfix; k++)
-    if (strcmp(modify->fix[k]->style, "membrane/lsdem") == 0) fixed_spin |= modify->fix[k]->groupbit;
+    if (utils::strmatch(modify->fix[k]->style, "^membrane/lsdem"))  // and membrane/lsdem/omp
+      fixed_spin |= modify->fix[k]->groupbit;
   check_timestep();
 }
 

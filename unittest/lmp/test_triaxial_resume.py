@@ -17,35 +17,10 @@ import csv
 import os
 import re
 
-from lsdemtest import run_lmp, check, near, finish, shape_tool
+from lsdemtest import run_lmp, check, near, finish
+from triaxial_specimen import make, shear_strain, DECK
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-EX = os.path.join(HERE, "..", "..", "examples", "triaxial")
-R, RHO, RB = 32.0, 2.65e-3, 4.0
-
-shape_tool("random", "g.lslib", "--count", 4, "--size", 16, "--size-spread", 0.1,
-           "--elongation", 0.75, "--flatness", 0.75, "--angularity", 0.12, "--seed", 3,
-           "--nodes", 150, "--spacing", 1.0)
-shape_tool("pack", "g.lslib", "packed.data", "--count", 80, "--cylinder", R - 1, 280,
-           "--density", RHO, "--seed", 5)
-rc, log = run_lmp(os.path.join(EX, "in.prepare"), vars={
-    "lib": "g.lslib", "data": "packed.data", "R": R, "sigma_prep": 0.2, "nprep": 1500,
-    "nround": 500, "maxround": 2, "mu_prep": 0.6, "mu_final": 0.6, "nrelax": 500, "rho": RHO},
-    log="log.prepare")
-H = float(re.search(r"^PREPARED height (\S+)", log, re.M).group(1))
-text = open("sample.data").read().split("\nVelocities")[0]
-open("sample_grains.data", "w").write(text + "\n")
-shape_tool("analytic", "in.lslib", "sphere", RB, "--analytic")
-shape_tool("analytic", "out.lslib", "sphere", 1.1 * RB, "--analytic")
-shape_tool("merge", "all.lslib", "g.lslib", "in.lslib", "out.lslib")
-shape_tool("membrane", "mem", "--radius", R, "--height", H, "--z0", 0, "--rb", RB,
-           "--library", "all.lslib", "--shapes", 5, 6, "--types", 2, 3, "--grains",
-           "sample_grains.data", "--density", RHO, "--knbb", 4, "--ksbb", 4, "--kouter", 1, 1)
-
-EPS = "%.12g" % -__import__("math").log(1 - 900 * 5.0e-4 * 0.006)  # 900 shearing steps
-VARS = {"lib": "all.lslib", "data": "mem.data", "memin": "mem.in", "memtri": "mem.tri",
-        "R": R, "rho": RHO, "ncons": 300, "epsmax": EPS, "every": 100, "checkpoint": 300}
-DECK = os.path.join(EX, "in.triaxial")
+VARS = dict(make(), ncons=300, epsmax=shear_strain(900), every=100, checkpoint=300)
 
 
 def sheared(log):
