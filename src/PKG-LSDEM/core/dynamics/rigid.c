@@ -9,7 +9,8 @@ void lsdem_step_velocity(double v[3], const double f[3], double mass, double xi,
 {
   const double h = 0.5 * xi * dt;
   const double inv = 1.0 / (1.0 + h);
-  for (int i = 0; i < 3; i++) v[i] = ((1.0 - h) * v[i] + dt * f[i] / mass) * inv; /* eq 2.18 */
+  const double dt_m = dt / mass;
+  for (int i = 0; i < 3; i++) v[i] = ((1.0 - h) * v[i] + dt_m * f[i]) * inv; /* eq 2.18 */
 }
 
 /* Centred-difference translation with global damping (eqs 2.18-2.19). */
