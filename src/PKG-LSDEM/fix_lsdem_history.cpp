@@ -91,12 +91,15 @@ void FixLsdemHistory::release(Pool &p)
    pointers into p are taken after this)
 ------------------------------------------------------------------------- */
 
+/* room for ns more slices and nslot more slots; grows by a quarter (not doubling: the
+   pools are most of a grain's memory, and they reach their size in the first steps) */
 void FixLsdemHistory::pool_room(Pool &p, int ns, int nslot)
 {
   const size_t need = (size_t) p.ns + (size_t) ns;
-  if (need > p.slice.size()) p.slice.resize(std::max({need, 2 * p.slice.size(), (size_t) 16}));
+  if (need > p.slice.size())
+    p.slice.resize(std::max({need, p.slice.size() + p.slice.size() / 4, (size_t) 16}));
   if (p.nslot + nslot > p.maxslot) {
-    p.maxslot = std::max(2 * p.maxslot, p.nslot + nslot);
+    p.maxslot = std::max(p.maxslot + p.maxslot / 4, p.nslot + nslot);
     p.slot = (Slot *) memory->srealloc(p.slot, sizeof(Slot) * p.maxslot, "lsdem/history:slots");
   }
 }
@@ -432,6 +435,17 @@ int FixLsdemHistory::maxsize_restart()
 }
 
 /* ---------------------------------------------------------------------- */
+
+void FixLsdemHistory::held(double &pairs, double &entries, double &shears) const
+{
+  pairs = entries = shears = 0.0;
+  for (const Pool &p : pool[cur])
+    for (int k = 0; k < p.ns; k++) {
+      pairs += 1.0;
+      entries += p.slice[k].list_valid ? p.slice[k].nentry : 0;
+      shears += p.slice[k].nshear;
+    }
+}
 
 double FixLsdemHistory::memory_usage()
 {

@@ -70,6 +70,8 @@ class FixLsdemHistory : public Fix {
   int size_restart(int) override;
   int maxsize_restart() override;
   double memory_usage() override;
+  // what the current pool holds: pair states, node-list entries, shear entries
+  void held(double &pairs, double &entries, double &shears) const;
 
  private:
   // a slot holds a shear entry or a list entry; a list head takes two

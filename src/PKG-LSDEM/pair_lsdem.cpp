@@ -51,8 +51,9 @@ PairLsdem::PairLsdem(LAMMPS *lmp) :
   comm_forward = 1;  // contact counts, for zcap
   comm_reverse = 1;
   // workload of the last force call, for compute pair: pairs tested, contacts,
-  // nodes looked up, penetrating nodes (compute pair sums them over ranks)
-  nextra = 4;
+  // nodes looked up, penetrating nodes; the contact state it left: bytes of the history
+  // store, pair states, node-list entries, shear entries (compute pair sums over ranks)
+  nextra = 8;
   pvector = new double[nextra];
   for (int k = 0; k < nextra; k++) pvector[k] = 0.0;
 }
@@ -508,7 +509,11 @@ const double *PairLsdem::coordination(int to_ghosts)
 void PairLsdem::tally_workload()
 {
   double ncontacting = 0.0;
-  for (int k = 0; k < 4; k++) pvector[k] = 0.0;
+  for (int k = 0; k < nextra; k++) pvector[k] = 0.0;
+  if (fix_history) {
+    pvector[4] = fix_history->memory_usage();
+    fix_history->held(pvector[5], pvector[6], pvector[7]);
+  }
   for (int l = 0; l < nlanes; l++) {
     const Lane &lane = *lanes[l];
     for (const Contact &k : lane.contact) ncontacting += k.counts;
