@@ -8,6 +8,10 @@
 #
 #   bench/specimens.sh [OUTDIR]          (default bench/out/specimens; after ./lsdem build)
 #   NGRAINS=2000 NSHAPES=100 NP=1 MU=0.6 ONLY="dense loose spheres" (which runs) EPSMAX=0.16
+#   ONLY may also name the like-for-like controls: spheres_loose (equal-volume spheres packed
+#   from friction 0.6 to the mould void ratio E_SPHERES, default 0.75, so that e0 in the
+#   membrane is near the report's 0.60) and loose_round (loose, rounder shapes of 250 nodes,
+#   ANGULARITY 0.05, like the report's eroded low-resolution avatars)
 #
 # A benchmark, not a test: about an hour per specimen of 2,000 grains on one core. Each run's
 # folder keeps run.sh's outputs (triaxial.csv, logs, voids.txt, plots) and time.txt.
@@ -24,7 +28,9 @@ for name in $only; do
     dense) env=(DENSITY=dense SHAPES=angular) ;;
     loose) env=(DENSITY=loose SHAPES=angular) ;;
     spheres) env=(DENSITY=dense SHAPES=spheres) ;;
-    *) echo "specimens.sh: ONLY takes dense, loose, spheres" >&2; exit 2 ;;
+    spheres_loose) env=(SHAPES=spheres E_TARGET="${E_SPHERES:-0.75}") ;;
+    loose_round) env=(DENSITY=loose SHAPES=angular ANGULARITY=0.05 NODES=250) ;;
+    *) echo "specimens.sh: ONLY takes dense, loose, spheres, spheres_loose, loose_round" >&2; exit 2 ;;
   esac
   echo "== $name: ${env[*]} NGRAINS=$NGRAINS NSHAPES=$NSHAPES NP=$NP (log $out/$name/run.log)"
   mkdir -p "$out/$name"
@@ -36,12 +42,14 @@ for name in $only; do
   cat "$out/$name/time.txt"
 done
 args=()
-for name in dense loose spheres; do
+for name in dense loose spheres spheres_loose loose_round; do
   [ -f "$out/$name/triaxial.csv" ] || continue
   case "$name" in
     dense) label="dense angular" ;;
     loose) label="loose angular" ;;
     spheres) label="dense spheres" ;;
+    spheres_loose) label="loose spheres" ;;
+    loose_round) label="loose rounder (250 nodes)" ;;
   esac
   args+=("$label=$out/$name/triaxial.csv")
 done

@@ -14,7 +14,8 @@
 #   friction lowered step by step until the void ratio in the mould is e (OUT out/e<e>);
 #   NODES (surface nodes per grain, default: lsdem-shape's mean spacing 0.09 d, inside the
 #   report's d/10 rule), SPACING (grid spacing, default 1.0 px: R/10 for the smallest
-#   grains); NSHAPES (random shapes, default 8); R (specimen radius, default 90 px for 300
+#   grains); NSHAPES (random shapes, default 8); ANGULARITY (of the random shapes, default
+#   0.12; 0.05: rounder, like the report's eroded low-resolution avatars); R (specimen radius, default 90 px for 300
 #   grains, scaled as NGRAINS^(1/3)); KM scales with R (10 at R = 90)
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -60,7 +61,7 @@ start=$SECONDS
 #    spheres of the same volumes and node count (level-set grids, so they roll like grains)
 rm -f grains.lslib rand.lslib sph*.lslib ball_*.lslib all.lslib
 "$shape" random rand.lslib --count "${NSHAPES:-8}" --size 31 --size-spread 0.15 --elongation 0.75 \
-  --flatness 0.75 --angularity 0.12 --roughness 0.02 --seed 5 $nodes --spacing "$spacing" >shapes.log
+  --flatness 0.75 --angularity "${ANGULARITY:-0.12}" --roughness 0.02 --seed 5 $nodes --spacing "$spacing" >shapes.log
 if [ "$kind" = spheres ]; then
   parts=()
   # `list` columns: index name kind grid h= nodes clusters radius volume I1 I2 I3
