@@ -8,7 +8,10 @@ contacts after 300 steps are the same to round-off (the lists leave out only nod
 cannot touch, so the sums are bit-identical in practice; 1e-13 allowed). With lists on,
 the pair style looks up far fewer nodes (compute pair lsdem, third value). On 2 ranks
 with lists, migrating grains carry their lists: the serial answer to 1e-8 (only the order
-of ghost force sums differs). A bad keyword value is named."""
+of ghost force sums differs). The contact state compute pair reports (values 5-8): every
+penetrating node of a step keeps one shear entry (mu > 0 everywhere), node-list entries only
+with lists, each stored pair at most one list, and the store's bytes cover what it holds at
+64 bytes an entry (two slots a list head). A bad keyword value is named."""
 import os
 import random
 
@@ -40,7 +43,7 @@ fix 1 all nve/lsdem
 fix floor all wall/lsdem plane 0 0 0 0 0 1 3000 2500 0.4 cn 2.0%s
 compute er all erotate/lsdem
 compute w all pair lsdem
-thermo_style custom step ke c_er f_floor[1] f_floor[2] f_floor[3] c_w[2] c_w[3] c_w[4]
+thermo_style custom step ke c_er f_floor[1] f_floor[2] f_floor[3] c_w[2] c_w[3] c_w[4] c_w[5] c_w[6] c_w[7] c_w[8]
 %s
 thermo 100
 timestep 5e-4
@@ -75,6 +78,17 @@ if off and auto and skin and par:
     for name, row in (("auto", auto), ("skin 0.05", skin)):
         check(row["c_w[3]"] < 0.5 * off["c_w[3]"],
               "%s: %d lookups, %d without lists" % (name, row["c_w[3]"], off["c_w[3]"]))
+
+    for name, row in (("off", off), ("auto", auto), ("skin 0.05", skin), ("auto on 2 ranks", par)):
+        check(row["c_w[8]"] == row["c_w[4]"], "%s: %d shear entries held for %d penetrating nodes"
+              % (name, row["c_w[8]"], row["c_w[4]"]))
+        check((row["c_w[7]"] > 0) == (name != "off"), "%s: %d node-list entries held"
+              % (name, row["c_w[7]"]))
+        check(row["c_w[6]"] >= row["c_w[2]"], "%s: %d pair states for %d contacts"
+              % (name, row["c_w[6]"], row["c_w[2]"]))
+        used = 64 * (row["c_w[7]"] + row["c_w[8]"] + (2 * row["c_w[6]"] if name != "off" else 0))
+        check(used <= row["c_w[5]"] <= 8 * used + 2e6, "%s: store %d bytes for %d in use"
+              % (name, row["c_w[5]"], used))
 
 rc, log = run_lmp(deck("wide"), cwd=os.path.abspath("bad"), expect_fail=True)
 check("nodelist must be auto, off or a skin length > 0, not wide" in log,
