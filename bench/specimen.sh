@@ -28,6 +28,8 @@
 # shapes and the prepared (packed) specimen are cached under $LSDEM_HOME/bench/specimen/ and
 # reused by later runs with the same grains, shapes, nodes, spacing, size and seed.
 #
+# With --full also specimen.png: phi and eps_v against eps_a with the report's values, and the
+# peak, dilatancy and critical-state figures of examples/triaxial/compare.py.
 # Prints the time split (shapes, packing, preparation, membrane, consolidation, shearing, and
 # LAMMPS's Pair/Bond/Neigh/Comm/Modify split of the shearing run), the workload per grain-step
 # (compute pair lsdem), memory (LAMMPS's own per-rank figure at the start of shearing, and the
@@ -64,7 +66,7 @@ while [ $# -gt 0 ]; do
     --jobs) jobs=$2; shift ;;
     --seed) seed=$2; shift ;;
     --resume) resume=1 ;;
-    -h|--help) sed -n '2,32p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit 0 ;;
     -*) echo "specimen.sh: unknown option $1 (--help)" >&2; exit 2 ;;
     *) [ -z "$outdir" ] || { echo "specimen.sh: one OUTDIR only" >&2; exit 2; }; outdir=$1 ;;
   esac
@@ -255,6 +257,12 @@ for p in parts[1:]:
     rows = [r for r in rows if float(r.split(",")[0]) <= start] + p[2:]
 print("\n".join(parts[0][:1] + rows))
 EOF
+  # phi and eps_v against eps_a with the report's values marked (compare.py reads the
+  # packing's core void ratio from voids.txt next to the CSV)
+  echo "core $(cat "$spec/voids.txt")" > voids.txt
+  /usr/bin/python3 "$ex/compare.py" specimen.png "$grains grains=triaxial_full.csv" \
+    --title "LSDEM, $grains grains of $shapes shapes x $nodes nodes, against PEER 2022/06 Figs 3.12-3.13" \
+    | tee -a summary.txt
 fi
 
 # ---- 5. figures ------------------------------------------------------------------------
