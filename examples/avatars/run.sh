@@ -31,6 +31,7 @@ head -n 6 list.txt
 # 4. look at it: the in-situ sample and the packing (ray-marched level sets)
 "$shape" render grains.lslib insitu.data insitu.png
 "$shape" render grains.lslib packed.data packed.png
+[ "${1:-}" = prepare ] && exit 0
 
 # 5. settle it under gravity (the deck sets dt = 0.05 sqrt(m_min / kn))
 mpi=()

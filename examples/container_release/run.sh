@@ -11,7 +11,7 @@ lmp=${LSDEM_LMP:-$here/../../build/lmp}
 shape=${LSDEM_SHAPE_TOOL:-$here/../../build/lsdem-shape}
 n=${NGRAINS:-1600} method=${METHOD:-impulse} mul=${DTMUL:-16} np=${NP:-2} t_end=${TIME:-8}
 opts=${OPTS:-tolerance 1e-2 passes 3}
-out=$here/out
+out=${OUT:-$here/out}
 mkdir -p "$out"
 cd "$out"
 LSDEM_SHAPE_TOOL=$shape bash "$here/make_scene.sh" . "$n"
@@ -24,6 +24,7 @@ steps() { /usr/bin/python3 -c "print(round($1 / $2))"; }
 echo "fill: 2.5 s in the container, penalty, dt = $dt, $np rank(s) (log in $out/log.fill)"
 "${mpi[@]}" "$lmp" -in "$here/in.fill" -var dt "$dt" -var nsteps "$(steps 2.5 "$dt")" \
   -log log.fill -screen none
+[ "${1:-}" = prepare ] && { echo "dt $dt"; exit 0; }
 [ "$method" = penalty ] && mul=1
 d=$(/usr/bin/python3 -c "print('%.6g' % ($dt * $mul))")
 # the release's log is the example's log.lammps (and its reference logs)

@@ -10,7 +10,7 @@ shape=${LSDEM_SHAPE_TOOL:-$here/../../build/lsdem-shape}
 segment=$(dirname "$shape")/lsdem-segment
 np=${NP:-2}
 size=${SIZE:-128}
-out=$here/out
+out=${OUT:-$here/out}
 mkdir -p "$out"
 cd "$out"
 
@@ -32,6 +32,7 @@ rm scan.tif
 
 # 4. look at it, then let the in-situ sample settle under gravity between walls
 "$shape" render grains.lslib insitu.data insitu.png
+[ "${1:-}" = prepare ] && exit 0
 mpi=()
 [ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
 echo "running lmp on $np rank(s): ${NSTEPS:-4000} steps (progress on screen, log in $out/log.lammps)"

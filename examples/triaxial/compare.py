@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Triaxial specimens side by side, against the report (PEER 2022/06 §3.4.5, Figures 3.12-3.13).
 
-usage: compare.py OUT.png LABEL=triaxial.csv [LABEL=triaxial.csv ...] [--title TEXT]
+usage: compare.py OUT.png LABEL=triaxial.csv [LABEL=triaxial.csv ...] [--title TEXT] [--spread]
 
 For each CSV (examples/triaxial's output) prints one row -- peak mobilised friction angle and
 the axial strain there (and the first strain within 0.5 deg of the peak: a flat-topped
@@ -13,7 +13,9 @@ packing's void ratio in the mould and in its core -- and draws phi(eps_a) and ep
 PNG with the report's figures marked: dense high-resolution avatars peak at 46-49 deg at eps_a
 2-3.5 % and soften while dilating; its spheres harden and contract to ~35 deg, its loose
 (pluviated low-resolution) specimens to 29-30 deg. The summary goes to stdout and, as JSON,
-to OUT.json."""
+to OUT.json. With --spread (the runs are packings of one specimen) it also prints each
+figure's mean, standard deviation and range over the runs, and writes them to OUT.json
+under "spread"."""
 import csv
 import json
 import math
@@ -93,9 +95,29 @@ def summary(c):
     }
 
 
+SPREAD_KEYS = ("e_mould", "e_core", "e0", "peak_phi", "eps_peak", "eps_peak_within_05", "psi_max",
+               "epsv_max_contraction", "epsv_end", "crit_phi", "softening")
+
+
+def spread(rows):
+    """Mean, sample standard deviation, min and max of each figure over the runs."""
+    out = {}
+    for key in SPREAD_KEYS:
+        v = [s[key] for _, s in rows if s.get(key) is not None]
+        if not v:
+            continue
+        m = sum(v) / len(v)
+        sd = math.sqrt(sum((x - m) ** 2 for x in v) / (len(v) - 1)) if len(v) > 1 else 0.0
+        out[key] = {"mean": m, "sd": sd, "min": min(v), "max": max(v), "n": len(v)}
+    return out
+
+
 def main():
     args = sys.argv[1:]
     title = None
+    with_spread = "--spread" in args
+    if with_spread:
+        args.remove("--spread")
     if "--title" in args:
         i = args.index("--title")
         title = args[i + 1]
@@ -151,8 +173,13 @@ def main():
               (label, fmt(s["e_mould"]), fmt(s["e_core"]), fmt(s["e0"]), s["peak_phi"],
                s["eps_peak"], s["eps_peak_within_05"], s["psi_max"], s["epsv_peak"], s["epsv_end"], s["crit_phi"],
                s["softening"], "yes" if s["dilates"] else "no"))
-    json.dump({label: s for label, s in rows}, open(out.rsplit(".", 1)[0] + ".json", "w"),
-              indent=1)
+    result = {label: s for label, s in rows}
+    if with_spread:
+        result["spread"] = spread(rows)
+        print("over %d runs: mean +- sd (min - max)" % len(rows))
+        for key, v in result["spread"].items():
+            print("  %-20s %8.3f +- %6.3f  (%.3f - %.3f)" % (key, v["mean"], v["sd"], v["min"], v["max"]))
+    json.dump(result, open(out.rsplit(".", 1)[0] + ".json", "w"), indent=1)
     print("plot: %s" % out)
 
 

@@ -16,7 +16,9 @@
 #   report's d/10 rule), SPACING (grid spacing, default 1.0 px: R/10 for the smallest
 #   grains); NSHAPES (random shapes, default 8); ANGULARITY (of the random shapes, default
 #   0.12; 0.05: rounder, like the report's eroded low-resolution avatars); R (specimen radius, default 90 px for 300
-#   grains, scaled as NGRAINS^(1/3)); KM scales with R (10 at R = 90)
+#   grains, scaled as NGRAINS^(1/3)); KM scales with R (10 at R = 90); PACK_SEED (seed of the
+#   random loose packing, default 3: another seed, another specimen of the same grains).
+# `run.sh prepare` stops when the inputs of in.triaxial are made (examples/make_inputs.sh).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 lmp=${LSDEM_LMP:-$here/../../build/lmp}
@@ -84,7 +86,7 @@ hpack=$(awk -v n="$n" -v r="$R" 'BEGIN { printf "%d", 720 * n / 300 * (90 / r)^2
 # deposition: grains fall at ~20 px/time (gravity 1, damping 0.05) and the platen follows at up
 # to 25 px/time, so the steps grow with the packing's height
 nprep=${NPREP:-$(awk -v h="$hpack" 'BEGIN { print (6 * h > 6000 ? int(6 * h) : 6000) }')}
-"$shape" pack grains.lslib packed.data --count "$n" --cylinder "$((R - 2))" "$hpack" --density "$rho" --seed 3
+"$shape" pack grains.lslib packed.data --count "$n" --cylinder "$((R - 2))" "$hpack" --density "$rho" --seed "${PACK_SEED:-3}"
 "${mpi[@]}" "$lmp" -in "$here/in.prepare" -var lib grains.lslib -var data packed.data -var R "$R" \
   -var sigma_prep 0.2 -var nprep "$nprep" -var damp_prep 0.05 -var mu_prep "$mu_prep" -var densify "$densify" -var e_target "${E_TARGET:-0}" \
   -var mu_final "$mu" -var rho "$rho" -log log.prepare -echo none -screen none
@@ -105,6 +107,7 @@ echo "void ratio: $(awk '{ printf "%s e = %s   ", $1, $10 }' voids.txt)(lattice 
 "$shape" membrane mem --radius "$R" --height "$H" --z0 0 --rb "$rb" --library all.lslib \
   --shapes $((nshapes + 1)) $((nshapes + 2)) --types 2 3 --grains sample_grains.data \
   --density "$rho" --knbb "$km" --ksbb "$km" --kouter "$km_outer" "$km_outer"
+[ "${1:-}" = prepare ] && exit 0
 
 # 4. consolidation and shearing
 echo "running lmp on $np rank(s): $kind grains, mu $mu (log in $out/log.lammps)"

@@ -28,7 +28,8 @@ def make():
                "--density", RHO, "--seed", 5)
     rc, log = run_lmp(os.path.join(EXAMPLE, "in.prepare"), vars={
         "lib": "g.lslib", "data": "packed.data", "R": R, "sigma_prep": 0.2, "nprep": 1500,
-        "nround": 500, "maxround": 2, "mu_prep": 0.6, "mu_final": 0.6, "nrelax": 500,
+        "nround": 500, "maxround": 2, "mu_prep": 0.6, "densify": 0, "mu_final": 0.6,
+        "nrelax": 500,
         "rho": RHO}, log="log.prepare")
     H = float(re.search(r"^PREPARED height (\S+)", log, re.M).group(1))
     text = open("sample.data").read().split("\nVelocities")[0]
