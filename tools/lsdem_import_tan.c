@@ -35,6 +35,14 @@ static int die(const char *what, const lsdem_error *err)
   return 1;
 }
 
+/* A morphology that does not make shape `shape`, named by the first grain that uses it. */
+static int bad_grain(const char *scene, int grain, int shape, const lsdem_error *err)
+{
+  fprintf(stderr, "lsdem-import-tan: grain %d (%s/Morphologies/morph_%d.dat, shape %d): %s\n",
+          grain + 1, scene, grain + 1, shape, err->msg);
+  return 1;
+}
+
 /* The single file in dir whose name starts with prefix (positions_, rotations_). */
 static int find_init_file(const char *scene, const char *prefix, char *out, size_t n)
 {
@@ -108,7 +116,7 @@ static int import_shapes(const char *scene, int ngrains, const char *lib_path, i
     if (i == 0 || strcmp(refs[i].real, refs[i - 1].real) != 0) {
       s++;
       if (lsdem_morph_read(refs[i].real, &morphs[s], &err) != LSDEM_OK) {
-        rc = die("reading a morphology", &err);
+        rc = bad_grain(scene, refs[i].grain, s, &err);
         break;
       }
       const int nn = morphs[s].nnodes;
@@ -121,7 +129,7 @@ static int import_shapes(const char *scene, int ngrains, const char *lib_path, i
       }
       if (lsdem_morph_to_shape(&morphs[s], bufs[s], bufs[s] + 3 * nn, ibufs[s], bufs[s] + 4 * nn,
                                &shapes[s], &err) != LSDEM_OK) {
-        rc = die(refs[i].real, &err);
+        rc = bad_grain(scene, refs[i].grain, s, &err);
         break;
       }
       const char *base = strrchr(refs[i].real, '/');

@@ -170,10 +170,12 @@ static int cmd_from_morph(int argc, char **argv)
   lsdem_error err;
   int rc = !im || !shapes || !names ? fail("from-morph: out of memory", NULL) : 0;
   for (int i = 0; !rc && i < n; i++) {
-    if (import_morph(argv[1 + i], &im[i], &shapes[i], &err) != LSDEM_OK)
-      rc = fail("from-morph", &err);
-    else
+    if (import_morph(argv[1 + i], &im[i], &shapes[i], &err) != LSDEM_OK) {
+      fprintf(stderr, "lsdem-shape: from-morph: shape %d: %s\n", i, err.msg);
+      rc = 1;
+    } else {
       shape_warn_quality(&shapes[i], argv[1 + i]);
+    }
     names[i] = im[i].name;
   }
   if (!rc && lsdem_library_write(argv[0], shapes, names, n, &err) != LSDEM_OK)

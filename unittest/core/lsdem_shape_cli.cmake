@@ -61,12 +61,17 @@ if(NOT placed OR NOT natoms EQUAL CMAKE_MATCH_1 OR natoms GREATER_EQUAL 40)
 endif()
 run(0 pack e.lslib q.data --count 40 --box 8 6 3 --seed 3 --max-tries 200 --strict)
 # morphology files a grain cannot use are refused naming the shape: 3 x 3 x 3 grids, one
-# with no negative value (no solid), one whose centroid (line 3, grid coordinates) lies
-# beyond the grid (x = 5 > 2)
+# with no negative value (no solid: said before any other check or warning, here the grid
+# spacing 1 coarser than R/10 of its volume 1), one whose centroid (line 3, grid
+# coordinates) lies beyond the grid (x = 5 > 2)
 string(REPEAT "1 " 27 positive)
 file(WRITE ${WORK}/nosolid.dat "1\n0.4 0.4 0.4\n1 1 1\n1\n0.5 0 0\n1\n3 3 3\n${positive}\n")
-run(0 from-morph x.lslib nosolid.dat)
-expect_in("${err}" "shape 0 ('nosolid'): no level-set value is negative")
+run(0 from-morph x.lslib e.dat nosolid.dat)
+expect_in("${err}" "from-morph: shape 1: nosolid.dat: line 8: no level-set value is negative: "
+  "the grid has no solid voxel, so the file describes no grain")
+if(err MATCHES "nosolid.dat: (grid|mean|node|zero)")
+  message(FATAL_ERROR "from-morph nosolid.dat: a quality warning before the no-solid error:\n${err}")
+endif()
 string(REPEAT "1 " 13 half)
 file(WRITE ${WORK}/offgrid.dat "1\n0.4 0.4 0.4\n5 1 1\n1\n0.5 0 0\n1\n3 3 3\n${half}-1 ${half}\n")
 run(0 from-morph x.lslib offgrid.dat)

@@ -151,6 +151,9 @@ static void test_bad_inputs(void)
   expect_morph(t, LSDEM_ERR_NUMERIC, "line 8", "float overflow in phi");
   with_line(6, "-1", t);
   expect_morph(t, LSDEM_ERR_NUMERIC, "line 6", "negative radius");
+  with_line(8, "1 2 3 4 5 6 7 8 9 10 11 0", t); /* 0 is on the surface, not inside */
+  expect_morph(t, LSDEM_ERR_NUMERIC, "line 8: no level-set value is negative: the grid has no "
+               "solid voxel", "no solid");
   with_line(6, "00000000000000000000000000000000000000000000000000000000000000000001", t);
   expect_morph(t, LSDEM_ERR_FORMAT, "longer than", "over-long token");
   snprintf(t, sizeof t, "%s9\n", SMALL);

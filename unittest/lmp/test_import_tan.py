@@ -2,7 +2,8 @@
 Independent expectations: the rotation matrix of each imported (scalar-first) quaternion equals
 the report's eq 2.26 evaluated on the file's quaternion as printed; morphology files that are
 symlinks to one file share one shape; positions are copied; lmp reads the data file; a
-morphology with no solid or its centroid outside its grid is refused."""
+morphology with no solid (said first, naming the grain) or its centroid outside its grid is
+refused."""
 import math
 import os
 import subprocess
@@ -63,20 +64,26 @@ rc, log = run_lmp("units si\natom_style lsdem library out.lslib\nboundary f f f\
                   "read_data out.data\nrun 0\n")
 check("4 atoms" in log, "lmp reads the imported data file")
 
-# a morphology a grain cannot use is refused naming its file: a 3 x 3 x 3 grid with no
-# negative value (no solid), and one whose centroid (line 3) lies outside the grid
-for name, centroid, values in (("nosolid", "1 1 1", ["1"] * 27),
-                               ("offgrid", "1 1 -4", ["1"] * 13 + ["-1"] + ["1"] * 13)):
-    tan_scene(name, ["a"], pos[:1], rots[:1])
-    morph = os.path.join(name, "Morphologies", "morph_1.dat")
+# a morphology a grain cannot use is refused naming the grain, its file and its shape: grain
+# 2's a 3 x 3 x 3 grid with no negative value (no solid; said before anything else: its mass
+# of 0 on line 1 is not what is reported), grain 1's one whose centroid (line 3) lies outside
+# the grid. Shapes are numbered by the sorted file paths: morph_2.dat (a file) is shape 0.
+for name, grain, line1, centroid, values in (
+        ("nosolid", 2, "0", "1 1 1", ["1"] * 27),
+        ("offgrid", 1, "1", "1 1 -4", ["1"] * 13 + ["-1"] + ["1"] * 13)):
+    tan_scene(name, ["a", "a"], pos[:2], rots[:2])
+    morph = os.path.join(name, "Morphologies", "morph_%d.dat" % grain)
     os.remove(morph)
     with open(morph, "w") as f:
-        f.write("1\n0.4 0.4 0.4\n%s\n1\n0.5 0 0\n1\n3 3 3\n%s\n" % (centroid, " ".join(values)))
+        f.write("%s\n0.4 0.4 0.4\n%s\n1\n0.5 0 0\n1\n3 3 3\n%s\n"
+                % (line1, centroid, " ".join(values)))
     p = subprocess.run([IMPORT, name, name + "_out", "--box", "50", "50", "50"],
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    want = ("shape 0 ('morph_1.dat'): no level-set value is negative" if name == "nosolid" else
-            "shape 0 ('morph_1.dat'): its centroid (the origin of its principal frame) is at "
-            "grid coordinates (1, 1, -4), outside the grid")
-    check(p.returncode == 1 and want in p.stdout and not os.path.exists(name + "_out.lslib"),
-          "%s refused: %s" % (name, p.stdout))
+    want = (["lsdem-import-tan: grain 2 (nosolid/Morphologies/morph_2.dat, shape 0): ",
+             "morph_2.dat: line 8: no level-set value is negative: the grid has no solid "
+             "voxel, so the file describes no grain"] if name == "nosolid" else
+            ["shape 0 ('morph_1.dat'): its centroid (the origin of its principal frame) is "
+             "at grid coordinates (1, 1, -4), outside the grid"])
+    check(p.returncode == 1 and all(w in p.stdout for w in want) and "line 1" not in p.stdout
+          and not os.path.exists(name + "_out.lslib"), "%s refused: %s" % (name, p.stdout))
 finish()

@@ -314,3 +314,11 @@ int lsdem_grid_is_coarse(double h, double volume)
 {
   return h > lsdem_grid_spacing_limit(volume) * (1.0 + 1e-5);
 }
+
+int lsdem_grid_has_solid(const lsdem_grid *g)
+{
+  const size_t ns = (size_t)g->n[0] * (size_t)g->n[1] * (size_t)g->n[2];
+  for (size_t k = 0; k < ns; k++)
+    if (g->phi[k] < 0.0f) return 1;
+  return 0;
+}

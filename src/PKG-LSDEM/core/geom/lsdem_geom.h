@@ -71,6 +71,9 @@ double lsdem_grid_outer_lipschitz(const lsdem_grid *g, double *reach_limit);
  * significant digits that messages print). */
 double lsdem_grid_spacing_limit(double volume);
 int lsdem_grid_is_coarse(double h, double volume);
+/* Whether a sample of g (n[0] n[1] n[2] values of phi) is negative: a grid without one
+ * holds no solid, so no grain. */
+int lsdem_grid_has_solid(const lsdem_grid *g);
 
 
 /* ------------------------------------------------------- signed distances ---- */

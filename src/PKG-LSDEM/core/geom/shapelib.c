@@ -309,14 +309,11 @@ static lsdem_status validate_grid(const lsdem_shape *s, int index, const char *n
 {
   const lsdem_grid *g = &s->sdf.grid;
   const uint64_t ns = grid_samples(s);
-  uint64_t negative = 0;
-  for (uint64_t k = 0; k < ns; k++) {
+  for (uint64_t k = 0; k < ns; k++)
     if (!isfinite(g->phi[k]))
       return invalid_shape(err, index, name, "level-set value %llu is not finite",
                            (unsigned long long)k);
-    negative += g->phi[k] < 0.0f;
-  }
-  if (negative == 0)
+  if (!lsdem_grid_has_solid(g))
     return invalid_shape(err, index, name, "no level-set value is negative: the grid holds "
                          "no solid");
   for (int a = 0; a < 3; a++)
