@@ -75,6 +75,20 @@ static int fail(const char *what, const lsdem_error *err)
 
 /* ------------------------------------------------------------ list, verify ---- */
 
+/* Every shape of lib checked as the atom style checks it (lsdem_library_verify: section
+ * checksum, then the content), each bad one reported on stderr; returns how many. */
+static int report_bad_shapes(const lsdem_library *lib, const char *cmd)
+{
+  lsdem_error err;
+  int bad = 0;
+  for (int i = 0; i < lsdem_library_count(lib); i++)
+    if (lsdem_library_verify(lib, i, &err) != LSDEM_OK) {
+      fprintf(stderr, "lsdem-shape: %s: %s\n", cmd, err.msg);
+      bad++;
+    }
+  return bad;
+}
+
 static int cmd_list(int argc, char **argv)
 {
   if (argc != 1) return usage();
@@ -97,8 +111,14 @@ static int cmd_list(int argc, char **argv)
            lsdem_library_name(lib, i), lsdem_sdf_kind_name(s->sdf.kind), dims, s->nnodes, s->nclusters,
            s->radius, s->volume, s->inertia[0], s->inertia[1], s->inertia[2]);
   }
+  fflush(stdout); /* the table before the bad shapes on stderr */
+  const int bad = report_bad_shapes(lib, "list");
+  if (bad)
+    fprintf(stderr, "lsdem-shape: list: %s: %d of %d shapes bad (above): atom_style lsdem "
+            "refuses this library; make it again from the shapes' sources (lsdem-shape "
+            "from-morph, analytic, from-labels, ...)\n", argv[0], bad, n);
   lsdem_library_close(lib);
-  return 0;
+  return bad ? 1 : 0;
 }
 
 static int cmd_verify(int argc, char **argv)
@@ -107,12 +127,7 @@ static int cmd_verify(int argc, char **argv)
   lsdem_library *lib = NULL;
   lsdem_error err;
   if (lsdem_library_open(argv[0], &lib, &err) != LSDEM_OK) return fail("verify", &err);
-  int bad = 0;
-  for (int i = 0; i < lsdem_library_count(lib); i++)
-    if (lsdem_library_verify(lib, i, &err) != LSDEM_OK) {
-      fprintf(stderr, "lsdem-shape: verify: %s\n", err.msg);
-      bad++;
-    }
+  const int bad = report_bad_shapes(lib, "verify");
   printf("%s: %d shape%s, %d bad\n", argv[0], lsdem_library_count(lib),
          lsdem_library_count(lib) == 1 ? "" : "s", bad);
   lsdem_library_close(lib);

@@ -219,6 +219,14 @@ check(p.returncode == 1 and "shape 0 ('sphere'): node " in p.stdout and want in 
       "lsdem-shape verify of a too small radius:\n" + p.stdout)
 rc, log = run_lmp("atom_style lsdem library shrunk.lslib\n", expect_fail=True)
 check(rc != 0 and want in log, "atom style with a too small radius:\n" + log[-600:])
+# lsdem-shape list shows the table and refuses it as verify does (it listed it as sound)
+p = subprocess.run([SHAPE_TOOL, "list", "shrunk.lslib"], stdout=subprocess.PIPE,
+                   stderr=subprocess.STDOUT, text=True)
+check(p.returncode == 1 and "shrunk.lslib: 1 shape" in p.stdout
+      and "lsdem-shape: list: shape library: shape 0 ('sphere'): node " in p.stdout
+      and want in p.stdout and "lsdem-shape: list: shrunk.lslib: 1 of 1 shapes bad (above): "
+      "atom_style lsdem refuses this library; make it again" in p.stdout,
+      "lsdem-shape list of a too small radius:\n" + p.stdout)
 
 # every Atoms and Velocities line must have the values of the section's first line: LAMMPS
 # checks only that one, passes over extra values and shifts the values after a line with
