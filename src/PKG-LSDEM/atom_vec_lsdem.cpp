@@ -16,6 +16,8 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "input.h"
+#include "lsdem_data_file.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -435,12 +437,30 @@ void AtomVecLsdem::check_data_line(char **values, int nvalues, int nbefore,
 }
 
 /* ----------------------------------------------------------------------
+   the data file read_data reads (input->arg[0]) holds as many Atoms lines as its header
+   declares atoms: LAMMPS reads the declared count of lines and stops on a blank or keyword
+   line with "Incorrect atom format in data file". Read once per file and atom count by each
+   rank that gets an atom; a file the rank cannot open is left to read_data.
+------------------------------------------------------------------------- */
+
+void AtomVecLsdem::check_atoms_count()
+{
+  if (input->narg < 1) return;
+  const std::string key = fmt::format("{}\n{}", input->arg[0], atom->natoms);
+  if (key == data_file_checked) return;
+  data_file_checked = key;
+  const std::string problem = LsdemDataFile::atoms_count_problem(input->arg[0]);
+  if (!problem.empty()) error->one(FLERR, problem);
+}
+
+/* ----------------------------------------------------------------------
    Atoms line: id type shape-ID density x y z qw qx qy qz [ix iy iz]; checked before
    AtomVec::data_atom reads it
 ------------------------------------------------------------------------- */
 
 void AtomVecLsdem::data_atom(double *coord, imageint image, char **values)
 {
+  check_atoms_count();
   check_data_line(values, size_data_atom, 0, "Atoms",
                   "atom-ID atom-type shape-ID density x y z qw qx qy qz", values[0]);
   AtomVec::data_atom(coord, image, values);

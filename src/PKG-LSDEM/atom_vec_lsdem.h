@@ -101,7 +101,9 @@ class AtomVecLsdem : public AtomVec {
   void register_peratom(const char *, void *, int, int);
   std::string body_mismatch(int) const;
   std::string repeated_ids() const;
+  std::string data_file_checked;  // read_data file (and atom count) check_atoms_count read
   void check_data_line(char **, int, int, const char *, const char *, const std::string &);
+  void check_atoms_count();
   void open_library(const char *);
   void report_library();
 };

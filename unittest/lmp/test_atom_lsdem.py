@@ -1,6 +1,7 @@
 """atom_style lsdem: shape library report, data file input/output, restart, migration
 between ranks, replicate, compute property/atom names, input errors (bad libraries, data
-lines with a value too many or too few, repeated atom IDs), hybrid use.
+lines with a value too many or too few, fewer Atoms lines than the header declares, repeated
+atom IDs), hybrid use.
 
 Expected masses and moments come from closed forms (grain_decks.closed_form); restart and
 migration are checked by continuing a run through a restart file and on 2 ranks, which must
@@ -270,6 +271,37 @@ check(rc == 0, "a comment after an Atoms line's values")
 rc, log = run_lmp(HEAD + "processors 2 1 1\nread_data extra.data\nrun 0\n", np=2,
                   expect_fail=True)
 check(rc != 0 and "each Atoms line needs 11 values" in log, "np 2 extra value:\n" + log[-700:])
+
+# a header that declares more atoms than the Atoms section holds: LAMMPS reads on into the
+# blank line and says only "Incorrect atom format"; the message names the count, the lines
+# and what follows them. Lines numbered from 1 as in an editor (write_data's layout: the
+# Atoms keyword, a blank line, the 5 atoms, a blank line, Velocities).
+text = open("grains.data").read()
+lines = text.split("\n")
+first = lines.index("Atoms # lsdem") + 3
+atoms_lines = "5 lines (lines %d-%d)" % (first, first + 4)
+open("more.data", "w").write(text.replace("5 atoms", "7 atoms"))
+open("eof.data", "w").write(text.replace("5 atoms", "6 atoms").split("\nVelocities")[0])
+gap = lines[:first + 1] + [""] + lines[first + 1:]          # a blank line after atom 2
+open("gap.data", "w").write("\n".join(gap))
+fix = "; fix the atoms count in the header or add the %d missing Atoms line%s"
+for name, np, tail in (
+        ("more.data", 1, ": line %d starts section 'Velocities'" % (lines.index("Velocities") + 1)
+         + fix % (2, "s")),
+        ("eof.data", 2, " at the end of the file" + fix % (1, "")),
+        ("gap.data", 1, None)):
+    rc, log = run_lmp(HEAD + "processors %d 1 1\nread_data %s\nrun 0\n" % (np, name), np=np,
+                      log="count.log", expect_fail=True)
+    log = open("count.log").read()
+    want = ("read_data: data file %s: the header declares %d atoms but the Atoms section ends "
+            "after " % (name, {"more.data": 7, "eof.data": 6, "gap.data": 5}[name])
+            + (atoms_lines + tail if tail else "2 lines (lines %d-%d): line %d is blank, and "
+               "Atoms lines go on at line %d; remove the blank line (an Atoms section has "
+               "none)" % (first, first + 1, first + 2, first + 3)))
+    check(rc != 0 and want in log and "Incorrect atom format" not in log,
+          "%s, np %d: expected %r:\n%s" % (name, np, want, log[-700:]))
+rc, log = run_lmp(HEAD + "processors 2 1 1\nread_data grains.data\nrun 0\n", np=2)
+check(rc == 0 and "5 atoms" in log, "grains.data still reads on 2 ranks")
 
 # an atom ID given to two grains (not seen by LAMMPS's read_data when the largest ID is not
 # below the atom count) stops the run naming it, also when the two are on different ranks:
