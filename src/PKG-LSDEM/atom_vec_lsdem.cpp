@@ -68,6 +68,7 @@ void keep_output_on_abort(LAMMPS *lmp)
   lsdem_flush_on_terminate();
 }
 
+#if LSDEM_CHECK_DATA_LINES
 // What follows the values that LAMMPS's data reader gave a line, to the end of that line
 // and without a '#' comment; nmore = how many it took after values[nvalues - 1] (image
 // flags). The reader (Atom::data_atoms, data_vels) cuts a section into values at any white
@@ -91,6 +92,7 @@ std::string text_after_values(char **values, int nvalues, int &nmore)
   const std::string rest(p, strcspn(p, "\n"));
   return rest.substr(0, rest.find('#'));
 }
+#endif
 
 // Comm::rendezvous callback: the atom IDs sent to this rank (each ID goes to rank ID % nprocs);
 // those present more than once go to *ptr with their counts.
@@ -143,18 +145,18 @@ AtomVecLsdem::AtomVecLsdem(LAMMPS *lmp) : AtomVec(lmp)
   // forward communication (grains rotate every step) and with borders (ghosts created
   // at reneighbouring get no forward communication that step)
 
-  fields_grow = (char *) "radius rmass omega torque shape quat inertia dwprev";
-  fields_copy = (char *) "radius rmass omega shape quat inertia dwprev";
-  fields_comm = (char *) "quat";
-  fields_comm_vel = (char *) "omega quat";
-  fields_reverse = (char *) "torque";
-  fields_border = (char *) "radius rmass shape inertia quat";
-  fields_border_vel = (char *) "radius rmass shape inertia quat omega";
-  fields_exchange = (char *) "radius rmass omega shape quat inertia dwprev";
-  fields_restart = (char *) "radius rmass omega shape quat inertia dwprev";
-  fields_create = (char *) "radius rmass omega shape quat inertia dwprev";
-  fields_data_atom = (char *) "id type shape rmass x quat";
-  fields_data_vel = (char *) "id v omega";
+  fields_grow = LsdemCompat::fields("radius rmass omega torque shape quat inertia dwprev");
+  fields_copy = LsdemCompat::fields("radius rmass omega shape quat inertia dwprev");
+  fields_comm = LsdemCompat::fields("quat");
+  fields_comm_vel = LsdemCompat::fields("omega quat");
+  fields_reverse = LsdemCompat::fields("torque");
+  fields_border = LsdemCompat::fields("radius rmass shape inertia quat");
+  fields_border_vel = LsdemCompat::fields("radius rmass shape inertia quat omega");
+  fields_exchange = LsdemCompat::fields("radius rmass omega shape quat inertia dwprev");
+  fields_restart = LsdemCompat::fields("radius rmass omega shape quat inertia dwprev");
+  fields_create = LsdemCompat::fields("radius rmass omega shape quat inertia dwprev");
+  fields_data_atom = LsdemCompat::fields("id type shape rmass x quat");
+  fields_data_vel = LsdemCompat::fields("id v omega");
 }
 
 /* ---------------------------------------------------------------------- */
@@ -171,8 +173,8 @@ AtomVecLsdem::~AtomVecLsdem()
 
 void AtomVecLsdem::register_peratom(const char *name, void *address, int datatype, int cols)
 {
-  for (int i = 0; i < atom->nperatom; i++) {
-    if (strcmp(atom->peratom[i].name, name) == 0) {
+  for (int i = 0; i < LsdemCompat::peratom_count(atom); i++) {
+    if (strcmp(LsdemCompat::cstr(atom->peratom[i].name), name) == 0) {
       if (atom->peratom[i].datatype != datatype || atom->peratom[i].cols != cols)
         error->all(FLERR, "atom_style lsdem: per-atom array '{}' already exists "
                    "with a different layout", name);
@@ -414,6 +416,7 @@ void AtomVecLsdem::create_atom_post(int ilocal)
   for (int k = 0; k < 3; k++) inertia[ilocal][k] = sh->inertia[k];
 }
 
+#if LSDEM_CHECK_DATA_LINES
 /* ----------------------------------------------------------------------
    the Atoms or Velocities line whose values LAMMPS has just cut (values[0..nvalues-1], after
    nbefore others) has exactly as many as the section's first line: after them only blanks or
@@ -476,6 +479,7 @@ void AtomVecLsdem::data_vel(int ilocal, char **values)
                   std::to_string(atom->tag[ilocal]));
   AtomVec::data_vel(ilocal, values);
 }
+#endif
 
 /* ----------------------------------------------------------------------
    Atoms line: id type shape-ID density x y z qw qx qy qz (shape-ID 1-based)
@@ -558,10 +562,10 @@ void AtomVecLsdem::pack_data_post(int ilocal)
    compute property/atom names (quatw/quati.. are taken by the ellipsoid style there)
 ------------------------------------------------------------------------- */
 
-int AtomVecLsdem::property_atom(char *name)
+int AtomVecLsdem::property_atom(LsdemCompat::PropertyName name)
 {
   for (int k = 0; k < nproperty; k++)
-    if (strcmp(name, property_names[k]) == 0) return k;
+    if (strcmp(LsdemCompat::cstr(name), property_names[k]) == 0) return k;
   return -1;
 }
 

@@ -16,6 +16,7 @@ AtomStyle(lsdem,AtomVecLsdem);
 
 #include "atom_vec.h"
 #include "lsdem_kernel.h"
+#include "lsdem_lammps_compat.h"
 
 #include <string>
 
@@ -40,14 +41,16 @@ class AtomVecLsdem : public AtomVec {
 
   void grow_pointers() override;
   void create_atom_post(int) override;
+#if LSDEM_CHECK_DATA_LINES
   void data_atom(double *, imageint, char **) override;
-  void data_atom_post(int) override;
   void data_vel(int, char **) override;
+#endif
+  void data_atom_post(int) override;
   void pack_data_pre(int) override;
   void pack_data_post(int) override;
   void unpack_restart_init(int) override;
 
-  int property_atom(char *) override;
+  int property_atom(LsdemCompat::PropertyName) override;
   void pack_property_atom(int, double *, int, int) override;
 
   // the interface the LSDEM styles use (refreshed by grow_pointers)
@@ -101,9 +104,11 @@ class AtomVecLsdem : public AtomVec {
   void register_peratom(const char *, void *, int, int);
   std::string body_mismatch(int) const;
   std::string repeated_ids() const;
+#if LSDEM_CHECK_DATA_LINES
   std::string data_file_checked;  // read_data file (and atom count) check_atoms_count read
   void check_data_line(char **, int, int, const char *, const char *, const std::string &);
   void check_atoms_count();
+#endif
   void open_library(const char *);
   void report_library();
 };

@@ -18,7 +18,6 @@
 #include "atom.h"
 #include "atom_vec_lsdem.h"
 #include "error.h"
-#include "fix_store.h"
 #include "group.h"
 #include "memory.h"
 #include "modify.h"
@@ -51,8 +50,8 @@ ComputeFabricLsdem::ComputeFabricLsdem(LAMMPS *lmp, int narg, char **arg) :
   size_peratom_cols = 2;
 
   id_fix = utils::strdup(id + std::string("_COMPUTE_STORE"));
-  fix = dynamic_cast<FixStore *>(
-      modify->add_fix(fmt::format("{} {} STORE peratom 1 4", id_fix, group->names[igroup])));
+  fix = dynamic_cast<LsdemCompat::FixStorePeratom *>(modify->add_fix(
+      fmt::format("{} {} {}", id_fix, group->names[igroup], LsdemCompat::fix_store_peratom_args(4))));
   if (fix->restart_reset) fix->restart_reset = 0;
   else {
     for (int i = 0; i < atom->nlocal; i++)
@@ -76,7 +75,7 @@ void ComputeFabricLsdem::init()
 {
   int ifix = modify->find_fix(id_fix);
   if (ifix < 0) error->all(FLERR, "Could not find compute fabric/lsdem fix {}", id_fix);
-  fix = dynamic_cast<FixStore *>(modify->fix[ifix]);
+  fix = dynamic_cast<LsdemCompat::FixStorePeratom *>(modify->fix[ifix]);
   avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
 }
 

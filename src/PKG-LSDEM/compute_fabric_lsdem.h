@@ -16,6 +16,7 @@ ComputeStyle(fabric/lsdem,ComputeFabricLsdem);
 #define LMP_COMPUTE_FABRIC_LSDEM_H
 
 #include "compute.h"
+#include "lsdem_lammps_compat.h"
 
 namespace LAMMPS_NS {
 
@@ -30,7 +31,7 @@ class ComputeFabricLsdem : public Compute {
 
  private:
   char *id_fix;               // fix STORE holding each grain's reference quaternion
-  class FixStore *fix;
+  LsdemCompat::FixStorePeratom *fix;
   class AtomVecLsdem *avec;
   int nmax;
   double **rot;               // per atom: rotation angle (rad), flag

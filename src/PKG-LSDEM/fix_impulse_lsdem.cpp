@@ -31,6 +31,7 @@
 #include "force.h"
 #include "group.h"
 #include "lsdem_contact_path.h"
+#include "lsdem_lammps_compat.h"
 #include "math_const.h"
 #include "memory.h"
 #include "modify.h"
@@ -452,7 +453,7 @@ void FixImpulseLsdem::kick()
 void FixImpulseLsdem::forward_velocities()
 {
   const double t0 = MPI_Wtime();
-  comm->forward_comm_fix(this, 6);
+  LsdemCompat::forward_comm(comm, this, 6);
   t_comm += MPI_Wtime() - t0;
   const int nall = atom->nlocal + atom->nghost;
   for (int i = 0; i < nall; i++)

@@ -23,6 +23,7 @@
 #include "group.h"
 #include "input.h"
 #include "lsdem_input.h"
+#include "lsdem_lammps_compat.h"
 #include "memory.h"
 #include "modify.h"
 #include "neighbor.h"
@@ -497,7 +498,7 @@ void FixMembraneLsdem::apply_pressure()
     }
   }
   AtomVecLsdem::stop_if_any_rank(lmp, FLERR, missing);
-  comm->reverse_comm_fix(this);
+  LsdemCompat::reverse_comm(comm, this);
   double **fa = atom->f;
   for (int i = 0; i < nlocal; i++) {
     if (!role[i]) continue;

@@ -13,6 +13,7 @@
 #include "error.h"
 #include "fix.h"
 #include "irregular.h"
+#include "lsdem_lammps_compat.h"
 #include "memory.h"
 
 #include <algorithm>
@@ -214,13 +215,13 @@ int LsdemImpulseIslands::label_islands(const LsdemImpulseContact *coll, int n,
     t0 = MPI_Wtime();
     for (int v = 0; v < nvert; v++) xlabel[v] = label[v];
     what = FWD_LABEL;
-    comm->forward_comm_fix(fix, 1);
+    LsdemCompat::forward_comm(comm, fix, 1);
     st.t_comm += MPI_Wtime() - t0;
     int mine = merge_received(nlocal, nvert);
     t0 = MPI_Wtime();
     for (int v = 0; v < nvert; v++) xlabel[v] = label[v];
     what = REV_LABEL;
-    comm->reverse_comm_fix(fix, 1);
+    LsdemCompat::reverse_comm(comm, fix, 1);
     st.t_comm += MPI_Wtime() - t0;
     mine |= merge_received(0, nlocal);
     t0 = MPI_Wtime();
@@ -262,7 +263,7 @@ int LsdemImpulseIslands::flag_cross(LsdemIslandStats &st)
   const double t0 = MPI_Wtime();
   for (int v = 0; v < nvert; v++) xlabel[v] = (v >= nlocal && involved[v]) ? 1 : 0;
   what = REV_FLAG;
-  comm->reverse_comm_fix(fix, 1);
+  LsdemCompat::reverse_comm(comm, fix, 1);
   what = NONE;
   st.t_comm += MPI_Wtime() - t0;
   int pieces = 0;

@@ -16,11 +16,11 @@
 #include "error.h"
 #include "fix_lsdem_history.h"
 #include "force.h"
+#include "lsdem_lammps_compat.h"
 #include "math_const.h"
 #include "memory.h"
 #include "modify.h"
 #include "neigh_list.h"
-#include "neigh_request.h"
 #include "neighbor.h"
 #include "update.h"
 
@@ -187,9 +187,7 @@ void PairLsdem::init_style()
     error->all(FLERR, "Pair style lsdem requires ghost velocities (add 'comm_modify vel yes')");
 
   // a plain full list: each grain tests its own nodes against every neighbour
-  int irequest = neighbor->request(this, instance_me);
-  neighbor->requests[irequest]->half = 0;
-  neighbor->requests[irequest]->full = 1;
+  LsdemCompat::request_full_list(neighbor, this, instance_me);
 
   // largest bounding radius per type over all ranks: cutoff = maxrad[I] + maxrad[J]
   int ntypes = atom->ntypes;
@@ -497,8 +495,8 @@ const double *PairLsdem::coordination(int to_ghosts)
         ncount[k.i] += 1.0;
         ncount[k.j] += 1.0;
       }
-  comm->reverse_comm_pair(this);
-  if (to_ghosts) comm->forward_comm_pair(this);
+  LsdemCompat::reverse_comm(comm, this);
+  if (to_ghosts) LsdemCompat::forward_comm(comm, this);
   return ncount;
 }
 
