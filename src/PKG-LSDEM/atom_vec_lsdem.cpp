@@ -438,6 +438,7 @@ void AtomVecLsdem::check_data_line(char **values, int nvalues, int nbefore,
              nmore ? " ix iy iz" : "", nwords, id, utils::trim(rest), nrest,
              nrest == 1 ? "" : "s", id, nwords);
 }
+#endif
 
 /* ----------------------------------------------------------------------
    the data file read_data reads (input->arg[0]) holds as many Atoms lines as its header
@@ -458,17 +459,20 @@ void AtomVecLsdem::check_atoms_count()
 
 /* ----------------------------------------------------------------------
    Atoms line: id type shape-ID density x y z qw qx qy qz [ix iy iz]; checked before
-   AtomVec::data_atom reads it
+   AtomVec::data_atom reads it (its values' count: by LAMMPS itself since 2022)
 ------------------------------------------------------------------------- */
 
-void AtomVecLsdem::data_atom(double *coord, imageint image, char **values)
+void AtomVecLsdem::data_atom(double *coord, imageint image, LSDEM_DATA_ATOM_VALUES)
 {
   check_atoms_count();
+#if LSDEM_CHECK_DATA_LINES
   check_data_line(values, size_data_atom, 0, "Atoms",
                   "atom-ID atom-type shape-ID density x y z qw qx qy qz", values[0]);
-  AtomVec::data_atom(coord, image, values);
+#endif
+  AtomVec::data_atom(coord, image, LSDEM_DATA_ATOM_PASS);
 }
 
+#if LSDEM_CHECK_DATA_LINES
 /* ----------------------------------------------------------------------
    Velocities line: id vx vy vz wx wy wz (values: from vx on)
 ------------------------------------------------------------------------- */

@@ -41,8 +41,8 @@ class AtomVecLsdem : public AtomVec {
 
   void grow_pointers() override;
   void create_atom_post(int) override;
+  void data_atom(double *, imageint, LSDEM_DATA_ATOM_VALUES) override;
 #if LSDEM_CHECK_DATA_LINES
-  void data_atom(double *, imageint, char **) override;
   void data_vel(int, char **) override;
 #endif
   void data_atom_post(int) override;
@@ -104,10 +104,10 @@ class AtomVecLsdem : public AtomVec {
   void register_peratom(const char *, void *, int, int);
   std::string body_mismatch(int) const;
   std::string repeated_ids() const;
-#if LSDEM_CHECK_DATA_LINES
   std::string data_file_checked;  // read_data file (and atom count) check_atoms_count read
-  void check_data_line(char **, int, int, const char *, const char *, const std::string &);
   void check_atoms_count();
+#if LSDEM_CHECK_DATA_LINES
+  void check_data_line(char **, int, int, const char *, const char *, const std::string &);
 #endif
   void open_library(const char *);
   void report_library();

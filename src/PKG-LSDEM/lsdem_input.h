@@ -1,7 +1,8 @@
 /* -*- c++ -*- ----------------------------------------------------------
    LSDEM package for LAMMPS: reading numbers from input scripts.
 
-   utils::numeric reads "1e400" as inf (a number too large for a double): every numeric
+   utils::numeric reads "1e400" as inf (a number too large for a double; LAMMPS 2025 refuses
+   it without naming the argument): every numeric
    keyword and argument of the LSDEM styles goes through LsdemInput::number, which stops
    naming the style, the keyword and the text given when the value is not finite.
 ------------------------------------------------------------------------- */

@@ -39,6 +39,16 @@
 // every line itself. LAMMPS 2025 checks every line (its "Incorrect format in ..." error).
 #define LSDEM_CHECK_DATA_LINES (!LSDEM_LAMMPS_NEW_API)
 
+// AtomVec::data_atom(double *coord, imageint image, <these>): the parameters after the
+// image flags, declared and passed on to AtomVec::data_atom
+#if LSDEM_LAMMPS_NEW_API
+#define LSDEM_DATA_ATOM_VALUES const std::vector<std::string> &values, std::string &extract
+#define LSDEM_DATA_ATOM_PASS values, extract
+#else
+#define LSDEM_DATA_ATOM_VALUES char **values
+#define LSDEM_DATA_ATOM_PASS values
+#endif
+
 #include "atom.h"
 #include "comm.h"
 #include "neighbor.h"

@@ -5,6 +5,9 @@ folder, with these environment variables set by CMake:
   LSDEM_LMP         the lmp binary built with PKG-LSDEM
   LSDEM_SHAPE_TOOL  the lsdem-shape command-line tool
   LSDEM_MPIEXEC     mpirun (Open MPI), run as root if need be
+  LSDEM_LAMMPS_VERSION  the LAMMPS release lmp was built from, YYYYMMDD (20210929 or
+                    20250204): LAMMPS_VERSION, for the few checks of LAMMPS's own messages
+                    that differ between the two
 A test runs lmp as often as it needs, checks the results against independent expectations
 with check()/near(), and ends with finish(), which prints "N passed, M failed" and exits
 non-zero on any failure.
@@ -18,6 +21,7 @@ import sys
 LMP = os.environ.get("LSDEM_LMP", "lmp")
 SHAPE_TOOL = os.environ.get("LSDEM_SHAPE_TOOL", "lsdem-shape")
 MPIEXEC = os.environ.get("LSDEM_MPIEXEC", "mpirun")
+LAMMPS_VERSION = int(os.environ.get("LSDEM_LAMMPS_VERSION", "20210929"))
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 _passed = 0

@@ -35,7 +35,9 @@ def incline(theta_deg, steps):
             + "fix imp all impulse/lsdem 0.5 0.0\ntimestep 1e-3\n"
             + "variable x equal x[1]\nvariable z equal z[1]\nvariable vx equal vx[1]\n"
             + "variable vy equal vy[1]\ncompute w all property/atom omegax omegay omegaz\n"
-            + "variable w equal sqrt(c_w[1][1]^2+c_w[1][2]^2+c_w[1][3]^2)\n"
+            # grain 1's |omega| through an atom-style variable: an equal-style c_w[1][1] is
+            # LAMMPS 2021's syntax, C_w[1][1] that of 2025; v_w2[1] works in both
+            + "variable w2 atom c_w[1]^2+c_w[2]^2+c_w[3]^2\nvariable w equal sqrt(v_w2[1])\n"
             + "thermo_style custom step v_x v_z v_vx v_vy v_w f_imp[6]\n"
             + "thermo_modify format float %%.15g\nthermo 50\nrun %d\n" % steps)
     _, log = run_lmp(deck, cwd=os.path.abspath("theta%g" % theta_deg))

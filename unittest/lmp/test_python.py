@@ -12,7 +12,7 @@ import subprocess
 
 import numpy as np
 
-from lsdemtest import HERE, LMP, SHAPE_TOOL, check, finish, near, run_lmp
+from lsdemtest import HERE, LAMMPS_VERSION, LMP, SHAPE_TOOL, check, finish, near, run_lmp
 
 BUILD = os.path.dirname(SHAPE_TOOL)
 EXAMPLES = os.path.normpath(os.path.join(HERE, "..", "..", "examples"))
@@ -23,7 +23,7 @@ p = subprocess.run(["/usr/bin/python3", "-c",
                     "'none']); print(l.version(), 'LSDEM' in l.installed_packages, "
                     "l.has_style('pair', 'lsdem'))"],
                    stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
-check(p.returncode == 0 and p.stdout.split()[-3:] == ["20210929", "True", "True"],
+check(p.returncode == 0 and p.stdout.split()[-3:] == [str(LAMMPS_VERSION), "True", "True"],
       "from lammps import lammps: %s" % p.stdout[-1500:])
 
 NSTEPS, NGRAINS = 2000, 40
