@@ -1,7 +1,7 @@
 /* lsdem_kernel.h -- what a simulation needs of the LSDEM core (the library lsdem_kernel,
- * all that lmp links): base, geometry, contact, dynamics, impulse mode, specimen. No image
- * codecs, meshes import, packing, random grains or pictures: those are in lsdem.h
- * (lsdem_prep).
+ * all that lmp links): base, geometry, contact, dynamics, boundaries (walls), impulse mode,
+ * specimen. No image codecs, meshes import, packing, random grains or pictures: those are
+ * in lsdem.h (lsdem_prep).
  * Conventions in lsdem.h. */
 #ifndef LSDEM_KERNEL_H
 #define LSDEM_KERNEL_H
@@ -10,6 +10,7 @@
 #include "geom/lsdem_geom.h"
 #include "contact/lsdem_contact.h"
 #include "dynamics/lsdem_dynamics.h"
+#include "boundary/lsdem_boundary.h"
 #include "impulse/lsdem_impulse.h"
 #include "specimen/lsdem_specimen.h"
 

@@ -1,0 +1,116 @@
+/* lsdem_boundary.h -- rigid boundaries (kernel module core/boundary): one wall record for
+ * every caller (fix wall/lsdem and its threaded variant, fix impulse/lsdem's wall
+ * detection and correction), with the three questions they ask of a wall answered here
+ * and nowhere else:
+ *   lsdem_boundary_may_touch  may a grain's bounding sphere reach the wall (cheap rejection)
+ *   lsdem_boundary_crossing   has a grain's centre gone, or will it go by the next step,
+ *                             through the wall's surface
+ *   lsdem_boundary_pose_at    where the wall is at a time s after the record's own
+ * and its motion (lsdem_boundary_advance: prescribed translation, or the pivoting platen of
+ * report §3.2.1). Contact itself is not here: a wall is the slave level set B of the same
+ * detection and laws as a grain pair (report §4.6.3: "treated exactly as grain-grain
+ * contact"), through its shape (b->shape) and a pose from lsdem_boundary_pose_at.
+ *
+ * Frames, units, signs:
+ *   - The wall's signed distance lives in its own frame (the wall frame); pose.R maps it
+ *     to the world (row-major; its columns are the wall frame's axes in the world) and
+ *     pose.x is the wall frame's origin in the world. Plane: a point of the plane, body z
+ *     the plane's normal. Cylinder: a point of its axis, body z the axis.
+ *   - phi < 0 on the wall's solid side, > 0 on the grains' side; the normal is grad phi
+ *     (unit), pointing out of the wall into the grains' side. Plane: solid is z <= 0 of
+ *     its frame, the normal is the user's normal. Cylinder (a container): solid outside
+ *     radius R, phi = R - rho, the normal points towards the axis.
+ *   - Lengths in the unit of positions, velocities per unit of time, angles in radians,
+ *     everything world-frame unless named otherwise (LAMMPS's units when called from it).
+ *
+ * Kinds: the shape's SDF kind (LSDEM_SDF_PLANE, LSDEM_SDF_CYLINDER; lsdem_sdf_eval).
+ * A further kind (a narrow-band level-set grid for meshes and terrain) is another
+ * initialiser that fills b->shape; the three questions above hold unchanged for any kind
+ * whose phi is a distance (|phi(p) - phi(q)| <= |p - q|), which is what the bounding-sphere
+ * test relies on.
+ *
+ * Motion: pose.v is the wall's translation velocity (the caller may change it between
+ * steps, e.g. from a LAMMPS variable); a pivoting platen turns about P at platen.omega
+ * (pose.omega its current value). Rotation of a whole wall about a prescribed axis is not
+ * implemented; it would add a spin to lsdem_boundary_advance and lsdem_boundary_pose_at. */
+#ifndef LSDEM_BOUNDARY_H
+#define LSDEM_BOUNDARY_H
+
+#include "../dynamics/lsdem_dynamics.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The pivoting platen's state (report §3.2.1; core/dynamics/pivot.c): the plate tilts
+ * about the ram's contact point P, h behind its face, with two rotational degrees of
+ * freedom perpendicular to the ram axis. World frame. */
+typedef struct {
+  double h;         /* distance from P to the plane along its normal (>= 0) */
+  double inertia;   /* moment of inertia about P (mass length^2, > 0) */
+  double damping;   /* viscous torque per angular velocity (>= 0) */
+  double axis[3];   /* ram axis: the plane's initial unit normal; no spin about it */
+  double x[3];      /* P; moves with pose.v */
+  double q[4];      /* plate frame (the wall frame) body -> world, scalar first */
+  double omega[3];  /* angular velocity, perpendicular to axis, at step n-1/2 */
+  double torque[3]; /* load about P of the last force call (lsdem_boundary_platen_load) */
+} lsdem_platen;
+
+typedef struct {
+  lsdem_shape shape;   /* the signed distance (shape.sdf) in the wall frame; no nodes,
+                          radius HUGE_VAL: never rejected by a bounding sphere of B */
+  lsdem_pose pose;     /* the wall now: x, R (wall -> world), v (translation velocity; a
+                          platen's: that of P, the ram's), omega (a platen's tilt rate) */
+  int pivots;          /* 1: a plane that is a pivoting platen (platen below) */
+  lsdem_platen platen;
+} lsdem_boundary;
+
+/* A plane through `point` with normal n (any length, scaled internally; the grains' side
+ * is where n points), at rest. LSDEM_ERR_ARG when n is zero or not finite. */
+lsdem_status lsdem_boundary_plane(lsdem_boundary *b, const double point[3], const double n[3],
+                                  lsdem_error *err);
+/* An infinite cylindrical container (solid outside radius) about the world axis `axis`
+ * (0, 1, 2 = x, y, z) through the point whose other two coordinates, in x, y, z order,
+ * are c[0], c[1]; its frame is a cyclic permutation of x, y, z (proper), body z = axis.
+ * At rest. LSDEM_ERR_ARG for a bad axis or a radius that is not > 0. */
+lsdem_status lsdem_boundary_cylinder(lsdem_boundary *b, int axis, const double c[2],
+                                     double radius, lsdem_error *err);
+/* Make a plane a pivoting platen (h, inertia, damping as in lsdem_platen), level and at
+ * rest: P = x - h n, the ram axis n. LSDEM_ERR_ARG for another kind of wall or a parameter
+ * out of range (the message names it). Also re-levels a platen at its current point. */
+lsdem_status lsdem_boundary_pivot(lsdem_boundary *b, double h, double inertia, double damping,
+                                  lsdem_error *err);
+/* A platen's pose (x, R, omega) from its P, q and omega (after restoring them). */
+void lsdem_boundary_place_platen(lsdem_boundary *b);
+
+/* Signed distance of world point p to the wall at pose w (b's kind, w its place) and,
+ * when normal is not NULL, the unit normal there (world; out of the wall). */
+double lsdem_boundary_distance(const lsdem_boundary *b, const lsdem_pose *w, const double p[3],
+                               double normal[3]);
+/* Cheap rejection (DESIGN §3): 0 when the sphere of radius r about c cannot reach the
+ * wall's solid at pose w, phi(c) >= r; 1 when it may. */
+int lsdem_boundary_may_touch(const lsdem_boundary *b, const lsdem_pose *w, const double c[3],
+                             double r);
+/* Has a grain crossed the wall at pose w: its centre c is behind the surface (d < 0), or
+ * will be after dt when it moves at velocity v against the wall's motion at c,
+ * d + vn dt < 0 with vn = n . (v - w.v - w.omega x (c - w.x)) (the relative velocity of
+ * eq 2.6; vn < 0 towards the wall). Returns 1 if so (NaN counts as crossed); d and vn
+ * out when not NULL. */
+int lsdem_boundary_crossing(const lsdem_boundary *b, const lsdem_pose *w, const double c[3],
+                            const double v[3], double dt, double *d, double *vn);
+/* The wall's pose at time s after the record's (s < 0: before): the record's pose moved
+ * by s v (for a platen P moved so, the tilt held; pose->v of a platen is then the velocity
+ * of its point, v + omega x (x - P)). s = 0 gives the pose as stored, bit for bit (a
+ * platen's from P, q, omega). */
+void lsdem_boundary_pose_at(const lsdem_boundary *b, double s, lsdem_pose *pose);
+/* Move the wall over dt: x += dt v; a platen tilts under platen.torque
+ * (lsdem_step_pivot: eqs 2.18, 2.28), P += dt v, and its pose follows. */
+void lsdem_boundary_advance(lsdem_boundary *b, double dt);
+/* A platen's load for its next step: the force f of the grains on the wall and their
+ * torque t about the wall's point pose.x, moved to P (platen.torque). */
+void lsdem_boundary_platen_load(lsdem_boundary *b, const double f[3], const double t[3]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* LSDEM_BOUNDARY_H */
