@@ -248,15 +248,7 @@ grep -E '^(CONSOLIDATED|RESUMED|SHEARED)' "$log" | tee -a summary.txt
 if [ "$full" = 1 ]; then
   # the parts' CSV rows joined: an earlier part's rows up to the step its successor resumed
   # from (that part's first row, which the successor repeats with fresh interval averages)
-  /usr/bin/python3 - triaxial.csv $(ls -v triaxial.r*.csv 2>/dev/null) > triaxial_full.csv <<'EOF'
-import sys
-parts = [open(f).read().splitlines() for f in sys.argv[1:]]
-rows = parts[0][1:]
-for p in parts[1:]:
-    start = float(p[1].split(",")[0])                 # eps_a of the checkpoint's row
-    rows = [r for r in rows if float(r.split(",")[0]) <= start] + p[2:]
-print("\n".join(parts[0][:1] + rows))
-EOF
+  /usr/bin/python3 "$ex/compare.py" --join triaxial.csv $(ls -v triaxial.r*.csv 2>/dev/null) > triaxial_full.csv
   # phi and eps_v against eps_a with the report's values marked (compare.py reads the
   # packing's core void ratio from voids.txt next to the CSV)
   echo "core $(cat "$spec/voids.txt")" > voids.txt

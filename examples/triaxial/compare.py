@@ -2,6 +2,10 @@
 """Triaxial specimens side by side, against the report (PEER 2022/06 §3.4.5, Figures 3.12-3.13).
 
 usage: compare.py OUT.png LABEL=triaxial.csv [LABEL=triaxial.csv ...] [--title TEXT] [--spread]
+       compare.py --join PART.csv PART.csv ... > JOINED.csv
+
+A CSV may be given as the parts of one interrupted or extended run, PART+PART+... (a resumed
+run's CSV, in.triaxial -var part): they are joined as --join does.
 
 For each CSV (examples/triaxial's output) prints one row -- peak mobilised friction angle and
 the axial strain there (and the first strain within 0.5 deg of the peak: a flat-topped
@@ -35,8 +39,25 @@ REPORT = {
 }
 
 
+def joined_lines(paths):
+    """The CSV lines of a run's parts joined: an earlier part's rows before the strain its
+    successor's first row has, then the successor's rows. A successor resumed from a
+    checkpoint repeats the checkpoint's row with fresh interval averages: there the earlier
+    part's row is kept and the repeat dropped."""
+    parts = [open(f).read().splitlines() for f in paths]
+    rows = parts[0][1:]
+    for p in parts[1:]:
+        first = p[1].split(",")[0]
+        repeat = any(r.split(",")[0] == first for r in rows)
+        rows = [r for r in rows if float(r.split(",")[0]) < float(first)] + \
+            [r for r in rows if repeat and r.split(",")[0] == first] + p[2 if repeat else 1:]
+    return parts[0][:1] + rows
+
+
 def load(path):
-    rows = list(csv.DictReader(open(path)))
+    paths = path.split("+")
+    path = paths[0]
+    rows = list(csv.DictReader(joined_lines(paths)))
     c = {k: [float(r[k]) for r in rows] for k in rows[0]}
     # the packing's void ratio from run.sh's voids.txt (lattice measure: mould, core)
     vf = os.path.join(os.path.dirname(os.path.abspath(path)), "voids.txt")
@@ -114,6 +135,9 @@ def spread(rows):
 
 def main():
     args = sys.argv[1:]
+    if args[:1] == ["--join"]:
+        print("\n".join(joined_lines(args[1:])))
+        return
     title = None
     with_spread = "--spread" in args
     if with_spread:

@@ -58,6 +58,8 @@ mpi=()
 [ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
 start=$SECONDS
 
+mode=${1:-}   # prepare: stop when the inputs are made; resume: go on from triaxial.restart
+if [ "$mode" != resume ]; then
 # 1. grains: NSHAPES (default eight) random sand-like shapes, ~31 px, ~450 nodes each (mean node spacing 0.09 d,
 #    the report's d/10 rule; lsdem-shape warns on standard error when a shape breaks it); or
 #    spheres of the same volumes and node count (level-set grids, so they roll like grains)
@@ -107,23 +109,37 @@ echo "void ratio: $(awk '{ printf "%s e = %s   ", $1, $10 }' voids.txt)(lattice 
 "$shape" membrane mem --radius "$R" --height "$H" --z0 0 --rb "$rb" --library all.lslib \
   --shapes $((nshapes + 1)) $((nshapes + 2)) --types 2 3 --grains sample_grains.data \
   --density "$rho" --knbb "$km" --ksbb "$km" --kouter "$km_outer" "$km_outer"
-[ "${1:-}" = prepare ] && exit 0
+[ "$mode" = prepare ] && exit 0
+fi
 
-# 4. consolidation and shearing
-echo "running lmp on $np rank(s): $kind grains, mu $mu (log in $out/log.lammps)"
-rm -f log.lammps
+# 4. consolidation and shearing; `run.sh resume` (same OUT and knobs, a larger EPSMAX) goes on
+#    shearing a finished run from its end state, triaxial.restart, to EPSMAX (log.2.lammps,
+#    triaxial.2.csv; triaxial_joined.csv joins the two parts)
+log=log.lammps part=()
+if [ "$mode" = resume ]; then
+  [ -f triaxial.restart ] && [ -f shear_state.in ] && [ ! -f triaxial.2.csv ] || {
+    echo "run.sh resume: $out needs a finished run (triaxial.restart, shear_state.in) not resumed yet" >&2; exit 1; }
+  log=log.2.lammps part=(-var resume triaxial.restart -var part .2)
+fi
+echo "running lmp on $np rank(s): $kind grains, mu $mu (log in $out/$log)"
+rm -f "$log"
 "${mpi[@]}" "$lmp" -in "$here/in.triaxial" -var lib all.lslib -var data mem.data \
   -var memin mem.in -var memtri mem.tri -var mu "$mu" -var pivot "$pivot" -var rho "$rho" -var R "$R" \
   -var stride "${STRIDE:-1}" \
   ${EPSMAX:+-var epsmax $EPSMAX} \
-  ${UNLOAD_AT:+-var unload_at $UNLOAD_AT} ${UNLOAD_Q:+-var unload_q $UNLOAD_Q} \
-  -log log.lammps -echo none -screen none &
+  ${UNLOAD_AT:+-var unload_at $UNLOAD_AT} ${UNLOAD_Q:+-var unload_q $UNLOAD_Q} "${part[@]}" \
+  -log "$log" -echo none -screen none &
 lmp_pid=$!
 # the deck's PROGRESS lines (strain reached, time left) on the screen as the log grows
-tail --pid=$lmp_pid -n +1 -F log.lammps 2>/dev/null | grep --line-buffered '^PROGRESS' \
+tail --pid=$lmp_pid -n +1 -F "$log" 2>/dev/null | grep --line-buffered '^PROGRESS' \
   | sed -u 's/^PROGRESS /  /' || true
 wait $lmp_pid
-grep -E '^(PIVOT|CONSOLIDATED|UNLOAD|RELOAD|SHEARED)' log.lammps
+grep -E '^(PIVOT|CONSOLIDATED|UNLOAD|RELOAD|RESUMED|SHEARED)' "$log"
 echo "total time $((SECONDS - start)) s"
-/usr/bin/python3 "$here/plot.py" triaxial.csv "$kind"
+csv=triaxial.csv
+if [ "$mode" = resume ]; then
+  /usr/bin/python3 "$here/compare.py" --join triaxial.csv triaxial.2.csv > triaxial_joined.csv
+  csv=triaxial_joined.csv
+fi
+/usr/bin/python3 "$here/plot.py" "$csv" "$kind"
 echo "results: $out/triaxial.csv, $out/q_eps.png, $out/phi_eps.png, $out/epsv_eps.png, $out/dump.triaxial"

@@ -71,4 +71,34 @@ check(l["e_mould"] is None, "no voids.txt: no mould void ratio")
 rows = [r for r in p.stdout.splitlines() if r.startswith(("dense ", "loose "))]
 check(len(rows) == 2 and "48.0°" in rows[0] and "3.0%" in rows[0] and "2.5%" in rows[0]
       and rows[0].rstrip().endswith("yes") and rows[1].rstrip().endswith("no"), "table rows")
+
+# --spread: each figure's mean, sample sd and range over the runs (here the two curves)
+p = subprocess.run([sys.executable, SCRIPT, "spread.png", "dense=" + dense, "loose=" + loose,
+                    "--spread"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                   timeout=120)
+check(p.returncode == 0, "compare.py --spread failed (%d): %s" % (p.returncode, p.stdout))
+sp = json.load(open("spread.json"))["spread"]
+near(sp["peak_phi"]["mean"], 39.0, atol=1e-6, msg="mean peak phi of 48 and 30")
+near(sp["peak_phi"]["sd"], 18.0 / math.sqrt(2.0), atol=1e-6, msg="sample sd of 48 and 30")
+check(sp["peak_phi"]["min"] == 30.0 and sp["peak_phi"]["max"] == 48.0 and sp["peak_phi"]["n"] == 2,
+      "peak phi range and count")
+check(sp["e_mould"]["n"] == 1, "a figure only one run has counts one run")
+
+# --join / PART+PART: a run's parts joined back into the whole CSV, with the resumed part
+# repeating the row it resumed from (a checkpoint) or starting at a new row (an extension)
+lines = open(dense).read().splitlines()
+with open("a.csv", "w") as f:
+    f.write("\n".join(lines[:51]) + "\n")          # rows 0-49: eps_a 0 to 4.9 %
+with open("b_repeat.csv", "w") as f:
+    f.write("\n".join(lines[:1] + ["%s,9,9,9,99,8,0.5" % lines[50].split(",")[0]] + lines[51:]) + "\n")
+with open("b_next.csv", "w") as f:
+    f.write("\n".join(lines[:1] + lines[51:]) + "\n")
+for b in ("b_repeat.csv", "b_next.csv"):
+    p = subprocess.run([sys.executable, SCRIPT, "--join", "a.csv", b], stdout=subprocess.PIPE,
+                       text=True, timeout=60)
+    check(p.stdout.splitlines() == lines, "--join a.csv %s gives the whole CSV back" % b)
+p = subprocess.run([sys.executable, SCRIPT, "parts.png", "parts=a.csv+b_next.csv"],
+                   stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=120)
+near(json.load(open("parts.json"))["parts"]["crit_phi"], 40.0, atol=1e-6,
+     msg="a CSV given as PART+PART is read joined (critical state from the second part)")
 finish()
