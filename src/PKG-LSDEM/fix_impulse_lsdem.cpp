@@ -253,7 +253,7 @@ void FixImpulseLsdem::find_walls()
   for (int f = 0; f < modify->nfix; f++) {
     FixWallLsdem *w = dynamic_cast<FixWallLsdem *>(modify->fix[f]);
     if (!w) continue;
-    if (w->wall_pivots())
+    if (w->boundary().pivots)
       error->all(FLERR, "Fix impulse/lsdem: fix wall/lsdem {} pivots (keyword pivot), which "
                  "impulse mode does not support; use a fixed or moving wall", w->id);
     w->set_passive(true);
@@ -407,8 +407,8 @@ void FixImpulseLsdem::make_bodies()
 
 lsdem_pose FixImpulseLsdem::wall_pose_now(int w) const
 {
-  lsdem_pose p = walls[w]->wall_pose();
-  for (int d = 0; d < 3; d++) p.x[d] -= update->dt * p.v[d];
+  lsdem_pose p;
+  lsdem_boundary_pose_at(&walls[w]->boundary(), -update->dt, &p);
   return p;
 }
 
@@ -513,31 +513,21 @@ void FixImpulseLsdem::add_pair_contacts()
   }
 }
 
-/* cheap rejection: the grain's bounding sphere at x does not reach the wall's solid */
-
-bool FixImpulseLsdem::may_touch_wall(int w, const lsdem_pose &p, const double x[3], double r) const
-{
-  const double rel[3] = {x[0] - p.x[0], x[1] - p.x[1], x[2] - p.x[2]};
-  double local[3], grad[3];
-  for (int k = 0; k < 3; k++)
-    local[k] = rel[0] * p.R[k] + rel[1] * p.R[3 + k] + rel[2] * p.R[6 + k];
-  return lsdem_sdf_eval(&walls[w]->wall_shape().sdf, local, grad) < r;
-}
-
 void FixImpulseLsdem::add_wall_contacts()
 {
   const int nall = atom->nlocal + atom->nghost;
   for (size_t w = 0; w < walls.size(); w++) {
+    const lsdem_boundary &b = walls[w]->boundary();
     const lsdem_pose wp = wall_pose_now((int) w);
     lsdem_detect_params det = walls[w]->wall_detect();
     det.node_skin = 0.0;
     for (int i = 0; i < atom->nlocal; i++) {
       if (!moving[i] || !(atom->mask[i] & walls[w]->groupbit)) continue;
-      if (!may_touch_wall((int) w, wp, atom->x[i], atom->radius[i])) continue;
+      if (!lsdem_boundary_may_touch(&b, &wp, atom->x[i], atom->radius[i])) continue;
       lsdem_pose gp;
       LsdemContactPath::pose_of(atom, avec, i, gp);
       lsdem_manifold m = lsdem_manifold_over(wpoints.data(), (int) wpoints.size());
-      if (lsdem_detect(avec->shape_of(i), &gp, &walls[w]->wall_shape(), &wp, &det,
+      if (lsdem_detect(avec->shape_of(i), &gp, &b.shape, &wp, &det,
                        update->ntimestep, nullptr, nullptr, &m) > 0)
         add_glued(i, -1 - (int) w, atom->tag[i], -(tagint) (w + 1), nall + (int) w, m,
                   walls[w]->wall_friction(), glue_of_shape[avec->shape[i]]);
@@ -594,7 +584,8 @@ int FixImpulseLsdem::correct_walls()
 {
   int corrected = 0;
   for (size_t w = 0; w < walls.size(); w++) {
-    const lsdem_pose wp = walls[w]->wall_pose();  // at the end of the step
+    lsdem_pose wp;  // at the end of the step
+    lsdem_boundary_pose_at(&walls[w]->boundary(), 0.0, &wp);
     lsdem_detect_params det = walls[w]->wall_detect();
     det.node_skin = 0.0;
     lsdem_wall_params prm = wall_prm;
@@ -624,12 +615,13 @@ int FixImpulseLsdem::correct_grain(int i, int w, const lsdem_pose &wp,
   // the centre's predicted position first: the turn of the orientation costs more
   const double xp[3] = {atom->x[i][0] + dt * body[i].v[0], atom->x[i][1] + dt * body[i].v[1],
                         atom->x[i][2] + dt * body[i].v[2]};
-  if (!may_touch_wall(w, wp, xp, atom->radius[i])) return 0;
+  const lsdem_boundary &b = walls[w]->boundary();
+  if (!lsdem_boundary_may_touch(&b, &wp, xp, atom->radius[i])) return 0;
   lsdem_pose gp;
   lsdem_impulse_predict_pose(atom->x[i], avec->quat[i], body[i].v, body[i].omega,
                              avec->inertia[i], dt, &gp);
   lsdem_manifold m = lsdem_manifold_over(wpoints.data(), (int) wpoints.size());
-  if (lsdem_detect(avec->shape_of(i), &gp, &walls[w]->wall_shape(), &wp, &det,
+  if (lsdem_detect(avec->shape_of(i), &gp, &b.shape, &wp, &det,
                    update->ntimestep, nullptr, nullptr, &m) == 0)
     return 0;
   limit_push_out(m, dt);

@@ -115,7 +115,6 @@ class FixImpulseLsdem : public Fix {
   void check_cfl();
   void damp_and_drift();
   lsdem_pose wall_pose_now(int w) const;
-  bool may_touch_wall(int w, const lsdem_pose &wall, const double x[3], double r) const;
   double kinetic_energy(int i) const;
   void reduce_output();
 };

@@ -2,11 +2,12 @@
 /* ----------------------------------------------------------------------
    LSDEM package: level-set discrete element method for LAMMPS.
 
-   fix wall/lsdem (doc/fix_wall_lsdem.rst). The wall is an analytic signed distance
-   from the core (plane: the half-space z <= 0 of its own frame; cylinder: an inverted
-   infinite cylinder, solid outside radius R) used as the slave shape B of the same
-   contact kernels the pair style calls. With pivot a plane is a platen that tilts about
-   the ram contact point (report §3.2.1; core/pivot.c).
+   fix wall/lsdem (doc/fix_wall_lsdem.rst). The wall is a core wall record
+   (core/boundary: plane, the half-space z <= 0 of its own frame; cylinder, an inverted
+   infinite cylinder, solid outside radius R) whose signed distance is the slave shape B
+   of the same contact kernels the pair style calls. With pivot a plane is a platen that
+   tilts about the ram contact point (report §3.2.1). Its tests (may a grain touch it,
+   has one crossed it) and its pose and motion are the core's; this file is LAMMPS glue.
 ------------------------------------------------------------------------- */
 
 #include "fix_wall_lsdem.h"
@@ -42,10 +43,9 @@ static constexpr tagint WALL_PARTNER = -1;
 /* ---------------------------------------------------------------------- */
 
 FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), nlanes(1), ncand(0), axis(2), fix_history(nullptr), avec(nullptr),
-  fall_valid(0), moving(false), passive(false), contact_step(-1), pivot(false), pivot_h(0.0),
-  pivot_inertia(0.0), pivot_damping(0.0), cand(nullptr), maxcand(0), cand_nlocal(0),
-  cand_built(-1)
+  Fix(lmp, narg, arg), nlanes(1), ncand(0), fix_history(nullptr), avec(nullptr),
+  fall_valid(0), moving(false), passive(false), contact_step(-1), cand(nullptr), maxcand(0),
+  cand_nlocal(0), cand_built(-1)
 {
   for (int d = 0; d < 3; d++) {
     vstr[d] = nullptr;
@@ -61,30 +61,27 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   extvector = -1;
   extlist = new int[size_vector];
   for (int k = 0; k < size_vector; k++) extlist[k] = k < 3 ? 1 : 0;
-  for (int d = 0; d < 3; d++) tlocal[d] = pivot_torque[d] = pivot_omega[d] = 0.0;
+  for (int d = 0; d < 3; d++) tlocal[d] = 0.0;
   restart_global = 1;
   dynamic_group_allow = 1;
-
-  memset(&wall, 0, sizeof(wall));
-  memset(&wpose, 0, sizeof(wpose));
   memset(&prm, 0, sizeof(prm));
-  wall.radius = HUGE_VAL;  // unbounded: the kernel must not reject by B's bounding sphere
 
   int iarg;
   double geom[6];
-  if (strcmp(arg[3], "plane") == 0) {
-    wallstyle = PLANE;
-    iarg = 10;
-  } else if (strcmp(arg[3], "cylinder") == 0) {
-    wallstyle = CYLINDER;
-    iarg = 7;
-  } else error->all(FLERR, "fix wall/lsdem: unknown wall {} ({})", arg[3], usage);
+  const bool plane = strcmp(arg[3], "plane") == 0, cylinder = strcmp(arg[3], "cylinder") == 0;
+  if (plane) iarg = 10;
+  else if (cylinder) iarg = 7;
+  else error->all(FLERR, "fix wall/lsdem: unknown wall {} ({})", arg[3], usage);
   if (narg < iarg + 3) error->all(FLERR, "Illegal fix wall/lsdem command: {}", usage);
   for (int k = 4; k < iarg; k++)
     geom[k - 4] = LsdemInput::number(FLERR, arg[k], "fix wall/lsdem", "the wall geometry", lmp);
   opts.read_stiffness(lmp, "fix wall/lsdem", arg + iarg);
   iarg += 3;
 
+  int axis = 2;             // cylinder axis 0,1,2 = x,y,z
+  double vel[3] = {0.0, 0.0, 0.0};
+  bool pivot = false;
+  double pivot_prm[3];      // h, I, c
   while (iarg < narg) {
     std::string key = arg[iarg];
     int nval = key == "velocity" ? 3 : (key == "pivot" ? 2 : 1);
@@ -98,89 +95,50 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
       for (int d = 0; d < 3; d++) {
         const char *val_d = arg[iarg + 1 + d];
         if (utils::strmatch(val_d, "^v_")) vstr[d] = utils::strdup(val_d + 2);
-        else wpose.v[d] = LsdemInput::number(FLERR, val_d, "fix wall/lsdem", "velocity", lmp);
-        if (vstr[d] || wpose.v[d] != 0.0) moving = true;
+        else vel[d] = LsdemInput::number(FLERR, val_d, "fix wall/lsdem", "velocity", lmp);
+        if (vstr[d] || vel[d] != 0.0) moving = true;
       }
     } else if (key == "axis") {
       if (val == "x" || val == "y" || val == "z") axis = val[0] - 'x';
       else error->all(FLERR, "fix wall/lsdem: axis must be x, y or z, not {}", val);
-      if (wallstyle != CYLINDER) error->all(FLERR, "fix wall/lsdem: axis is for cylinder walls");
+      if (!cylinder) error->all(FLERR, "fix wall/lsdem: axis is for cylinder walls");
     } else if (key == "pivot") {
-      nval = parse_pivot(iarg, narg, arg);
+      nval = parse_pivot(iarg, narg, arg, pivot_prm);
+      pivot = true;
     } else error->all(FLERR, "fix wall/lsdem: unknown keyword {}", key);
     iarg += 1 + nval;
   }
   opts.check_law(lmp, "fix wall/lsdem");
   prm.law = opts.law;
 
-  if (wallstyle == PLANE) {
-    // scaled by its largest component first, so that no square overflows or underflows
-    const double big = std::max({fabs(geom[3]), fabs(geom[4]), fabs(geom[5])});
-    if (!(big > 0.0) || !std::isfinite(big))
-      error->all(FLERR, "fix wall/lsdem: plane normal must be finite and not zero");
-    double n[3] = {geom[3] / big, geom[4] / big, geom[5] / big};
-    const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    for (int d = 0; d < 3; d++) n[d] /= len;
-    for (int d = 0; d < 3; d++) wpose.x[d] = geom[d];
-    wall.sdf.kind = LSDEM_SDF_PLANE;
-    set_plane_frame(n);
-    if (pivot) start_pivot();
-  } else {
-    if (geom[2] <= 0.0) error->all(FLERR, "fix wall/lsdem: cylinder radius must be > 0");
-    // c1 c2 are the axis' coordinates in the other two directions, in x,y,z order
-    int other[2] = {axis == 0 ? 1 : 0, axis == 2 ? 1 : 2};
-    wpose.x[other[0]] = geom[0];
-    wpose.x[other[1]] = geom[1];
-    wall.sdf.kind = LSDEM_SDF_CYLINDER;
-    wall.sdf.inverted = 1;  // solid outside: a container
-    wall.sdf.a[0] = geom[2];
-    wall.sdf.a[1] = 0.0;    // infinite
-    set_axis_frame();
-  }
+  // plane: point, normal; cylinder: the axis' coordinates in the other two directions
+  // (x,y,z order), radius
+  lsdem_error err;
+  lsdem_status st = plane ? lsdem_boundary_plane(&bnd, geom, geom + 3, &err)
+                          : lsdem_boundary_cylinder(&bnd, axis, geom, geom[2], &err);
+  if (st == LSDEM_OK && pivot)
+    st = lsdem_boundary_pivot(&bnd, pivot_prm[0], pivot_prm[1], pivot_prm[2], &err);
+  if (st != LSDEM_OK) error->all(FLERR, "fix wall/lsdem: {}", err.msg);
+  for (int d = 0; d < 3; d++) bnd.pose.v[d] = vel[d];
   flocal[0] = flocal[1] = flocal[2] = 0.0;
   fall[0] = fall[1] = fall[2] = 0.0;
 }
 
 /* ----------------------------------------------------------------------
-   pivot h I [c]: returns the number of values read (c is optional, default 0)
+   pivot h I [c] into p = (h, I, c), c optional (default 0), checked by the core when
+   the platen is made; returns the number of values read
 ------------------------------------------------------------------------- */
 
-int FixWallLsdem::parse_pivot(int iarg, int narg, char **arg)
+int FixWallLsdem::parse_pivot(int iarg, int narg, char **arg, double p[3])
 {
-  if (wallstyle != PLANE)
-    error->all(FLERR, "fix wall/lsdem: keyword pivot is for plane walls only, not {}", arg[3]);
-  pivot = true;
-  pivot_h = LsdemInput::number(FLERR, arg[iarg + 1], "fix wall/lsdem", "pivot h", lmp);
-  pivot_inertia = LsdemInput::number(FLERR, arg[iarg + 2], "fix wall/lsdem", "pivot I", lmp);
-  int nval = 2;
+  p[0] = LsdemInput::number(FLERR, arg[iarg + 1], "fix wall/lsdem", "pivot h", lmp);
+  p[1] = LsdemInput::number(FLERR, arg[iarg + 2], "fix wall/lsdem", "pivot I", lmp);
+  p[2] = 0.0;
   if (iarg + 3 < narg && utils::is_double(arg[iarg + 3])) {
-    pivot_damping = LsdemInput::number(FLERR, arg[iarg + 3], "fix wall/lsdem", "pivot c", lmp);
-    nval = 3;
+    p[2] = LsdemInput::number(FLERR, arg[iarg + 3], "fix wall/lsdem", "pivot c", lmp);
+    return 3;
   }
-  if (pivot_h < 0.0)
-    error->all(FLERR, "fix wall/lsdem: pivot h = {} must be >= 0 (distance of the pivot "
-               "behind the plane)", pivot_h);
-  if (pivot_inertia <= 0.0)
-    error->all(FLERR, "fix wall/lsdem: pivot I = {} must be > 0 (moment of inertia about "
-               "the pivot, mass*distance^2)", pivot_inertia);
-  if (pivot_damping < 0.0)
-    error->all(FLERR, "fix wall/lsdem: pivot c = {} must be >= 0 (damping torque per "
-               "angular velocity)", pivot_damping);
-  return nval;
-}
-
-/* ----------------------------------------------------------------------
-   the pivot P sits h behind the plane's point, along -n; the ram axis is n, the plate
-   starts untilted and at rest
-------------------------------------------------------------------------- */
-
-void FixWallLsdem::start_pivot()
-{
-  for (int d = 0; d < 3; d++) {
-    ram_axis[d] = wpose.R[3 * d + 2];
-    pivot_x[d] = wpose.x[d] - pivot_h * ram_axis[d];
-  }
-  lsdem_matrix_to_quat(wpose.R, pivot_q);
+  return 2;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -201,7 +159,7 @@ FixWallLsdem::~FixWallLsdem()
 int FixWallLsdem::setmask()
 {
   int mask = POST_FORCE;
-  if (moving || pivot) mask |= INITIAL_INTEGRATE;
+  if (moving || bnd.pivots) mask |= INITIAL_INTEGRATE;
   return mask;
 }
 
@@ -238,7 +196,7 @@ void FixWallLsdem::init()
     if (!input->variable->equalstyle(vvar[d]))
       error->all(FLERR, "fix wall/lsdem: velocity variable {} is not equal-style", vstr[d]);
   }
-  if (wallstyle == PLANE) check_plane_in_box();
+  if (bnd.shape.sdf.kind == LSDEM_SDF_PLANE) check_plane_in_box();
 }
 
 /* ----------------------------------------------------------------------
@@ -250,7 +208,8 @@ void FixWallLsdem::check_plane_in_box() const
 {
   const double *lo = domain->triclinic ? domain->boxlo_bound : domain->boxlo;
   const double *hi = domain->triclinic ? domain->boxhi_bound : domain->boxhi;
-  const double n[3] = {wpose.R[2], wpose.R[5], wpose.R[8]};
+  const double *R = bnd.pose.R, *p = bnd.pose.x;
+  const double n[3] = {R[2], R[5], R[8]};
   double smin = HUGE_VAL, smax = -HUGE_VAL;  // n.x over the box corners
   for (int c = 0; c < 8; c++) {
     const double s = n[0] * (c & 1 ? hi[0] : lo[0]) + n[1] * (c & 2 ? hi[1] : lo[1]) +
@@ -258,12 +217,12 @@ void FixWallLsdem::check_plane_in_box() const
     smin = std::min(smin, s);
     smax = std::max(smax, s);
   }
-  const double sp = n[0] * wpose.x[0] + n[1] * wpose.x[1] + n[2] * wpose.x[2];
+  const double sp = n[0] * p[0] + n[1] * p[1] + n[2] * p[2];
   if (sp > smax)
     error->all(FLERR, "fix wall/lsdem {}: plane point ({} {} {}) is outside the box with the "
                "whole box on the wall's solid side (n.p = {:.6g}); the plane must cut the box: "
-               "n.p in [{:.6g}, {:.6g}] for normal ({:.6g} {:.6g} {:.6g})", id, wpose.x[0],
-               wpose.x[1], wpose.x[2], sp, smin, smax, n[0], n[1], n[2]);
+               "n.p in [{:.6g}, {:.6g}] for normal ({:.6g} {:.6g} {:.6g})", id, p[0], p[1],
+               p[2], sp, smin, smax, n[0], n[1], n[2]);
 }
 
 /* ----------------------------------------------------------------------
@@ -273,7 +232,7 @@ void FixWallLsdem::check_plane_in_box() const
 void FixWallLsdem::update_velocity()
 {
   for (int d = 0; d < 3; d++)
-    if (vstr[d]) wpose.v[d] = input->variable->compute_equal(vvar[d]);
+    if (vstr[d]) bnd.pose.v[d] = input->variable->compute_equal(vvar[d]);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -293,44 +252,15 @@ void FixWallLsdem::setup(int vflag)
 }
 
 /* ----------------------------------------------------------------------
-   a moving wall advances to where it is when this step's forces are computed
+   a moving wall advances to where it is when this step's forces are computed (a
+   platen tilts under the last force call's torque about P, P moves with the wall
+   velocity)
 ------------------------------------------------------------------------- */
 
 void FixWallLsdem::initial_integrate(int /*vflag*/)
 {
   update_velocity();
-  if (pivot) step_pivot();
-  else
-    for (int d = 0; d < 3; d++) wpose.x[d] += update->dt * wpose.v[d];
-}
-
-/* ----------------------------------------------------------------------
-   the platen tilts under the last force call's torque about P (n -> n+1), P moves
-   with the wall velocity, and the plane's point and frame follow
-------------------------------------------------------------------------- */
-
-void FixWallLsdem::step_pivot()
-{
-  lsdem_step_pivot(pivot_q, pivot_omega, pivot_torque, ram_axis, pivot_inertia, pivot_damping,
-                   update->dt);
-  for (int d = 0; d < 3; d++) pivot_x[d] += update->dt * wpose.v[d];
-  place_platen();
-}
-
-/* ----------------------------------------------------------------------
-   the plane's point, frame and angular velocity from the pivot state (wpose.v stays the
-   ram's velocity, the velocity P moves with)
-------------------------------------------------------------------------- */
-
-void FixWallLsdem::place_platen()
-{
-  lsdem_pose now;
-  lsdem_pivot_pose(pivot_x, wpose.v, pivot_q, pivot_omega, pivot_h, &now);
-  for (int d = 0; d < 3; d++) {
-    wpose.x[d] = now.x[d];
-    wpose.omega[d] = now.omega[d];
-  }
-  for (int k = 0; k < 9; k++) wpose.R[k] = now.R[k];
+  lsdem_boundary_advance(&bnd, update->dt);
 }
 
 /* ----------------------------------------------------------------------
@@ -348,7 +278,7 @@ void FixWallLsdem::reduce_pivot_load()
   MPI_Allreduce(local, all, 6, MPI_DOUBLE, MPI_SUM, world);
   for (int d = 0; d < 3; d++) fall[d] = all[d];
   fall_valid = 1;
-  lsdem_torque_about(all + 3, wpose.x, fall, pivot_x, pivot_torque);
+  lsdem_boundary_platen_load(&bnd, fall, all + 3);
 }
 
 /* ----------------------------------------------------------------------
@@ -358,16 +288,7 @@ void FixWallLsdem::reduce_pivot_load()
 
 bool FixWallLsdem::may_touch(int i, double margin) const
 {
-  const double *x = atom->x[i];
-  const double r = atom->radius[i] + margin;
-  const double rel[3] = {x[0] - wpose.x[0], x[1] - wpose.x[1], x[2] - wpose.x[2]};
-  // rel . column k of R: its component along the wall frame's axis k
-  auto along = [&](int k) {
-    return rel[0] * wpose.R[k] + rel[1] * wpose.R[3 + k] + rel[2] * wpose.R[6 + k];
-  };
-  if (wallstyle == PLANE) return along(2) < r;
-  const double a0 = along(0), a1 = along(1);
-  return wall.sdf.a[0] - sqrt(a0 * a0 + a1 * a1) < r;
+  return lsdem_boundary_may_touch(&bnd, &bnd.pose, atom->x[i], atom->radius[i] + margin);
 }
 
 /* ----------------------------------------------------------------------
@@ -381,7 +302,7 @@ bool FixWallLsdem::may_touch(int i, double margin) const
 bool FixWallLsdem::candidates_can_last() const
 {
   return neighbor->dist_check && neighbor->every == 1 && neighbor->delay == 0 &&
-      !neighbor->build_once && neighbor->skin > 0.0 && !pivot;
+      !neighbor->build_once && neighbor->skin > 0.0 && !bnd.pivots;
 }
 
 /* ----------------------------------------------------------------------
@@ -394,8 +315,9 @@ bool FixWallLsdem::candidates_hold() const
 {
   if (cand_built < 0 || cand_built != neighbor->lastcall || cand_nlocal != atom->nlocal)
     return false;
+  const double *x = bnd.pose.x;
   double moved2 = 0.0;
-  for (int d = 0; d < 3; d++) moved2 += (wpose.x[d] - cand_wall_x[d]) * (wpose.x[d] - cand_wall_x[d]);
+  for (int d = 0; d < 3; d++) moved2 += (x[d] - cand_wall_x[d]) * (x[d] - cand_wall_x[d]);
   const double half = 0.5 * neighbor->skin;
   return moved2 <= half * half;
 }
@@ -423,7 +345,7 @@ void FixWallLsdem::find_candidates()
       cand[ncand++] = i;
   cand_built = keep ? neighbor->lastcall : -1;
   cand_nlocal = nlocal;
-  for (int d = 0; d < 3; d++) cand_wall_x[d] = wpose.x[d];
+  for (int d = 0; d < 3; d++) cand_wall_x[d] = bnd.pose.x[d];
 }
 
 /* ----------------------------------------------------------------------
@@ -447,9 +369,9 @@ void FixWallLsdem::post_force(int /*vflag*/)
     for (int d = 0; d < 3; d++) flocal[d] = tlocal[d] = 0.0;
     return;
   }
-  lsdem_pose tilting;
-  const lsdem_pose *w = begin_force_call(lanes_for_call(), tilting);
-  visit_all(*w);
+  lsdem_pose w;
+  begin_force_call(lanes_for_call(), w);
+  visit_all(w);
   end_force_call();
 }
 
@@ -460,11 +382,11 @@ void FixWallLsdem::visit_all(const lsdem_pose &w)
 
 /* ----------------------------------------------------------------------
    a force call's start: the candidates, the lanes emptied, the pair states' pool opened
-   for them; returns the wall as the contact kernel sees it (a tilting platen's point
-   moves with P plus its rotation about P, into `tilting`)
+   for them; w: the wall as the contact kernel sees it now (a tilting platen's point
+   moves with P plus its rotation about P)
 ------------------------------------------------------------------------- */
 
-const lsdem_pose *FixWallLsdem::begin_force_call(int n, lsdem_pose &tilting)
+void FixWallLsdem::begin_force_call(int n, lsdem_pose &w)
 {
   fall_valid = 0;
   contact_step = update->ntimestep;
@@ -477,9 +399,7 @@ const lsdem_pose *FixWallLsdem::begin_force_call(int n, lsdem_pose &tilting)
   }
   if (!candidates_hold()) find_candidates();
   lanes[0]->path.begin_step(n);
-  if (!pivot) return &wpose;
-  lsdem_pivot_pose(pivot_x, wpose.v, pivot_q, pivot_omega, pivot_h, &tilting);
-  return &tilting;
+  lsdem_boundary_pose_at(&bnd, 0.0, &w);
 }
 
 /* ----------------------------------------------------------------------
@@ -503,7 +423,7 @@ void FixWallLsdem::visit_candidates(Lane &lane, int from, int to, const lsdem_po
       lsdem_pose p;
       LsdemContactPath::pose_of(atom, avec, i, p);
       lsdem_contact_result res;
-      lane.path.test(i, WALL_PARTNER, avec->shape_of(i), p, &wall, w, prm, step, res);
+      lane.path.test(i, WALL_PARTNER, avec->shape_of(i), p, &bnd.shape, w, prm, step, res);
       if (res.npen > 0) {
         double fk[3], ta[3], tb[3];
         lsdem_quantize3(res.force, force_q, fk);
@@ -542,7 +462,7 @@ void FixWallLsdem::end_force_call()
       avec->defer_stop(lanes[l]->crossing);
       break;
     }
-  if (pivot) reduce_pivot_load();
+  if (bnd.pivots) reduce_pivot_load();
 }
 
 /* ----------------------------------------------------------------------
@@ -558,29 +478,12 @@ void FixWallLsdem::end_force_call()
 
 std::string FixWallLsdem::crossing(int i, const lsdem_pose &w) const
 {
-  // d: the centre's distance in front of the wall's surface; n: the direction in which d
-  // grows at the centre (plane: its normal; container: towards its axis)
-  const double *x = atom->x[i];
+  // d: the centre's distance in front of the wall's surface; vn: its velocity relative to
+  // the wall along the wall's normal there (< 0: towards the wall)
   const double dt = update->dt, kick = dt * force->ftm2v / atom->rmass[i];
-  double v[3], rel[3], n[3], d;
+  double v[3], d, vn;
   for (int k = 0; k < 3; k++) v[k] = atom->v[i][k] + kick * atom->f[i][k];
-  for (int k = 0; k < 3; k++) rel[k] = x[k] - w.x[k];
-  if (wallstyle == PLANE) {
-    for (int k = 0; k < 3; k++) n[k] = w.R[3 * k + 2];
-    d = lsdem_dot3(rel, n);
-  } else {
-    const double ax[3] = {w.R[2], w.R[5], w.R[8]}, along = lsdem_dot3(rel, ax);
-    double radial[3];
-    for (int k = 0; k < 3; k++) radial[k] = rel[k] - along * ax[k];
-    const double rho = sqrt(lsdem_dot3(radial, radial));
-    d = wall.sdf.a[0] - rho;
-    for (int k = 0; k < 3; k++) n[k] = rho > 0.0 ? -radial[k] / rho : 0.0;
-  }
-  double wv[3], vr[3];  // the wall's velocity at the grain's centre, and the grain's relative
-  lsdem_cross3(w.omega, rel, wv);
-  for (int k = 0; k < 3; k++) vr[k] = v[k] - w.v[k] - wv[k];
-  const double vn = lsdem_dot3(vr, n);  // < 0: towards the wall
-  if (d >= 0.0 && d + vn * dt >= 0.0) return std::string();
+  if (!lsdem_boundary_crossing(&bnd, &w, atom->x[i], v, dt, &d, &vn)) return std::string();
   const double R = atom->radius[i], dt_hold = vn < 0.0 ? 0.1 * R / -vn : 0.0;
   return fmt::format(
       "fix wall/lsdem {}: grain {} {} at step {}: its centre is {:.6g} {} the wall's surface "
@@ -616,54 +519,19 @@ void FixWallLsdem::add_contact(Lane &lane, int i, const lsdem_contact_result &re
 
 double FixWallLsdem::compute_vector(int n)
 {
-  if (n >= 10) return pivot ? pivot_omega[n - 10] : 0.0;
+  if (n >= 10) return bnd.pivots ? bnd.platen.omega[n - 10] : 0.0;
   if (n == 9) {
-    if (!pivot) return 0.0;
-    const double normal[3] = {wpose.R[2], wpose.R[5], wpose.R[8]};
-    return lsdem_tilt_angle(normal, ram_axis) * 180.0 / MY_PI;
+    if (!bnd.pivots) return 0.0;
+    const double normal[3] = {bnd.pose.R[2], bnd.pose.R[5], bnd.pose.R[8]};
+    return lsdem_tilt_angle(normal, bnd.platen.axis) * 180.0 / MY_PI;
   }
-  if (n >= 6) return wpose.R[3 * (n - 6) + 2];
-  if (n >= 3) return wpose.x[n - 3];
+  if (n >= 6) return bnd.pose.R[3 * (n - 6) + 2];
+  if (n >= 3) return bnd.pose.x[n - 3];
   if (!fall_valid) {
     MPI_Allreduce(flocal, fall, 3, MPI_DOUBLE, MPI_SUM, world);
     fall_valid = 1;
   }
   return fall[n];
-}
-
-/* ----------------------------------------------------------------------
-   wall frame: body z = plane normal n (outward from the wall's solid side)
-------------------------------------------------------------------------- */
-
-void FixWallLsdem::set_plane_frame(const double n[3])
-{
-  // t1 = a unit vector perpendicular to n, t2 = n x t1: columns (t1, t2, n)
-  double a[3] = {0.0, 0.0, 0.0};
-  int k = fabs(n[0]) < fabs(n[1]) ? (fabs(n[0]) < fabs(n[2]) ? 0 : 2) : (fabs(n[1]) < fabs(n[2]) ? 1 : 2);
-  a[k] = 1.0;
-  double t1[3] = {a[1] * n[2] - a[2] * n[1], a[2] * n[0] - a[0] * n[2], a[0] * n[1] - a[1] * n[0]};
-  double len = sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
-  for (int d = 0; d < 3; d++) t1[d] /= len;
-  double t2[3] = {n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2],
-                  n[0] * t1[1] - n[1] * t1[0]};
-  for (int r = 0; r < 3; r++) {
-    wpose.R[3 * r + 0] = t1[r];
-    wpose.R[3 * r + 1] = t2[r];
-    wpose.R[3 * r + 2] = n[r];
-  }
-}
-
-/* ----------------------------------------------------------------------
-   cylinder frame: body z = the axis; a cyclic permutation of x,y,z (proper)
-------------------------------------------------------------------------- */
-
-void FixWallLsdem::set_axis_frame()
-{
-  for (int k = 0; k < 9; k++) wpose.R[k] = 0.0;
-  for (int c = 0; c < 3; c++) {
-    int world_dim = (axis + 1 + c) % 3;  // body x,y,z -> world axis+1, axis+2, axis
-    wpose.R[3 * world_dim + c] = 1.0;
-  }
 }
 
 /* ----------------------------------------------------------------------
@@ -680,12 +548,13 @@ void FixWallLsdem::write_restart(FILE *fp)
   if (comm->me == 0) {
     double list[14];
     int n = 0;
-    if (pivot) list[n++] = PIVOT_TAG;
-    for (int d = 0; d < 3; d++) list[n++] = wpose.x[d];
-    if (pivot) {
-      for (int d = 0; d < 3; d++) list[n++] = pivot_x[d];
-      for (int k = 0; k < 4; k++) list[n++] = pivot_q[k];
-      for (int d = 0; d < 3; d++) list[n++] = pivot_omega[d];
+    const lsdem_platen &p = bnd.platen;
+    if (bnd.pivots) list[n++] = PIVOT_TAG;
+    for (int d = 0; d < 3; d++) list[n++] = bnd.pose.x[d];
+    if (bnd.pivots) {
+      for (int d = 0; d < 3; d++) list[n++] = p.x[d];
+      for (int k = 0; k < 4; k++) list[n++] = p.q[k];
+      for (int d = 0; d < 3; d++) list[n++] = p.omega[d];
     }
     int size = n * sizeof(double);
     fwrite(&size, sizeof(int), 1, fp);
@@ -698,16 +567,17 @@ void FixWallLsdem::restart(char *buf)
   const double *list = (const double *) buf;
   const bool tagged = list[0] == PIVOT_TAG;
   const double *x = tagged ? list + 1 : list;
-  for (int d = 0; d < 3; d++) wpose.x[d] = x[d];
-  if (!pivot) return;
+  for (int d = 0; d < 3; d++) bnd.pose.x[d] = x[d];
+  if (!bnd.pivots) return;
+  lsdem_platen &p = bnd.platen;
   if (tagged) {
     for (int d = 0; d < 3; d++) {
-      pivot_x[d] = list[4 + d];
-      pivot_omega[d] = list[11 + d];
+      p.x[d] = list[4 + d];
+      p.omega[d] = list[11 + d];
     }
-    for (int k = 0; k < 4; k++) pivot_q[k] = list[7 + k];
+    for (int k = 0; k < 4; k++) p.q[k] = list[7 + k];
   } else { // a file without pivot: the level platen where it was, at rest
-    for (int d = 0; d < 3; d++) pivot_x[d] = wpose.x[d] - pivot_h * ram_axis[d];
+    lsdem_boundary_pivot(&bnd, p.h, p.inertia, p.damping, nullptr);
   }
-  place_platen();
+  lsdem_boundary_place_platen(&bnd);
 }

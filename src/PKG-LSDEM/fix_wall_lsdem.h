@@ -4,7 +4,9 @@
    fix wall/lsdem: a rigid analytic wall (plane or cylindrical container) that the
    grains' nodes touch through the same core kernel as grain-grain contact (the wall
    is the slave level set, report §4.6.3). Optional wall velocity; optionally a plane
-   pivots about the ram contact point behind it (report §3.2.1).
+   pivots about the ram contact point behind it (report §3.2.1). The wall itself, its
+   motion and its tests (may a grain touch it, has one crossed it, where is it) are the
+   core's (core/boundary: lsdem_boundary).
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -54,14 +56,12 @@ class FixWallLsdem : public Fix {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
-  // for fix impulse/lsdem, which takes the wall over (report §4.4.1): its level set, its
-  // pose now (moved in initial_integrate; pose.v its velocity), its friction and detection
-  // parameters; whether it is a pivoting platen; passive = no penalty forces of its own
-  const lsdem_shape &wall_shape() const { return wall; }
-  const lsdem_pose &wall_pose() const { return wpose; }
+  // for fix impulse/lsdem, which takes the wall over (report §4.4.1): the wall (its level
+  // set, its pose now: moved in initial_integrate, whether it pivots), its friction and
+  // detection parameters; passive = no penalty forces of its own
+  const lsdem_boundary &boundary() const { return bnd; }
   double wall_friction() const { return opts.law.mu; }
   const lsdem_detect_params &wall_detect() const { return prm.detect; }
-  bool wall_pivots() const { return pivot; }
   void set_passive(bool on) { passive = on; }
 
  protected:
@@ -79,17 +79,13 @@ class FixWallLsdem : public Fix {
   void set_lanes(int);
   virtual int lanes_for_call() const { return 1; }
   virtual void visit_all(const lsdem_pose &w);  // the candidates, by lanes_for_call() lanes
-  const lsdem_pose *begin_force_call(int nlanes, lsdem_pose &tilting);
+  void begin_force_call(int nlanes, lsdem_pose &w);
   void visit_candidates(Lane &, int from, int to, const lsdem_pose &w);
   void end_force_call();
   int ncand;   // candidate grains of this step (visit_candidates' range)
 
  private:
-  enum { PLANE, CYLINDER };
-  int wallstyle;
-  int axis;                    // cylinder axis 0,1,2 = x,y,z
-  lsdem_shape wall;            // the wall's signed distance (no nodes)
-  lsdem_pose wpose;            // where the wall is and how it moves
+  lsdem_boundary bnd;          // the wall: kind, pose, velocity, pivoting platen
   LsdemContactOptions opts;    // the contact law and detection keywords
   lsdem_contact_params prm;    // what the core gets (node skin and dt set at init)
   lsdem_quantum force_q, torque_q;  // order-free sums of the wall's force and torque
@@ -105,15 +101,7 @@ class FixWallLsdem : public Fix {
   bool passive;                // taken over by fix impulse/lsdem: no forces of its own
 
   bigint contact_step;
-  // pivot (plane only, report §3.2.1): the plate tilts about P, h behind its face
-  bool pivot;
-  double pivot_h, pivot_inertia, pivot_damping;
-  double ram_axis[3];          // the plane's initial normal: no spin about it
-  double pivot_x[3];           // P, moves with the wall velocity
-  double pivot_q[4];           // plate frame body -> world (body z = normal)
-  double pivot_omega[3];       // world, perpendicular to ram_axis, at step n-1/2
-  double tlocal[3];            // torque of the grains on the wall about wpose.x, this rank
-  double pivot_torque[3];      // torque about P, all ranks, of the last force call
+  double tlocal[3];            // torque of the grains on the wall about its point, this rank
 
   // grains that may touch the wall until the next reneighbouring (local indices), built
   // with the neighbour skin as margin; rebuilt every step when that does not hold
@@ -125,18 +113,13 @@ class FixWallLsdem : public Fix {
   bool candidates_can_last() const;
   bool candidates_hold() const;
   void find_candidates();
-  int parse_pivot(int, int, char **);
-  void start_pivot();
-  void step_pivot();
-  void place_platen();
+  int parse_pivot(int, int, char **, double[3]);
   void reduce_pivot_load();
   void update_velocity();
   void check_plane_in_box() const;
 
   bool may_touch(int, double margin) const;
   std::string crossing(int, const lsdem_pose &wall) const;
-  void set_plane_frame(const double n[3]);
-  void set_axis_frame();
 };
 
 }    // namespace LAMMPS_NS
