@@ -236,6 +236,11 @@ static void test_bad_input(void)
   CHECK(strstr(err.msg, "normal") != NULL, "%s", err.msg);
   CHECK(lsdem_boundary_plane(&b, x, inf, &err) == LSDEM_ERR_ARG, "infinite normal");
   CHECK(lsdem_boundary_plane(&b, x, nan3, &err) == LSDEM_ERR_ARG, "NaN normal");
+  /* a normal whose squares overflow is still a direction */
+  const double huge[3] = {1e308, 1e308, 0.0};
+  CHECK(lsdem_boundary_plane(&b, x, huge, &err) == LSDEM_OK, "huge normal");
+  CHECK_NEAR(b.pose.R[2], sqrt(0.5), 1e-15);
+  CHECK_NEAR(b.pose.R[5], sqrt(0.5), 1e-15);
   const double c[2] = {0.0, 0.0};
   CHECK(lsdem_boundary_cylinder(&b, 2, c, 0.0, &err) == LSDEM_ERR_ARG, "radius 0");
   CHECK(strstr(err.msg, "radius") != NULL, "%s", err.msg);

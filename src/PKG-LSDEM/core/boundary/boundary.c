@@ -38,11 +38,11 @@ static void plane_frame(const double n[3], double R[9])
 lsdem_status lsdem_boundary_plane(lsdem_boundary *b, const double point[3], const double n[3],
                                   lsdem_error *err)
 {
-  if (!isfinite(n[0]) || !isfinite(n[1]) || !isfinite(n[2]))
-    return lsdem_fail(err, LSDEM_ERR_ARG, "plane normal must be finite and not zero");
   /* scaled by its largest component first, so that no square overflows or underflows */
   const double big = fmax(fabs(n[0]), fmax(fabs(n[1]), fabs(n[2])));
-  if (!(big > 0.0)) return lsdem_fail(err, LSDEM_ERR_ARG, "plane normal must be finite and not zero");
+  const int finite = isfinite(n[0]) && isfinite(n[1]) && isfinite(n[2]);
+  if (!finite || !(big > 0.0))
+    return lsdem_fail(err, LSDEM_ERR_ARG, "plane normal must be finite and not zero");
   double u[3] = {n[0] / big, n[1] / big, n[2] / big};
   const double len = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
   for (int d = 0; d < 3; d++) u[d] /= len;
@@ -55,7 +55,8 @@ lsdem_status lsdem_boundary_plane(lsdem_boundary *b, const double point[3], cons
 lsdem_status lsdem_boundary_cylinder(lsdem_boundary *b, int axis, const double c[2],
                                      double radius, lsdem_error *err)
 {
-  if (axis < 0 || axis > 2) return lsdem_fail(err, LSDEM_ERR_ARG, "cylinder axis %d is not 0, 1 or 2", axis);
+  if (axis < 0 || axis > 2)
+    return lsdem_fail(err, LSDEM_ERR_ARG, "cylinder axis %d is not 0, 1 or 2", axis);
   if (!(radius > 0.0)) return lsdem_fail(err, LSDEM_ERR_ARG, "cylinder radius must be > 0");
   clear(b, LSDEM_SDF_CYLINDER);
   b->shape.sdf.inverted = 1; /* solid outside: a container */
@@ -146,7 +147,8 @@ void lsdem_boundary_pose_at(const lsdem_boundary *b, double s, lsdem_pose *pose)
 {
   if (b->pivots) {
     double P[3];
-    for (int d = 0; d < 3; d++) P[d] = s != 0.0 ? b->platen.x[d] + s * b->pose.v[d] : b->platen.x[d];
+    for (int d = 0; d < 3; d++)
+      P[d] = s != 0.0 ? b->platen.x[d] + s * b->pose.v[d] : b->platen.x[d];
     lsdem_pivot_pose(P, b->pose.v, b->platen.q, b->platen.omega, b->platen.h, pose);
     return;
   }
