@@ -50,8 +50,7 @@ ComputeFabricLsdem::ComputeFabricLsdem(LAMMPS *lmp, int narg, char **arg) :
   size_peratom_cols = 2;
 
   id_fix = utils::strdup(id + std::string("_COMPUTE_STORE"));
-  fix = dynamic_cast<LsdemCompat::FixStorePeratom *>(modify->add_fix(
-      fmt::format("{} {} {}", id_fix, group->names[igroup], LsdemCompat::fix_store_peratom_args(4))));
+  fix = LsdemCompat::add_peratom_store(modify, id_fix, group->names[igroup], 4);
   if (fix->restart_reset) fix->restart_reset = 0;
   else {
     for (int i = 0; i < atom->nlocal; i++)
@@ -73,9 +72,8 @@ ComputeFabricLsdem::~ComputeFabricLsdem()
 
 void ComputeFabricLsdem::init()
 {
-  int ifix = modify->find_fix(id_fix);
-  if (ifix < 0) error->all(FLERR, "Could not find compute fabric/lsdem fix {}", id_fix);
-  fix = dynamic_cast<LsdemCompat::FixStorePeratom *>(modify->fix[ifix]);
+  fix = LsdemCompat::find_peratom_store(modify, id_fix);
+  if (!fix) error->all(FLERR, "Could not find compute fabric/lsdem fix {}", id_fix);
   avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
 }
 

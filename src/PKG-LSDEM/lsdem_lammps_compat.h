@@ -51,17 +51,18 @@
 
 #include "atom.h"
 #include "comm.h"
+#include "modify.h"
 #include "neighbor.h"
 #include "tokenizer.h"
 
 #include <string>
 #include <vector>
 
+#include "neigh_request.h"
 #if LSDEM_LAMMPS_NEW_API
 #include "fix_store_atom.h"
 #else
 #include "fix_store.h"
-#include "neigh_request.h"
 #endif
 
 namespace LAMMPS_NS {
@@ -93,6 +94,15 @@ inline void request_full_list(Neighbor *neighbor, Pair *pair, int /*instance_me*
   neighbor->add_request(pair, NeighConst::REQ_FULL);
 }
 
+// a full neighbour list for a compute, built only when it asks (Neighbor::build_one), out
+// to cutoff (distance between centres, the skin included)
+inline void request_occasional_full_list(Neighbor *neighbor, Compute *compute,
+                                         int /*instance_me*/, double cutoff)
+{
+  neighbor->add_request(compute, NeighConst::REQ_FULL | NeighConst::REQ_OCCASIONAL)
+      ->set_cutoff(cutoff);
+}
+
 // per-atom storage that migrates with the atoms and goes into restart files
 typedef FixStoreAtom FixStorePeratom;
 inline std::string fix_store_peratom_args(int ncols)
@@ -118,6 +128,19 @@ inline void request_full_list(Neighbor *neighbor, Pair *pair, int instance_me)
   neighbor->requests[irequest]->full = 1;
 }
 
+inline void request_occasional_full_list(Neighbor *neighbor, Compute *compute, int instance_me,
+                                         double cutoff)
+{
+  NeighRequest *req = neighbor->requests[neighbor->request(compute, instance_me)];
+  req->pair = 0;
+  req->compute = 1;
+  req->half = 0;
+  req->full = 1;
+  req->occasional = 1;
+  req->cut = 1;
+  req->cutoff = cutoff;
+}
+
 typedef FixStore FixStorePeratom;
 inline std::string fix_store_peratom_args(int ncols)
 {
@@ -125,6 +148,22 @@ inline std::string fix_store_peratom_args(int ncols)
 }
 
 #endif
+
+// a per-atom store of ncols doubles for the atoms of a group, added to modify under id
+inline FixStorePeratom *add_peratom_store(Modify *modify, const std::string &id,
+                                          const std::string &group, int ncols)
+{
+  return dynamic_cast<FixStorePeratom *>(
+      modify->add_fix(id + " " + group + " " + fix_store_peratom_args(ncols)));
+}
+
+// the store added under id, or nullptr (a style looks it up again in init(): the fix
+// array may have been rearranged since)
+inline FixStorePeratom *find_peratom_store(Modify *modify, const char *id)
+{
+  const int ifix = modify->find_fix(id);
+  return ifix < 0 ? nullptr : dynamic_cast<FixStorePeratom *>(modify->fix[ifix]);
+}
 
 }    // namespace LsdemCompat
 }    // namespace LAMMPS_NS

@@ -62,6 +62,14 @@ static inline void lsdem_affine3(const double M[9], const double t[3], const dou
   out[2] = z;
 }
 
+/* C = A B (C must not alias A or B) */
+static inline void lsdem_mat_mul(const double A[9], const double B[9], double C[9])
+{
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      C[3 * i + j] = A[3 * i] * B[j] + A[3 * i + 1] * B[3 + j] + A[3 * i + 2] * B[6 + j];
+}
+
 /* C = A^T B (C must not alias A or B) */
 static inline void lsdem_matT_mul(const double A[9], const double B[9], double C[9])
 {

@@ -59,6 +59,36 @@ double lsdem_fabric_anisotropy(const double D[9]);
  * q qref^-1), for the rotated-grain shear-band indicator (report §3.5.3). */
 double lsdem_rotation_angle(const double q[4], const double qref[4]);
 
+/* ------------------------------------------- local strain (local_strain.c) ---- */
+
+/* Per-grain local strain (Falk & Langer 1998, PRE 57, 7192; the shear-band indicators of
+ * report §3.5.3): the affine map F that best carries a grain's neighbour vectors d0_k
+ * (reference configuration) to d_k (now), in the least-squares sense:
+ *   X = sum d d0^T, Y = sum d0 d0^T, F = X Y^-1, D2min = sum_k |d_k - F d0_k|^2.
+ * d0, d: n vectors each (3n doubles, world frame, length units, neighbour minus grain).
+ * Strains are TENSION POSITIVE (continuum convention, unlike the specimen measures above):
+ * small strain eps = (F + F^T)/2 - I or Green-Lagrange E = (F^T F - I)/2. */
+typedef enum { LSDEM_STRAIN_SMALL = 0, LSDEM_STRAIN_GREEN = 1 } lsdem_strain_kind;
+typedef struct {
+  double F[9];        /* best-fit deformation gradient, row-major */
+  double strain[9];   /* eps or E (symmetric) */
+  double volumetric;  /* trace of strain */
+  double shear;       /* von Mises shear invariant sqrt(e':e' / 2), e' the deviator */
+  double d2min;       /* non-affine residual, the TOTAL over neighbours (length^2) */
+  double rotation[4]; /* quaternion of R in the polar decomposition F = R U */
+  double angle;       /* rotation angle of R in [0, pi] (radians) */
+} lsdem_local_strain;
+/* LSDEM_ERR_NUMERIC with every output NaN when the neighbourhood is singular: n < 3, the
+ * d0 (nearly) coplanar or collinear (smallest eigenvalue of Y below 1e-10 of its largest),
+ * or det F <= 0 (the neighbourhood turned inside out). */
+lsdem_status lsdem_local_strain_fit(int n, const double *d0, const double *d,
+                                    lsdem_strain_kind kind, lsdem_local_strain *out);
+/* Rotation angle in [0, pi] of a grain relative to its continuum: the angle of
+ * (q qref^-1) qcont^-1, i.e. the grain's rotation since its reference orientation qref
+ * with the local continuum's rotation qcont (lsdem_local_strain.rotation) taken out. */
+double lsdem_rotation_from_continuum(const double q[4], const double qref[4],
+                                     const double qcont[4]);
+
 
 /* ------------------------------------------- flexible membrane (membrane.c) ---- */
 
