@@ -90,6 +90,55 @@ double lsdem_rotation_from_continuum(const double q[4], const double qref[4],
                                      const double qcont[4]);
 
 
+/* ------------------------------------------- shear bands (shearband.c) ---- */
+
+/* Shear-band measurement (report §3.5.3): points (grain centres, world frame, length units)
+ * carry a scalar indicator (rotation, von Mises shear, D2min, ...). A point is FLAGGED when
+ * its value exceeds mean + k sd (population sd over the points with finite values; points
+ * with non-finite values are never flagged). Up to two planes are fitted in turn, each to
+ * the flagged points the earlier plane left (X bands):
+ *  - RANSAC: `samples` planes through 3 flagged points drawn by a 64-bit LCG (Knuth's MMIX
+ *    constants) started at `seed`; the plane with most flagged points within `threshold`
+ *    of it wins (the first on ties);
+ *  - refit: least squares (PCA): the plane through the inliers' centroid normal to the
+ *    smallest-eigenvalue eigenvector of their covariance; inliers re-selected within
+ *    `threshold` and refitted until the set no longer changes (at most 20 times).
+ * The result depends only on the points' order and values, not on the machine's threads.
+ * threshold should exceed half the band's width: the inliers are cut at it. */
+typedef struct {
+  double k;         /* flagging: value > mean + k sd (report: 2) */
+  double threshold; /* inlier distance to a plane (length) */
+  int planes;       /* 1 or 2 */
+  int samples;      /* RANSAC samples per plane (> 0) */
+  uint64_t seed;
+} lsdem_shearband_params;
+typedef struct {
+  double normal[3];        /* unit normal pointing up (n_z >= 0; horizontal n: the first
+                              nonzero of n_x, n_y positive) */
+  double centre[3];        /* centroid of the inliers: a point of the plane */
+  double dip;              /* degrees in [0, 90]: angle between the plane and the horizontal
+                              (x-y) plane, acos(n_z) */
+  double azimuth;          /* degrees in [0, 360): dip direction (the horizontal direction
+                              in which the plane descends, that of (n_x, n_y)), from +x
+                              counterclockwise; 0 for a horizontal plane */
+  double inlier_fraction;  /* inliers / all flagged points */
+  double thickness;        /* sqrt(12) x the sd of the inliers' signed distances: the width
+                              of a uniformly filled slab (length) */
+  int ninliers;
+} lsdem_shearband_plane;
+/* Flags, fits and classifies n points (x: 3n, value: n). Writes *nplanes (0..planes: a
+ * plane needs 3 flagged points not on one line), plane[0..*nplanes-1], and per point
+ * band[i] = the first plane p (1 or 2) within half its thickness of point i (flagged or
+ * not), else 0. LSDEM_ERR_ARG for bad parameters, LSDEM_ERR_NOMEM. */
+lsdem_status lsdem_shearband_fit(int n, const double *x, const double *value,
+                                 const lsdem_shearband_params *p, lsdem_shearband_plane plane[2],
+                                 int *nplanes, int *band);
+/* Theoretical band inclinations from the horizontal in triaxial compression (sigma_1 axial:
+ * the horizontal is the plane sigma_1 acts on; the band makes these angles with the sigma_3
+ * direction), all in degrees from the friction angle phi and dilatancy angle psi in degrees:
+ * angle[0] Coulomb 45 + phi/2, angle[1] Roscoe 45 + psi/2, angle[2] Arthur 45 + (phi+psi)/4. */
+void lsdem_shearband_theory(double phi, double psi, double angle[3]);
+
 /* ------------------------------------------- flexible membrane (membrane.c) ---- */
 
 /* The triaxial test's membrane (report §2.3.5, §3.3.2): two layers of bonded spheres on

@@ -1,0 +1,168 @@
+/* test_shearband.c -- shear-band measurement (shearband.c): a synthetic band (indicator large
+ * in a slab of known normal and width inside a cylinder of jittered lattice points, small
+ * noise elsewhere) gives back its dip, azimuth and width; an X of two slabs gives two
+ * planes; the per-point flags, determinism, the theory angles against hand values. */
+#include "lsdem.h"
+#include "lsdem_test.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static const double PI = 3.14159265358979323846;
+
+#define RADIUS 8.0 /* cylinder: axis z, lattice spacing 1 */
+#define HALF_HEIGHT 20.0
+#define MAXPTS 10000
+
+static double xs[3 * MAXPTS], val[MAXPTS];
+static int band[MAXPTS];
+
+/* lattice points (spacing 1, each coordinate jittered by up to 0.25) inside the cylinder */
+static int cylinder_points(double *x)
+{
+  int n = 0;
+  for (int i = -8; i <= 8; i++)
+    for (int j = -8; j <= 8; j++)
+      for (int k = -20; k <= 20; k++) {
+        const double p[3] = {i + 0.25 * srand1(), j + 0.25 * srand1(), k + 0.25 * srand1()};
+        if (p[0] * p[0] + p[1] * p[1] > RADIUS * RADIUS || fabs(p[2]) > HALF_HEIGHT) continue;
+        memcpy(x + 3 * n++, p, sizeof p);
+      }
+  return n;
+}
+
+/* the upward unit normal of a plane of dip and azimuth (degrees), written out by hand */
+static void normal_of(double dip, double azimuth, double n[3])
+{
+  const double d = dip * PI / 180.0, a = azimuth * PI / 180.0;
+  n[0] = sin(d) * cos(a);
+  n[1] = sin(d) * sin(a);
+  n[2] = cos(d);
+}
+
+static int in_slab(const double *x, const double n[3], double width)
+{
+  return fabs(x[0] * n[0] + x[1] * n[1] + x[2] * n[2]) <= 0.5 * width;
+}
+
+/* indicator: 1 + noise inside any of the slabs (normals through the origin), noise outside */
+static void band_indicator(int n, const double *x, int nslab, const double (*nrm)[3],
+                           double width)
+{
+  for (int i = 0; i < n; i++) {
+    int inside = 0;
+    for (int s = 0; s < nslab; s++) inside |= in_slab(x + 3 * i, nrm[s], width);
+    val[i] = inside + 0.05 * urand();
+  }
+}
+
+/* |a - b| on the circle of degrees */
+static double azimuth_gap(double a, double b)
+{
+  const double d = fmod(fabs(a - b), 360.0);
+  return d > 180.0 ? 360.0 - d : d;
+}
+
+static void test_single_band(void)
+{
+  const int n = cylinder_points(xs);
+  double nrm[1][3];
+  /* the least-squares refit tilts by about tan(dip) w^2 / L^2 rad when the band's ends are
+   * cut by the vertical wall (L ~ 28 the band's length here): 0.4 deg for w = 2 */
+  const double width = 2.0;
+  normal_of(55.0, 30.0, nrm[0]);
+  band_indicator(n, xs, 1, (const double(*)[3]) nrm, width);
+  const lsdem_shearband_params p = {2.0, 1.5, 2, 500, 7};
+  lsdem_shearband_plane pl[2], again[2];
+  int np = 0, np2 = 0;
+  CHECK(lsdem_shearband_fit(n, xs, val, &p, pl, &np, band) == LSDEM_OK, "single band");
+  CHECK(np >= 1, "a plane found (%d)", np);
+  CHECK_NEAR(pl[0].dip, 55.0, 1.0);
+  CHECK(azimuth_gap(pl[0].azimuth, 30.0) <= 2.0, "azimuth %g, expected 30", pl[0].azimuth);
+  CHECK_REL(pl[0].thickness, width, 0.10);
+  CHECK(pl[0].inlier_fraction >= 0.99, "every flagged point is in the band: %g",
+        pl[0].inlier_fraction);
+  CHECK_NEAR(pl[0].normal[0] * pl[0].normal[0] + pl[0].normal[1] * pl[0].normal[1] +
+                 pl[0].normal[2] * pl[0].normal[2], 1.0, 1e-12);
+  int inside = 0, inside_flagged = 0, outside_flagged = 0;
+  for (int i = 0; i < n; i++) {
+    const double d = fabs(xs[3 * i] * nrm[0][0] + xs[3 * i + 1] * nrm[0][1] +
+                          xs[3 * i + 2] * nrm[0][2]);
+    if (d <= 0.5 * width - 0.3) {
+      inside++;
+      inside_flagged += band[i] == 1;
+    } else if (d >= 0.5 * width + 0.3) {
+      outside_flagged += band[i] != 0 && band[i] != 2;
+    }
+  }
+  CHECK(inside > 300 && inside_flagged >= 0.98 * inside, "band flag inside: %d of %d",
+        inside_flagged, inside);
+  CHECK(outside_flagged == 0, "%d points well outside the band flagged 1", outside_flagged);
+  CHECK(lsdem_shearband_fit(n, xs, val, &p, again, &np2, band) == LSDEM_OK && np2 == np &&
+            memcmp(pl, again, sizeof(lsdem_shearband_plane) * (size_t) np) == 0,
+        "the same input gives bit-identical planes");
+}
+
+static void test_x_bands(void)
+{
+  const int n = cylinder_points(xs);
+  double nrm[2][3];
+  normal_of(55.0, 0.0, nrm[0]);
+  normal_of(55.0, 180.0, nrm[1]);
+  band_indicator(n, xs, 2, (const double(*)[3]) nrm, 2.0);
+  /* the two slabs hold ~16 % of the points: mean + 2 sd would be close to the band value,
+   * so flag at k = 1.5 */
+  lsdem_shearband_params p = {1.5, 1.5, 2, 500, 11};
+  lsdem_shearband_plane pl[2];
+  int np = 0;
+  CHECK(lsdem_shearband_fit(n, xs, val, &p, pl, &np, band) == LSDEM_OK && np == 2,
+        "X: two planes (%d)", np);
+  if (np != 2) return;
+  for (int q = 0; q < 2; q++) CHECK_NEAR(pl[q].dip, 55.0, 1.0);
+  const int first = azimuth_gap(pl[0].azimuth, 0.0) < 90.0;
+  CHECK(azimuth_gap(pl[0].azimuth, first ? 0.0 : 180.0) <= 2.0 &&
+            azimuth_gap(pl[1].azimuth, first ? 180.0 : 0.0) <= 2.0,
+        "X azimuths %g and %g, expected 0 and 180", pl[0].azimuth, pl[1].azimuth);
+  CHECK(pl[0].inlier_fraction + pl[1].inlier_fraction >= 0.98, "X inliers %g + %g",
+        pl[0].inlier_fraction, pl[1].inlier_fraction);
+  int seen[3] = {0, 0, 0};
+  for (int i = 0; i < n; i++) seen[band[i]]++;
+  CHECK(seen[1] > 100 && seen[2] > 100, "points in both bands: %d %d", seen[1], seen[2]);
+  p.planes = 1;
+  CHECK(lsdem_shearband_fit(n, xs, val, &p, pl, &np, band) == LSDEM_OK && np == 1,
+        "planes 1: one plane (%d)", np);
+}
+
+static void test_degenerate(void)
+{
+  const lsdem_shearband_params p = {2.0, 1.0, 2, 100, 1};
+  lsdem_shearband_params bad = p;
+  lsdem_shearband_plane pl[2];
+  int np = -1;
+  const double flat[4] = {1.0, 1.0, 1.0, 1.0};
+  CHECK(lsdem_shearband_fit(4, xs, flat, &p, pl, &np, band) == LSDEM_OK && np == 0,
+        "no point above mean + k sd: no plane (%d)", np);
+  bad.planes = 3;
+  CHECK(lsdem_shearband_fit(4, xs, flat, &bad, pl, &np, band) == LSDEM_ERR_ARG, "planes 3");
+  bad = p;
+  bad.threshold = 0.0;
+  CHECK(lsdem_shearband_fit(4, xs, flat, &bad, pl, &np, band) == LSDEM_ERR_ARG, "threshold 0");
+}
+
+static void test_theory(void)
+{
+  double a[3];
+  lsdem_shearband_theory(40.0, 10.0, a);
+  CHECK_NEAR(a[0], 65.0, 1e-12); /* Coulomb 45 + 40/2 */
+  CHECK_NEAR(a[1], 50.0, 1e-12); /* Roscoe 45 + 10/2 */
+  CHECK_NEAR(a[2], 57.5, 1e-12); /* Arthur 45 + 50/4 */
+}
+
+int main(void)
+{
+  test_single_band();
+  test_x_bands();
+  test_degenerate();
+  test_theory();
+  return lsdem_test_summary();
+}
