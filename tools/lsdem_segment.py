@@ -9,6 +9,10 @@ or float, one page per slice), segmented here with scikit-image and SciPy (Debia
 python3-skimage, python3-scipy) the usual way for sand scans, and the labels go to
 `lsdem-shape from-labels`, which builds one level-set shape per grain:
 
+  0. region of interest (--roi auto, the default): the zero-filled corners outside a
+     reconstruction's circular field of view and the air around the specimen are left out of
+     the threshold's and the trend's statistics (--roi none: the whole scan; --roi cylinder
+     CX CY R: a cylinder along z, in voxels);
   1. smoothing: Gaussian filter, --sigma voxels (noise);
   2. grey-level trend: a linear trend in x, y, z of the grain and pore grey levels is fitted
      and removed (--no-detrend to keep the scan as it is): beam hardening or uneven
@@ -40,6 +44,7 @@ from skimage import filters, morphology, segmentation
 
 TYPES = {"u8": "<u1", "u16": "<u2", "u32": "<u4", "i8": "<i1", "i16": "<i2", "i32": "<i4",
          "f32": "<f4", "f64": "<f8"}
+CORNERS = ([0, 0, -1, -1], [0, -1, 0, -1])  # [y], [x] of a slice's four corners
 
 
 def fail(msg):
@@ -83,20 +88,89 @@ def read_scan(path, tmp):
     return a.astype(np.float32), kind
 
 
+def sample_step(grey):
+    """The stride that leaves about two million voxels for the threshold and the fits."""
+    return max(1, round((grey.size / 2e6) ** (1 / 3)))
+
+
+def subsample(roi, step):
+    """Which voxels of the every-step-th subsample lie in the region (all when roi is None)."""
+    if roi is None:
+        return slice(None)
+    return roi[::step, ::step, ::step]
+
+
+def sample(grey, roi, step):
+    """Every step-th voxel's grey level inside the region, flat."""
+    return grey[::step, ::step, ::step][subsample(roi, step)].ravel()
+
+
 def otsu(values):
     if values.min() == values.max():
         fail("the scan has one grey level (%g) only: nothing to segment" % values.min())
     return float(filters.threshold_otsu(values))
 
 
-def detrend(grey, t, step):
+def fill_region(grey):
+    """The voxels outside a reconstruction's field of view: where the four corners of every
+    slice hold one and the same value, the voxels of that exact value connected to the
+    corners. Returns the mask (None when there is no such fill) and the fill value."""
+    corners = grey[(slice(None),) + CORNERS]
+    if corners.min() != corners.max():
+        return None, None
+    value = corners.flat[0]
+    parts, _ = ndi.label(grey == value)
+    return np.isin(parts, np.unique(parts[(slice(None),) + CORNERS])), float(value)
+
+
+def specimen_region(grey, outside, min_voxels):
+    """The specimen, taken to stand along z: the convex hull of the coarse foreground seen
+    along z, in every slice. The coarse foreground is the voxels above Otsu's threshold of
+    everything but `outside` (the fill), without specks smaller than min_voxels (noise in the
+    air)."""
+    inside = ~outside if outside is not None else np.ones(grey.shape, bool)
+    coarse = grey > otsu(sample(grey, inside, sample_step(grey)))
+    coarse = morphology.remove_small_objects(coarse, min_size=min_voxels)
+    if not coarse.any():
+        return coarse
+    return morphology.convex_hull_image(coarse.any(axis=0))[None] & inside
+
+
+def cylinder_region(shape, cx, cy, r):
+    _, ny, nx = shape
+    y, x = np.ogrid[0:ny, 0:nx]
+    return np.broadcast_to(np.hypot(x - cx, y - cy) <= r, shape)
+
+
+def region_of_interest(grey, args, say):
+    """The voxels the threshold is chosen over (--roi), or None for the whole scan."""
+    if args.roi[0] == "none":
+        return None
+    if args.roi[0] == "cylinder":
+        roi = cylinder_region(grey.shape, *args.roi[1:])
+    else:
+        outside, value = fill_region(grey)
+        say("field of view: " + ("%.3f of the voxels outside it, filled with %g"
+                                 % (outside.mean(), value) if outside is not None
+                                 else "no constant fill in the slice corners"))
+        roi = specimen_region(grey, outside, args.min_voxels)
+    if not roi.any():
+        fail("the region of interest (--roi %s) holds no voxel" % " ".join(map(str, args.roi)))
+    say("region of interest (%s): %.3f of the voxels" % (args.roi[0], roi.mean()))
+    return roi
+
+
+def detrend(grey, roi, t, step):
     """Remove the linear trend of the two phases' grey levels: fit a + b.x to each phase
-    (on every step-th voxel, split at the threshold t), subtract the mean of the two fits'
-    slopes. Returns the corrected scan and the grey-level change the trend made across it."""
+    (on every step-th voxel of the region of interest, split at the threshold t), subtract the
+    mean of the two fits' slopes. Returns the corrected scan and the grey-level change the
+    trend made across it."""
     nz, ny, nx = grey.shape
     z, y, x = np.mgrid[0:nz:step, 0:ny:step, 0:nx:step]
-    g = grey[::step, ::step, ::step].ravel()
-    pts = np.stack([np.ones(g.size), x.ravel() / nx, y.ravel() / ny, z.ravel() / nz], axis=1)
+    keep = subsample(roi, step)
+    g = sample(grey, roi, step)
+    coords = [c[keep].ravel() / m for c, m in ((x, nx), (y, ny), (z, nz))]
+    pts = np.stack([np.ones(g.size)] + coords, axis=1)
     slopes = []
     for phase in (g > t, g <= t):
         if phase.sum() < 10:
@@ -188,15 +262,15 @@ def segment(grey, args, say):
     info = {}
     if args.dark_grains:
         grey = grey.max() - grey
+    roi = region_of_interest(grey, args, say) if args.threshold == "otsu" else None
     if args.sigma > 0:
         grey = filters.gaussian(grey, sigma=args.sigma, preserve_range=True).astype(np.float32)
         say("smoothed (Gaussian, sigma %g voxels)" % args.sigma)
-    step = max(1, round((grey.size / 2e6) ** (1 / 3)))  # about 2 million voxels for fits
-    sample = grey[::step, ::step, ::step].ravel()
-    t = otsu(sample) if args.threshold == "otsu" else float(args.threshold)
+    step = sample_step(grey)
+    t = otsu(sample(grey, roi, step)) if args.threshold == "otsu" else float(args.threshold)
     if args.detrend and args.threshold == "otsu":
-        grey, change = detrend(grey, t, step)
-        t = otsu(grey[::step, ::step, ::step].ravel())
+        grey, change = detrend(grey, roi, t, step)
+        t = otsu(sample(grey, roi, step))
         info["trend"] = change
         say("grey-level trend removed (%.4g across the scan)" % change)
     solid = grey > t
@@ -230,6 +304,17 @@ def write_labels(path, labels):
         labels.astype("<u4").tofile(path)
 
 
+def parse_roi(p, words):
+    if words in (["auto"], ["none"]):
+        return words
+    try:
+        if words[0] == "cylinder" and len(words) == 4 and float(words[3]) > 0:
+            return ["cylinder"] + [float(w) for w in words[1:]]
+    except ValueError:
+        pass
+    p.error("--roi takes auto, none or cylinder CX CY R (R > 0), not '%s'" % " ".join(words))
+
+
 def parse(argv):
     p = argparse.ArgumentParser(prog="lsdem-segment", description=__doc__.split("\n\n")[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -239,6 +324,10 @@ def parse(argv):
     p.add_argument("--data", help="in-situ LAMMPS data file (needs --density)")
     p.add_argument("--density", type=float)
     p.add_argument("--threshold", default="otsu", help="'otsu' (default) or a grey level")
+    p.add_argument("--roi", nargs="+", default=["auto"], metavar="KIND",
+                   help="where the threshold is chosen: auto (default: the specimen, without "
+                        "a zero-filled field of view or the air around it), none (the whole "
+                        "scan) or cylinder CX CY R (voxels)")
     p.add_argument("--no-detrend", dest="detrend", action="store_false",
                    help="keep the scan's grey-level trend")
     p.add_argument("--dark-grains", action="store_true", help="grains are darker than pores")
@@ -262,6 +351,7 @@ def parse(argv):
             float(a.threshold)
         except ValueError:
             p.error("--threshold takes 'otsu' or a number, not '%s'" % a.threshold)
+    a.roi = parse_roi(p, a.roi)
     if a.sigma < 0 or a.h <= 0 or a.min_voxels < 1:
         p.error("--sigma >= 0, --h > 0 and --min-voxels >= 1")
     return a

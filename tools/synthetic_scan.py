@@ -3,7 +3,7 @@
 segmentation against them (doc/lsdem_segment.rst, "How well it segments").
 
   synthetic_scan.py make PREFIX [--size N] [--grains K] [--seed S] [--blur B] [--noise F]
-                    [--gradient G] [--touch T]
+                    [--gradient G] [--touch T] [--specimen F [--zero-corners]]
       PREFIX.tif        the scan: uint16, one page per z slice, uncompressed (compress it
                         with libtiff's tiffcp, e.g. tiffcp -c lzw)
       PREFIX.truth.raw  the grains it was made from: uint32 labels, x fastest
@@ -17,6 +17,11 @@ grains touch along flat faces and narrow necks, as in a dense sand. The grey ima
 pore 10000 and grain 30000, blurred by a Gaussian of B voxels (the scanner's point-spread;
 default 1), plus a linear grey-level trend of G times the contrast along z (beam hardening;
 default 0.3) and Gaussian noise of F times the contrast (default 0.1).
+
+With --specimen F the grains lie whole inside a cylinder along z of radius F times half the
+size, centred in the slices, with air (the pore grey level) around it, as in a scan of a
+triaxial specimen; --zero-corners also sets every voxel outside the scanner's circular field
+of view (the circle inscribed in each slice) to 0, as many reconstructions do.
 """
 import argparse
 import sys
@@ -35,8 +40,15 @@ def random_rotation(rng):
                      [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
 
 
-def make_grains(n, count, seed, touch, amin=6.0, amax=12.0):
-    """Labels [z, y, x] of up to `count` touching grains in an n^3 volume."""
+def radius_from_axis(n):
+    """Distance [y, x] of each voxel centre from the slices' centre line."""
+    y, x = np.ogrid[0:n, 0:n]
+    return np.hypot(x - (n - 1) / 2, y - (n - 1) / 2)
+
+
+def make_grains(n, count, seed, touch, specimen=None, amin=6.0, amax=12.0):
+    """Labels [z, y, x] of up to `count` touching grains in an n^3 volume, all inside the
+    cylinder of radius `specimen` around the z axis through the slices' centre if given."""
     rng = np.random.default_rng(seed)
     labels = np.zeros((n, n, n), dtype=np.uint32)
     centres, inner = np.zeros((0, 3)), np.zeros(0)
@@ -46,6 +58,8 @@ def make_grains(n, count, seed, touch, amin=6.0, amax=12.0):
         axes = rng.uniform(amin, amax, size=3)
         r = axes.max() * 1.2  # bumps add at most 18 %
         c = rng.uniform(r + 2, n - 3 - r, size=3)
+        if specimen is not None and np.hypot(*(c[:2] - (n - 1) / 2)) + r > specimen:
+            continue
         # cheap rejection: inscribed spheres (min semi-axis, less the bumps) that overlap
         # deeply mean far more than `touch` of the volume is taken
         a_in = 0.82 * axes.min()
@@ -81,7 +95,7 @@ def touching_fraction(labels):
     return touch[1:].mean() if labels.max() else 0.0
 
 
-def grey_scan(labels, seed, blur, noise, gradient):
+def grey_scan(labels, seed, blur, noise, gradient, zero_corners=False):
     rng = np.random.default_rng(seed + 1)
     g = np.where(labels > 0, GRAIN, PORE).astype(np.float32)
     if blur > 0:
@@ -91,6 +105,8 @@ def grey_scan(labels, seed, blur, noise, gradient):
     z = (np.arange(n, dtype=np.float32) / (n - 1) - 0.5)[:, None, None]
     g = g + gradient * contrast * z
     g = g + rng.normal(0.0, noise * contrast, size=g.shape).astype(np.float32)
+    if zero_corners:
+        g[:, radius_from_axis(n) > n / 2] = 0.0
     return np.clip(np.rint(g), 0, 65535).astype(np.uint16)
 
 
@@ -128,6 +144,10 @@ def main():
     m.add_argument("--noise", type=float, default=0.1)
     m.add_argument("--gradient", type=float, default=0.3)
     m.add_argument("--touch", type=float, default=0.04)
+    m.add_argument("--specimen", type=float, help="grains inside a cylinder of this radius, "
+                   "as a fraction of half the size, air around it")
+    m.add_argument("--zero-corners", action="store_true",
+                   help="grey level 0 outside the circle inscribed in each slice")
     s = sub.add_parser("score")
     s.add_argument("truth")
     s.add_argument("found")
@@ -135,8 +155,9 @@ def main():
     a = p.parse_args()
     if a.cmd == "make":
         import tifffile
-        labels = make_grains(a.size, a.grains, a.seed, a.touch)
-        grey = grey_scan(labels, a.seed, a.blur, a.noise, a.gradient)
+        specimen = a.specimen * a.size / 2 if a.specimen else None
+        labels = make_grains(a.size, a.grains, a.seed, a.touch, specimen)
+        grey = grey_scan(labels, a.seed, a.blur, a.noise, a.gradient, a.zero_corners)
         tifffile.imwrite(a.prefix + ".tif", grey, photometric="minisblack")
         labels.astype("<u4").tofile(a.prefix + ".truth.raw")
         print("%s.tif: %d^3 voxels, %d grains (%.0f %% touching another), solid fraction %.3f"
