@@ -51,8 +51,9 @@ for name in "${names[@]}"; do
   else
     # the CT example ships a 64^3 crop-sized scan (33 grains, ~2 MB of shapes) instead of
     # run.sh's 128^3 scan of 260 grains (20 MB)
-    [ "$name" = ct_scan ] && export SIZE=64 GRAINS=33
-    OUT=$out bash "$here/$name/run.sh" prepare >"$out/prepare.log" 2>&1 \
+    scene=()
+    [ "$name" = ct_scan ] && scene=(SIZE=64 GRAINS=33)
+    env "${scene[@]}" OUT="$out" bash "$here/$name/run.sh" prepare >"$out/prepare.log" 2>&1 \
       || { tail -n 20 "$out/prepare.log"; exit 1; }
   fi
   for f in $files; do cp "$out/$f" "$here/$name/$f"; done
