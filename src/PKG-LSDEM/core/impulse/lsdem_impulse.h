@@ -383,6 +383,62 @@ lsdem_status lsdem_wall_correct(lsdem_impulse_body *grain, const lsdem_manifold 
                                 double dt, const lsdem_wall_params *p,
                                 lsdem_wall_result *res, lsdem_error *err);
 
+/* ------------------------------------------------------ resting contacts ---- */
+
+/* Resting contacts as constraints (not in the report; Guendelman et al. 2003, the report's
+ * reference for its wall sequence, and every rigid-body engine): a contact whose pair
+ * touched in the previous step and whose approach is slower than a resting speed that
+ * vanishes with dt is inelastic (e = 0) and solved by projected Gauss-Seidel on
+ * ACCUMULATED impulses P (one per contact, world frame, on a; -P on b), warm-started from
+ * the previous step's. Each update makes the contact stick at its target normal speed,
+ * dP = K^-1 (target n - u) (K eq 4.13), adds dP to P and projects the sum on Coulomb's
+ * cone (P . n >= 0, |P_t| <= mu P . n: eqs 4.15-4.16 on the total), applying the
+ * difference; so a contact's total impulse can shrink again (a load that moves away),
+ * unlike ETM's monotone increments. Overlaps are taken out at a rate: the target normal
+ * speed is bias (depth - slop) / dt, at most max_push (lsdem_resting_target), so a
+ * resting pile keeps its overlaps near the slop instead of sinking, and keeps touching
+ * (so its contacts stay resting, their impulses warm). */
+typedef struct {
+  int max_sweeps;   /* Gauss-Seidel sweeps per solve, at most. Default 30 */
+  double tolerance; /* stop when a sweep found no contact with |u - target n| above
+                       tolerance x ref_speed (velocity residual). Default 1e-2 */
+  double ref_speed; /* the velocity scale of tolerance: the resting speed (the caller's;
+                       0: all sweeps run) */
+  double dt;        /* time step (bias); 0: no bias */
+  double bias;      /* in [0, 1]: the fraction of the overlap beyond slop removed per step.
+                       Default 0.2 */
+  double slop;      /* overlap left alone (length). Default 0 */
+  double max_push;  /* cap on the target normal speed (velocity). Default unbounded */
+  double warm;      /* in [0, 1]: the fraction of last step's impulse re-applied. Default 1 */
+} lsdem_resting_params;
+
+void lsdem_resting_params_default(lsdem_resting_params *p);
+double lsdem_resting_target(const lsdem_resting_params *p, double depth);
+
+typedef struct {
+  int sweeps;       /* sweeps run */
+  double residual;  /* the largest |u - target n| found in the last sweep (velocity) */
+  double work;      /* kinetic energy the resting impulses added, warm start included
+                       (negative: dissipated), the exact sum of dP . (u- + u+) / 2 */
+  double warm_work; /* of which the warm start */
+} lsdem_resting_result;
+
+size_t lsdem_resting_workspace_size(int ncontacts);
+
+/* The resting solve over the contacts which[0..nwhich) of an island (bodies and contacts
+ * as for ETM), in that order (sort it by global keys for rank-independent bits).
+ * impulse[c] holds contact c's accumulated impulse: the previous step's (re-projected on
+ * this step's cone, scaled by warm and applied first when warm_start) or the one an
+ * earlier solve of this step left (warm_start 0: not applied again); on return the new
+ * totals. Bodies' velocities change in place; walls do not. LSDEM_ERR_ARG for bad
+ * parameters or indices, LSDEM_ERR_NOMEM when ws (lsdem_resting_workspace_size bytes) is
+ * too small. res is always filled. */
+lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
+                                 const lsdem_impulse_contact *contacts, int ncontacts,
+                                 const int32_t *which, int nwhich, double (*impulse)[3],
+                                 int warm_start, const lsdem_resting_params *p, void *ws,
+                                 size_t wsize, lsdem_resting_result *res, lsdem_error *err);
+
 /* ------------------------------------------------------------ islands ---- */
 
 /* Contact islands (report §4.5) as connected components of the contact graph, by

@@ -1,0 +1,236 @@
+/* resting.c -- resting contacts as constraints: projected Gauss-Seidel on accumulated,
+ * warm-started impulses with Coulomb's cone (the rule is in lsdem_impulse.h,
+ * lsdem_resting_solve). World frame; impulses act on body a, their opposite on b. */
+#include "lsdem_impulse.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+void lsdem_resting_params_default(lsdem_resting_params *p)
+{
+  p->max_sweeps = 30;
+  p->tolerance = 1e-2;
+  p->ref_speed = 0.0;
+  p->dt = 0.0;
+  p->bias = 0.2;
+  p->slop = 0.0;
+  p->max_push = HUGE_VAL;
+  p->warm = 1.0;
+}
+
+/* per contact in the workspace: a tangent basis, the inverse effective masses of the
+ * normal row (1 / n.K.n) and of the tangential 2x2 block, and the normal speed to reach */
+typedef struct {
+  double t1[3], t2[3];
+  double inv_knn;
+  double ktt_inv[3]; /* inverse of the tangential block, symmetric 2x2: t1t1, t1t2, t2t2 */
+  double inv_kmax;   /* 1 / its largest eigenvalue */
+  double target;
+} row;
+
+size_t lsdem_resting_workspace_size(int ncontacts)
+{
+  return (size_t)(ncontacts > 0 ? ncontacts : 0) * sizeof(row) + 64;
+}
+
+/* The normal speed a resting contact is driven to: the part of its overlap beyond the
+ * slop, taken out at the rate bias / dt (Baumgarte's stabilisation), at most max_push. */
+double lsdem_resting_target(const lsdem_resting_params *p, double depth)
+{
+  if (!(p->dt > 0.0) || !(p->bias > 0.0)) return 0.0;
+  const double excess = depth - p->slop;
+  return excess > 0.0 ? fmin(p->bias * excess / p->dt, p->max_push) : 0.0;
+}
+
+/* Two unit tangents completing n (world), from the axis least aligned with n. */
+static void tangents(const double n[3], double t1[3], double t2[3])
+{
+  const double ax = fabs(n[0]), ay = fabs(n[1]), az = fabs(n[2]);
+  const int k = (ax <= ay && ax <= az) ? 0 : (ay <= az ? 1 : 2);
+  const double e[3] = {k == 0, k == 1, k == 2};
+  lsdem_cross3(n, e, t1);
+  const double len = sqrt(lsdem_dot3(t1, t1));
+  for (int i = 0; i < 3; i++) t1[i] /= len;
+  lsdem_cross3(n, t1, t2);
+}
+
+/* The row of contact c: K (eq 4.13) reduced to its normal and tangential blocks. */
+static void make_row(const lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
+                     const lsdem_resting_params *p, row *r)
+{
+  double K[9], Kn[3], K1[3], K2[3];
+  lsdem_impulse_collision_matrix(&bodies[c->a], &bodies[c->b], c->point, K);
+  tangents(c->normal, r->t1, r->t2);
+  lsdem_mat_vec(K, c->normal, Kn);
+  lsdem_mat_vec(K, r->t1, K1);
+  lsdem_mat_vec(K, r->t2, K2);
+  const double knn = lsdem_dot3(c->normal, Kn);
+  r->inv_knn = knn > 0.0 ? 1.0 / knn : 0.0;
+  const double a = lsdem_dot3(r->t1, K1), b = lsdem_dot3(r->t1, K2), d = lsdem_dot3(r->t2, K2);
+  const double det = a * d - b * b;
+  const double kmax = 0.5 * (a + d) + sqrt(0.25 * (a - d) * (a - d) + b * b);
+  r->inv_kmax = kmax > 0.0 ? 1.0 / kmax : 0.0;
+  if (det > 1e-14 * (a + d) * (a + d)) {
+    r->ktt_inv[0] = d / det;
+    r->ktt_inv[1] = -b / det;
+    r->ktt_inv[2] = a / det;
+  } else {
+    r->ktt_inv[0] = r->ktt_inv[1] = r->ktt_inv[2] = 0.0;
+  }
+  r->target = lsdem_resting_target(p, c->depth);
+}
+
+/* Coulomb's cone: the normal part of P kept >= 0, its tangential part clipped to mu times
+ * the normal part (radially: the direction of the tangential impulse is kept). */
+static void project_cone(const double n[3], double mu, double P[3])
+{
+  const double pn = lsdem_dot3(P, n);
+  if (!(pn > 0.0)) {
+    P[0] = P[1] = P[2] = 0.0;
+    return;
+  }
+  double pt[3];
+  for (int i = 0; i < 3; i++) pt[i] = P[i] - pn * n[i];
+  const double t = sqrt(lsdem_dot3(pt, pt)), cap = mu * pn;
+  const double s = t > cap ? cap / t : 1.0;
+  for (int i = 0; i < 3; i++) P[i] = pn * n[i] + s * pt[i];
+}
+
+/* dP on the contact's two bodies; returns the kinetic energy it gives the moving ones:
+ * dP . (u_a- + u_a+) / 2 - dP . (u_b- + u_b+) / 2, a wall's side left out (exact for an
+ * impulse at a point on rigid bodies). */
+static double apply_increment(lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
+                              const double dP[3])
+{
+  const double minus[3] = {-dP[0], -dP[1], -dP[2]};
+  lsdem_impulse_body *a = &bodies[c->a], *b = &bodies[c->b];
+  double ua0[3], ub0[3], ua1[3], ub1[3];
+  lsdem_impulse_point_velocity(a, c->point, ua0);
+  lsdem_impulse_point_velocity(b, c->point, ub0);
+  lsdem_impulse_apply(a, c->point, dP);
+  lsdem_impulse_apply(b, c->point, minus);
+  lsdem_impulse_point_velocity(a, c->point, ua1);
+  lsdem_impulse_point_velocity(b, c->point, ub1);
+  double w = 0.0;
+  if (!lsdem_impulse_body_is_wall(a)) w += 0.5 * (lsdem_dot3(dP, ua0) + lsdem_dot3(dP, ua1));
+  if (!lsdem_impulse_body_is_wall(b)) w -= 0.5 * (lsdem_dot3(dP, ub0) + lsdem_dot3(dP, ub1));
+  return w;
+}
+
+/* The contact's new tangential impulse (t1, t2 components) from its accumulated one p and
+ * its slip u: the stick impulse, exact for the 2x2 tangential block of K, when it lies
+ * within |q| <= cap; else a slide -- the slip's own direction, p - u / k_max (the largest
+ * tangential stiffness: a step that never overshoots), clipped radially to cap, so that
+ * a sliding contact's friction converges to -cap u / |u|, maximum dissipation, rather
+ * than to the clipped stick impulse's skewed direction. Returns 1 when sticking. */
+static int friction_update(const row *r, const double p[2], const double u[2], double cap,
+                           double q[2])
+{
+  q[0] = p[0] - (r->ktt_inv[0] * u[0] + r->ktt_inv[1] * u[1]);
+  q[1] = p[1] - (r->ktt_inv[1] * u[0] + r->ktt_inv[2] * u[1]);
+  if (q[0] * q[0] + q[1] * q[1] <= cap * cap) return 1;
+  q[0] = p[0] - u[0] * r->inv_kmax;
+  q[1] = p[1] - u[1] * r->inv_kmax;
+  const double qt = sqrt(q[0] * q[0] + q[1] * q[1]);
+  const double s = qt > cap ? (qt > 0.0 ? cap / qt : 0.0) : 1.0;
+  q[0] *= s;
+  q[1] *= s;
+  return 0;
+}
+
+/* One Gauss-Seidel update of contact c (row r, accumulated impulse P, world): friction
+ * first (friction_update, within |P_t| <= mu P_n), then the normal impulse that brings u_n
+ * to the target, added to P's normal part and kept >= 0 (the normal row last, as it
+ * matters most: Box2D's order). Returns the residual the contact had before the update:
+ * its normal speed's distance from the target when it carries impulse or falls short of
+ * the target, plus its slip when it sticks. */
+static double update_contact(lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
+                             const row *r, double P[3], double *work)
+{
+  const double *n = c->normal;
+  double u[3];
+  const double un = lsdem_impulse_relative_velocity(bodies, c, u);
+  const double pn = lsdem_dot3(P, n);
+  const double ut[2] = {lsdem_dot3(u, r->t1), lsdem_dot3(u, r->t2)};
+  const double pt[2] = {lsdem_dot3(P, r->t1), lsdem_dot3(P, r->t2)};
+  double q[2];
+  const int sticks = friction_update(r, pt, ut, c->mu * (pn > 0.0 ? pn : 0.0), q);
+  double residual = (pn > 0.0 || un < r->target) ? fabs(un - r->target) : 0.0;
+  if (sticks) residual += sqrt(ut[0] * ut[0] + ut[1] * ut[1]);
+  if (q[0] != pt[0] || q[1] != pt[1]) {
+    double dP[3];
+    for (int i = 0; i < 3; i++) dP[i] = (q[0] - pt[0]) * r->t1[i] + (q[1] - pt[1]) * r->t2[i];
+    *work += apply_increment(bodies, c, dP);
+    for (int i = 0; i < 3; i++) P[i] += dP[i];
+  }
+
+  /* normal: u_n to the target, the total kept >= 0 */
+  const double un1 = lsdem_impulse_normal_velocity(bodies, c);
+  const double pn1 = fmax(pn + (r->target - un1) * r->inv_knn, 0.0);
+  if (pn1 != pn) {
+    double dP[3];
+    for (int i = 0; i < 3; i++) dP[i] = (pn1 - pn) * n[i];
+    *work += apply_increment(bodies, c, dP);
+    for (int i = 0; i < 3; i++) P[i] += dP[i];
+  }
+  return residual;
+}
+
+lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
+                                 const lsdem_impulse_contact *contacts, int ncontacts,
+                                 const int32_t *which, int nwhich, double (*impulse)[3],
+                                 int warm_start, const lsdem_resting_params *p, void *ws,
+                                 size_t wsize, lsdem_resting_result *res, lsdem_error *err)
+{
+  memset(res, 0, sizeof *res);
+  if (p->max_sweeps < 0 || !(p->tolerance >= 0.0) || !(p->ref_speed >= 0.0) ||
+      !(p->dt >= 0.0) || !(p->bias >= 0.0 && p->bias <= 1.0) || !(p->slop >= 0.0) ||
+      !(p->max_push >= 0.0) || !(p->warm >= 0.0 && p->warm <= 1.0))
+    return lsdem_fail(err, LSDEM_ERR_ARG,
+                      "resting solve: sweeps %d (>= 0), tolerance %g, ref_speed %g, dt %g, "
+                      "slop %g, max_push %g (>= 0), bias %g, warm %g (in [0, 1])",
+                      p->max_sweeps, p->tolerance, p->ref_speed, p->dt, p->slop, p->max_push,
+                      p->bias, p->warm);
+  if (nwhich <= 0) return LSDEM_OK;
+  char *base = (char *)(((uintptr_t)ws + 63) & ~(uintptr_t)63);
+  if (!ws || lsdem_resting_workspace_size(nwhich) > wsize)
+    return lsdem_fail(err, LSDEM_ERR_NOMEM, "resting solve: workspace of %zu bytes, %zu needed",
+                      wsize, lsdem_resting_workspace_size(nwhich));
+  row *rows = (row *)base;
+  for (int k = 0; k < nwhich; k++) {
+    const int32_t w = which[k];
+    if (w < 0 || w >= ncontacts)
+      return lsdem_fail(err, LSDEM_ERR_ARG, "resting solve: contact index %d of %d", w,
+                        ncontacts);
+    const lsdem_impulse_contact *c = &contacts[w];
+    if (c->a < 0 || c->a >= nbodies || c->b < 0 || c->b >= nbodies || c->a == c->b)
+      return lsdem_fail(err, LSDEM_ERR_ARG, "resting solve: contact %d joins bodies %d, %d of %d",
+                        w, c->a, c->b, nbodies);
+    make_row(bodies, c, p, &rows[k]);
+  }
+
+  /* warm start: last step's accumulated impulses, re-projected on this step's cones */
+  for (int k = 0; k < nwhich; k++) {
+    double *P = impulse[which[k]];
+    if (!warm_start) continue;
+    for (int i = 0; i < 3; i++) P[i] *= p->warm;
+    const lsdem_impulse_contact *c = &contacts[which[k]];
+    project_cone(c->normal, c->mu, P);
+    if (P[0] == 0.0 && P[1] == 0.0 && P[2] == 0.0) continue;
+    res->warm_work += apply_increment(bodies, c, P);
+  }
+
+  const double stop = p->tolerance * p->ref_speed;
+  for (int s = 0; s < p->max_sweeps; s++) {
+    double worst = 0.0;
+    for (int k = 0; k < nwhich; k++)
+      worst = fmax(worst, update_contact(bodies, &contacts[which[k]], &rows[k],
+                                         impulse[which[k]], &res->work));
+    res->sweeps = s + 1;
+    res->residual = worst;
+    if (worst <= stop) break;
+  }
+  res->work += res->warm_work;
+  return LSDEM_OK;
+}

@@ -1,0 +1,317 @@
+/* test_impulse_resting.c -- resting contacts as warm-started constraints
+ * (lsdem_resting_solve): a column of spheres on a floor comes to rest and carries its
+ * weight (the floor's impulse per step = total weight x dt, a static balance), with work
+ * per step bounded independently of the column's height once warm; a box on an incline
+ * sticks below the friction angle and slides with g (sin - mu cos) above it (the
+ * analytic block on a plane); the work booked equals the kinetic-energy change (computed
+ * here from masses and world inertia, independently of the core) on random islands; the
+ * final impulses lie in Coulomb's cone; the overlap bias gives the documented speed. */
+#include "impulse_fixtures.h"
+
+#include <stdlib.h>
+
+static const double G = 9.81;
+
+typedef struct {
+  int n;
+  fx_state *s;
+  lsdem_impulse_body *b; /* n grains, then the floor */
+  lsdem_impulse_contact *c;
+  double (*P)[3];
+  int32_t *which;
+  void *ws;
+  size_t wsize;
+} column;
+
+/* L unit-mass spheres of radius 0.5 stacked on a floor at z = 0, touching; contact k
+ * joins sphere k (a, above) to sphere k - 1 or the floor (b) at their touching point,
+ * normal +z (b towards a). */
+static column column_make(int L)
+{
+  column col;
+  col.n = L;
+  col.s = calloc(L, sizeof *col.s);
+  col.b = calloc(L + 1, sizeof *col.b);
+  col.c = calloc(L, sizeof *col.c);
+  col.P = calloc(L, sizeof *col.P);
+  col.which = calloc(L, sizeof *col.which);
+  const double zero[3] = {0, 0, 0};
+  for (int k = 0; k < L; k++) {
+    const double x[3] = {0, 0, 0.5 + k};
+    col.s[k] = fx_grain(k + 1, 1.0, 0.1, 0.1, 0.1, x, zero, zero);
+    fx_body_of(&col.s[k], &col.b[k]);
+    const double p[3] = {0, 0, (double)k};
+    col.c[k] = fx_contact(k, k == 0 ? L : k - 1, p, 0, 0, 1, 0.5, 0.0);
+    col.which[k] = k;
+  }
+  fx_wall(&col.b[L], -1, zero, zero);
+  col.wsize = lsdem_resting_workspace_size(L);
+  col.ws = malloc(col.wsize);
+  return col;
+}
+
+static void column_free(column *col)
+{
+  free(col->s);
+  free(col->b);
+  free(col->c);
+  free(col->P);
+  free(col->which);
+  free(col->ws);
+}
+
+/* One step: gravity kick, resting solve (warm), drift. Returns the sweeps. */
+static int column_step(column *col, const lsdem_resting_params *p, double dt,
+                       lsdem_resting_result *res)
+{
+  for (int k = 0; k < col->n; k++) col->b[k].v[2] -= G * dt;
+  lsdem_error err;
+  const lsdem_status st = lsdem_resting_solve(col->b, col->n + 1, col->c, col->n, col->which,
+                                              col->n, col->P, 1, p, col->ws, col->wsize, res,
+                                              &err);
+  CHECK(st == LSDEM_OK, "%s", err.msg);
+  for (int k = 0; k < col->n; k++)
+    for (int d = 0; d < 3; d++) col->b[k].x[d] += dt * col->b[k].v[d];
+  return res->sweeps;
+}
+
+static void test_column(int L, double dt)
+{
+  column col = column_make(L);
+  lsdem_resting_params p;
+  lsdem_resting_params_default(&p);
+  p.ref_speed = 2.0 * G * dt;
+  p.tolerance = 1e-6;
+  p.max_sweeps = 100000;
+  lsdem_resting_result res;
+  int first = 0, later = 0;
+  for (int step = 0; step < 50; step++) {
+    const int s = column_step(&col, &p, dt, &res);
+    if (step == 0) first = s;
+    if (step >= 10) later = s > later ? s : later;
+  }
+  /* at rest: every grain's speed a round-off of g dt; it did not move */
+  double vmax = 0.0;
+  for (int k = 0; k < L; k++) vmax = fmax(vmax, fabs(col.b[k].v[2]));
+  CHECK(vmax < 1e-5 * G * dt, "L %d dt %g: a grain still moves at %g (g dt %g)", L, dt, vmax,
+        G * dt);
+  CHECK(fabs(col.b[L - 1].x[2] - (L - 0.5)) < 1e-4 * dt, "L %d: top sank to %.12g", L,
+        col.b[L - 1].x[2]);
+  /* the floor carries the weight of the column; contact k carries the L - k grains above */
+  CHECK_REL(col.P[0][2], L * 1.0 * G * dt, 1e-4);
+  CHECK_REL(col.P[L / 2][2], (L - L / 2) * 1.0 * G * dt, 1e-4);
+  /* warm: a step costs one or two sweeps whatever the height (the first step needs many) */
+  CHECK(later <= 2, "L %d: %d sweeps per step once warm (first step %d)", L, later, first);
+  CHECK(first > later, "L %d: first step %d sweeps, later %d", L, first, later);
+  /* no energy pumped in: a column at rest has no kinetic energy left to give */
+  CHECK(res.work <= 1e-12, "L %d: resting work %g > 0 at rest", L, res.work);
+  column_free(&col);
+}
+
+/* Cold start each step (warm = 0): the same column needs far more sweeps, which is what
+ * the warm start saves. */
+static void test_column_cold_costs_more(void)
+{
+  const int L = 20;
+  column col = column_make(L);
+  lsdem_resting_params p;
+  lsdem_resting_params_default(&p);
+  p.ref_speed = 2.0 * G * 1e-3;
+  p.tolerance = 1e-3;
+  p.max_sweeps = 100000;
+  p.warm = 0.0;
+  lsdem_resting_result res;
+  int cold = 0;
+  for (int step = 0; step < 20; step++) cold = column_step(&col, &p, 1e-3, &res);
+  CHECK(cold > 10, "cold column of 20: %d sweeps per step", cold);
+  column_free(&col);
+}
+
+/* A unit cube (mass 1) resting on a plane tilted by theta about y, four contacts at the
+ * corners of its base; gravity -z. Returns its speed along the slope after T seconds. */
+static double incline(double theta_deg, double mu, double dt, double T)
+{
+  const double th = theta_deg * FIX_PI / 180.0;
+  const double n[3] = {sin(th), 0, cos(th)}, t[3] = {cos(th), 0, -sin(th)};
+  const double zero[3] = {0, 0, 0}, x[3] = {0.5 * n[0], 0, 0.5 * n[2]};
+  fx_state s = fx_grain(1, 1.0, 1.0 / 6, 1.0 / 6, 1.0 / 6, x, zero, zero);
+  lsdem_impulse_body b[2];
+  fx_body_of(&s, &b[0]);
+  fx_wall(&b[1], -1, zero, zero);
+  lsdem_impulse_contact c[4];
+  double P[4][3] = {{0}};
+  int32_t which[4] = {0, 1, 2, 3};
+  const double e2[3] = {0, 1, 0};
+  for (int k = 0; k < 4; k++) {
+    const double a = (k & 1) ? 0.5 : -0.5, bb = (k & 2) ? 0.5 : -0.5;
+    double p[3];
+    for (int d = 0; d < 3; d++) p[d] = a * t[d] + bb * e2[d];
+    c[k] = fx_contact(0, 1, p, n[0], n[1], n[2], mu, 0.0);
+  }
+  lsdem_resting_params prm;
+  lsdem_resting_params_default(&prm);
+  prm.ref_speed = 2.0 * G * dt;
+  prm.tolerance = 1e-9;
+  prm.max_sweeps = 1000;
+  const size_t wsize = lsdem_resting_workspace_size(4);
+  void *ws = malloc(wsize);
+  lsdem_resting_result res;
+  lsdem_error err;
+  const int steps = (int)lround(T / dt);
+  for (int step = 0; step < steps; step++) {
+    b[0].v[2] -= G * dt;
+    CHECK(lsdem_resting_solve(b, 2, c, 4, which, 4, P, 1, &prm, ws, wsize, &res, &err) ==
+              LSDEM_OK,
+          "%s", err.msg);
+    for (int k = 0; k < 4; k++) { /* the cone holds for the totals */
+      const double pn = lsdem_dot3(P[k], n);
+      double pt[3];
+      for (int d = 0; d < 3; d++) pt[d] = P[k][d] - pn * n[d];
+      CHECK(pn >= 0.0 && sqrt(lsdem_dot3(pt, pt)) <= mu * pn * (1 + 1e-6) + 1e-300,
+            "contact %d outside the cone: pn %g |pt| %g", k, pn, sqrt(lsdem_dot3(pt, pt)));
+    }
+  }
+  free(ws);
+  CHECK(fabs(lsdem_dot3(b[0].v, n)) < 1e-9, "incline %g: normal speed %g", theta_deg,
+        lsdem_dot3(b[0].v, n));
+  CHECK(sqrt(lsdem_dot3(b[0].omega, b[0].omega)) < 1e-9, "incline %g: it turns, |omega| %g",
+        theta_deg, sqrt(lsdem_dot3(b[0].omega, b[0].omega)));
+  return lsdem_dot3(b[0].v, t); /* down the slope: +t */
+}
+
+static void test_incline(void)
+{
+  /* 20 degrees, mu 0.5 > tan 20 = 0.364: sticks, at any step (issue: it crept at x16) */
+  CHECK(fabs(incline(20.0, 0.5, 1e-4, 0.5)) < 1e-12, "sticks at dt 1e-4");
+  CHECK(fabs(incline(20.0, 0.5, 3e-3, 2.0)) < 1e-12, "sticks at dt 3e-3");
+  /* mu 0.2 < 0.364: slides, v = g (sin - mu cos) t */
+  const double th = 20.0 * FIX_PI / 180.0, a = G * (sin(th) - 0.2 * cos(th));
+  CHECK_REL(incline(20.0, 0.2, 1e-4, 0.5), a * 0.5, 1e-6);
+  CHECK_REL(incline(20.0, 0.2, 3e-3, 0.6), a * 0.6, 1e-6);
+}
+
+/* Random islands of rotated grains and a wall: the booked work is the kinetic-energy
+ * change, to round-off, with and without a warm start and bias. */
+static void test_energy_audit(void)
+{
+  for (int trial = 0; trial < 20; trial++) {
+    enum { NB = 6, NC = 14 };
+    fx_state s[NB];
+    lsdem_impulse_body b[NB + 1];
+    for (int k = 0; k < NB; k++) {
+      const double x[3] = {srand1(), srand1(), srand1()}, v[3] = {srand1(), srand1(), srand1()},
+                   w[3] = {srand1(), srand1(), srand1()};
+      s[k] = fx_grain(k + 1, 0.5 + urand(), 0.1 + urand(), 0.1 + urand(), 0.1 + urand(), x, v, w);
+      fx_random_quat(s[k].q);
+      fx_body_of(&s[k], &b[k]);
+    }
+    const double zero[3] = {0, 0, 0}, wv[3] = {0.1, 0, 0};
+    fx_wall(&b[NB], -1, zero, wv);
+    lsdem_impulse_contact c[NC];
+    double P[NC][3];
+    int32_t which[NC];
+    for (int k = 0; k < NC; k++) {
+      const int a = k % NB, bb = (k % 3 == 0) ? NB : (a + 1 + k / NB) % NB;
+      const double p[3] = {srand1(), srand1(), srand1()};
+      c[k] = fx_contact(a, bb == a ? NB : bb, p, srand1(), srand1(), srand1(), urand(), 0.0);
+      c[k].depth = 0.01 * urand();
+      for (int d = 0; d < 3; d++) P[k][d] = (trial & 1) ? 0.3 * srand1() : 0.0;
+      which[k] = NC - 1 - k;
+    }
+    double before = 0.0, after = 0.0;
+    for (int k = 0; k < NB; k++) before += fx_kinetic(&s[k], &b[k]);
+    lsdem_resting_params p;
+    lsdem_resting_params_default(&p);
+    p.dt = 1e-3;
+    p.slop = 0.002;
+    p.max_push = 1.0;
+    p.max_sweeps = 7;
+    const size_t wsize = lsdem_resting_workspace_size(NC);
+    void *ws = malloc(wsize);
+    lsdem_resting_result res;
+    lsdem_error err;
+    CHECK(lsdem_resting_solve(b, NB + 1, c, NC, which, NC, P, 1, &p, ws, wsize, &res, &err) ==
+              LSDEM_OK,
+          "%s", err.msg);
+    free(ws);
+    for (int k = 0; k < NB; k++) after += fx_kinetic(&s[k], &b[k]);
+    CHECK(fabs((after - before) - res.work) <= 1e-9 * before,
+          "trial %d: dKE %.17g, booked %.17g", trial, after - before, res.work);
+  }
+}
+
+/* A sphere overlapping the floor by d: it leaves at bias (d - slop) / dt, at most max_push;
+ * within the slop it is only stopped. */
+static void test_bias(void)
+{
+  const double zero[3] = {0, 0, 0}, x[3] = {0, 0, 0.49}, v[3] = {0, 0, -0.3};
+  lsdem_resting_params p;
+  lsdem_resting_params_default(&p);
+  p.dt = 1e-3;
+  p.slop = 0.004;
+  p.bias = 0.5;
+  p.tolerance = 0.0;
+  p.max_sweeps = 5;
+  const double depths[3] = {0.01, 0.002, 0.5};
+  const double want[3] = {0.5 * 0.006 / 1e-3, 0.0, 1.5};
+  for (int k = 0; k < 3; k++) {
+    p.max_push = k == 2 ? 1.5 : HUGE_VAL;
+    fx_state s = fx_sphere(1, 0.5, x, v);
+    lsdem_impulse_body b[2];
+    fx_body_of(&s, &b[0]);
+    fx_wall(&b[1], -1, zero, zero);
+    const double pt[3] = {0, 0, 0};
+    lsdem_impulse_contact c = fx_contact(0, 1, pt, 0, 0, 1, 0.3, 0.0);
+    c.depth = depths[k];
+    double P[1][3] = {{0}};
+    const int32_t which[1] = {0};
+    char ws[512];
+    lsdem_resting_result res;
+    lsdem_error err;
+    CHECK(lsdem_resting_solve(b, 2, &c, 1, which, 1, P, 1, &p, ws, sizeof ws, &res, &err) ==
+              LSDEM_OK,
+          "%s", err.msg);
+    CHECK_NEAR(b[0].v[2], want[k], 1e-12);
+    CHECK_NEAR(lsdem_resting_target(&p, depths[k]), want[k], 1e-12);
+  }
+}
+
+static void test_bad_input(void)
+{
+  lsdem_resting_params p;
+  lsdem_resting_params_default(&p);
+  p.bias = 2.0;
+  lsdem_resting_result res;
+  lsdem_error err;
+  CHECK(lsdem_resting_solve(NULL, 0, NULL, 0, NULL, 0, NULL, 1, &p, NULL, 0, &res, &err) ==
+            LSDEM_ERR_ARG,
+        "bias 2 accepted");
+  lsdem_resting_params_default(&p);
+  lsdem_impulse_body b[2];
+  const double zero[3] = {0, 0, 0};
+  fx_wall(&b[0], -1, zero, zero);
+  fx_wall(&b[1], -2, zero, zero);
+  lsdem_impulse_contact c = fx_contact(0, 0, zero, 0, 0, 1, 0.3, 0.0);
+  double P[1][3] = {{0}};
+  const int32_t which[1] = {0};
+  char ws[512];
+  CHECK(lsdem_resting_solve(b, 2, &c, 1, which, 1, P, 1, &p, ws, sizeof ws, &res, &err) ==
+            LSDEM_ERR_ARG,
+        "a contact of a body with itself accepted");
+  CHECK(lsdem_resting_solve(b, 2, &c, 1, which, 1, P, 1, &p, ws, 8, &res, &err) ==
+            LSDEM_ERR_NOMEM,
+        "a small workspace accepted");
+}
+
+int main(void)
+{
+  test_column(5, 1e-4);
+  test_column(40, 1e-4);
+  test_column(40, 3e-3);
+  test_column_cold_costs_more();
+  test_incline();
+  test_energy_audit();
+  test_bias();
+  test_bad_input();
+  return lsdem_test_summary();
+}
