@@ -160,6 +160,33 @@ int lsdem_impulse_glue(const lsdem_manifold *m, int32_t a, int32_t b, double mu,
                        const lsdem_glue_params *g, lsdem_impulse_contact *out,
                        int32_t *group, lsdem_error *err);
 
+/* The manifold cap (issue 33): at most a few contacts per pair after gluing, so that a
+ * pair's cost no longer grows with node density. */
+/* Keeps at most max of a pair's n contacts (those lsdem_impulse_glue made), in place, in
+ * their original relative order. The rule (Jolt's PruneContactPoints, Bullet's
+ * sortCachedPoints: the deepest point kept, the area the kept points span maximised),
+ * every distance and area measured in the plane normal to the deepest contact's normal n0
+ * (world frame; the contacts of one pair share that plane up to their normals' spread):
+ *   1. the deepest contact (largest depth; ties: lowest index);
+ *   2. the contact farthest from it;
+ *   3. the contact that spans the largest triangle with the two kept;
+ *   4. the contact that adds the largest area to that triangle (the area of the hull of
+ *      the four minus the triangle's: 0 for a point inside it), so that the four span
+ *      the largest quadrilateral the greedy choice reaches;
+ *   5. and further (max > 4): the contact farthest from the kept set (the largest
+ *      distance to its nearest kept contact: farthest-point sampling).
+ * Ties in a pick go to the larger distance to the kept set (which separates points in a
+ * line, where every area is 0: an edge contact keeps both its ends), then to the lowest
+ * index. Deterministic: the choice depends on the contacts' values and their order
+ * alone, and on the order only through exact ties.
+ * Dropped contacts are discarded; the kept ones keep every field unchanged (point, normal,
+ * depth, mu, restitution): the deepest is always kept, so the pair's largest depth
+ * survives, and depth is information only in impulse mode.
+ * max < 1 is taken as 1. Returns the new count, min(n, max); n <= max leaves c untouched.
+ * O(n max) time; no allocation: scratch holds n int32 (on return, scratch[i] == i exactly
+ * for the kept contacts' original indices i when n > max). */
+int lsdem_impulse_cap_contacts(lsdem_impulse_contact *c, int n, int max, int32_t *scratch);
+
 /* Keeps, in place and in order, the contacts that ETM must resolve: between two grains
  * those approaching (u_n < 0); with a wall those approaching faster than rest_speed
  * (u_n < -rest_speed: a collision, lsdem_wall_classify), the slower ones being resting
