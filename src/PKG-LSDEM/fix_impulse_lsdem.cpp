@@ -50,7 +50,9 @@ using MathConst::MY_PI;
 enum {
   V_ISLANDS, V_LARGEST, V_CROSS, V_ITERATIONS, V_PASSES, V_CORRECTIONS, V_COLLISIONS,
   V_ROUNDS, V_KE, V_ABSORBED, V_DISSIPATED, V_RELEASED, V_TOTAL_DISSIPATED, V_TOTAL_DAMPED,
-  V_T_DETECT, V_T_ISLANDS, V_T_ETM, V_T_WALLS, V_T_COMM, V_DEPTH, V_WALL_DEPTH, V_SIZE
+  V_T_DETECT, V_T_ISLANDS, V_T_ETM, V_T_WALLS, V_T_COMM, V_DEPTH, V_WALL_DEPTH,
+  V_RESTING, V_SWEEPS, V_ETM_ISLANDS, V_CONTACTS, V_PAIRS, V_PER_PAIR, V_RESTING_WORK,
+  V_CONTACT_WORK, V_SIZE
 };
 
 // relative round-off of a velocity below which an approach counts as none
@@ -61,7 +63,8 @@ static const char USAGE[] = "fix ID group impulse/lsdem e mu [keyword value ...]
 /* ---------------------------------------------------------------------- */
 
 FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), restitution(0.0), friction(0.0), xi(0.0), max_passes(10),
+  Fix(lmp, narg, arg), method(SPLIT), restitution(0.0), friction(0.0), xi(0.0), max_points(-1),
+  max_passes(10),
   rest_setting(-1.0), glue_setting(-1.0), glue_angle(15.0 * MY_PI / 180.0), cfl(0.5),
   cfl_stop(0), wall_etm(0), avec(nullptr), pair(nullptr), islands(nullptr), total_dissipated(0.0),
   total_damped(0.0), total_truncated(0.0), t_detect(0.0), t_islands(0.0), t_etm(0.0),
@@ -76,7 +79,13 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
   restart_global = 1;
   comm_forward = 6;
   comm_reverse = 1;
+  restart_peratom = 1;
+  create_attribute = 1;
+  maxexchange_dynamic = 1;
+  maxexchange = 1;
   memset(&now, 0, sizeof(now));
+  lsdem_resting_params_default(&resting);
+  resting.bias = 1.0;
   // the core's defaults but alpha 1 and tolerance 1e-3: a pile's islands of ~1000 grains
   // took 1e6 iterations (and more) to reach the core's 1e-6; a residual approach of 1e-3
   // of the island's fastest, taken up again at the next step, moves a grain by 1e-3 u dt
@@ -102,7 +111,28 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
     const char *val = arg[iarg + 1];
     auto number = [&]() { return utils::numeric(FLERR, val, false, lmp); };
     auto count = [&]() { return utils::bnumeric(FLERR, val, false, lmp); };
-    if (key == "damping") {
+    if (key == "method") {
+      if (strcmp(val, "split") == 0) method = SPLIT;
+      else if (strcmp(val, "etm") == 0) method = ETM_ONLY;
+      else error->all(FLERR, "fix impulse/lsdem: method must be split (resting contacts as "
+                      "constraints, collisions by ETM) or etm (every contact by ETM, the "
+                      "report's), not {}", val);
+    } else if (key == "points") {
+      max_points = strcmp(val, "all") == 0 ? 0 : utils::inumeric(FLERR, val, false, lmp);
+      if (max_points < 0)
+        error->all(FLERR, "fix impulse/lsdem: points = {} must be all or >= 1 (contacts kept "
+                   "per pair after gluing)", val);
+    } else if (key == "sweeps") {
+      resting.max_sweeps = utils::inumeric(FLERR, val, false, lmp);
+      if (resting.max_sweeps < 1)
+        error->all(FLERR, "fix impulse/lsdem: sweeps = {} must be >= 1 (Gauss-Seidel sweeps "
+                   "over an island's resting contacts per step)", val);
+    } else if (key == "bias") {
+      resting.bias = number();
+      if (!(resting.bias >= 0.0 && resting.bias <= 1.0))
+        error->all(FLERR, "fix impulse/lsdem: bias = {} must be in [0, 1] (the fraction of a "
+                   "resting contact's overlap beyond the slop removed per step)", val);
+    } else if (key == "damping") {
       xi = number();
       if (!(xi >= 0.0) || !std::isfinite(xi))
         error->all(FLERR, "fix impulse/lsdem: damping xi = {} must be >= 0 (1/time)", val);
@@ -173,9 +203,16 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
     iarg += nval - 1;
   }
 
+  // points auto: the report's method keeps every glued contact (as the report), the split
+  // method four per pair
+  if (max_points < 0) max_points = method == SPLIT ? 4 : 0;
+
   avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
   if (!avec) error->all(FLERR, "Fix impulse/lsdem requires atom_style lsdem");
   islands = new LsdemImpulseIslands(lmp, this, avec);
+  FixImpulseLsdem::grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -183,6 +220,10 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
 FixImpulseLsdem::~FixImpulseLsdem()
 {
   delete islands;
+  if (atom) {
+    atom->delete_callback(id, Atom::GROW);
+    atom->delete_callback(id, Atom::RESTART);
+  }
   for (FixWallLsdem *w : walls)
     if (modify && modify->find_fix(w->id) >= 0) w->set_passive(false);
 }
@@ -219,6 +260,7 @@ void FixImpulseLsdem::init()
   wpoints.resize(cap);
   glued.resize(cap);
   group.resize(cap);
+  kept.resize(cap);
 }
 
 /* ----------------------------------------------------------------------
@@ -305,6 +347,7 @@ void FixImpulseLsdem::final_integrate()
   make_bodies();
   kick();
   forward_velocities();
+  ke_after_kick = group_kinetic_energy();
   double t0 = MPI_Wtime();
   gather_contacts();
   t_detect += MPI_Wtime() - t0;
@@ -329,6 +372,12 @@ void FixImpulseLsdem::final_integrate()
   // the cap reached with corrections in the last pass: the collisions they made are
   // resolved, so that no grain approaches another as the step ends
   if (corrected) resolve_islands(max_passes);
+  remember_contacts();
+  // what every stage of the contacts did to the kinetic energy (ETM's restitution and
+  // friction, the resting solve, the wall guard): measured, not summed from the parts
+  const double contact_work = group_kinetic_energy() - ke_after_kick;
+  now.contact_work = contact_work;
+  total_dissipated -= contact_work;
   check_cfl();
   damp_and_drift();
 }
@@ -340,21 +389,32 @@ void FixImpulseLsdem::final_integrate()
 void FixImpulseLsdem::resolve_islands(int pass)
 {
   const int napproach = select_collisions();
+  std::vector<LsdemImpulseContact> &list = method == SPLIT ? contacts : coll;
+  lsdem_island_params ip;
+  ip.etm = etm;
+  ip.rest = resting;
+  // the report's method: ETM on every island with an approaching contact, as selected
+  ip.approach_floor = method == SPLIT ? etm.velocity_tol * wall_prm.rest_speed : 0.0;
+  ip.collide_speed = wall_prm.rest_speed;
   LsdemIslandStats st;
   st.clear();
-  const std::string mesg = islands->resolve(coll.data(), (int) coll.size(), body.data(),
-                                            moving.data(), etm, st);
+  const std::string mesg = islands->resolve(list.data(), (int) list.size(), body.data(),
+                                            moving.data(), ip, pass == 0, st);
   if (pass == 0) {
     now.first = st;
     now.collisions = napproach;
+    now.resting = (int) st.resting;
   }
   now.iterations += st.iterations;
+  now.sweeps += st.sweeps;
+  now.max_sweeps = std::max(now.max_sweeps, st.max_sweeps);
+  now.etm_islands += st.etm_islands;
   now.largest = std::max(now.largest, st.largest);
   now.rounds = std::max(now.rounds, st.rounds);
   now.absorbed += st.absorbed;
   now.dissipated += st.dissipated;
   now.released += st.released;
-  total_dissipated += st.dissipated;
+  now.resting_work += st.resting_work;
   total_truncated += st.truncated;
   t_islands += st.t_islands;
   t_etm += st.t_etm;
@@ -444,6 +504,14 @@ void FixImpulseLsdem::kick()
   wall_prm.rest_speed = rest;
   wall_prm.depth_tol = 0.005 * rest * dt;
   wall_prm.mu = 0.0;
+  // the resting solve (method split): overlaps beyond the slop, the depth a resting grain
+  // sinks by in two steps, are taken out at up to the resting speed; what it leaves, the
+  // wall guard leaves alone (twice the slop)
+  resting.dt = dt;
+  resting.ref_speed = rest;
+  resting.slop = rest * dt;
+  resting.max_push = rest;
+  if (method == SPLIT) wall_prm.depth_tol = 2.0 * resting.slop;
 }
 
 /* ----------------------------------------------------------------------
@@ -485,10 +553,15 @@ void FixImpulseLsdem::add_glued(int i, int j, tagint ta, tagint tb, int bindex,
     group.resize(m.n);
   }
   lsdem_error err;
-  const int n = lsdem_impulse_glue(&m, i, bindex, mu, restitution, &gp, glued.data(),
-                                   group.data(), &err);
+  int n = lsdem_impulse_glue(&m, i, bindex, mu, restitution, &gp, glued.data(),
+                             group.data(), &err);
   if (n < 0) error->one(FLERR, "Fix impulse/lsdem: {}", err.msg);
+  if (max_points > 0 && n > max_points)
+    n = lsdem_impulse_cap_contacts(glued.data(), n, max_points, kept.data());
   double &deepest = j < 0 ? now.wall_depth : now.depth;
+  now.pairs += n > 0;
+  now.contacts += n;
+  const bool touched = method == SPLIT && warm.touched(i, tb);
   for (int k = 0; k < n; k++) {
     deepest = std::max(deepest, glued[k].depth);
     LsdemImpulseContact c;
@@ -498,8 +571,50 @@ void FixImpulseLsdem::add_glued(int i, int j, tagint ta, tagint tb, int bindex,
     c.tb = tb;
     c.key = k;
     c.c = glued[k];
+    c.approaching = 0;
+    c.resting = 0;
+    c.P[0] = c.P[1] = c.P[2] = 0.0;
+    if (method == SPLIT) classify(c, touched, glue);
     contacts.push_back(c);
   }
+}
+
+/* ----------------------------------------------------------------------
+   method split: contact c of owned grain c.i is resting when its pair touched at the end
+   of the last step (a wall: always, the report's §4.4.1 rule) and it approaches slower
+   than the resting speed now (after the kick); a resting contact starts from the impulse
+   of the matching contact of the last step (LsdemImpulseWarm, within a radius of the
+   gluing distance or a tenth of the grain's bounding radius, in the grain's body frame)
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::classify(LsdemImpulseContact &c, bool touched, double glue)
+{
+  const double un = lsdem_impulse_normal_velocity(body.data(), &c.c);
+  c.resting = (c.j < 0 || touched) && un >= -wall_prm.rest_speed;
+  if (!c.resting) return;
+  double r[3], xb[3];
+  for (int d = 0; d < 3; d++) r[d] = c.c.point[d] - atom->x[c.i][d];
+  lsdem_quat_rotate_inv(avec->quat[c.i], r, xb);
+  warm.take(c.i, c.tb, xb, std::max(glue, 0.1 * atom->radius[c.i]), c.P);
+}
+
+/* ----------------------------------------------------------------------
+   method split: the step's contacts, with their resting impulses, become the owned
+   grains' warm-start entries (point in the grain's body frame at this step's pose)
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::remember_contacts()
+{
+  if (method != SPLIT) return;
+  for (int i = 0; i < atom->nlocal; i++) warm.begin(i);
+  const double zero[3] = {0.0, 0.0, 0.0};
+  for (const LsdemImpulseContact &c : contacts) {
+    double r[3], xb[3];
+    for (int d = 0; d < 3; d++) r[d] = c.c.point[d] - atom->x[c.i][d];
+    lsdem_quat_rotate_inv(avec->quat[c.i], r, xb);
+    warm.add(c.i, c.tb, xb, c.resting ? c.P : zero);
+  }
+  maxexchange = 1 + LsdemImpulseWarm::DOUBLES * warm.largest();
 }
 
 void FixImpulseLsdem::add_pair_contacts()
@@ -553,7 +668,7 @@ int FixImpulseLsdem::select_collisions()
   coll.clear();
   const double floor = etm.velocity_tol * wall_prm.rest_speed;
   int napproach = 0;
-  for (const LsdemImpulseContact &c : contacts) {
+  for (LsdemImpulseContact &c : contacts) {
     double ua[3], ub[3];
     lsdem_impulse_point_velocity(&body[c.c.a], c.c.point, ua);
     lsdem_impulse_point_velocity(&body[c.c.b], c.c.point, ub);
@@ -562,6 +677,11 @@ int FixImpulseLsdem::select_collisions()
     const double noise = ROUNDOFF * (std::sqrt(ua[0] * ua[0] + ua[1] * ua[1] + ua[2] * ua[2]) +
                                      std::sqrt(ub[0] * ub[0] + ub[1] * ub[1] + ub[2] * ub[2]));
     const bool approaching = un < -std::max(floor, noise);
+    if (method == SPLIT) {  // every contact takes part; islands with work are solved
+      c.approaching = c.resting || approaching;
+      napproach += approaching && !c.resting;
+      continue;
+    }
     const bool resting = c.j < 0 &&
         lsdem_wall_classify(un, wall_prm.rest_speed) != LSDEM_WALL_COLLIDING;
     if (resting && !(wall_etm && approaching)) continue;
@@ -740,6 +860,16 @@ void FixImpulseLsdem::damp_and_drift()
   }
 }
 
+/* the kinetic energy of this rank's grains of the group */
+
+double FixImpulseLsdem::group_kinetic_energy() const
+{
+  double ke = 0.0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (moving[i]) ke += kinetic_energy(i);
+  return ke;
+}
+
 /* 1/2 m v^2 + 1/2 omega . I omega of atom i (I from its principal moments and quat) */
 
 double FixImpulseLsdem::kinetic_energy(int i) const
@@ -759,7 +889,7 @@ double FixImpulseLsdem::kinetic_energy(int i) const
 void FixImpulseLsdem::reduce_output()
 {
   if (reduced_step == update->ntimestep) return;
-  double sum[14], max[11];
+  double sum[21], max[12];
   double ke = 0.0;
   for (int i = 0; i < atom->nlocal; i++)
     if (atom->mask[i] & groupbit) ke += kinetic_energy(i);
@@ -775,7 +905,13 @@ void FixImpulseLsdem::reduce_output()
   sum[9] = total_dissipated;
   sum[10] = total_damped;
   sum[11] = total_truncated;
-  sum[12] = sum[13] = 0.0;
+  sum[12] = now.resting;
+  sum[13] = now.etm_islands;
+  sum[14] = now.contacts;
+  sum[15] = now.pairs;
+  sum[16] = now.resting_work;
+  sum[17] = now.contact_work;
+  sum[18] = sum[19] = sum[20] = 0.0;
   max[0] = now.largest;
   max[1] = now.passes;
   max[2] = now.rounds;
@@ -786,10 +922,11 @@ void FixImpulseLsdem::reduce_output()
   max[7] = t_comm;
   max[8] = now.depth;
   max[9] = now.wall_depth;
-  max[10] = 0.0;
-  double s[14], m[11];
-  MPI_Allreduce(sum, s, 14, MPI_DOUBLE, MPI_SUM, world);
-  MPI_Allreduce(max, m, 11, MPI_DOUBLE, MPI_MAX, world);
+  max[10] = now.max_sweeps;
+  max[11] = 0.0;
+  double s[21], m[12];
+  MPI_Allreduce(sum, s, 21, MPI_DOUBLE, MPI_SUM, world);
+  MPI_Allreduce(max, m, 12, MPI_DOUBLE, MPI_MAX, world);
   reduced[V_ISLANDS] = s[0];
   reduced[V_CROSS] = s[1];
   reduced[V_ITERATIONS] = s[2];
@@ -811,6 +948,14 @@ void FixImpulseLsdem::reduce_output()
   reduced[V_T_COMM] = m[7];
   reduced[V_DEPTH] = m[8];
   reduced[V_WALL_DEPTH] = m[9];
+  reduced[V_RESTING] = s[12];
+  reduced[V_SWEEPS] = m[10];
+  reduced[V_ETM_ISLANDS] = s[13];
+  reduced[V_CONTACTS] = s[14];
+  reduced[V_PAIRS] = s[15];
+  reduced[V_PER_PAIR] = s[15] > 0.0 ? s[14] / s[15] : 0.0;
+  reduced[V_RESTING_WORK] = s[16];
+  reduced[V_CONTACT_WORK] = s[17];
   reduced_step = update->ntimestep;
 }
 
@@ -823,7 +968,12 @@ void FixImpulseLsdem::reduce_output()
    start, 15-19 seconds since the run's setup in detection, islands, ETM, walls and
    communication (largest rank), 20 the deepest penetration between two grains and 21 of
    a grain into a wall at the step's start (the impulse method's error: it resolves
-   velocities, not overlaps)
+   velocities, not overlaps); 22 resting contacts (first pass), 23 Gauss-Seidel sweeps
+   of the resting solve (the most any island took, any pass), 24 island solves in which
+   ETM ran (all passes), 25 contacts (after gluing and the cap), 26 touching pairs
+   (grain-grain and grain-wall), 27 contacts per pair, 28 work of the resting impulses
+   and 29 the kinetic-energy change by all contact stages (this step; energy, negative
+   when dissipated). 13 is minus the sum of 29 since the start
 ------------------------------------------------------------------------- */
 
 double FixImpulseLsdem::compute_vector(int n)
@@ -854,6 +1004,64 @@ void FixImpulseLsdem::restart(char *buf)
   total_dissipated = root ? list[0] : 0.0;
   total_damped = root ? list[1] : 0.0;
   total_truncated = root ? list[2] : 0.0;
+}
+
+/* ----------------------------------------------------------------------
+   per-atom: the warm-start entries of the resting contacts (LsdemImpulseWarm) travel
+   with their grain and go into restart files
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::grow_arrays(int nmax)
+{
+  warm.grow(nmax);
+}
+
+void FixImpulseLsdem::copy_arrays(int i, int j, int /*delflag*/)
+{
+  warm.copy(i, j);
+}
+
+void FixImpulseLsdem::set_arrays(int i)
+{
+  warm.clear(i);
+}
+
+int FixImpulseLsdem::pack_exchange(int i, double *buf)
+{
+  return warm.pack(i, buf);
+}
+
+int FixImpulseLsdem::unpack_exchange(int nlocal, double *buf)
+{
+  return warm.unpack(nlocal, buf);
+}
+
+int FixImpulseLsdem::pack_restart(int i, double *buf)
+{
+  const int m = 1 + warm.pack(i, buf + 1);
+  buf[0] = m;
+  return m;
+}
+
+void FixImpulseLsdem::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
+  warm.unpack(nlocal, &extra[nlocal][m + 1]);
+}
+
+int FixImpulseLsdem::size_restart(int nlocal)
+{
+  return 2 + LsdemImpulseWarm::DOUBLES * warm.count(nlocal);
+}
+
+int FixImpulseLsdem::maxsize_restart()
+{
+  int mine = 0, all = 0;
+  for (int i = 0; i < atom->nlocal; i++) mine = std::max(mine, warm.count(i));
+  MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MAX, world);
+  return 2 + LsdemImpulseWarm::DOUBLES * all;
 }
 
 /* ----------------------------------------------------------------------
@@ -900,5 +1108,6 @@ double FixImpulseLsdem::memory_usage()
   bytes += (double) (contacts.capacity() + coll.capacity()) * sizeof(LsdemImpulseContact);
   bytes += (double) wpoints.capacity() * sizeof(lsdem_contact_point);
   bytes += (double) wall_seen.capacity() * sizeof(WallSeen);
+  bytes += warm.memory_usage();
   return bytes + islands->memory_usage();
 }

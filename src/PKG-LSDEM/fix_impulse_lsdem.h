@@ -21,6 +21,7 @@ FixStyle(impulse/lsdem,FixImpulseLsdem);
 
 #include "fix.h"
 #include "lsdem_impulse_islands.h"
+#include "lsdem_impulse_warm.h"
 #include "lsdem_kernel.h"
 
 #include <string>
@@ -39,6 +40,15 @@ class FixImpulseLsdem : public Fix {
   double compute_vector(int) override;
   void write_restart(FILE *) override;
   void restart(char *) override;
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
   int pack_reverse_comm(int, int, double *) override;
@@ -47,8 +57,12 @@ class FixImpulseLsdem : public Fix {
 
  private:
   // what the user sets
+  enum Method { SPLIT, ETM_ONLY };
+  Method method;             // split: resting contacts as constraints; etm: the report's
   double restitution, friction, xi;
   lsdem_etm_params etm;
+  lsdem_resting_params resting;  // dt, ref_speed, slop, max_push set each step
+  int max_points;            // contacts kept per pair after gluing (0: all)
   int max_passes;            // wall-correction passes per step (report: 10)
   double rest_setting;       // resting speed with walls; < 0: auto, 2 |a| dt
   double glue_setting;       // gluing distance; < 0: auto, twice a shape's node spacing
@@ -63,13 +77,14 @@ class FixImpulseLsdem : public Fix {
   std::vector<class FixWallLsdem *> walls;
   LsdemImpulseIslands *islands;
   std::vector<double> glue_of_shape;
+  LsdemImpulseWarm warm;     // per owned grain: its contacts' impulses at the last step
 
   // per-step storage, grown only
   std::vector<lsdem_impulse_body> body;    // atoms (local, ghost), then the walls
   std::vector<char> moving;                // per atom: in the group
   std::vector<LsdemImpulseContact> contacts, coll;
   std::vector<lsdem_impulse_contact> glued;
-  std::vector<int32_t> group;
+  std::vector<int32_t> group, kept;
   std::vector<lsdem_contact_point> wpoints;  // manifold of one grain against one wall
   lsdem_wall_params wall_prm;                // this step's (mu set per wall)
   // per local grain and wall: its velocities when last checked this step, and whether it
@@ -83,16 +98,18 @@ class FixImpulseLsdem : public Fix {
   // what the step did (this rank), reduced over ranks when output asks
   struct Step {
     LsdemIslandStats first;   // the first pass's islands
-    bigint iterations;        // ETM iterations, all passes
-    int largest, rounds, passes, corrections, collisions;
-    double absorbed, dissipated, released;
+    bigint iterations, sweeps;  // ETM iterations, resting sweeps x contacts, all passes
+    int largest, rounds, passes, corrections, collisions, max_sweeps, etm_islands;
+    int resting, contacts, pairs;  // resting contacts, contacts (capped), touching pairs
+    double absorbed, dissipated, released, resting_work, contact_work;
     double depth, wall_depth;  // deepest grain-grain and grain-wall penetration
   } now;
   double total_dissipated, total_damped, total_truncated;  // this rank's share since start
+  double ke_after_kick;      // this rank's grains' kinetic energy before the contacts act
   double t_detect, t_islands, t_etm, t_walls, t_comm;      // seconds since setup
   double pair_seconds0;
   bigint reduced_step;
-  double reduced[24];
+  double reduced[40];
   bool cfl_warned;
 
   void check_integrators();
@@ -106,6 +123,9 @@ class FixImpulseLsdem : public Fix {
   void add_wall_contacts();
   void add_glued(int i, int j, tagint ta, tagint tb, int bindex, const lsdem_manifold &m,
                  double mu, double glue);
+  void classify(LsdemImpulseContact &c, bool touched, double glue);
+  void remember_contacts();
+  double group_kinetic_energy() const;
   void resolve_islands(int pass);
   int select_collisions();
   int correct_walls();

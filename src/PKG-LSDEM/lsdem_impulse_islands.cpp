@@ -25,9 +25,9 @@ using namespace LAMMPS_NS;
 
 void LsdemIslandStats::clear()
 {
-  iterations = 0;
-  islands = cross = largest = rounds = 0;
-  absorbed = dissipated = released = truncated = 0.0;
+  iterations = sweeps = resting = contacts = 0;
+  islands = cross = largest = rounds = etm_islands = max_sweeps = largest_contacts = 0;
+  absorbed = dissipated = released = truncated = resting_work = 0.0;
   t_islands = t_etm = t_comm = 0.0;
 }
 
@@ -124,11 +124,14 @@ void LsdemImpulseIslands::body_item(int i, Item &it) const
 /* the record of a collision: its geometry, and the state of a prescribed side (a wall, or
    a grain outside the group) so that the solving rank can make that body */
 
-void LsdemImpulseIslands::contact_item(const LsdemImpulseContact &c, const lsdem_impulse_body *body,
-                                       const char *moving, Item &it) const
+void LsdemImpulseIslands::contact_item(const LsdemImpulseContact &c, int k,
+                                       const lsdem_impulse_body *body, const char *moving,
+                                       Item &it) const
 {
   memset(&it, 0, sizeof(it));
   it.kind = CONTACT;
+  it.owner = comm->me;
+  it.index = k;
   it.ta = c.ta;
   it.tb = c.tb;
   it.key = c.key;
@@ -136,6 +139,7 @@ void LsdemImpulseIslands::contact_item(const LsdemImpulseContact &c, const lsdem
   if (c.j < 0 || !moving[c.j]) it.flags |= B_FIXED;
   const int fixed = it.flags;
   if (c.approaching) it.flags |= APPROACHING;
+  if (c.resting) it.flags |= RESTING;
   double *d = it.d;
   for (int k = 0; k < 3; k++) {
     d[k] = c.c.point[k];
@@ -152,13 +156,15 @@ void LsdemImpulseIslands::contact_item(const LsdemImpulseContact &c, const lsdem
       d[15 + k] = f.omega[k];
     }
   }
+  for (int k = 0; k < 3; k++) d[18 + k] = c.P[k];
 }
 
 /* ---------------------------------------------------------------------- */
 
-std::string LsdemImpulseIslands::resolve(const LsdemImpulseContact *coll, int n,
+std::string LsdemImpulseIslands::resolve(LsdemImpulseContact *coll, int n,
                                          const lsdem_impulse_body *body, const char *moving,
-                                         const lsdem_etm_params &prm, LsdemIslandStats &st)
+                                         const lsdem_island_params &prm, int warm_start,
+                                         LsdemIslandStats &st)
 {
   double t0 = MPI_Wtime();
   const double c0 = st.t_comm;
@@ -170,9 +176,9 @@ std::string LsdemImpulseIslands::resolve(const LsdemImpulseContact *coll, int n,
     gather_cross(st);
   }
   t0 = MPI_Wtime();
-  std::string mesg = solve_items(prm, st);
+  std::string mesg = solve_items(prm, warm_start, st);
   st.t_etm += MPI_Wtime() - t0;
-  scatter_results(ncross > 0, st);
+  scatter_results(ncross > 0, coll, st);
   return mesg;
 }
 
@@ -301,7 +307,7 @@ void LsdemImpulseIslands::make_items(const LsdemImpulseContact *coll, int n,
   }
   for (int k = 0; k < n; k++) {
     const int e = moving[coll[k].i] ? coll[k].i : coll[k].j;
-    contact_item(coll[k], body, moving, it);
+    contact_item(coll[k], k, body, moving, it);
     it.label = label[e];
     it.spans = crossed[lsdem_islands_find(parent, e)];
     items.push_back(it);
@@ -391,7 +397,8 @@ void LsdemImpulseIslands::gather_cross(LsdemIslandStats &st)
    global ids (so that any rank count gives the same bits)
 ------------------------------------------------------------------------- */
 
-std::string LsdemImpulseIslands::solve_items(const lsdem_etm_params &prm, LsdemIslandStats &st)
+std::string LsdemImpulseIslands::solve_items(const lsdem_island_params &prm, int warm,
+                                             LsdemIslandStats &st)
 {
   // sorted by (label, kind, ta, tb, key), unique to each record: the keys with the record's
   // place are sorted (a fifth of a record's bytes to move), then the records gathered
@@ -412,7 +419,7 @@ std::string LsdemImpulseIslands::solve_items(const lsdem_etm_params &prm, LsdemI
   for (size_t k = 0; k < items.size();) {
     size_t e = k;
     while (e < items.size() && items[e].label == items[k].label) e++;
-    std::string mesg = solve_island(&items[k], (int) (e - k), prm, st);
+    std::string mesg = solve_island(&items[k], (int) (e - k), prm, warm, st);
     if (first.empty()) first = mesg;
     k = e;
   }
@@ -422,7 +429,8 @@ std::string LsdemImpulseIslands::solve_items(const lsdem_etm_params &prm, LsdemI
 /* one island: its grains (tag order), then its contacts (id order) with their bodies found
    by tag, or a prescribed body made from the record; ETM; the grains' new velocities */
 
-std::string LsdemImpulseIslands::solve_island(const Item *it, int n, const lsdem_etm_params &prm,
+std::string LsdemImpulseIslands::solve_island(const Item *it, int n,
+                                              const lsdem_island_params &prm, int warm,
                                               LsdemIslandStats &st)
 {
   lsdem_error err;
@@ -447,36 +455,51 @@ std::string LsdemImpulseIslands::solve_island(const Item *it, int n, const lsdem
     return (int) bodies.size() - 1;
   };
   contacts.resize(n - nb);
+  resting.resize(n - nb);
+  impulse.resize(3 * (size_t) (n - nb));
+  int nrest = 0;
   for (int k = nb; k < n; k++) {
     const Item &c = it[k];
     lsdem_impulse_contact &ct = contacts[k - nb];
     for (int d = 0; d < 3; d++) {
       ct.point[d] = c.d[d];
       ct.normal[d] = c.d[3 + d];
+      impulse[3 * (k - nb) + d] = c.d[18 + d];
     }
     ct.depth = c.d[6];
     ct.mu = c.d[7];
     ct.restitution = c.d[8];
     ct.a = (c.flags & A_FIXED) ? prescribed(c, c.ta) : grain_index(c.ta);
     ct.b = (c.flags & B_FIXED) ? prescribed(c, c.tb) : grain_index(c.tb);
+    resting[k - nb] = (c.flags & RESTING) ? 1 : 0;
+    nrest += resting[k - nb];
     if (ct.a < 0 || ct.b < 0)
       return fmt::format("island {}: contact of grains {} and {} without its grain record "
                          "(internal error)", it[0].label, c.ta, c.tb);
   }
   const int nc = n - nb, nbodies = (int) bodies.size();
-  const size_t need = lsdem_etm_workspace_size(nbodies, nc);
+  const size_t need = lsdem_island_workspace_size(nbodies, nc);
   if (ws.size() < need) ws.resize(need);
-  lsdem_etm_result res;
-  const lsdem_status s = lsdem_etm_solve(bodies.data(), nbodies, contacts.data(), nc, &prm,
-                                         ws.data(), ws.size(), &res, &err);
+  lsdem_island_result res;
+  double(*P)[3] = reinterpret_cast<double(*)[3]>(impulse.data());
+  const lsdem_status s = lsdem_island_solve(bodies.data(), nbodies, contacts.data(), nc,
+                                            nrest ? resting.data() : nullptr, P, warm, &prm,
+                                            ws.data(), ws.size(), &res, &err);
   st.islands++;
   st.largest = std::max(st.largest, nb);
+  st.largest_contacts = std::max(st.largest_contacts, nc);
+  st.contacts += nc;
   if (s != LSDEM_ERR_ARG) {
-    st.iterations += res.iterations;
-    st.absorbed += res.absorbed;
-    st.dissipated += res.dissipated;
-    st.released += res.released;
-    st.truncated += res.truncated;
+    st.iterations += res.etm.iterations;
+    st.etm_islands += res.etm_ran;
+    st.absorbed += res.etm.absorbed;
+    st.dissipated += res.etm.dissipated;
+    st.released += res.etm.released;
+    st.truncated += res.etm.truncated;
+    st.resting += res.nresting;
+    st.sweeps += (bigint) res.rest.sweeps * res.nresting;
+    st.max_sweeps = std::max(st.max_sweeps, res.rest.sweeps);
+    st.resting_work += res.rest.work;
   }
   for (int k = 0; k < nb; k++) {
     Result r;
@@ -488,6 +511,17 @@ std::string LsdemImpulseIslands::solve_island(const Item *it, int n, const lsdem
     }
     results.push_back(r);
   }
+  for (int k = 0; k < nc && nrest; k++) {
+    if (!resting[k]) continue;
+    Result r;
+    r.owner = it[nb + k].owner;
+    r.index = -1 - it[nb + k].index;
+    for (int d = 0; d < 3; d++) {
+      r.v[d] = P[k][d];
+      r.omega[d] = 0.0;
+    }
+    results.push_back(r);
+  }
   return s == LSDEM_OK ? std::string() : std::string(err.msg);
 }
 
@@ -495,9 +529,14 @@ std::string LsdemImpulseIslands::solve_island(const Item *it, int n, const lsdem
    new velocities to the grains' owners
 ------------------------------------------------------------------------- */
 
-void LsdemImpulseIslands::scatter_results(bool remote, LsdemIslandStats &st)
+void LsdemImpulseIslands::scatter_results(bool remote, LsdemImpulseContact *coll,
+                                          LsdemIslandStats &st)
 {
   auto apply = [&](const Result &r) {
+    if (r.index < 0) {
+      for (int d = 0; d < 3; d++) coll[-1 - r.index].P[d] = r.v[d];
+      return;
+    }
     for (int d = 0; d < 3; d++) {
       atom->v[r.index][d] = r.v[d];
       atom->omega[r.index][d] = r.omega[d];

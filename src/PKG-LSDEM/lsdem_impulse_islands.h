@@ -41,15 +41,19 @@ struct LsdemImpulseContact {
   int i, j;                 // atom index (local or ghost) of a and b; b a wall: -1 - w
   tagint ta, tb;            // their tags (a wall: -(w + 1))
   int key;                  // the contact's place among its pair's contacts (gluing order)
-  int approaching;          // 1: it approaches now (an island without one is left alone)
+  int approaching;          // 1: it needs solving now (an island without one is left alone):
+                            // it approaches, or it is a resting contact
+  int resting;              // 1: a resting contact (lsdem_island_solve's stage 1)
+  double P[3];              // resting: its accumulated impulse (world; on a, -P on b)
   lsdem_impulse_contact c;  // c.a, c.b: indices into the step's bodies (atoms, then walls)
 };
 
 // what one pass did, summed (or the largest) over the islands this rank solved
 struct LsdemIslandStats {
-  bigint iterations;
-  int islands, cross, largest, rounds;
-  double absorbed, dissipated, released, truncated;
+  bigint iterations, sweeps;   // ETM group iterations; resting sweeps x contacts
+  int islands, cross, largest, rounds, etm_islands, max_sweeps, largest_contacts;
+  bigint resting, contacts;    // resting contacts solved; contacts of the islands solved
+  double absorbed, dissipated, released, truncated, resting_work;
   double t_islands, t_etm, t_comm;  // seconds
   void clear();
 };
@@ -59,13 +63,16 @@ class LsdemImpulseIslands : protected Pointers {
   LsdemImpulseIslands(class LAMMPS *, class Fix *comm_fix, class AtomVecLsdem *);
   ~LsdemImpulseIslands() override;
 
-  // Resolve the islands of contacts coll[0..n) (held here) that have an approaching one. body: the step's bodies (atoms
-  // local and ghost, then walls), with current velocities; moving[i]: atom i is
-  // integrated (in the group), else it acts as a wall of prescribed velocity. New
-  // velocities are written to atom->v, atom->omega of owned grains. Collective. Returns
-  // this rank's first island report ("" when all converged).
-  std::string resolve(const LsdemImpulseContact *coll, int n, const lsdem_impulse_body *body,
-                      const char *moving, const lsdem_etm_params &prm, LsdemIslandStats &st);
+  // Resolve the islands of contacts coll[0..n) (held here) that have one needing it
+  // (approaching) by lsdem_island_solve (warm_start: apply the resting contacts' P first).
+  // body: the step's bodies (atoms local and ghost, then walls), with current velocities;
+  // moving[i]: atom i is integrated (in the group), else it acts as a wall of prescribed
+  // velocity. New velocities are written to atom->v, atom->omega of owned grains, the
+  // resting contacts' new impulses to coll[k].P. Collective. Returns this rank's first
+  // island report ("" when all converged).
+  std::string resolve(LsdemImpulseContact *coll, int n, const lsdem_impulse_body *body,
+                      const char *moving, const lsdem_island_params &prm, int warm_start,
+                      LsdemIslandStats &st);
 
   // ghost communication of labels and flags, through the fix's pack/unpack methods
   bool exchanging() const { return what != NONE; }
@@ -80,18 +87,18 @@ class LsdemImpulseIslands : protected Pointers {
     int64_t label;
     int64_t ta, tb;  // body: ta = its tag; contact: the tags of a and b (wall: -(w + 1))
     int32_t kind;    // BODY or CONTACT
-    int32_t owner;   // body: owning rank
-    int32_t index;   // body: local index there
+    int32_t owner;   // body: owning rank; contact: the rank holding it
+    int32_t index;   // body: local index there; contact: its place in that rank's list
     int32_t key;     // contact: its place among its pair's contacts
     int32_t flags;   // body: LOCKED; contact: A_FIXED, B_FIXED (that side a prescribed
-                     // body), APPROACHING
+                     // body), APPROACHING, RESTING
     int32_t spans;   // 1: the island spans ranks
-    double d[18];    // body: mass, I0[3], q[4], x[3], v[3], omega[3];
+    double d[21];    // body: mass, I0[3], q[4], x[3], v[3], omega[3];
                      // contact: point[3], normal[3], depth, mu, e, then the prescribed
-                     // side's x[3], v[3], omega[3]
+                     // side's x[3], v[3], omega[3], then the resting impulse P[3]
   };
   enum { BODY = 0, CONTACT = 1 };
-  enum { LOCKED = 1, A_FIXED = 1, B_FIXED = 2, APPROACHING = 4 };
+  enum { LOCKED = 1, A_FIXED = 1, B_FIXED = 2, APPROACHING = 4, RESTING = 8 };
   // a grain's body in the solver (also the fix's step bodies): spheres keep no rotation
   static lsdem_status grain_body(const Item &, lsdem_impulse_body &, lsdem_error *);
   // the record of owned or ghost grain i, its state now (atom arrays)
@@ -99,7 +106,8 @@ class LsdemImpulseIslands : protected Pointers {
 
  private:
   enum Exchange { NONE, FWD_LABEL, REV_LABEL, REV_FLAG };
-  struct Result {
+  struct Result {  // a grain's new velocities (index >= 0: its local index), or a resting
+                   // contact's new impulse (index = -1 - its place in the holder's list; in v)
     int32_t owner, index;
     double v[3], omega[3];
   };
@@ -132,6 +140,8 @@ class LsdemImpulseIslands : protected Pointers {
   std::vector<char> ws;                  // ETM workspace
   std::vector<lsdem_impulse_body> bodies;
   std::vector<lsdem_impulse_contact> contacts;
+  std::vector<uint8_t> resting;
+  std::vector<double> impulse;  // 3 per contact
 
   void grow(int);
   void destroy_per_atom();
@@ -139,13 +149,14 @@ class LsdemImpulseIslands : protected Pointers {
   int merge_received(int lo, int hi);
   int flag_cross(LsdemIslandStats &);
   void make_items(const LsdemImpulseContact *, int, const lsdem_impulse_body *, const char *);
-  void contact_item(const LsdemImpulseContact &, const lsdem_impulse_body *, const char *,
-                    Item &) const;
+  void contact_item(const LsdemImpulseContact &, int k, const lsdem_impulse_body *,
+                    const char *, Item &) const;
   void find_hosts(LsdemIslandStats &);
   void gather_cross(LsdemIslandStats &);
-  std::string solve_items(const lsdem_etm_params &, LsdemIslandStats &);
-  std::string solve_island(const Item *, int, const lsdem_etm_params &, LsdemIslandStats &);
-  void scatter_results(bool remote, LsdemIslandStats &);
+  std::string solve_items(const lsdem_island_params &, int warm, LsdemIslandStats &);
+  std::string solve_island(const Item *, int, const lsdem_island_params &, int warm,
+                           LsdemIslandStats &);
+  void scatter_results(bool remote, LsdemImpulseContact *, LsdemIslandStats &);
   template <class T> int exchange(const std::vector<T> &, std::vector<T> &);
 };
 

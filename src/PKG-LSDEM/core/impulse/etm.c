@@ -41,6 +41,7 @@ typedef struct {
   double knn;    /* n . K n */
   double weight; /* compression key = weight u_n */
   double W;      /* stored elastic energy (eq 4.24) */
+  double fastest; /* the fastest approach (-u_n) it had at a compression increment */
 } etm_contact;
 
 struct lsdem_etm {
@@ -77,6 +78,8 @@ void lsdem_etm_params_default(lsdem_etm_params *p)
   p->energy_tol = 1e-12;
   p->max_iterations = 1000000;
   p->max_rounds = 1000;
+  p->resting = NULL;
+  p->resting_speed = 0.0;
 }
 
 static lsdem_status check_params(const lsdem_etm_params *p, lsdem_error *err)
@@ -158,6 +161,7 @@ static void prepare_contact(lsdem_etm *s, int32_t k)
   c->knn = lsdem_dot3(ct->normal, Kn);
   c->weight = s->p.mass_weighted ? 1.0 / (a->inv_mass + b->inv_mass) : 1.0; /* §4.4.3 */
   c->W = 0.0;
+  c->fastest = 0.0;
 }
 
 /* The group's increments du[g] (0: none), each the Coulomb-limited impulse of its
@@ -428,6 +432,7 @@ lsdem_status lsdem_etm_compress(lsdem_etm *s, lsdem_error *err)
     for (int32_t g = 0; g < ng; g++) {
       const int32_t k = s->group[g];
       const double un = s->un0[g] = relative_velocity(s, k, &s->ub[3 * g]);
+      if (-un > s->c[k].fastest) s->c[k].fastest = -un;
       double du = -kmin * s->share[g] / s->c[k].weight; /* line 9, raising u~ towards 0 */
       if (du > -un || -un - du <= s->vtol) du = -un; /* no overshoot; no tiny remainder */
       s->du[g] = du;
@@ -448,7 +453,10 @@ lsdem_status lsdem_etm_compress(lsdem_etm *s, lsdem_error *err)
 void lsdem_etm_restitute(lsdem_etm *s)
 {
   for (int32_t k = 0; k < s->ncontacts; k++) {
-    const double e = s->contacts[k].restitution, W = s->c[k].W;
+    /* a resting contact that no impulse of the solve made approach faster than the
+     * resting speed stays inelastic */
+    const int quiet = s->p.resting && s->p.resting[k] && s->c[k].fastest <= s->p.resting_speed;
+    const double e = quiet ? 0.0 : s->contacts[k].restitution, W = s->c[k].W;
     s->c[k].W = e * e * W; /* eq 4.1: W_release = e^2 W_absorbed */
     s->dissipated += W - s->c[k].W;
   }

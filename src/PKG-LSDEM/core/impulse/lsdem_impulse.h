@@ -253,6 +253,11 @@ typedef struct {
                              and rounds together. Default 1000000 */
   int max_rounds;         /* cap on compression-separation rounds (re-entries, lines
                              34-35). Default 1000 */
+  const uint8_t *resting; /* per contact (NULL: none): a resting contact (lsdem_island_solve)
+                             takes its restitution only when an impulse of the solve made it
+                             approach faster than resting_speed (it became a collision,
+                             so a Newton's cradle still rebounds); else e = 0. Default NULL */
+  double resting_speed;   /* velocity. Default 0 */
 } lsdem_etm_params;
 
 void lsdem_etm_params_default(lsdem_etm_params *p);
@@ -465,6 +470,46 @@ lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
                                  const int32_t *which, int nwhich, double (*impulse)[3],
                                  int warm_start, const lsdem_resting_params *p, void *ws,
                                  size_t wsize, lsdem_resting_result *res, lsdem_error *err);
+
+/* ------------------------------------------------------ one island's solve ---- */
+
+/* The velocity solve of one contact island, in stages (issue 33: collisions are events,
+ * resting contacts constraints):
+ *   1. resting contacts (resting[k] != 0; e = 0): lsdem_resting_solve, warm-started;
+ *   2. collisions: when a colliding contact (resting[k] == 0) approaches faster than
+ *      approach_floor, or a resting one still approaches faster than collide_speed (an
+ *      impulse of this step made it collide), ETM (lsdem_etm_solve) over all the island's
+ *      contacts; a resting contact takes its restitution only if the solve makes it
+ *      approach faster than collide_speed (then a collision's impulse travels through a
+ *      pile elastically: a Newton's cradle), else e = 0; a quiet island costs no ETM.
+ * resting NULL: every contact is a collision (the report's method: ETM alone, and only
+ * when something approaches faster than approach_floor -- 0 takes any approach).
+ * impulse: as for lsdem_resting_solve (read and written for resting contacts only). */
+typedef struct {
+  lsdem_etm_params etm;
+  lsdem_resting_params rest;
+  double approach_floor; /* velocity >= 0 */
+  double collide_speed;  /* velocity >= 0; the resting speed */
+} lsdem_island_params;
+
+void lsdem_island_params_default(lsdem_island_params *p); /* the stages' defaults, 0, 0 */
+
+typedef struct {
+  int nresting;               /* resting contacts solved in stage 1 */
+  int etm_ran;                /* 1: stage 2 ran */
+  lsdem_resting_result rest;  /* stage 1 */
+  lsdem_etm_result etm;       /* stage 2 (zero when it did not run) */
+} lsdem_island_result;
+
+size_t lsdem_island_workspace_size(int nbodies, int ncontacts);
+
+/* Returns the stages' status (their errors, with err set); LSDEM_ERR_NOMEM when ws
+ * (lsdem_island_workspace_size bytes) is too small. */
+lsdem_status lsdem_island_solve(lsdem_impulse_body *bodies, int nbodies,
+                                const lsdem_impulse_contact *contacts, int ncontacts,
+                                const uint8_t *resting, double (*impulse)[3], int warm_start,
+                                const lsdem_island_params *p, void *ws, size_t wsize,
+                                lsdem_island_result *res, lsdem_error *err);
 
 /* ------------------------------------------------------------ islands ---- */
 
