@@ -123,8 +123,9 @@ class FixImpulseLsdem : public Fix {
   void add_wall_contacts();
   void add_glued(int i, int j, tagint ta, tagint tb, int bindex, const lsdem_manifold &m,
                  double mu, double glue);
-  void classify(LsdemImpulseContact &c, bool touched, double glue);
+  void classify(LsdemImpulseContact &c, double glue);
   void remember_contacts();
+  void report_wall_resting();
   double group_kinetic_energy() const;
   void resolve_islands(int pass);
   int select_collisions();

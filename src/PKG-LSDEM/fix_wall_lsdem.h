@@ -63,6 +63,13 @@ class FixWallLsdem : public Fix {
   double wall_friction() const { return opts.law.mu; }
   const lsdem_detect_params &wall_detect() const { return prm.detect; }
   void set_passive(bool on) { passive = on; }
+  // fix impulse/lsdem: the force its contacts put on this wall this step (added to the
+  // wall's force output; passive walls start each step from zero)
+  void add_reaction(const double force[3])
+  {
+    for (int d = 0; d < 3; d++) flocal[d] += force[d];
+    fall_valid = 0;
+  }
 
  protected:
   // one thread's share of a force call (fix wall/lsdem/omp: one lane per thread): its

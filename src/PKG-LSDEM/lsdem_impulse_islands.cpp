@@ -457,6 +457,7 @@ std::string LsdemImpulseIslands::solve_island(const Item *it, int n,
   contacts.resize(n - nb);
   resting.resize(n - nb);
   impulse.resize(3 * (size_t) (n - nb));
+  collision.resize(3 * (size_t) (n - nb));
   int nrest = 0;
   for (int k = nb; k < n; k++) {
     const Item &c = it[k];
@@ -482,9 +483,10 @@ std::string LsdemImpulseIslands::solve_island(const Item *it, int n,
   if (ws.size() < need) ws.resize(need);
   lsdem_island_result res;
   double(*P)[3] = reinterpret_cast<double(*)[3]>(impulse.data());
+  double(*J)[3] = reinterpret_cast<double(*)[3]>(collision.data());
   const lsdem_status s = lsdem_island_solve(bodies.data(), nbodies, contacts.data(), nc,
-                                            nrest ? resting.data() : nullptr, P, warm, &prm,
-                                            ws.data(), ws.size(), &res, &err);
+                                            nrest ? resting.data() : nullptr, P, J, warm,
+                                            &prm, ws.data(), ws.size(), &res, &err);
   st.islands++;
   st.largest = std::max(st.largest, nb);
   st.largest_contacts = std::max(st.largest_contacts, nc);
@@ -511,14 +513,13 @@ std::string LsdemImpulseIslands::solve_island(const Item *it, int n,
     }
     results.push_back(r);
   }
-  for (int k = 0; k < nc && nrest; k++) {
-    if (!resting[k]) continue;
+  for (int k = 0; k < nc; k++) {
     Result r;
     r.owner = it[nb + k].owner;
     r.index = -1 - it[nb + k].index;
     for (int d = 0; d < 3; d++) {
-      r.v[d] = P[k][d];
-      r.omega[d] = 0.0;
+      r.v[d] = resting[k] ? P[k][d] : 0.0;
+      r.omega[d] = J[k][d];
     }
     results.push_back(r);
   }
@@ -534,7 +535,11 @@ void LsdemImpulseIslands::scatter_results(bool remote, LsdemImpulseContact *coll
 {
   auto apply = [&](const Result &r) {
     if (r.index < 0) {
-      for (int d = 0; d < 3; d++) coll[-1 - r.index].P[d] = r.v[d];
+      LsdemImpulseContact &c = coll[-1 - r.index];
+      for (int d = 0; d < 3; d++) {
+        c.P[d] = r.v[d];
+        c.J[d] += r.omega[d];
+      }
       return;
     }
     for (int d = 0; d < 3; d++) {

@@ -45,6 +45,7 @@ struct LsdemImpulseContact {
                             // it approaches, or it is a resting contact
   int resting;              // 1: a resting contact (lsdem_island_solve's stage 1)
   double P[3];              // resting: its accumulated impulse (world; on a, -P on b)
+  double J[3];              // the collision solves' impulses on it this step (world, on a)
   lsdem_impulse_contact c;  // c.a, c.b: indices into the step's bodies (atoms, then walls)
 };
 
@@ -68,7 +69,8 @@ class LsdemImpulseIslands : protected Pointers {
   // body: the step's bodies (atoms local and ghost, then walls), with current velocities;
   // moving[i]: atom i is integrated (in the group), else it acts as a wall of prescribed
   // velocity. New velocities are written to atom->v, atom->omega of owned grains, the
-  // resting contacts' new impulses to coll[k].P. Collective. Returns this rank's first
+  // resting contacts' new impulses to coll[k].P, the collision impulses added to
+  // coll[k].J. Collective. Returns this rank's first
   // island report ("" when all converged).
   std::string resolve(LsdemImpulseContact *coll, int n, const lsdem_impulse_body *body,
                       const char *moving, const lsdem_island_params &prm, int warm_start,
@@ -106,8 +108,9 @@ class LsdemImpulseIslands : protected Pointers {
 
  private:
   enum Exchange { NONE, FWD_LABEL, REV_LABEL, REV_FLAG };
-  struct Result {  // a grain's new velocities (index >= 0: its local index), or a resting
-                   // contact's new impulse (index = -1 - its place in the holder's list; in v)
+  struct Result {  // a grain's new velocities (index >= 0: its local index), or a contact's
+                   // resting impulse (in v) and collision impulse (in omega), index = -1 -
+                   // its place in the holder's list
     int32_t owner, index;
     double v[3], omega[3];
   };
@@ -141,7 +144,7 @@ class LsdemImpulseIslands : protected Pointers {
   std::vector<lsdem_impulse_body> bodies;
   std::vector<lsdem_impulse_contact> contacts;
   std::vector<uint8_t> resting;
-  std::vector<double> impulse;  // 3 per contact
+  std::vector<double> impulse, collision;  // 3 per contact
 
   void grow(int);
   void destroy_per_atom();

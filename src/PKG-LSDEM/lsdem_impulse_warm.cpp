@@ -17,13 +17,6 @@ void LsdemImpulseWarm::grow(int nmax)
   if ((int) entries.size() < nmax) entries.resize(nmax);
 }
 
-bool LsdemImpulseWarm::touched(int i, tagint partner) const
-{
-  for (const Entry &e : entries[i])
-    if (e.partner == partner) return true;
-  return false;
-}
-
 bool LsdemImpulseWarm::take(int i, tagint partner, const double xb[3], double radius,
                             double P[3])
 {

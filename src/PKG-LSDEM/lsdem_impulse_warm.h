@@ -30,10 +30,8 @@ class LsdemImpulseWarm {
   int largest() const { return most; }  // most entries of one grain since the start
 
   // Contact matching for grain i, one contact after another, partner by partner:
-  // touched(i, partner): i held a contact with partner at the end of the last step;
   // take(i, partner, xb, radius, P): the impulse of the nearest entry not yet taken
   // this step within radius of the body-frame point xb (P = 0 and false when none).
-  bool touched(int i, tagint partner) const;
   bool take(int i, tagint partner, const double xb[3], double radius, double P[3]);
   // The step's contacts of grain i replace its entries: begin(i), then add(...) per contact.
   void begin(int i);

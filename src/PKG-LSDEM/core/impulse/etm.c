@@ -80,6 +80,8 @@ void lsdem_etm_params_default(lsdem_etm_params *p)
   p->max_rounds = 1000;
   p->resting = NULL;
   p->resting_speed = 0.0;
+  p->impulse = NULL;
+  p->min_approach = 0.0;
 }
 
 static lsdem_status check_params(const lsdem_etm_params *p, lsdem_error *err)
@@ -188,6 +190,8 @@ static void apply_group(lsdem_etm *s, int32_t ng)
     lsdem_impulse_apply(&s->bodies[ct->a], ct->point, P);
     lsdem_impulse_apply(&s->bodies[ct->b], ct->point, minus);
     s->moved[ct->a] = s->moved[ct->b] = 1;
+    if (s->p.impulse)
+      for (int i = 0; i < 3; i++) s->p.impulse[3 * s->group[g] + i] += P[i];
   }
   for (int32_t g = 0; g < ng; g++) {
     const int32_t k = s->group[g];
@@ -315,7 +319,7 @@ lsdem_status lsdem_etm_begin(lsdem_etm **out, void *ws, size_t wsize,
     double u[3];
     s->u0 = fmax(s->u0, -relative_velocity(s, k, u));
   }
-  s->vtol = p->velocity_tol * s->u0;
+  s->vtol = fmax(p->velocity_tol * s->u0, p->min_approach);
   *out = s;
   return LSDEM_OK;
 }

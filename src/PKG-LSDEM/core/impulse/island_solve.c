@@ -18,7 +18,7 @@ static size_t align64(size_t n) { return (n + 63) & ~(size_t)63; }
 
 size_t lsdem_island_workspace_size(int nbodies, int ncontacts)
 {
-  const size_t rest = lsdem_resting_workspace_size(ncontacts);
+  const size_t rest = lsdem_resting_workspace_size(nbodies, ncontacts);
   const size_t etm = lsdem_etm_workspace_size(nbodies, ncontacts);
   return align64((size_t)(ncontacts > 0 ? ncontacts : 0) * sizeof(int32_t)) +
          (rest > etm ? rest : etm) + 64;
@@ -39,11 +39,13 @@ static int collides(const lsdem_impulse_body *bodies, const lsdem_impulse_contac
 
 lsdem_status lsdem_island_solve(lsdem_impulse_body *bodies, int nbodies,
                                 const lsdem_impulse_contact *contacts, int ncontacts,
-                                const uint8_t *resting, double (*impulse)[3], int warm_start,
+                                const uint8_t *resting, double (*impulse)[3],
+                                double (*collision)[3], int warm_start,
                                 const lsdem_island_params *p, void *ws, size_t wsize,
                                 lsdem_island_result *res, lsdem_error *err)
 {
   memset(res, 0, sizeof *res);
+  if (collision) memset(collision, 0, sizeof(double) * 3 * (size_t)(ncontacts > 0 ? ncontacts : 0));
   if (!ws || wsize < lsdem_island_workspace_size(nbodies, ncontacts))
     return lsdem_fail(err, LSDEM_ERR_NOMEM, "island solve: workspace of %zu bytes, %zu needed",
                       wsize, lsdem_island_workspace_size(nbodies, ncontacts));
@@ -72,6 +74,7 @@ lsdem_status lsdem_island_solve(lsdem_impulse_body *bodies, int nbodies,
   lsdem_etm_params etm = p->etm;
   etm.resting = nrest > 0 ? resting : NULL;
   etm.resting_speed = p->collide_speed;
+  etm.impulse = collision ? &collision[0][0] : NULL;
   return lsdem_etm_solve(bodies, nbodies, contacts, ncontacts, &etm, rest_ws, rest_size,
                          &res->etm, err);
 }

@@ -258,6 +258,11 @@ typedef struct {
                              approach faster than resting_speed (it became a collision,
                              so a Newton's cradle still rebounds); else e = 0. Default NULL */
   double resting_speed;   /* velocity. Default 0 */
+  double *impulse;        /* 3 per contact (NULL: not wanted): each contact's impulses of
+                             the solve are added here (world, on a). Default NULL */
+  double min_approach;    /* velocity: a contact approaching slower than this never counts
+                             as approaching, whatever u_0 (the resting solve's residual
+                             is its, not ETM's). Default 0 */
 } lsdem_etm_params;
 
 void lsdem_etm_params_default(lsdem_etm_params *p);
@@ -442,6 +447,13 @@ typedef struct {
   double slop;      /* overlap left alone (length). Default 0 */
   double max_push;  /* cap on the target normal speed (velocity). Default unbounded */
   double warm;      /* in [0, 1]: the fraction of last step's impulse re-applied. Default 1 */
+  int shock;        /* 1: after the sweeps, one shock-propagation sweep: contacts ordered by the breadth-first level of their bodies
+                       from the walls, the lower side frozen (infinite mass), so that a
+                       stack stops in one sweep whatever its height and mass ratios
+                       (Guendelman et al. 2003). It does not conserve momentum in the
+                       step (the frozen side misses its reaction); its impulses enter P,
+                       so the next step's warm start applies them to both sides and a
+                       stack's load reaches the floor one level per step. Default 1 */
 } lsdem_resting_params;
 
 void lsdem_resting_params_default(lsdem_resting_params *p);
@@ -455,7 +467,7 @@ typedef struct {
   double warm_work; /* of which the warm start */
 } lsdem_resting_result;
 
-size_t lsdem_resting_workspace_size(int ncontacts);
+size_t lsdem_resting_workspace_size(int nbodies, int ncontacts);
 
 /* The resting solve over the contacts which[0..nwhich) of an island (bodies and contacts
  * as for ETM), in that order (sort it by global keys for rank-independent bits).
@@ -484,7 +496,8 @@ lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
  *      pile elastically: a Newton's cradle), else e = 0; a quiet island costs no ETM.
  * resting NULL: every contact is a collision (the report's method: ETM alone, and only
  * when something approaches faster than approach_floor -- 0 takes any approach).
- * impulse: as for lsdem_resting_solve (read and written for resting contacts only). */
+ * impulse: as for lsdem_resting_solve (read and written for resting contacts only);
+ * collision (NULL: not wanted): receives each contact's impulse of stage 2 (0 if none). */
 typedef struct {
   lsdem_etm_params etm;
   lsdem_resting_params rest;
@@ -507,7 +520,8 @@ size_t lsdem_island_workspace_size(int nbodies, int ncontacts);
  * (lsdem_island_workspace_size bytes) is too small. */
 lsdem_status lsdem_island_solve(lsdem_impulse_body *bodies, int nbodies,
                                 const lsdem_impulse_contact *contacts, int ncontacts,
-                                const uint8_t *resting, double (*impulse)[3], int warm_start,
+                                const uint8_t *resting, double (*impulse)[3],
+                                double (*collision)[3], int warm_start,
                                 const lsdem_island_params *p, void *ws, size_t wsize,
                                 lsdem_island_result *res, lsdem_error *err);
 

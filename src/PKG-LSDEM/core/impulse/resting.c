@@ -17,7 +17,12 @@ void lsdem_resting_params_default(lsdem_resting_params *p)
   p->slop = 0.0;
   p->max_push = HUGE_VAL;
   p->warm = 1.0;
+  p->shock = 1;
 }
+
+/* Which side of a contact an update leaves alone: none, or (shock propagation) the side
+ * nearer the walls, taken as of infinite mass. */
+enum { FROZEN_NONE = 0, FROZEN_A = 1, FROZEN_B = 2 };
 
 /* per contact in the workspace: a tangent basis, the inverse effective masses of the
  * normal row (1 / n.K.n) and of the tangential 2x2 block, and the normal speed to reach */
@@ -29,9 +34,16 @@ typedef struct {
   double target;
 } row;
 
-size_t lsdem_resting_workspace_size(int ncontacts)
+static size_t align64(size_t n) { return (n + 63) & ~(size_t)63; }
+
+/* rows, then (shock) per body its level, the BFS queue, its first adjacency entry and a
+ * count per level, the adjacency (two entries per contact) and the contacts' order */
+size_t lsdem_resting_workspace_size(int nbodies, int ncontacts)
 {
-  return (size_t)(ncontacts > 0 ? ncontacts : 0) * sizeof(row) + 64;
+  const size_t nc = (size_t)(ncontacts > 0 ? ncontacts : 0);
+  const size_t nb = (size_t)(nbodies > 0 ? nbodies : 0);
+  return align64(nc * sizeof(row)) + align64((4 * nb + 4) * sizeof(int32_t)) +
+         align64(3 * nc * sizeof(int32_t)) + 64;
 }
 
 /* The normal speed a resting contact is driven to: the part of its overlap beyond the
@@ -55,12 +67,16 @@ static void tangents(const double n[3], double t1[3], double t2[3])
   lsdem_cross3(n, t1, t2);
 }
 
-/* The row of contact c: K (eq 4.13) reduced to its normal and tangential blocks. */
+/* The row of contact c: K (eq 4.13; with a frozen side, the other body's point response
+ * alone) reduced to its normal and tangential blocks. */
 static void make_row(const lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
-                     const lsdem_resting_params *p, row *r)
+                     const lsdem_resting_params *p, int frozen, row *r)
 {
   double K[9], Kn[3], K1[3], K2[3];
-  lsdem_impulse_collision_matrix(&bodies[c->a], &bodies[c->b], c->point, K);
+  if (frozen == FROZEN_NONE)
+    lsdem_impulse_collision_matrix(&bodies[c->a], &bodies[c->b], c->point, K);
+  else
+    lsdem_impulse_point_response(&bodies[frozen == FROZEN_A ? c->b : c->a], c->point, K);
   tangents(c->normal, r->t1, r->t2);
   lsdem_mat_vec(K, c->normal, Kn);
   lsdem_mat_vec(K, r->t1, K1);
@@ -97,24 +113,26 @@ static void project_cone(const double n[3], double mu, double P[3])
   for (int i = 0; i < 3; i++) P[i] = pn * n[i] + s * pt[i];
 }
 
-/* dP on the contact's two bodies; returns the kinetic energy it gives the moving ones:
- * dP . (u_a- + u_a+) / 2 - dP . (u_b- + u_b+) / 2, a wall's side left out (exact for an
- * impulse at a point on rigid bodies). */
+/* dP on the contact's two bodies (not on a frozen side); returns the kinetic energy it
+ * gives the moving ones: dP . (u_a- + u_a+) / 2 - dP . (u_b- + u_b+) / 2, a wall's or a
+ * frozen side left out (exact for an impulse at a point on rigid bodies). */
 static double apply_increment(lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
-                              const double dP[3])
+                              const double dP[3], int frozen)
 {
   const double minus[3] = {-dP[0], -dP[1], -dP[2]};
   lsdem_impulse_body *a = &bodies[c->a], *b = &bodies[c->b];
   double ua0[3], ub0[3], ua1[3], ub1[3];
   lsdem_impulse_point_velocity(a, c->point, ua0);
   lsdem_impulse_point_velocity(b, c->point, ub0);
-  lsdem_impulse_apply(a, c->point, dP);
-  lsdem_impulse_apply(b, c->point, minus);
+  if (frozen != FROZEN_A) lsdem_impulse_apply(a, c->point, dP);
+  if (frozen != FROZEN_B) lsdem_impulse_apply(b, c->point, minus);
   lsdem_impulse_point_velocity(a, c->point, ua1);
   lsdem_impulse_point_velocity(b, c->point, ub1);
   double w = 0.0;
-  if (!lsdem_impulse_body_is_wall(a)) w += 0.5 * (lsdem_dot3(dP, ua0) + lsdem_dot3(dP, ua1));
-  if (!lsdem_impulse_body_is_wall(b)) w -= 0.5 * (lsdem_dot3(dP, ub0) + lsdem_dot3(dP, ub1));
+  if (frozen != FROZEN_A && !lsdem_impulse_body_is_wall(a))
+    w += 0.5 * (lsdem_dot3(dP, ua0) + lsdem_dot3(dP, ua1));
+  if (frozen != FROZEN_B && !lsdem_impulse_body_is_wall(b))
+    w -= 0.5 * (lsdem_dot3(dP, ub0) + lsdem_dot3(dP, ub1));
   return w;
 }
 
@@ -146,7 +164,7 @@ static int friction_update(const row *r, const double p[2], const double u[2], d
  * its normal speed's distance from the target when it carries impulse or falls short of
  * the target, plus its slip when it sticks. */
 static double update_contact(lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
-                             const row *r, double P[3], double *work)
+                             const row *r, int frozen, double P[3], double *work)
 {
   const double *n = c->normal;
   double u[3];
@@ -161,7 +179,7 @@ static double update_contact(lsdem_impulse_body *bodies, const lsdem_impulse_con
   if (q[0] != pt[0] || q[1] != pt[1]) {
     double dP[3];
     for (int i = 0; i < 3; i++) dP[i] = (q[0] - pt[0]) * r->t1[i] + (q[1] - pt[1]) * r->t2[i];
-    *work += apply_increment(bodies, c, dP);
+    *work += apply_increment(bodies, c, dP, frozen);
     for (int i = 0; i < 3; i++) P[i] += dP[i];
   }
 
@@ -171,10 +189,91 @@ static double update_contact(lsdem_impulse_body *bodies, const lsdem_impulse_con
   if (pn1 != pn) {
     double dP[3];
     for (int i = 0; i < 3; i++) dP[i] = (pn1 - pn) * n[i];
-    *work += apply_increment(bodies, c, dP);
+    *work += apply_increment(bodies, c, dP, frozen);
     for (int i = 0; i < 3; i++) P[i] += dP[i];
   }
   return residual;
+}
+
+/* The shock sweep's scratch, carved from the workspace. */
+typedef struct {
+  int32_t *level, *queue, *start, *count, *adj, *order;
+} shock_ws;
+
+/* Levels of the bodies by breadth-first search over the resting contacts from the walls
+ * (level 0; a body no wall reaches: INT32_MAX), in body and contact order; then the
+ * contacts' order for the shock sweep: by the lower level of their two bodies (ties:
+ * their order in which). O(bodies + contacts). */
+static void shock_order(const lsdem_impulse_body *bodies, int nbodies,
+                        const lsdem_impulse_contact *contacts, const int32_t *which,
+                        int nwhich, const shock_ws *w)
+{
+  /* adjacency: contacts of each body (CSR) */
+  for (int i = 0; i <= nbodies; i++) w->start[i] = 0;
+  for (int k = 0; k < nwhich; k++) {
+    w->start[contacts[which[k]].a + 1]++;
+    w->start[contacts[which[k]].b + 1]++;
+  }
+  for (int i = 0; i < nbodies; i++) w->start[i + 1] += w->start[i];
+  for (int i = 0; i < nbodies; i++) w->count[i] = w->start[i];
+  for (int k = 0; k < nwhich; k++) {
+    const lsdem_impulse_contact *c = &contacts[which[k]];
+    w->adj[w->count[c->a]++] = k;
+    w->adj[w->count[c->b]++] = k;
+  }
+  /* breadth-first levels from the walls */
+  int head = 0, tail = 0;
+  for (int i = 0; i < nbodies; i++) {
+    w->level[i] = lsdem_impulse_body_is_wall(&bodies[i]) ? 0 : INT32_MAX;
+    if (w->level[i] == 0) w->queue[tail++] = i;
+  }
+  int32_t top = 0;
+  while (head < tail) {
+    const int32_t i = w->queue[head++];
+    for (int32_t e = w->start[i]; e < w->start[i + 1]; e++) {
+      const lsdem_impulse_contact *c = &contacts[which[w->adj[e]]];
+      const int32_t j = c->a == i ? c->b : c->a;
+      if (w->level[j] != INT32_MAX) continue;
+      w->level[j] = w->level[i] + 1;
+      if (w->level[j] > top) top = w->level[j];
+      w->queue[tail++] = j;
+    }
+  }
+  /* counting sort of the contacts by their lower level (stable); unreached ones last */
+  const int32_t nlev = top + 2;
+  for (int32_t l = 0; l <= nlev; l++) w->count[l] = 0;
+  for (int k = 0; k < nwhich; k++) {
+    const lsdem_impulse_contact *c = &contacts[which[k]];
+    const int32_t la = w->level[c->a], lb = w->level[c->b];
+    const int32_t low = la < lb ? la : lb;
+    w->count[(low == INT32_MAX ? nlev - 1 : low) + 1]++;
+  }
+  for (int32_t l = 0; l < nlev; l++) w->count[l + 1] += w->count[l];
+  for (int k = 0; k < nwhich; k++) {
+    const lsdem_impulse_contact *c = &contacts[which[k]];
+    const int32_t la = w->level[c->a], lb = w->level[c->b];
+    const int32_t low = la < lb ? la : lb;
+    w->order[w->count[low == INT32_MAX ? nlev - 1 : low]++] = k;
+  }
+}
+
+/* One Gauss-Seidel sweep in the shock order, the side nearer the walls frozen (Guendelman,
+ * Bridson & Fedkiw 2003; Erleben 2007): a stack stops in one sweep, whatever its height or
+ * mass ratios; contacts between bodies of one level, or no wall's, are updated as usual. */
+static void shock_sweep(lsdem_impulse_body *bodies, const lsdem_impulse_contact *contacts,
+                        const int32_t *which, const int32_t *order, int nwhich,
+                        const int32_t *level, const lsdem_resting_params *p,
+                        double (*impulse)[3], double *work)
+{
+  for (int n = 0; n < nwhich; n++) {
+    const int k = order[n];
+    const lsdem_impulse_contact *c = &contacts[which[k]];
+    const int32_t la = level[c->a], lb = level[c->b];
+    const int frozen = la < lb ? FROZEN_A : (lb < la ? FROZEN_B : FROZEN_NONE);
+    row r;
+    make_row(bodies, c, p, frozen, &r);
+    update_contact(bodies, c, &r, frozen, impulse[which[k]], work);
+  }
 }
 
 lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
@@ -194,10 +293,17 @@ lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
                       p->bias, p->warm);
   if (nwhich <= 0) return LSDEM_OK;
   char *base = (char *)(((uintptr_t)ws + 63) & ~(uintptr_t)63);
-  if (!ws || lsdem_resting_workspace_size(nwhich) > wsize)
+  if (!ws || lsdem_resting_workspace_size(nbodies, nwhich) > wsize)
     return lsdem_fail(err, LSDEM_ERR_NOMEM, "resting solve: workspace of %zu bytes, %zu needed",
-                      wsize, lsdem_resting_workspace_size(nwhich));
+                      wsize, lsdem_resting_workspace_size(nbodies, nwhich));
   row *rows = (row *)base;
+  shock_ws sw;
+  sw.level = (int32_t *)(base + align64((size_t)nwhich * sizeof(row)));
+  sw.queue = sw.level + nbodies;
+  sw.start = sw.queue + nbodies;     /* nbodies + 1 */
+  sw.count = sw.start + nbodies + 1; /* nbodies + 3 >= levels + 3 */
+  sw.adj = (int32_t *)((char *)sw.level + align64((4 * (size_t)nbodies + 4) * sizeof(int32_t)));
+  sw.order = sw.adj + 2 * (size_t)nwhich;
   for (int k = 0; k < nwhich; k++) {
     const int32_t w = which[k];
     if (w < 0 || w >= ncontacts)
@@ -207,7 +313,7 @@ lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
     if (c->a < 0 || c->a >= nbodies || c->b < 0 || c->b >= nbodies || c->a == c->b)
       return lsdem_fail(err, LSDEM_ERR_ARG, "resting solve: contact %d joins bodies %d, %d of %d",
                         w, c->a, c->b, nbodies);
-    make_row(bodies, c, p, &rows[k]);
+    make_row(bodies, c, p, FROZEN_NONE, &rows[k]);
   }
 
   /* warm start: last step's accumulated impulses, re-projected on this step's cones */
@@ -218,18 +324,22 @@ lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
     const lsdem_impulse_contact *c = &contacts[which[k]];
     project_cone(c->normal, c->mu, P);
     if (P[0] == 0.0 && P[1] == 0.0 && P[2] == 0.0) continue;
-    res->warm_work += apply_increment(bodies, c, P);
+    res->warm_work += apply_increment(bodies, c, P, FROZEN_NONE);
   }
 
   const double stop = p->tolerance * p->ref_speed;
   for (int s = 0; s < p->max_sweeps; s++) {
     double worst = 0.0;
     for (int k = 0; k < nwhich; k++)
-      worst = fmax(worst, update_contact(bodies, &contacts[which[k]], &rows[k],
+      worst = fmax(worst, update_contact(bodies, &contacts[which[k]], &rows[k], FROZEN_NONE,
                                          impulse[which[k]], &res->work));
     res->sweeps = s + 1;
     res->residual = worst;
     if (worst <= stop) break;
+  }
+  if (p->shock) {
+    shock_order(bodies, nbodies, contacts, which, nwhich, &sw);
+    shock_sweep(bodies, contacts, which, sw.order, nwhich, sw.level, p, impulse, &res->work);
   }
   res->work += res->warm_work;
   return LSDEM_OK;
