@@ -21,7 +21,7 @@ def last_frame(path):
         raise SystemExit("%s: no ITEM: ATOMS frame" % path)
     k = starts[-1]
     cols = lines[k].split()[2:]
-    n = int(lines[k - 7])
+    n = int(lines[k - 5])  # ITEM: NUMBER OF ATOMS, then n, then the box (4 lines)
     return cols, [dict(zip(cols, map(float, ln.split()))) for ln in lines[k + 1:k + 1 + n]]
 
 

@@ -28,9 +28,12 @@ enum { FROZEN_NONE = 0, FROZEN_A = 1, FROZEN_B = 2 };
  * normal row (1 / n.K.n) and of the tangential 2x2 block, and the normal speed to reach */
 typedef struct {
   double t1[3], t2[3];
-  double inv_knn;
-  double ktt_inv[3]; /* inverse of the tangential block, symmetric 2x2: t1t1, t1t2, t2t2 */
+  double knn, inv_knn;
+  double ktt[3];     /* the tangential block, symmetric 2x2: t1t1, t1t2, t2t2 */
+  double ktt_inv[3]; /* its inverse */
   double inv_kmax;   /* 1 / its largest eigenvalue */
+  double vx[3];      /* for the work on the moving sides: the point velocity of an
+                        excluded side (a wall, or frozen), +u_b or -u_a; else 0 */
   double target;
 } row;
 
@@ -82,8 +85,20 @@ static void make_row(const lsdem_impulse_body *bodies, const lsdem_impulse_conta
   lsdem_mat_vec(K, r->t1, K1);
   lsdem_mat_vec(K, r->t2, K2);
   const double knn = lsdem_dot3(c->normal, Kn);
+  r->knn = knn;
   r->inv_knn = knn > 0.0 ? 1.0 / knn : 0.0;
   const double a = lsdem_dot3(r->t1, K1), b = lsdem_dot3(r->t1, K2), d = lsdem_dot3(r->t2, K2);
+  r->ktt[0] = a;
+  r->ktt[1] = b;
+  r->ktt[2] = d;
+  const int a_out = frozen == FROZEN_A || lsdem_impulse_body_is_wall(&bodies[c->a]);
+  const int b_out = frozen == FROZEN_B || lsdem_impulse_body_is_wall(&bodies[c->b]);
+  r->vx[0] = r->vx[1] = r->vx[2] = 0.0;
+  if (b_out) lsdem_impulse_point_velocity(&bodies[c->b], c->point, r->vx);
+  if (a_out) {
+    lsdem_impulse_point_velocity(&bodies[c->a], c->point, r->vx);
+    for (int i = 0; i < 3; i++) r->vx[i] = -r->vx[i];
+  }
   const double det = a * d - b * b;
   const double kmax = 0.5 * (a + d) + sqrt(0.25 * (a - d) * (a - d) + b * b);
   r->inv_kmax = kmax > 0.0 ? 1.0 / kmax : 0.0;
@@ -136,6 +151,18 @@ static double apply_increment(lsdem_impulse_body *bodies, const lsdem_impulse_co
   return w;
 }
 
+/* dP on the contact's moving sides, its work from the row: dP . u + dP . K dP / 2 + dP . vx,
+ * u the relative velocity before it and KdP = dP . K dP given (the same exact work as
+ * apply_increment, without measuring velocities). */
+static double apply_row(lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
+                        const row *r, int frozen, const double dP[3], double dPu, double dPKdP)
+{
+  const double minus[3] = {-dP[0], -dP[1], -dP[2]};
+  if (frozen != FROZEN_A) lsdem_impulse_apply(&bodies[c->a], c->point, dP);
+  if (frozen != FROZEN_B) lsdem_impulse_apply(&bodies[c->b], c->point, minus);
+  return dPu + 0.5 * dPKdP + lsdem_dot3(dP, r->vx);
+}
+
 /* The contact's new tangential impulse (t1, t2 components) from its accumulated one p and
  * its slip u: the stick impulse, exact for the 2x2 tangential block of K, when it lies
  * within |q| <= cap; else a slide -- the slip's own direction, p - u / k_max (the largest
@@ -176,20 +203,24 @@ static double update_contact(lsdem_impulse_body *bodies, const lsdem_impulse_con
   const int sticks = friction_update(r, pt, ut, c->mu * (pn > 0.0 ? pn : 0.0), q);
   double residual = (pn > 0.0 || un < r->target) ? fabs(un - r->target) : 0.0;
   if (sticks) residual += sqrt(ut[0] * ut[0] + ut[1] * ut[1]);
+  double un1 = un;
   if (q[0] != pt[0] || q[1] != pt[1]) {
+    const double d1 = q[0] - pt[0], d2 = q[1] - pt[1];
     double dP[3];
-    for (int i = 0; i < 3; i++) dP[i] = (q[0] - pt[0]) * r->t1[i] + (q[1] - pt[1]) * r->t2[i];
-    *work += apply_increment(bodies, c, dP, frozen);
+    for (int i = 0; i < 3; i++) dP[i] = d1 * r->t1[i] + d2 * r->t2[i];
+    const double dPKdP = r->ktt[0] * d1 * d1 + 2.0 * r->ktt[1] * d1 * d2 + r->ktt[2] * d2 * d2;
+    *work += apply_row(bodies, c, r, frozen, dP, d1 * ut[0] + d2 * ut[1], dPKdP);
     for (int i = 0; i < 3; i++) P[i] += dP[i];
+    un1 = lsdem_impulse_normal_velocity(bodies, c);
   }
 
   /* normal: u_n to the target, the total kept >= 0 */
-  const double un1 = lsdem_impulse_normal_velocity(bodies, c);
   const double pn1 = fmax(pn + (r->target - un1) * r->inv_knn, 0.0);
   if (pn1 != pn) {
+    const double dpn = pn1 - pn;
     double dP[3];
-    for (int i = 0; i < 3; i++) dP[i] = (pn1 - pn) * n[i];
-    *work += apply_increment(bodies, c, dP, frozen);
+    for (int i = 0; i < 3; i++) dP[i] = dpn * n[i];
+    *work += apply_row(bodies, c, r, frozen, dP, dpn * un1, dpn * dpn * r->knn);
     for (int i = 0; i < 3; i++) P[i] += dP[i];
   }
   return residual;
