@@ -271,7 +271,7 @@ static void test_bias(void)
     c.depth = depths[k];
     double P[1][3] = {{0}};
     const int32_t which[1] = {0};
-    char ws[512];
+    char ws[2048];
     lsdem_resting_result res;
     lsdem_error err;
     CHECK(lsdem_resting_solve(b, 2, &c, 1, which, 1, P, 1, &p, ws, sizeof ws, &res, &err) ==
@@ -300,7 +300,7 @@ static void test_bad_input(void)
   lsdem_impulse_contact c = fx_contact(0, 0, zero, 0, 0, 1, 0.3, 0.0);
   double P[1][3] = {{0}};
   const int32_t which[1] = {0};
-  char ws[512];
+  char ws[2048];
   CHECK(lsdem_resting_solve(b, 2, &c, 1, which, 1, P, 1, &p, ws, sizeof ws, &res, &err) ==
             LSDEM_ERR_ARG,
         "a contact of a body with itself accepted");

@@ -24,10 +24,18 @@ void lsdem_resting_params_default(lsdem_resting_params *p)
  * nearer the walls, taken as of infinite mass. */
 enum { FROZEN_NONE = 0, FROZEN_A = 1, FROZEN_B = 2 };
 
-/* per contact in the workspace: a tangent basis, the inverse effective masses of the
- * normal row (1 / n.K.n) and of the tangential 2x2 block, and the normal speed to reach */
+/* per contact in the workspace: the contact's three directions (normal, two tangents) as
+ * Jacobian rows -- for direction d the arms r x d and their images I^-1 (r x d) on each
+ * side, with its inverse mass (all 0 on a wall or a frozen side) -- so that a relative
+ * velocity along d is d . (v_a - v_b) + (r_a x d) . w_a - (r_b x d) . w_b and an impulse
+ * along d changes v and w by those images: no point velocity, cross product or inertia
+ * product in the sweeps. Then K's normal and tangential blocks (eq 4.13) from the rows. */
+enum { DN = 0, DT1 = 1, DT2 = 2 };
 typedef struct {
-  double t1[3], t2[3];
+  double dir[3][3];   /* n, t1, t2 (world) */
+  double ra[3][3], rb[3][3];  /* r_a x d, r_b x d */
+  double ia[3][3], ib[3][3];  /* I_a^-1 (r_a x d), I_b^-1 (r_b x d); 0 when not moving */
+  double ma, mb;      /* inverse masses of the moving sides; 0 when not moving */
   double knn, inv_knn;
   double ktt[3];     /* the tangential block, symmetric 2x2: t1t1, t1t2, t2t2 */
   double ktt_inv[3]; /* its inverse */
@@ -70,46 +78,80 @@ static void tangents(const double n[3], double t1[3], double t2[3])
   lsdem_cross3(n, t1, t2);
 }
 
-/* The row of contact c: K (eq 4.13; with a frozen side, the other body's point response
- * alone) reduced to its normal and tangential blocks. */
+/* K's entry for directions d, e of the row: d . K e (eq 4.13 through the arms). */
+static double row_k(const row *r, int d, int e)
+{
+  return (r->ma + r->mb) * lsdem_dot3(r->dir[d], r->dir[e]) + lsdem_dot3(r->ra[d], r->ia[e]) +
+         lsdem_dot3(r->rb[d], r->ib[e]);
+}
+
+/* The row of contact c; a frozen side (or a wall) takes no impulse. */
 static void make_row(const lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
                      const lsdem_resting_params *p, int frozen, row *r)
 {
-  double K[9], Kn[3], K1[3], K2[3];
-  if (frozen == FROZEN_NONE)
-    lsdem_impulse_collision_matrix(&bodies[c->a], &bodies[c->b], c->point, K);
-  else
-    lsdem_impulse_point_response(&bodies[frozen == FROZEN_A ? c->b : c->a], c->point, K);
-  tangents(c->normal, r->t1, r->t2);
-  lsdem_mat_vec(K, c->normal, Kn);
-  lsdem_mat_vec(K, r->t1, K1);
-  lsdem_mat_vec(K, r->t2, K2);
-  const double knn = lsdem_dot3(c->normal, Kn);
-  r->knn = knn;
-  r->inv_knn = knn > 0.0 ? 1.0 / knn : 0.0;
-  const double a = lsdem_dot3(r->t1, K1), b = lsdem_dot3(r->t1, K2), d = lsdem_dot3(r->t2, K2);
-  r->ktt[0] = a;
-  r->ktt[1] = b;
-  r->ktt[2] = d;
-  const int a_out = frozen == FROZEN_A || lsdem_impulse_body_is_wall(&bodies[c->a]);
-  const int b_out = frozen == FROZEN_B || lsdem_impulse_body_is_wall(&bodies[c->b]);
-  r->vx[0] = r->vx[1] = r->vx[2] = 0.0;
-  if (b_out) lsdem_impulse_point_velocity(&bodies[c->b], c->point, r->vx);
-  if (a_out) {
-    lsdem_impulse_point_velocity(&bodies[c->a], c->point, r->vx);
-    for (int i = 0; i < 3; i++) r->vx[i] = -r->vx[i];
+  const lsdem_impulse_body *a = &bodies[c->a], *b = &bodies[c->b];
+  const int a_out = frozen == FROZEN_A || lsdem_impulse_body_is_wall(a);
+  const int b_out = frozen == FROZEN_B || lsdem_impulse_body_is_wall(b);
+  memcpy(r->dir[DN], c->normal, sizeof r->dir[DN]);
+  tangents(c->normal, r->dir[DT1], r->dir[DT2]);
+  double ra[3], rb[3];
+  lsdem_sub3(c->point, a->x, ra);
+  lsdem_sub3(c->point, b->x, rb);
+  r->ma = a_out ? 0.0 : a->inv_mass;
+  r->mb = b_out ? 0.0 : b->inv_mass;
+  for (int d = 0; d < 3; d++) {
+    lsdem_cross3(ra, r->dir[d], r->ra[d]);
+    lsdem_cross3(rb, r->dir[d], r->rb[d]);
+    if (a_out) memset(r->ia[d], 0, sizeof r->ia[d]);
+    else lsdem_mat_vec(a->inv_inertia, r->ra[d], r->ia[d]);
+    if (b_out) memset(r->ib[d], 0, sizeof r->ib[d]);
+    else lsdem_mat_vec(b->inv_inertia, r->rb[d], r->ib[d]);
   }
-  const double det = a * d - b * b;
-  const double kmax = 0.5 * (a + d) + sqrt(0.25 * (a - d) * (a - d) + b * b);
+  r->knn = row_k(r, DN, DN);
+  r->inv_knn = r->knn > 0.0 ? 1.0 / r->knn : 0.0;
+  const double ka = row_k(r, DT1, DT1), kb = row_k(r, DT1, DT2), kd = row_k(r, DT2, DT2);
+  r->ktt[0] = ka;
+  r->ktt[1] = kb;
+  r->ktt[2] = kd;
+  const double det = ka * kd - kb * kb;
+  const double kmax = 0.5 * (ka + kd) + sqrt(0.25 * (ka - kd) * (ka - kd) + kb * kb);
   r->inv_kmax = kmax > 0.0 ? 1.0 / kmax : 0.0;
-  if (det > 1e-14 * (a + d) * (a + d)) {
-    r->ktt_inv[0] = d / det;
-    r->ktt_inv[1] = -b / det;
-    r->ktt_inv[2] = a / det;
+  if (det > 1e-14 * (ka + kd) * (ka + kd)) {
+    r->ktt_inv[0] = kd / det;
+    r->ktt_inv[1] = -kb / det;
+    r->ktt_inv[2] = ka / det;
   } else {
     r->ktt_inv[0] = r->ktt_inv[1] = r->ktt_inv[2] = 0.0;
   }
+  r->vx[0] = r->vx[1] = r->vx[2] = 0.0;
+  if (b_out) lsdem_impulse_point_velocity(b, c->point, r->vx);
+  if (a_out) {
+    lsdem_impulse_point_velocity(a, c->point, r->vx);
+    for (int i = 0; i < 3; i++) r->vx[i] = -r->vx[i];
+  }
   r->target = lsdem_resting_target(p, c->depth);
+}
+
+/* The relative velocity of the contact along the row's direction d. */
+static double row_velocity(const row *r, const lsdem_impulse_body *a,
+                           const lsdem_impulse_body *b, int d)
+{
+  double dv[3];
+  lsdem_sub3(a->v, b->v, dv);
+  return lsdem_dot3(r->dir[d], dv) + lsdem_dot3(r->ra[d], a->omega) -
+         lsdem_dot3(r->rb[d], b->omega);
+}
+
+/* An impulse lambda along the row's direction d on a (and -lambda on b). */
+static void row_apply(const row *r, lsdem_impulse_body *a, lsdem_impulse_body *b, int d,
+                      double lambda)
+{
+  for (int i = 0; i < 3; i++) {
+    a->v[i] += r->ma * lambda * r->dir[d][i];
+    a->omega[i] += lambda * r->ia[d][i];
+    b->v[i] -= r->mb * lambda * r->dir[d][i];
+    b->omega[i] -= lambda * r->ib[d][i];
+  }
 }
 
 /* Coulomb's cone: the normal part of P kept >= 0, its tangential part clipped to mu times
@@ -151,18 +193,6 @@ static double apply_increment(lsdem_impulse_body *bodies, const lsdem_impulse_co
   return w;
 }
 
-/* dP on the contact's moving sides, its work from the row: dP . u + dP . K dP / 2 + dP . vx,
- * u the relative velocity before it and KdP = dP . K dP given (the same exact work as
- * apply_increment, without measuring velocities). */
-static double apply_row(lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
-                        const row *r, int frozen, const double dP[3], double dPu, double dPKdP)
-{
-  const double minus[3] = {-dP[0], -dP[1], -dP[2]};
-  if (frozen != FROZEN_A) lsdem_impulse_apply(&bodies[c->a], c->point, dP);
-  if (frozen != FROZEN_B) lsdem_impulse_apply(&bodies[c->b], c->point, minus);
-  return dPu + 0.5 * dPKdP + lsdem_dot3(dP, r->vx);
-}
-
 /* The contact's new tangential impulse (t1, t2 components) from its accumulated one p and
  * its slip u: the stick impulse, exact for the 2x2 tangential block of K, when it lies
  * within |q| <= cap; else a slide -- the slip's own direction, p - u / k_max (the largest
@@ -187,18 +217,18 @@ static int friction_update(const row *r, const double p[2], const double u[2], d
 /* One Gauss-Seidel update of contact c (row r, accumulated impulse P, world): friction
  * first (friction_update, within |P_t| <= mu P_n), then the normal impulse that brings u_n
  * to the target, added to P's normal part and kept >= 0 (the normal row last, as it
- * matters most: Box2D's order). Returns the residual the contact had before the update:
- * its normal speed's distance from the target when it carries impulse or falls short of
- * the target, plus its slip when it sticks. */
+ * matters most: Box2D's order). The work of each increment on the moving sides is exact:
+ * dP . u + dP . K dP / 2 + dP . vx, u the relative velocity before it. Returns the
+ * residual the contact had before the update: its normal speed's distance from the target
+ * when it carries impulse or falls short of the target, plus its slip when it sticks. */
 static double update_contact(lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
-                             const row *r, int frozen, double P[3], double *work)
+                             const row *r, double P[3], double *work)
 {
-  const double *n = c->normal;
-  double u[3];
-  const double un = lsdem_impulse_relative_velocity(bodies, c, u);
-  const double pn = lsdem_dot3(P, n);
-  const double ut[2] = {lsdem_dot3(u, r->t1), lsdem_dot3(u, r->t2)};
-  const double pt[2] = {lsdem_dot3(P, r->t1), lsdem_dot3(P, r->t2)};
+  lsdem_impulse_body *a = &bodies[c->a], *b = &bodies[c->b];
+  const double un = row_velocity(r, a, b, DN);
+  const double ut[2] = {row_velocity(r, a, b, DT1), row_velocity(r, a, b, DT2)};
+  const double pn = lsdem_dot3(P, r->dir[DN]);
+  const double pt[2] = {lsdem_dot3(P, r->dir[DT1]), lsdem_dot3(P, r->dir[DT2])};
   double q[2];
   const int sticks = friction_update(r, pt, ut, c->mu * (pn > 0.0 ? pn : 0.0), q);
   double residual = (pn > 0.0 || un < r->target) ? fabs(un - r->target) : 0.0;
@@ -207,21 +237,22 @@ static double update_contact(lsdem_impulse_body *bodies, const lsdem_impulse_con
   if (q[0] != pt[0] || q[1] != pt[1]) {
     const double d1 = q[0] - pt[0], d2 = q[1] - pt[1];
     double dP[3];
-    for (int i = 0; i < 3; i++) dP[i] = d1 * r->t1[i] + d2 * r->t2[i];
+    for (int i = 0; i < 3; i++) dP[i] = d1 * r->dir[DT1][i] + d2 * r->dir[DT2][i];
+    row_apply(r, a, b, DT1, d1);
+    row_apply(r, a, b, DT2, d2);
     const double dPKdP = r->ktt[0] * d1 * d1 + 2.0 * r->ktt[1] * d1 * d2 + r->ktt[2] * d2 * d2;
-    *work += apply_row(bodies, c, r, frozen, dP, d1 * ut[0] + d2 * ut[1], dPKdP);
+    *work += d1 * ut[0] + d2 * ut[1] + 0.5 * dPKdP + lsdem_dot3(dP, r->vx);
     for (int i = 0; i < 3; i++) P[i] += dP[i];
-    un1 = lsdem_impulse_normal_velocity(bodies, c);
+    un1 = row_velocity(r, a, b, DN);
   }
 
   /* normal: u_n to the target, the total kept >= 0 */
   const double pn1 = fmax(pn + (r->target - un1) * r->inv_knn, 0.0);
   if (pn1 != pn) {
     const double dpn = pn1 - pn;
-    double dP[3];
-    for (int i = 0; i < 3; i++) dP[i] = dpn * n[i];
-    *work += apply_row(bodies, c, r, frozen, dP, dpn * un1, dpn * dpn * r->knn);
-    for (int i = 0; i < 3; i++) P[i] += dP[i];
+    row_apply(r, a, b, DN, dpn);
+    *work += dpn * un1 + 0.5 * dpn * dpn * r->knn + dpn * lsdem_dot3(r->dir[DN], r->vx);
+    for (int i = 0; i < 3; i++) P[i] += dpn * r->dir[DN][i];
   }
   return residual;
 }
@@ -303,7 +334,7 @@ static void shock_sweep(lsdem_impulse_body *bodies, const lsdem_impulse_contact 
     const int frozen = la < lb ? FROZEN_A : (lb < la ? FROZEN_B : FROZEN_NONE);
     row r;
     make_row(bodies, c, p, frozen, &r);
-    update_contact(bodies, c, &r, frozen, impulse[which[k]], work);
+    update_contact(bodies, c, &r, impulse[which[k]], work);
   }
 }
 
@@ -362,7 +393,7 @@ lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
   for (int s = 0; s < p->max_sweeps; s++) {
     double worst = 0.0;
     for (int k = 0; k < nwhich; k++)
-      worst = fmax(worst, update_contact(bodies, &contacts[which[k]], &rows[k], FROZEN_NONE,
+      worst = fmax(worst, update_contact(bodies, &contacts[which[k]], &rows[k],
                                          impulse[which[k]], &res->work));
     res->sweeps = s + 1;
     res->residual = worst;
