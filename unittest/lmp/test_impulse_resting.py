@@ -12,7 +12,9 @@ split, the default; issue 33).
 - Newton's cradle (e = 1, five touching spheres, no gravity): the collision solve carries
   the momentum through the resting contacts to the last sphere, as the report's method.
 - A small sphere (mass ratio 1000) under a large one on the floor: neither sinks into the
-  floor, and the floor carries both weights within 1 %."""
+  floor, and the floor carries both weights within 1 %.
+- A column of 6 boxes (level-set grids, 120 surface nodes each) at 16 times the step of the
+  report's method's test does not walk sideways or turn (it did, at 2e-5 of a box per step)."""
 import os
 
 from impulse_decks import header, library
@@ -20,6 +22,7 @@ from lsdemtest import run_lmp, thermo, check, near, finish, shape_tool
 
 G, R = 9.81, 0.1
 BALL = library("ball.lslib", "sphere", R, nodes=20, analytic=True)
+BOX = library("block.lslib", "box", 0.5, 0.5, 0.25, nodes=120, spacing=0.05)
 TWO = "two.lslib"
 if not os.path.exists(TWO):
     library("small.lslib", "sphere", 0.05, nodes=20, analytic=True)
@@ -165,4 +168,29 @@ if check(rows, "mass ratio 1000 ran"):
                                             late[-1]["v_m"] * G, late[-1]["f_imp[23]"]))
     check(sink < 0.01 * 0.05, "the small sphere sinks %.3g of its radius" % (sink / 0.05))
     near(-late[-1]["f_floor[3]"], late[-1]["v_m"] * G, rtol=0.01, msg="floor carries both")
+# six boxes 1 x 1 x 0.5 stacked on the floor, friction 0.5, at dt 16e-3
+atoms = [(1, 0.0, 0.0, 0.25 + 0.5 * k - 1e-4 * (k + 1)) for k in range(6)]
+deck = (header(BOX, data("boxes", atoms, box="-3 3 xlo xhi\n-3 3 ylo yhi\n-1 6 zlo zhi\n"))
+        + "fix floor all wall/lsdem plane 0 0 0 0 0 1 1.0e4 0 0.5\n"
+        + "fix grav all gravity %r vector 0 0 -1\n" % G
+        + "fix imp all impulse/lsdem 0.5 0.5\ntimestep 16e-3\n"
+        + "variable x equal x[6]\nvariable y equal y[6]\nvariable z equal z[6]\n"
+        + "compute w all property/atom omegax omegay omegaz\n"
+        + "variable w2 atom c_w[1]^2+c_w[2]^2+c_w[3]^2\nvariable w equal sqrt(v_w2[6])\n"
+        + "variable m equal mass(all)\n"
+        + "thermo_style custom step v_x v_y v_z v_w v_m f_floor[3] f_imp[6]\n"
+        + "thermo_modify norm no format float %.15g\nthermo 50\nrun 1000\n")
+_, log = run_lmp(deck, cwd=os.path.abspath("boxes"))
+rows = thermo(log)
+if check(rows, "box column ran"):
+    late = rows[len(rows) // 2:]
+    walk = max(abs(r["v_x"] - late[0]["v_x"]) + abs(r["v_y"] - late[0]["v_y"]) for r in late)
+    print("box column: top box at (%.3g, %.3g), z %.9g .. %.9g, spin up to %.3g; floor force "
+          "%.6g (weight %.6g)" % (late[-1]["v_x"], late[-1]["v_y"], min(r["v_z"] for r in late),
+                                 max(r["v_z"] for r in late), max(r["v_w"] for r in late),
+                                 -late[-1]["f_floor[3]"], late[-1]["v_m"] * G))
+    check(walk < 1e-9, "the box column walks sideways: %g over the last 500 steps" % walk)
+    check(abs(late[-1]["v_x"]) + abs(late[-1]["v_y"]) < 0.01, "the top box settled off-centre")
+    check(max(r["v_w"] for r in late) < 1e-9, "the top box turns")
+    near(-late[-1]["f_floor[3]"], late[-1]["v_m"] * G, rtol=0.01, msg="box column: floor force")
 finish()
