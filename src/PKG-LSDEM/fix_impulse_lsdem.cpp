@@ -52,7 +52,7 @@ enum {
   V_ROUNDS, V_KE, V_ABSORBED, V_DISSIPATED, V_RELEASED, V_TOTAL_DISSIPATED, V_TOTAL_DAMPED,
   V_T_DETECT, V_T_ISLANDS, V_T_ETM, V_T_WALLS, V_T_COMM, V_DEPTH, V_WALL_DEPTH,
   V_RESTING, V_SWEEPS, V_ETM_ISLANDS, V_CONTACTS, V_PAIRS, V_PER_PAIR, V_RESTING_WORK,
-  V_CONTACT_WORK, V_SIZE
+  V_CONTACT_WORK, V_ETM_ROUNDS, V_SIZE
 };
 
 // relative round-off of a velocity below which an approach counts as none
@@ -423,6 +423,7 @@ void FixImpulseLsdem::resolve_islands(int pass)
   now.sweeps += st.sweeps;
   now.max_sweeps = std::max(now.max_sweeps, st.max_sweeps);
   now.etm_islands += st.etm_islands;
+  now.etm_rounds = std::max(now.etm_rounds, st.etm_rounds);
   now.largest = std::max(now.largest, st.largest);
   now.rounds = std::max(now.rounds, st.rounds);
   now.absorbed += st.absorbed;
@@ -960,7 +961,7 @@ void FixImpulseLsdem::reduce_output()
   max[8] = now.depth;
   max[9] = now.wall_depth;
   max[10] = now.max_sweeps;
-  max[11] = 0.0;
+  max[11] = now.etm_rounds;
   double s[21], m[12];
   MPI_Allreduce(sum, s, 21, MPI_DOUBLE, MPI_SUM, world);
   MPI_Allreduce(max, m, 12, MPI_DOUBLE, MPI_MAX, world);
@@ -993,6 +994,7 @@ void FixImpulseLsdem::reduce_output()
   reduced[V_PER_PAIR] = s[15] > 0.0 ? s[14] / s[15] : 0.0;
   reduced[V_RESTING_WORK] = s[16];
   reduced[V_CONTACT_WORK] = s[17];
+  reduced[V_ETM_ROUNDS] = m[11];
   reduced_step = update->ntimestep;
 }
 
@@ -1010,7 +1012,8 @@ void FixImpulseLsdem::reduce_output()
    ETM ran (all passes), 25 contacts (after gluing and the cap), 26 touching pairs
    (grain-grain and grain-wall), 27 contacts per pair, 28 work of the resting impulses
    and 29 the kinetic-energy change by all contact stages (this step; energy, negative
-   when dissipated). 13 is minus the sum of 29 since the start
+   when dissipated), 30 ETM compression-separation rounds (the most of any island). 13 is
+   minus the sum of 29 since the start
 ------------------------------------------------------------------------- */
 
 double FixImpulseLsdem::compute_vector(int n)

@@ -99,7 +99,7 @@ class FixImpulseLsdem : public Fix {
   struct Step {
     LsdemIslandStats first;   // the first pass's islands
     bigint iterations, sweeps;  // ETM iterations, resting sweeps x contacts, all passes
-    int largest, rounds, passes, corrections, collisions, max_sweeps, etm_islands;
+    int largest, rounds, passes, corrections, collisions, max_sweeps, etm_islands, etm_rounds;
     int resting, contacts, pairs;  // resting contacts, contacts (capped), touching pairs
     double absorbed, dissipated, released, resting_work, contact_work;
     double depth, wall_depth;  // deepest grain-grain and grain-wall penetration

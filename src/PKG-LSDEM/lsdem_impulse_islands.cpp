@@ -27,6 +27,7 @@ void LsdemIslandStats::clear()
 {
   iterations = sweeps = resting = contacts = 0;
   islands = cross = largest = rounds = etm_islands = max_sweeps = largest_contacts = 0;
+  etm_rounds = 0;
   absorbed = dissipated = released = truncated = resting_work = 0.0;
   t_islands = t_etm = t_comm = 0.0;
 }
@@ -494,6 +495,7 @@ std::string LsdemImpulseIslands::solve_island(const Item *it, int n,
   if (s != LSDEM_ERR_ARG) {
     st.iterations += res.etm.iterations;
     st.etm_islands += res.etm_ran;
+    st.etm_rounds = std::max(st.etm_rounds, res.etm.rounds);
     st.absorbed += res.etm.absorbed;
     st.dissipated += res.etm.dissipated;
     st.released += res.etm.released;

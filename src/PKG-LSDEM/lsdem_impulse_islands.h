@@ -52,7 +52,7 @@ struct LsdemImpulseContact {
 // what one pass did, summed (or the largest) over the islands this rank solved
 struct LsdemIslandStats {
   bigint iterations, sweeps;   // ETM group iterations; resting sweeps x contacts
-  int islands, cross, largest, rounds, etm_islands, max_sweeps, largest_contacts;
+  int islands, cross, largest, rounds, etm_islands, max_sweeps, largest_contacts, etm_rounds;
   bigint resting, contacts;    // resting contacts solved; contacts of the islands solved
   double absorbed, dissipated, released, truncated, resting_work;
   double t_islands, t_etm, t_comm;  // seconds
