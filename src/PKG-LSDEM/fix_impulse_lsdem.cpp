@@ -55,9 +55,6 @@ enum {
   V_CONTACT_WORK, V_ETM_ROUNDS, V_SIZE
 };
 
-// relative round-off of a velocity below which an approach counts as none
-static constexpr double ROUNDOFF = 1.0e-12;
-
 static const char USAGE[] = "fix ID group impulse/lsdem e mu [keyword value ...]";
 
 /* ---------------------------------------------------------------------- */
@@ -703,14 +700,8 @@ int FixImpulseLsdem::select_collisions()
   const double floor = etm.velocity_tol * wall_prm.rest_speed;
   int napproach = 0;
   for (LsdemImpulseContact &c : contacts) {
-    double ua[3], ub[3];
-    lsdem_impulse_point_velocity(&body[c.c.a], c.c.point, ua);
-    lsdem_impulse_point_velocity(&body[c.c.b], c.c.point, ub);
-    const double un = c.c.normal[0] * (ua[0] - ub[0]) + c.c.normal[1] * (ua[1] - ub[1]) +
-        c.c.normal[2] * (ua[2] - ub[2]);
-    const double noise = ROUNDOFF * (std::sqrt(ua[0] * ua[0] + ua[1] * ua[1] + ua[2] * ua[2]) +
-                                     std::sqrt(ub[0] * ub[0] + ub[1] * ub[1] + ub[2] * ub[2]));
-    const bool approaching = un < -std::max(floor, noise);
+    double un;
+    const bool approaching = lsdem_impulse_approaching(body.data(), &c.c, floor, &un);
     if (method == SPLIT) {  // every contact takes part; islands with work are solved
       c.approaching = c.resting || approaching;
       napproach += approaching && !c.resting;
@@ -778,7 +769,7 @@ int FixImpulseLsdem::correct_grain(int i, int w, const lsdem_pose &wp,
   if (lsdem_detect(avec->shape_of(i), &gp, &b.shape, &wp, &det,
                    update->ntimestep, nullptr, nullptr, &m) == 0)
     return 0;
-  limit_push_out(m, dt);
+  lsdem_wall_limit_push_out(&m, dt, wall_prm.rest_speed);
   lsdem_wall_result res;
   lsdem_error err;
   if (lsdem_wall_correct(&body[i], &m, dt, &prm, &res, &err) != LSDEM_OK)
@@ -794,35 +785,6 @@ int FixImpulseLsdem::correct_grain(int i, int w, const lsdem_pose &wp,
     atom->omega[i][d] = body[i].omega[d];
   }
   return 1;
-}
-
-/* ----------------------------------------------------------------------
-   The correction lifts the deepest point clear of the wall at the next step: from its
-   depth at the predicted pose d it raises the normal velocity u_n by d / dt, to d0 / dt,
-   d0 = d + u_n dt the overlap the grain has now. An overlap the grain did not make in this
-   step (a start from a penalty run's state, a grain placed into a wall: d0 far above the
-   resting speed times dt) would be thrown off at d0 / dt, faster than anything else in the
-   scene (a settled column's 0.005 at dt 1.7e-4: 30, where it fell at 0.002 per step). So
-   the lift is capped at the larger of the resting speed and sqrt(2 a d0), the speed of a fall
-   through the overlap under the external acceleration a (rest = 2 a dt): the kinetic
-   energy it gives is at most the work gravity would do over the overlap; the manifold's
-   depths are scaled so that u_n becomes that, and the rest of the overlap goes in the
-   next steps.
-------------------------------------------------------------------------- */
-
-void FixImpulseLsdem::limit_push_out(lsdem_manifold &m, double dt) const
-{
-  int k = 0;
-  for (int j = 1; j < m.n; j++)
-    if (m.point[j].depth > m.point[k].depth) k = j;
-  const lsdem_contact_point &p = m.point[k];
-  const double un = p.vrel[0] * p.normal[0] + p.vrel[1] * p.normal[1] + p.vrel[2] * p.normal[2];
-  const double d0 = std::max(p.depth + un * dt, 0.0);
-  const double rest = wall_prm.rest_speed, accel = rest / (2.0 * dt);
-  const double cap = std::max(rest, std::sqrt(2.0 * accel * d0));
-  if (!(d0 / dt > cap) || !(p.depth > 0.0)) return;
-  const double scale = std::max(cap - un, 0.0) * dt / p.depth;  // u_n + d' / dt = cap
-  for (int j = 0; j < m.n; j++) m.point[j].depth *= scale;
 }
 
 /* ----------------------------------------------------------------------

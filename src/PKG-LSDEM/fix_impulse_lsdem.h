@@ -132,7 +132,6 @@ class FixImpulseLsdem : public Fix {
   int correct_walls();
   int correct_grain(int i, int w, const lsdem_pose &wp, const lsdem_detect_params &det,
                     const lsdem_wall_params &prm);
-  void limit_push_out(lsdem_manifold &, double dt) const;
   void check_cfl();
   void damp_and_drift();
   lsdem_pose wall_pose_now(int w) const;

@@ -282,6 +282,44 @@ static void test_bias(void)
   }
 }
 
+/* The wall push-out cap: an overlap d0 made before this step leaves at most at
+ * sqrt(2 a d0) (a = rest / (2 dt)), the depths scaled to that; the approach test keeps
+ * round-off out. */
+static void test_push_out_and_approach(void)
+{
+  lsdem_contact_point pts[2];
+  memset(pts, 0, sizeof pts);
+  pts[0].depth = 0.01;
+  pts[1].depth = 0.004;
+  pts[0].normal[2] = pts[1].normal[2] = 1.0;
+  lsdem_manifold m = lsdem_manifold_over(pts, 2);
+  m.n = 2;
+  const double dt = 1e-3, rest = 2 * G * dt, cap = sqrt(2 * (rest / (2 * dt)) * 0.01);
+  lsdem_wall_limit_push_out(&m, dt, rest);
+  CHECK_NEAR(m.point[0].depth, cap * dt, 1e-15);
+  CHECK_NEAR(m.point[1].depth, 0.004 * cap * dt / 0.01, 1e-15);
+  pts[0].depth = 1e-6; /* made in this step: left alone */
+  pts[1].depth = 5e-7;
+  lsdem_wall_limit_push_out(&m, dt, rest);
+  CHECK_NEAR(m.point[0].depth, 1e-6, 0.0);
+
+  const double zero[3] = {0, 0, 0}, x[3] = {0, 0, 1}, v1[3] = {0, 0, -1e-13},
+               v2[3] = {0, 0, -1e-3};
+  lsdem_impulse_body b[2];
+  fx_wall(&b[1], -1, zero, zero);
+  fx_state s = fx_sphere(1, 0.5, x, v1);
+  fx_body_of(&s, &b[0]);
+  const double p0[3] = {0, 0, 0.5};
+  lsdem_impulse_contact c = fx_contact(0, 1, p0, 0, 0, 1, 0.0, 0.0);
+  double un;
+  b[0].v[0] = 1.0; /* |u| = 1: round-off 1e-12 */
+  CHECK(!lsdem_impulse_approaching(b, &c, 0.0, &un), "round-off counted as an approach");
+  CHECK_NEAR(un, -1e-13, 1e-20);
+  memcpy(b[0].v, v2, sizeof v2);
+  CHECK(lsdem_impulse_approaching(b, &c, 1e-4, &un), "an approach of 1e-3 above the floor 1e-4");
+  CHECK(!lsdem_impulse_approaching(b, &c, 2e-3, &un), "an approach below the floor");
+}
+
 static void test_bad_input(void)
 {
   lsdem_resting_params p;
@@ -321,6 +359,7 @@ int main(void)
   test_incline();
   test_energy_audit();
   test_bias();
+  test_push_out_and_approach();
   test_bad_input();
   return lsdem_test_summary();
 }

@@ -124,6 +124,11 @@ static inline double lsdem_impulse_relative_velocity(const lsdem_impulse_body *b
 /* u_n alone. */
 double lsdem_impulse_normal_velocity(const lsdem_impulse_body *bodies,
                                      const lsdem_impulse_contact *c);
+/* Whether contact c approaches: u_n (returned in *u_n) below -floor and below the round-off
+ * of its velocities, -1e-12 (|u_a| + |u_b|) (an island whose fastest approach is round-off
+ * would never converge to a tolerance relative to it). floor: velocity >= 0. */
+int lsdem_impulse_approaching(const lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
+                              double floor, double *u_n);
 
 /* Checks an island before a solve: 0 <= a, b < nbodies, a != b, not both walls, finite
  * positions, velocities and inverse inertias, inv_mass >= 0, unit normals (to 1e-6),
@@ -387,6 +392,18 @@ typedef enum {
 /* The low-relative-velocity criterion: u_n < -rest_speed colliding, u_n > rest_speed
  * separating, else resting. */
 lsdem_wall_contact_kind lsdem_wall_classify(double u_n, double rest_speed);
+
+/* The correction lifts the deepest point clear of the wall at the next step: from its
+ * depth d at the predicted pose it raises u_n by d / dt, to d0 / dt, d0 = d + u_n dt the
+ * overlap the grain has now. An overlap the grain did not make in this step (a start from
+ * a penalty run's state, a grain placed into a wall: d0 far above the resting speed times
+ * dt) would be thrown off at d0 / dt, faster than anything else in the scene. So the lift
+ * is capped at the larger of the resting speed and sqrt(2 a d0), the speed of a fall
+ * through the overlap under the external acceleration a = rest_speed / (2 dt): the kinetic
+ * energy it gives is at most the work gravity would do over the overlap. This scales the
+ * manifold's depths (m, at the predicted pose, arms about the predicted centroid) so that
+ * u_n becomes that cap; the rest of the overlap goes in the next steps. */
+void lsdem_wall_limit_push_out(lsdem_manifold *m, double dt, double rest_speed);
 
 typedef struct {
   lsdem_wall_contact_kind kind;

@@ -15,6 +15,22 @@ void lsdem_wall_params_default(lsdem_wall_params *p, double gravity, double dt, 
   p->mu = mu;
 }
 
+void lsdem_wall_limit_push_out(lsdem_manifold *m, double dt, double rest_speed)
+{
+  if (m->n == 0) return;
+  int k = 0;
+  for (int j = 1; j < m->n; j++)
+    if (m->point[j].depth > m->point[k].depth) k = j;
+  const lsdem_contact_point *p = &m->point[k];
+  const double un = lsdem_dot3(p->vrel, p->normal);
+  const double d0 = fmax(p->depth + un * dt, 0.0);
+  const double accel = rest_speed / (2.0 * dt);
+  const double cap = fmax(rest_speed, sqrt(2.0 * accel * d0));
+  if (!(d0 / dt > cap) || !(p->depth > 0.0)) return;
+  const double scale = fmax(cap - un, 0.0) * dt / p->depth; /* u_n + d' / dt = cap */
+  for (int j = 0; j < m->n; j++) m->point[j].depth *= scale;
+}
+
 lsdem_wall_contact_kind lsdem_wall_classify(double u_n, double rest_speed)
 {
   if (u_n < -rest_speed) return LSDEM_WALL_COLLIDING;
