@@ -7,17 +7,24 @@
    the pair style just detected contacts at (report Figure 4.4, core/impulse/lsdem_impulse.h):
      1. kick: v, omega += dt f/m, dt I^-1 torque (owned grains), sent to the ghosts;
      2. contacts: pair_style lsdem/impulse's manifolds and each grain's against each wall
-        at the current poses, glued (report §4.3.3);
-     3. passes, at most `passes` (report: 10): the collisions (grain pairs approaching,
-        walls approaching faster than the resting speed) resolved by ETM on islands
-        (lsdem_impulse_islands); then every grain against every wall at its predicted
-        pose, resting contacts corrected (report §4.4.1); a pass with no correction ends
-        the loop, otherwise the corrected velocities go to the ghosts and the collisions
-        they make are resolved in the next pass;
-     4. the CFL check, damping (eqs 4.44-4.46), drift (eqs 4.38, 4.40).
+        at the current poses, glued (report §4.3.3), at most `points` per pair
+        (lsdem_impulse_cap_contacts); method split: each classified resting (approaching
+        slower than the resting speed) or colliding, a resting one warm-started from the
+        grain's LsdemImpulseWarm entries;
+     3. passes, at most `passes` (report: 10): the islands solved (lsdem_impulse_islands,
+        core lsdem_island_solve) -- method split: resting contacts as constraints, then
+        collisions by ETM; method etm: the collisions (grain pairs approaching, walls
+        approaching faster than the resting speed) by ETM -- then every grain against
+        every wall at its predicted pose, resting contacts corrected (report §4.4.1; with
+        method split a guard that rarely acts); a pass with no correction ends the loop,
+        otherwise the corrected velocities go to the ghosts and the collisions they make
+        are resolved in the next pass;
+     4. the contacts' impulses kept per grain (split), the walls' forces reported, the CFL
+        check, damping (eqs 4.44-4.46), drift (eqs 4.38, 4.40).
    Positions and velocities are then those of the step's end, as thermo and dumps print
-   them. Nothing is carried between steps but the positions and velocities: a run
-   continued from a restart file is the uninterrupted run.
+   them. Between steps the fix carries the positions and velocities and (split) each
+   grain's resting impulses, in restart files too: a run continued from a restart file is
+   the uninterrupted run.
 ------------------------------------------------------------------------- */
 
 #include "fix_impulse_lsdem.h"

@@ -2,12 +2,13 @@
    LSDEM package: level-set discrete element method for LAMMPS.
 
    fix impulse/lsdem: impulse-based LS-DEM (report chapter 4). The time integrator of its
-   group (in place of fix nve/lsdem): external forces kick the velocities, the collisions
-   found by pair_style lsdem/impulse and against the fix wall/lsdem walls are resolved by
-   the Energy Tracking Method on contact islands (across ranks: lsdem_impulse_islands),
-   resting contacts with the walls are corrected at the predicted positions (report
-   §4.4.1), then damping and the symplectic Euler drift. The physics is the core's
-   (core/impulse); this file is the step's glue.
+   group (in place of fix nve/lsdem): external forces kick the velocities; the contacts
+   found by pair_style lsdem/impulse and against the fix wall/lsdem walls are solved on
+   contact islands (across ranks: lsdem_impulse_islands) -- method split (default): resting
+   contacts as warm-started constraints, collisions by the Energy Tracking Method; method
+   etm: the report's, every collision by ETM and resting wall contacts corrected at the
+   predicted positions (§4.4.1) -- then damping and the symplectic Euler drift. The physics
+   is the core's (core/impulse); this file is the step's glue.
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
