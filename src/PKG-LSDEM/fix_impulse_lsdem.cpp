@@ -393,7 +393,7 @@ void FixImpulseLsdem::final_integrate()
 
 void FixImpulseLsdem::resolve_islands(int pass)
 {
-  const int napproach = select_collisions();
+  const int napproach = select_collisions(pass);
   std::vector<LsdemImpulseContact> &list = method == SPLIT ? contacts : coll;
   lsdem_island_params ip;
   ip.etm = etm;
@@ -701,7 +701,7 @@ void FixImpulseLsdem::add_wall_contacts()
    approaching contacts.
 ------------------------------------------------------------------------- */
 
-int FixImpulseLsdem::select_collisions()
+int FixImpulseLsdem::select_collisions(int pass)
 {
   coll.clear();
   const double floor = etm.velocity_tol * wall_prm.rest_speed;
@@ -709,8 +709,10 @@ int FixImpulseLsdem::select_collisions()
   for (LsdemImpulseContact &c : contacts) {
     double un;
     const bool approaching = lsdem_impulse_approaching(body.data(), &c.c, floor, &un);
-    if (method == SPLIT) {  // every contact takes part; islands with work are solved
-      c.approaching = c.resting || approaching;
+    if (method == SPLIT) {  // every contact takes part; islands with work are solved: in
+      // the first pass those with a resting or an approaching contact, later only those
+      // that a wall correction made approach (the others' resting contacts are solved)
+      c.approaching = (pass == 0 && c.resting) || approaching;
       napproach += approaching && !c.resting;
       continue;
     }

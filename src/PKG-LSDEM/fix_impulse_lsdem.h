@@ -129,7 +129,7 @@ class FixImpulseLsdem : public Fix {
   void report_wall_resting();
   double group_kinetic_energy() const;
   void resolve_islands(int pass);
-  int select_collisions();
+  int select_collisions(int pass);
   int correct_walls();
   int correct_grain(int i, int w, const lsdem_pose &wp, const lsdem_detect_params &det,
                     const lsdem_wall_params &prm);
