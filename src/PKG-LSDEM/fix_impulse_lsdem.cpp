@@ -59,7 +59,7 @@ enum {
   V_ROUNDS, V_KE, V_ABSORBED, V_DISSIPATED, V_RELEASED, V_TOTAL_DISSIPATED, V_TOTAL_DAMPED,
   V_T_DETECT, V_T_ISLANDS, V_T_ETM, V_T_WALLS, V_T_COMM, V_DEPTH, V_WALL_DEPTH,
   V_RESTING, V_SWEEPS, V_ETM_ISLANDS, V_CONTACTS, V_PAIRS, V_PER_PAIR, V_RESTING_WORK,
-  V_CONTACT_WORK, V_ETM_ROUNDS, V_SIZE
+  V_CONTACT_WORK, V_ETM_ROUNDS, V_T_REST, V_SIZE
 };
 
 static const char USAGE[] = "fix ID group impulse/lsdem e mu [keyword value ...]";
@@ -72,6 +72,7 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
   rest_setting(-1.0), glue_setting(-1.0), glue_angle(15.0 * MY_PI / 180.0), cfl(0.5),
   cfl_stop(0), wall_etm(0), avec(nullptr), pair(nullptr), islands(nullptr), total_dissipated(0.0),
   total_damped(0.0), total_truncated(0.0), t_detect(0.0), t_islands(0.0), t_etm(0.0),
+  t_rest(0.0),
   t_walls(0.0), t_comm(0.0), pair_seconds0(0.0), reduced_step(-1), cfl_warned(false)
 {
   if (narg < 5) error->all(FLERR, "Illegal fix impulse/lsdem command: {}", USAGE);
@@ -332,7 +333,7 @@ void FixImpulseLsdem::set_glue()
 
 void FixImpulseLsdem::setup(int /*vflag*/)
 {
-  t_detect = t_islands = t_etm = t_walls = t_comm = 0.0;
+  t_detect = t_islands = t_etm = t_walls = t_comm = t_rest = 0.0;
   pair_seconds0 = pair->detect_seconds();
   memset(&now, 0, sizeof(now));
   reduced_step = -1;
@@ -436,7 +437,8 @@ void FixImpulseLsdem::resolve_islands(int pass)
   now.resting_work += st.resting_work;
   total_truncated += st.truncated;
   t_islands += st.t_islands;
-  t_etm += st.t_etm;
+  t_etm += st.t_etm - st.t_rest;
+  t_rest += st.t_rest;
   t_comm += st.t_comm;
   AtomVecLsdem::stop_if_any_rank(
       lmp, FLERR, mesg.empty() ? mesg : fmt::format(
@@ -898,7 +900,7 @@ double FixImpulseLsdem::kinetic_energy(int i) const
 void FixImpulseLsdem::reduce_output()
 {
   if (reduced_step == update->ntimestep) return;
-  double sum[21], max[12];
+  double sum[21], max[13];
   double ke = 0.0;
   for (int i = 0; i < atom->nlocal; i++)
     if (atom->mask[i] & groupbit) ke += kinetic_energy(i);
@@ -933,9 +935,10 @@ void FixImpulseLsdem::reduce_output()
   max[9] = now.wall_depth;
   max[10] = now.max_sweeps;
   max[11] = now.etm_rounds;
-  double s[21], m[12];
+  max[12] = t_rest;
+  double s[21], m[13];
   MPI_Allreduce(sum, s, 21, MPI_DOUBLE, MPI_SUM, world);
-  MPI_Allreduce(max, m, 12, MPI_DOUBLE, MPI_MAX, world);
+  MPI_Allreduce(max, m, 13, MPI_DOUBLE, MPI_MAX, world);
   reduced[V_ISLANDS] = s[0];
   reduced[V_CROSS] = s[1];
   reduced[V_ITERATIONS] = s[2];
@@ -966,6 +969,7 @@ void FixImpulseLsdem::reduce_output()
   reduced[V_RESTING_WORK] = s[16];
   reduced[V_CONTACT_WORK] = s[17];
   reduced[V_ETM_ROUNDS] = m[11];
+  reduced[V_T_REST] = m[12];
   reduced_step = update->ntimestep;
 }
 
@@ -983,7 +987,9 @@ void FixImpulseLsdem::reduce_output()
    ETM ran (all passes), 25 contacts (after gluing and the cap), 26 touching pairs
    (grain-grain and grain-wall), 27 contacts per pair, 28 work of the resting impulses
    and 29 the kinetic-energy change by all contact stages (this step; energy, negative
-   when dissipated), 30 ETM compression-separation rounds (the most of any island). 13 is
+   when dissipated), 30 ETM compression-separation rounds (the most of any island), 31
+   seconds since the run's setup in the resting solve (17: the islands' assembly and ETM,
+   without it). 13 is
    minus the sum of 29 since the start
 ------------------------------------------------------------------------- */
 

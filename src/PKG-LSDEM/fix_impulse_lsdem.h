@@ -108,6 +108,7 @@ class FixImpulseLsdem : public Fix {
   double total_dissipated, total_damped, total_truncated;  // this rank's share since start
   double ke_after_kick;      // this rank's grains' kinetic energy before the contacts act
   double t_detect, t_islands, t_etm, t_walls, t_comm;      // seconds since setup
+  double t_rest;                                           // of t_etm: resting stages
   double pair_seconds0;
   bigint reduced_step;
   double reduced[40];

@@ -56,6 +56,7 @@ struct LsdemIslandStats {
   bigint resting, contacts;    // resting contacts solved; contacts of the islands solved
   double absorbed, dissipated, released, truncated, resting_work;
   double t_islands, t_etm, t_comm;  // seconds
+  double t_rest;                    // of t_etm: the resting stage
   void clear();
 };
 

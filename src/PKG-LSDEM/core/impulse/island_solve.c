@@ -5,6 +5,7 @@
 
 #include <stdint.h>
 #include <string.h>
+#include <time.h>
 
 void lsdem_island_params_default(lsdem_island_params *p)
 {
@@ -15,6 +16,14 @@ void lsdem_island_params_default(lsdem_island_params *p)
 }
 
 static size_t align64(size_t n) { return (n + 63) & ~(size_t)63; }
+
+/* Wall-clock seconds (C11 timespec_get), for the stages' time split. */
+static double seconds_now(void)
+{
+  struct timespec ts;
+  timespec_get(&ts, TIME_UTC);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 size_t lsdem_island_workspace_size(int nbodies, int ncontacts)
 {
@@ -61,9 +70,11 @@ lsdem_status lsdem_island_solve(lsdem_impulse_body *bodies, int nbodies,
     if (resting[k]) which[nrest++] = k;
   res->nresting = nrest;
   if (nrest > 0) {
+    const double t0 = seconds_now();
     const lsdem_status st =
         lsdem_resting_solve(bodies, nbodies, contacts, ncontacts, which, nrest, impulse,
                             warm_start, &p->rest, rest_ws, rest_size, &res->rest, err);
+    res->rest_seconds = seconds_now() - t0;
     if (st != LSDEM_OK) return st;
   }
   /* stage 2: collisions, ETM over the whole island; the resting contacts a collision makes

@@ -529,6 +529,7 @@ typedef struct {
   int etm_ran;                /* 1: stage 2 ran */
   lsdem_resting_result rest;  /* stage 1 */
   lsdem_etm_result etm;       /* stage 2 (zero when it did not run) */
+  double rest_seconds;        /* wall-clock time of stage 1 */
 } lsdem_island_result;
 
 size_t lsdem_island_workspace_size(int nbodies, int ncontacts);
