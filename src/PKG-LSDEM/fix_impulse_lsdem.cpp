@@ -124,7 +124,7 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
                       "report's), not {}", val);
     } else if (key == "points") {
       max_points = strcmp(val, "all") == 0 ? 0 : utils::inumeric(FLERR, val, false, lmp);
-      if (max_points < 0)
+      if (max_points < 1 && strcmp(val, "all") != 0)
         error->all(FLERR, "fix impulse/lsdem: points = {} must be all or >= 1 (contacts kept "
                    "per pair after gluing)", val);
     } else if (key == "sweeps") {

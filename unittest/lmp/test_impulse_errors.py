@@ -39,6 +39,11 @@ refuses("iterations", "fix imp all impulse/lsdem 0.5 0.3 iterations 0\n",
 refuses("cfl_action", "fix imp all impulse/lsdem 0.5 0.3 cfl 0.5 maybe\n",
         ["cfl action", "warn or stop"])
 refuses("keyword", "fix imp all impulse/lsdem 0.5 0.3 bogus 1\n", ["unknown keyword bogus"])
+refuses("method", "fix imp all impulse/lsdem 0.5 0.3 method penalty\n",
+        ["method must be split", "or etm", "not penalty"])
+refuses("points", "fix imp all impulse/lsdem 0.5 0.3 points 0\n", ["points = 0", "all or >= 1"])
+refuses("sweeps", "fix imp all impulse/lsdem 0.5 0.3 sweeps 0\n", ["sweeps = 0", ">= 1"])
+refuses("bias", "fix imp all impulse/lsdem 0.5 0.3 bias 1.5\n", ["bias = 1.5", "[0, 1]"])
 refuses("twice", "fix imp all impulse/lsdem 0.5 0.3\n",
         ["fix nve (nve/lsdem, group all) also integrates 2 of its grains", "one time integrator"],
         pre="fix nve all nve/lsdem\n")
