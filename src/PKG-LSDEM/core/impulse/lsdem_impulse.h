@@ -507,11 +507,8 @@ lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
  *   1. resting contacts (resting[k] != 0; e = 0): lsdem_resting_solve, warm-started;
  *   2. collisions: when a colliding contact (resting[k] == 0) approaches faster than
  *      approach_floor, or a resting one still approaches faster than collide_speed (an
- *      impulse of this step made it collide), ETM (lsdem_etm_solve) over those contacts
- *      and every contact of their bodies (walls excepted), in island order; when the solve
- *      makes a contact outside collide, the contacts of its two bodies join and ETM runs
- *      again on the grown set, until none does (so a collision costs what it reaches, not
- *      the island). A resting contact takes its restitution only if the solve makes it
+ *      impulse of this step made it collide), ETM (lsdem_etm_solve) over all the island's
+ *      contacts; a resting contact takes its restitution only if the solve makes it
  *      approach faster than collide_speed (then a collision's impulse travels through a
  *      pile elastically: a Newton's cradle), else e = 0; a quiet island costs no ETM.
  * resting NULL: every contact is a collision (the report's method: ETM alone, and only
