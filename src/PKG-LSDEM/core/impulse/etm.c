@@ -89,14 +89,15 @@ static lsdem_status check_params(const lsdem_etm_params *p, lsdem_error *err)
   if (!(p->alpha >= 1.0) || !isfinite(p->alpha) || !(p->beta >= 0.0 && p->beta < 1.0) ||
       !(p->velocity_tol > 0.0 && p->velocity_tol < 1.0) ||
       !(p->energy_tol > 0.0 && p->energy_tol < 1.0) || p->max_iterations < 1 ||
-      p->max_rounds < 1 ||
+      p->max_rounds < 1 || !(p->min_approach >= 0.0) || !(p->resting_speed >= 0.0) ||
       (p->share != LSDEM_ETM_SHARE_BODIES && p->share != LSDEM_ETM_SHARE_GROUP))
     return lsdem_fail(
         err, LSDEM_ERR_ARG,
         "ETM parameters: alpha %g (>= 1), beta %g ([0, 1)), velocity_tol %g and "
-        "energy_tol %g ((0, 1)), caps %lld and %d (>= 1)",
+        "energy_tol %g ((0, 1)), caps %lld and %d (>= 1), min_approach %g and resting_speed "
+        "%g (>= 0)",
         p->alpha, p->beta, p->velocity_tol, p->energy_tol, (long long)p->max_iterations,
-        p->max_rounds);
+        p->max_rounds, p->min_approach, p->resting_speed);
   return LSDEM_OK;
 }
 

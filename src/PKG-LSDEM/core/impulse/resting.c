@@ -170,26 +170,24 @@ static void project_cone(const double n[3], double mu, double P[3])
   for (int i = 0; i < 3; i++) P[i] = pn * n[i] + s * pt[i];
 }
 
-/* dP on the contact's two bodies (not on a frozen side); returns the kinetic energy it
- * gives the moving ones: dP . (u_a- + u_a+) / 2 - dP . (u_b- + u_b+) / 2, a wall's or a
- * frozen side left out (exact for an impulse at a point on rigid bodies). */
-static double apply_increment(lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
-                              const double dP[3], int frozen)
+/* A whole impulse P (world) on the contact's moving sides through its row; returns its
+ * work, P . u + P . K P / 2 + P . vx with u the relative velocity before it and K from the
+ * row (the same exact work as the sweeps book per increment). */
+static double apply_total(lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
+                          const row *r, const double P[3])
 {
-  const double minus[3] = {-dP[0], -dP[1], -dP[2]};
   lsdem_impulse_body *a = &bodies[c->a], *b = &bodies[c->b];
-  double ua0[3], ub0[3], ua1[3], ub1[3];
-  lsdem_impulse_point_velocity(a, c->point, ua0);
-  lsdem_impulse_point_velocity(b, c->point, ub0);
-  if (frozen != FROZEN_A) lsdem_impulse_apply(a, c->point, dP);
-  if (frozen != FROZEN_B) lsdem_impulse_apply(b, c->point, minus);
-  lsdem_impulse_point_velocity(a, c->point, ua1);
-  lsdem_impulse_point_velocity(b, c->point, ub1);
-  double w = 0.0;
-  if (frozen != FROZEN_A && !lsdem_impulse_body_is_wall(a))
-    w += 0.5 * (lsdem_dot3(dP, ua0) + lsdem_dot3(dP, ua1));
-  if (frozen != FROZEN_B && !lsdem_impulse_body_is_wall(b))
-    w -= 0.5 * (lsdem_dot3(dP, ub0) + lsdem_dot3(dP, ub1));
+  double p[3], u[3];
+  for (int d = 0; d < 3; d++) {
+    p[d] = lsdem_dot3(P, r->dir[d]);
+    u[d] = row_velocity(r, a, b, d);
+  }
+  double w = lsdem_dot3(P, r->vx);
+  for (int d = 0; d < 3; d++) {
+    row_apply(r, a, b, d, p[d]);
+    w += p[d] * u[d];
+    for (int e = 0; e < 3; e++) w += 0.5 * p[d] * p[e] * row_k(r, d, e);
+  }
   return w;
 }
 
@@ -323,8 +321,8 @@ static void shock_order(const lsdem_impulse_body *bodies, int nbodies,
  * Bridson & Fedkiw 2003; Erleben 2007): a stack stops in one sweep, whatever its height or
  * mass ratios; contacts between bodies of one level, or no wall's, are updated as usual. */
 static void shock_sweep(lsdem_impulse_body *bodies, const lsdem_impulse_contact *contacts,
-                        const int32_t *which, const int32_t *order, int nwhich,
-                        const int32_t *level, const lsdem_resting_params *p,
+                        const int32_t *which, const row *rows, const int32_t *order,
+                        int nwhich, const int32_t *level, const lsdem_resting_params *p,
                         double (*impulse)[3], double *work)
 {
   for (int n = 0; n < nwhich; n++) {
@@ -332,6 +330,10 @@ static void shock_sweep(lsdem_impulse_body *bodies, const lsdem_impulse_contact 
     const lsdem_impulse_contact *c = &contacts[which[k]];
     const int32_t la = level[c->a], lb = level[c->b];
     const int frozen = la < lb ? FROZEN_A : (lb < la ? FROZEN_B : FROZEN_NONE);
+    if (frozen == FROZEN_NONE) { /* the sweeps' row holds: positions do not change */
+      update_contact(bodies, c, &rows[k], impulse[which[k]], work);
+      continue;
+    }
     row r;
     make_row(bodies, c, p, frozen, &r);
     update_contact(bodies, c, &r, impulse[which[k]], work);
@@ -379,14 +381,13 @@ lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
   }
 
   /* warm start: last step's accumulated impulses, re-projected on this step's cones */
-  for (int k = 0; k < nwhich; k++) {
+  for (int k = 0; warm_start && k < nwhich; k++) {
     double *P = impulse[which[k]];
-    if (!warm_start) continue;
     for (int i = 0; i < 3; i++) P[i] *= p->warm;
     const lsdem_impulse_contact *c = &contacts[which[k]];
     project_cone(c->normal, c->mu, P);
     if (P[0] == 0.0 && P[1] == 0.0 && P[2] == 0.0) continue;
-    res->warm_work += apply_increment(bodies, c, P, FROZEN_NONE);
+    res->warm_work += apply_total(bodies, c, &rows[k], P);
   }
 
   const double stop = p->tolerance * p->ref_speed;
@@ -401,7 +402,8 @@ lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
   }
   if (p->shock) {
     shock_order(bodies, nbodies, contacts, which, nwhich, &sw);
-    shock_sweep(bodies, contacts, which, sw.order, nwhich, sw.level, p, impulse, &res->work);
+    shock_sweep(bodies, contacts, which, rows, sw.order, nwhich, sw.level, p, impulse,
+                &res->work);
   }
   res->work += res->warm_work;
   return LSDEM_OK;
