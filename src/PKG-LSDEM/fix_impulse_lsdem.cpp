@@ -409,15 +409,10 @@ void FixImpulseLsdem::resolve_islands(int pass)
   const std::string mesg = islands->resolve(list.data(), (int) list.size(), body.data(),
                                             moving.data(), ip, pass == 0, st);
   // the collision impulses of this pass on the walls, as forces on them
-  const double to_force = -1.0 / (update->dt * force->ftm2v);
   for (LsdemImpulseContact &c : list) {
     if (c.j >= 0) continue;
-    double f[3];
-    for (int d = 0; d < 3; d++) {
-      f[d] = to_force * c.J[d];
-      c.J[d] = 0.0;
-    }
-    walls[-1 - c.j]->add_reaction(f);
+    push_on_wall(-1 - c.j, c.J);
+    c.J[0] = c.J[1] = c.J[2] = 0.0;
   }
   if (pass == 0) {
     now.first = st;
@@ -615,10 +610,28 @@ void FixImpulseLsdem::classify(LsdemImpulseContact &c, double glue)
   const double un = lsdem_impulse_normal_velocity(body.data(), &c.c);
   c.resting = un >= -wall_prm.rest_speed;
   if (!c.resting) return;
-  double r[3], xb[3];
+  double xb[3];
+  body_frame_point(c, xb);
+  warm.take(c.i, c.tb, xb, std::max(glue, 0.1 * atom->radius[c.i]), c.P);
+}
+
+/* contact c's point in the body frame of its owned grain c.i (at this step's pose) */
+
+void FixImpulseLsdem::body_frame_point(const LsdemImpulseContact &c, double xb[3]) const
+{
+  double r[3];
   for (int d = 0; d < 3; d++) r[d] = c.c.point[d] - atom->x[c.i][d];
   lsdem_quat_rotate_inv(avec->quat[c.i], r, xb);
-  warm.take(c.i, c.tb, xb, std::max(glue, 0.1 * atom->radius[c.i]), c.P);
+}
+
+/* the impulse given to a grain by wall w, as the force on the wall: -impulse / dt
+   (force units through ftm2v), into the wall's force output */
+
+void FixImpulseLsdem::push_on_wall(int w, const double impulse[3]) const
+{
+  const double to_force = -1.0 / (update->dt * force->ftm2v);
+  const double f[3] = {to_force * impulse[0], to_force * impulse[1], to_force * impulse[2]};
+  walls[w]->add_reaction(f);
 }
 
 /* ----------------------------------------------------------------------
@@ -629,13 +642,8 @@ void FixImpulseLsdem::classify(LsdemImpulseContact &c, double glue)
 
 void FixImpulseLsdem::report_wall_resting()
 {
-  const double to_force = -1.0 / (update->dt * force->ftm2v);
-  for (const LsdemImpulseContact &c : contacts) {
-    if (c.j >= 0 || !c.resting) continue;
-    double f[3];
-    for (int d = 0; d < 3; d++) f[d] = to_force * c.P[d];
-    walls[-1 - c.j]->add_reaction(f);
-  }
+  for (const LsdemImpulseContact &c : contacts)
+    if (c.j < 0 && c.resting) push_on_wall(-1 - c.j, c.P);
 }
 
 /* ----------------------------------------------------------------------
@@ -649,9 +657,8 @@ void FixImpulseLsdem::remember_contacts()
   for (int i = 0; i < atom->nlocal; i++) warm.begin(i);
   const double zero[3] = {0.0, 0.0, 0.0};
   for (const LsdemImpulseContact &c : contacts) {
-    double r[3], xb[3];
-    for (int d = 0; d < 3; d++) r[d] = c.c.point[d] - atom->x[c.i][d];
-    lsdem_quat_rotate_inv(avec->quat[c.i], r, xb);
+    double xb[3];
+    body_frame_point(c, xb);
     warm.add(c.i, c.tb, xb, c.resting ? c.P : zero);
   }
   maxexchange = 1 + LsdemImpulseWarm::DOUBLES * warm.largest();
@@ -787,10 +794,7 @@ int FixImpulseLsdem::correct_grain(int i, int w, const lsdem_pose &wp,
     error->one(FLERR, "Fix impulse/lsdem: step {}, grain {}, wall {}: {}",
                update->ntimestep, atom->tag[i], walls[w]->id, err.msg);
   if (res.kind != LSDEM_WALL_RESTING) return 0;
-  const double to_force = -1.0 / (dt * force->ftm2v);
-  const double f[3] = {to_force * res.impulse[0], to_force * res.impulse[1],
-                       to_force * res.impulse[2]};
-  walls[w]->add_reaction(f);
+  push_on_wall(w, res.impulse);
   for (int d = 0; d < 3; d++) {
     atom->v[i][d] = body[i].v[d];
     atom->omega[i][d] = body[i].omega[d];

@@ -128,6 +128,8 @@ class FixImpulseLsdem : public Fix {
   void classify(LsdemImpulseContact &c, double glue);
   void remember_contacts();
   void report_wall_resting();
+  void push_on_wall(int w, const double impulse[3]) const;
+  void body_frame_point(const LsdemImpulseContact &c, double xb[3]) const;
   double group_kinetic_energy() const;
   void resolve_islands(int pass);
   int select_collisions(int pass);
