@@ -14,6 +14,21 @@
 
 static const double G = 9.81;
 
+/* lsdem_resting_solve over all nc contacts in the order of which, warm-started, with its
+ * workspace from the heap; checks it succeeds. */
+static void solve_all(lsdem_impulse_body *b, int nb, const lsdem_impulse_contact *c, int nc,
+                      const int32_t *which, double (*P)[3], const lsdem_resting_params *p,
+                      lsdem_resting_result *res)
+{
+  const size_t wsize = lsdem_resting_workspace_size(nb, nc);
+  void *ws = malloc(wsize);
+  lsdem_error err;
+  CHECK(lsdem_resting_solve(b, nb, c, nc, which, nc, P, 1, p, ws, wsize, res, &err) ==
+            LSDEM_OK,
+        "%s", err.msg);
+  free(ws);
+}
+
 typedef struct {
   int n;
   fx_state *s;
@@ -159,16 +174,11 @@ static double incline(double theta_deg, double mu, double dt, double T)
   prm.ref_speed = 2.0 * G * dt;
   prm.tolerance = 1e-9;
   prm.max_sweeps = 1000;
-  const size_t wsize = lsdem_resting_workspace_size(2, 4);
-  void *ws = malloc(wsize);
   lsdem_resting_result res;
-  lsdem_error err;
   const int steps = (int)lround(T / dt);
   for (int step = 0; step < steps; step++) {
     b[0].v[2] -= G * dt;
-    CHECK(lsdem_resting_solve(b, 2, c, 4, which, 4, P, 1, &prm, ws, wsize, &res, &err) ==
-              LSDEM_OK,
-          "%s", err.msg);
+    solve_all(b, 2, c, 4, which, P, &prm, &res);
     for (int k = 0; k < 4; k++) { /* the cone holds for the totals */
       const double pn = lsdem_dot3(P[k], n);
       double pt[3];
@@ -177,7 +187,6 @@ static double incline(double theta_deg, double mu, double dt, double T)
             "contact %d outside the cone: pn %g |pt| %g", k, pn, sqrt(lsdem_dot3(pt, pt)));
     }
   }
-  free(ws);
   CHECK(fabs(lsdem_dot3(b[0].v, n)) < 1e-9, "incline %g: normal speed %g", theta_deg,
         lsdem_dot3(b[0].v, n));
   CHECK(sqrt(lsdem_dot3(b[0].omega, b[0].omega)) < 1e-9, "incline %g: it turns, |omega| %g",
@@ -232,14 +241,8 @@ static void test_energy_audit(void)
     p.slop = 0.002;
     p.max_push = 1.0;
     p.max_sweeps = 7;
-    const size_t wsize = lsdem_resting_workspace_size(NB + 1, NC);
-    void *ws = malloc(wsize);
     lsdem_resting_result res;
-    lsdem_error err;
-    CHECK(lsdem_resting_solve(b, NB + 1, c, NC, which, NC, P, 1, &p, ws, wsize, &res, &err) ==
-              LSDEM_OK,
-          "%s", err.msg);
-    free(ws);
+    solve_all(b, NB + 1, c, NC, which, P, &p, &res);
     for (int k = 0; k < NB; k++) after += fx_kinetic(&s[k], &b[k]);
     CHECK(fabs((after - before) - res.work) <= 1e-9 * before,
           "trial %d: dKE %.17g, booked %.17g", trial, after - before, res.work);
@@ -271,12 +274,8 @@ static void test_bias(void)
     c.depth = depths[k];
     double P[1][3] = {{0}};
     const int32_t which[1] = {0};
-    char ws[2048];
     lsdem_resting_result res;
-    lsdem_error err;
-    CHECK(lsdem_resting_solve(b, 2, &c, 1, which, 1, P, 1, &p, ws, sizeof ws, &res, &err) ==
-              LSDEM_OK,
-          "%s", err.msg);
+    solve_all(b, 2, &c, 1, which, P, &p, &res);
     CHECK_NEAR(b[0].v[2], want[k], 1e-12);
     CHECK_NEAR(lsdem_resting_target(&p, depths[k]), want[k], 1e-12);
   }

@@ -40,21 +40,27 @@ def data(name, atoms, box="-2 2 xlo xhi\n-2 2 ylo yhi\n-1 12 zlo zhi\n", types=1
     return path
 
 
+def on_floor(name, lib, data_path, dt, variables, columns, every, steps):
+    """Grains under gravity on a floor (friction 0.5), impulse method e = mu = 0.5 with the
+    fix's defaults; variables: deck lines; columns: thermo columns. The thermo rows."""
+    deck = (header(lib, data_path)
+            + "fix floor all wall/lsdem plane 0 0 0 0 0 1 1.0e4 0 0.5\n"
+            + "fix grav all gravity %r vector 0 0 -1\n" % G
+            + "fix imp all impulse/lsdem 0.5 0.5\ntimestep %r\n" % dt
+            + variables + "variable m equal mass(all)\n"
+            + "thermo_style custom step %s\n" % columns
+            + "thermo_modify norm no format float %%.15g\nthermo %d\nrun %d\n" % (every, steps))
+    _, log = run_lmp(deck, cwd=os.path.abspath(name))
+    return thermo(log)
+
+
 def column(L, dt, steps):
     eps = 1e-6  # each contact starts slightly overlapped, so it is found at step 0
     atoms = [(1, 0.0, 0.0, R - eps + k * (2 * R - eps)) for k in range(L)]
     name = "column%d_dt%g" % (L, dt)
-    deck = (header(BALL, data(name, atoms))
-            + "fix floor all wall/lsdem plane 0 0 0 0 0 1 1.0e4 0 0.5\n"
-            + "fix grav all gravity %r vector 0 0 -1\n" % G
-            + "fix imp all impulse/lsdem 0.5 0.5\ntimestep %r\n" % dt
-            + "variable top equal z[%d]\nvariable m equal mass(all)\n" % L
-            + "thermo_style custom step ke v_top v_m f_floor[3] f_imp[22] f_imp[23] f_imp[24] "
-              "f_imp[6] f_imp[29]\n"
-            + "thermo_modify norm no format float %%.15g\nthermo %d\nrun %d\n"
-            % (steps // 20, steps))
-    _, log = run_lmp(deck, cwd=os.path.abspath(name))
-    return thermo(log)
+    return on_floor(name, BALL, data(name, atoms), dt, "variable top equal z[%d]\n" % L,
+                    "ke v_top v_m f_floor[3] f_imp[22] f_imp[23] f_imp[24] f_imp[6] f_imp[29]",
+                    steps // 20, steps)
 
 
 sweeps = {}
@@ -151,15 +157,8 @@ if check(rows and ref, "cradle ran"):
 
 # mass ratio 1000: a small sphere (r 0.05) under a large one (r 0.5) on the floor
 atoms = [(1, 0.0, 0.0, 0.05 - 1e-6), (2, 0.0, 0.0, 0.1 + 0.5 - 3e-6)]
-deck = (header(TWO, data("ratio", atoms, types=1))
-        + "fix floor all wall/lsdem plane 0 0 0 0 0 1 1.0e4 0 0.5\n"
-        + "fix grav all gravity %r vector 0 0 -1\n" % G
-        + "fix imp all impulse/lsdem 0.5 0.5\ntimestep 1e-3\n"
-        + "variable zs equal z[1]\nvariable m equal mass(all)\n"
-        + "thermo_style custom step v_zs v_m f_floor[3] f_imp[23]\n"
-        + "thermo_modify norm no format float %.15g\nthermo 100\nrun 2000\n")
-_, log = run_lmp(deck, cwd=os.path.abspath("ratio"))
-rows = thermo(log)
+rows = on_floor("ratio", TWO, data("ratio", atoms), 1e-3, "variable zs equal z[1]\n",
+                "v_zs v_m f_floor[3] f_imp[23]", 100, 2000)
 if check(rows, "mass ratio 1000 ran"):
     late = rows[len(rows) // 2:]
     sink = max(0.05 - r["v_zs"] for r in late)
@@ -170,18 +169,11 @@ if check(rows, "mass ratio 1000 ran"):
     near(-late[-1]["f_floor[3]"], late[-1]["v_m"] * G, rtol=0.01, msg="floor carries both")
 # six boxes 1 x 1 x 0.5 stacked on the floor, friction 0.5, at dt 16e-3
 atoms = [(1, 0.0, 0.0, 0.25 + 0.5 * k - 1e-4 * (k + 1)) for k in range(6)]
-deck = (header(BOX, data("boxes", atoms, box="-3 3 xlo xhi\n-3 3 ylo yhi\n-1 6 zlo zhi\n"))
-        + "fix floor all wall/lsdem plane 0 0 0 0 0 1 1.0e4 0 0.5\n"
-        + "fix grav all gravity %r vector 0 0 -1\n" % G
-        + "fix imp all impulse/lsdem 0.5 0.5\ntimestep 16e-3\n"
-        + "variable x equal x[6]\nvariable y equal y[6]\nvariable z equal z[6]\n"
-        + "compute w all property/atom omegax omegay omegaz\n"
-        + "variable w2 atom c_w[1]^2+c_w[2]^2+c_w[3]^2\nvariable w equal sqrt(v_w2[6])\n"
-        + "variable m equal mass(all)\n"
-        + "thermo_style custom step v_x v_y v_z v_w v_m f_floor[3] f_imp[6]\n"
-        + "thermo_modify norm no format float %.15g\nthermo 50\nrun 1000\n")
-_, log = run_lmp(deck, cwd=os.path.abspath("boxes"))
-rows = thermo(log)
+rows = on_floor("boxes", BOX, data("boxes", atoms, box="-3 3 xlo xhi\n-3 3 ylo yhi\n-1 6 zlo zhi\n"),
+                16e-3, "variable x equal x[6]\nvariable y equal y[6]\nvariable z equal z[6]\n"
+                "compute w all property/atom omegax omegay omegaz\n"
+                "variable w2 atom c_w[1]^2+c_w[2]^2+c_w[3]^2\nvariable w equal sqrt(v_w2[6])\n",
+                "v_x v_y v_z v_w v_m f_floor[3] f_imp[6]", 50, 1000)
 if check(rows, "box column ran"):
     late = rows[len(rows) // 2:]
     walk = max(abs(r["v_x"] - late[0]["v_x"]) + abs(r["v_y"] - late[0]["v_y"]) for r in late)
@@ -190,6 +182,8 @@ if check(rows, "box column ran"):
                                  max(r["v_z"] for r in late), max(r["v_w"] for r in late),
                                  -late[-1]["f_floor[3]"], late[-1]["v_m"] * G))
     check(walk < 1e-9, "the box column walks sideways: %g over the last 500 steps" % walk)
+    # a tolerance, not a derived bound: the top box within 1 % of its width of the axis
+    # (the first steps' node-level asymmetry moves it there: 0.007 measured)
     check(abs(late[-1]["v_x"]) + abs(late[-1]["v_y"]) < 0.01, "the top box settled off-centre")
     check(max(r["v_w"] for r in late) < 1e-9, "the top box turns")
     near(-late[-1]["f_floor[3]"], late[-1]["v_m"] * G, rtol=0.01, msg="box column: floor force")
