@@ -564,9 +564,10 @@ void FixImpulseLsdem::add_glued(int i, int j, tagint ta, tagint tb, int bindex,
   lsdem_glue_params gp;
   gp.distance = glue;
   gp.max_angle = glue_angle;
-  if ((int) glued.size() < m.n) {
+  if ((int) glued.size() < m.n) {  // the scratch of gluing and of the cap: m.n each
     glued.resize(m.n);
     group.resize(m.n);
+    kept.resize(m.n);
   }
   lsdem_error err;
   int n = lsdem_impulse_glue(&m, i, bindex, mu, restitution, &gp, glued.data(),
@@ -654,7 +655,7 @@ void FixImpulseLsdem::report_wall_resting()
 void FixImpulseLsdem::remember_contacts()
 {
   if (method != SPLIT) return;
-  for (int i = 0; i < atom->nlocal; i++) warm.begin(i);
+  for (int i = 0; i < atom->nlocal; i++) warm.clear(i);
   const double zero[3] = {0.0, 0.0, 0.0};
   for (const LsdemImpulseContact &c : contacts) {
     double xb[3];

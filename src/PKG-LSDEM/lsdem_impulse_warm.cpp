@@ -41,11 +41,6 @@ bool LsdemImpulseWarm::take(int i, tagint partner, const double xb[3], double ra
   return true;
 }
 
-void LsdemImpulseWarm::begin(int i)
-{
-  entries[i].clear();
-}
-
 void LsdemImpulseWarm::add(int i, tagint partner, const double xb[3], const double P[3])
 {
   Entry e;

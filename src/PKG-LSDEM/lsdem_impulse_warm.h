@@ -33,8 +33,7 @@ class LsdemImpulseWarm {
   // take(i, partner, xb, radius, P): the impulse of the nearest entry not yet taken
   // this step within radius of the body-frame point xb (P = 0 and false when none).
   bool take(int i, tagint partner, const double xb[3], double radius, double P[3]);
-  // The step's contacts of grain i replace its entries: begin(i), then add(...) per contact.
-  void begin(int i);
+  // The step's contacts of grain i replace its entries: clear(i), then add(...) per contact.
   void add(int i, tagint partner, const double xb[3], const double P[3]);
 
   int pack(int i, double *buf) const;    // returns the doubles written: 1 + DOUBLES n
