@@ -1,5 +1,5 @@
 /* cap.c -- at most a few contacts per pair (issue 33, item 4): the deepest, then those
- * spanning the contact area. The rule is in cap.h (lsdem_impulse_cap_contacts).
+ * spanning the contact area. The rule is in lsdem_impulse.h (lsdem_impulse_cap_contacts).
  *
  * Bookkeeping, in the caller's scratch of n int32: scratch[i] is the kept contact nearest
  * to contact i (in the plane), so scratch[i] == i exactly when i is kept. Each pick updates
@@ -71,7 +71,7 @@ typedef struct {
   double orient;
 } cap_state;
 
-/* Score of a candidate as the next pick, larger better (rules 2-5, cap.h); spread2 is its
+/* Score of a candidate as the next pick, larger better (rules 2-5, lsdem_impulse.h); spread2 is its
  * squared distance to the kept set. */
 static double pick_score(const cap_state *s, const double q[3], double spread2)
 {
