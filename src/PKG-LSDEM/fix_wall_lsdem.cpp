@@ -44,6 +44,7 @@ static constexpr tagint WALL_PARTNER = -1;
 
 FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), nlanes(1), ncand(0), fix_history(nullptr), avec(nullptr),
+  band_file(nullptr),
   fall_valid(0), moving(false), passive(false), contact_step(-1), cand(nullptr), maxcand(0),
   cand_nlocal(0), cand_built(-1)
 {
@@ -51,8 +52,9 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
     vstr[d] = nullptr;
     vvar[d] = -1;
   }
-  const char *usage = "fix wall/lsdem plane px py pz nx ny nz kn ks mu [keywords] or "
-                      "fix wall/lsdem cylinder c1 c2 R kn ks mu [keywords]";
+  const char *usage = "fix wall/lsdem plane px py pz nx ny nz kn ks mu [keywords], "
+                      "fix wall/lsdem cylinder c1 c2 R kn ks mu [keywords] or "
+                      "fix wall/lsdem mesh|terrain FILE kn ks mu [keywords]";
   if (narg < 4) error->all(FLERR, "Illegal fix wall/lsdem command: {}", usage);
 
   vector_flag = 1;
@@ -69,11 +71,13 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   int iarg;
   double geom[6];
   const bool plane = strcmp(arg[3], "plane") == 0, cylinder = strcmp(arg[3], "cylinder") == 0;
+  const bool band = strcmp(arg[3], "mesh") == 0 || strcmp(arg[3], "terrain") == 0;
   if (plane) iarg = 10;
   else if (cylinder) iarg = 7;
+  else if (band) iarg = 5;
   else error->all(FLERR, "fix wall/lsdem: unknown wall {} ({})", arg[3], usage);
   if (narg < iarg + 3) error->all(FLERR, "Illegal fix wall/lsdem command: {}", usage);
-  for (int k = 4; k < iarg; k++)
+  for (int k = 4; k < iarg && !band; k++)
     geom[k - 4] = LsdemInput::number(FLERR, arg[k], "fix wall/lsdem", "the wall geometry", lmp);
   opts.read_stiffness(lmp, "fix wall/lsdem", arg + iarg);
   iarg += 3;
@@ -114,14 +118,35 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   // plane: point, normal; cylinder: the axis' coordinates in the other two directions
   // (x,y,z order), radius
   lsdem_error err;
-  lsdem_status st = plane ? lsdem_boundary_plane(&bnd, geom, geom + 3, &err)
-                          : lsdem_boundary_cylinder(&bnd, axis, geom, geom[2], &err);
+  lsdem_status st = LSDEM_OK;
+  if (band) open_band(arg[3], arg[4]);
+  else if (plane) st = lsdem_boundary_plane(&bnd, geom, geom + 3, &err);
+  else st = lsdem_boundary_cylinder(&bnd, axis, geom, geom[2], &err);
   if (st == LSDEM_OK && pivot)
     st = lsdem_boundary_pivot(&bnd, pivot_prm[0], pivot_prm[1], pivot_prm[2], &err);
   if (st != LSDEM_OK) error->all(FLERR, "fix wall/lsdem: {}", err.msg);
   for (int d = 0; d < 3; d++) bnd.pose.v[d] = vel[d];
   flocal[0] = flocal[1] = flocal[2] = 0.0;
   fall[0] = fall[1] = fall[2] = 0.0;
+}
+
+/* ----------------------------------------------------------------------
+   mesh or terrain FILE: the band file (lsdem-shape wall / terrain), mapped read-only
+   (ranks on one machine share it through the page cache); the keyword must name what
+   the file was made from
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::open_band(const std::string &kind, const char *path)
+{
+  lsdem_error err;
+  if (lsdem_band_open(path, &band_file, &err) != LSDEM_OK)
+    error->all(FLERR, "fix wall/lsdem {}: {}", kind, err.msg);
+  const bool terrain = lsdem_band_file_source(band_file) == LSDEM_BAND_TERRAIN;
+  if (terrain != (kind == "terrain"))
+    error->all(FLERR, "fix wall/lsdem {} {}: the file was made from a {} (lsdem-shape {}): "
+               "write fix wall/lsdem {} {}", kind, path, terrain ? "height map" : "mesh",
+               terrain ? "terrain" : "wall", terrain ? "terrain" : "mesh", path);
+  lsdem_boundary_band(&bnd, lsdem_band_file_band(band_file));
 }
 
 /* ----------------------------------------------------------------------
@@ -148,6 +173,7 @@ FixWallLsdem::~FixWallLsdem()
   for (int d = 0; d < 3; d++) delete[] vstr[d];
   delete[] extlist;
   memory->destroy(cand);
+  lsdem_band_close(band_file);
   if (fix_history && modify) {
     int ifix = modify->find_fix(history_id);
     if (ifix >= 0) modify->delete_fix(ifix);
@@ -436,6 +462,8 @@ void FixWallLsdem::visit_candidates(Lane &lane, int from, int to, const lsdem_po
           lane.t[d] += tb[d];
         }
         add_contact(lane, i, res);
+        if (lane.crossing.empty() && lsdem_boundary_tunnelled(&bnd, res.max_depth))
+          lane.crossing = tunnelled(i, res.max_depth);
       }
     }
     if ((mask[i] & groupbit) && lane.crossing.empty()) lane.crossing = crossing(i, w);
@@ -494,6 +522,21 @@ std::string FixWallLsdem::crossing(int i, const lsdem_pose &w) const
       id, atom->tag[i], d < 0.0 ? "went through the wall" : "would go through the wall",
       update->ntimestep, fabs(d), d < 0.0 ? "behind" : "in front of", fabs(vn),
       vn < 0.0 ? "towards" : "away from", R, dt_hold, dt);
+}
+
+/* ----------------------------------------------------------------------
+   a node of grain i read the solid-side background of a band wall: it is deeper in the
+   wall than the band is wide, the band no longer knows where the surface is
+------------------------------------------------------------------------- */
+
+std::string FixWallLsdem::tunnelled(int i, double depth) const
+{
+  const double width = bnd.shape.sdf.band->width;
+  return fmt::format(
+      "fix wall/lsdem {}: grain {} tunnelled into the wall at step {}: a node is at least "
+      "{:.6g} deep, the band's whole width (lsdem-shape --width {:.6g}); a smaller time step, "
+      "a stiffer wall or a wider band (made again with a larger --width) would hold it",
+      id, atom->tag[i], update->ntimestep, depth, width);
 }
 
 /* ---------------------------------------------------------------------- */

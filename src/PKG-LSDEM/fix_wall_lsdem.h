@@ -1,7 +1,8 @@
 /* -*- c++ -*- ----------------------------------------------------------
    LSDEM package: level-set discrete element method for LAMMPS.
 
-   fix wall/lsdem: a rigid analytic wall (plane or cylindrical container) that the
+   fix wall/lsdem: a rigid wall (plane, cylindrical container, or a mesh or terrain as a
+   narrow-band level set made by lsdem-shape wall / terrain) that the
    grains' nodes touch through the same core kernel as grain-grain contact (the wall
    is the slave level set, report §4.6.3). Optional wall velocity; optionally a plane
    pivots about the ram contact point behind it (report §3.2.1). The wall itself, its
@@ -93,6 +94,7 @@ class FixWallLsdem : public Fix {
 
  private:
   lsdem_boundary bnd;          // the wall: kind, pose, velocity, pivoting platen
+  lsdem_band_file *band_file;  // mesh and terrain walls: the mapped band (else nullptr)
   LsdemContactOptions opts;    // the contact law and detection keywords
   lsdem_contact_params prm;    // what the core gets (node skin and dt set at init)
   lsdem_quantum force_q, torque_q;  // order-free sums of the wall's force and torque
@@ -127,6 +129,8 @@ class FixWallLsdem : public Fix {
 
   bool may_touch(int, double margin) const;
   std::string crossing(int, const lsdem_pose &wall) const;
+  std::string tunnelled(int, double depth) const;
+  void open_band(const std::string &kind, const char *path);
 };
 
 }    // namespace LAMMPS_NS

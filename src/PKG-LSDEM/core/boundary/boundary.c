@@ -1,5 +1,5 @@
 /* boundary.c -- the wall record (lsdem_boundary.h): planes and cylindrical containers as
- * analytic signed distances in their own frame, their pose and motion, the pivoting
+ * analytic signed distances in their own frame, meshes and terrain as narrow bands, their pose and motion, the pivoting
  * platen (report §3.2.1), and the three questions every caller asks of a wall. */
 #include "lsdem_boundary.h"
 
@@ -70,6 +70,13 @@ lsdem_status lsdem_boundary_cylinder(lsdem_boundary *b, int axis, const double c
   return LSDEM_OK;
 }
 
+void lsdem_boundary_band(lsdem_boundary *b, const lsdem_band *band)
+{
+  clear(b, LSDEM_SDF_BAND);
+  b->shape.sdf.band = band;
+  b->pose.R[0] = b->pose.R[4] = b->pose.R[8] = 1.0;
+}
+
 lsdem_status lsdem_boundary_pivot(lsdem_boundary *b, double h, double inertia, double damping,
                                   lsdem_error *err)
 {
@@ -126,7 +133,7 @@ double lsdem_boundary_distance(const lsdem_boundary *b, const lsdem_pose *w, con
 int lsdem_boundary_may_touch(const lsdem_boundary *b, const lsdem_pose *w, const double c[3],
                              double r)
 {
-  return lsdem_boundary_distance(b, w, c, NULL) < r;
+  return lsdem_boundary_distance(b, w, c, NULL) < lsdem_sdf_lipschitz(&b->shape.sdf) * r;
 }
 
 int lsdem_boundary_crossing(const lsdem_boundary *b, const lsdem_pose *w, const double c[3],
@@ -140,7 +147,13 @@ int lsdem_boundary_crossing(const lsdem_boundary *b, const lsdem_pose *w, const 
   const double un = lsdem_dot3(vr, n);
   if (d) *d = phi;
   if (vn) *vn = un;
-  return !(phi >= 0.0 && phi + un * dt >= 0.0);
+  const int beyond_band = b->shape.sdf.kind == LSDEM_SDF_BAND && phi >= b->shape.sdf.band->width;
+  return !(phi >= 0.0 && (beyond_band || phi + un * dt >= 0.0));
+}
+
+int lsdem_boundary_tunnelled(const lsdem_boundary *b, double depth)
+{
+  return b->shape.sdf.kind == LSDEM_SDF_BAND && lsdem_band_tunnelled(b->shape.sdf.band, depth);
 }
 
 void lsdem_boundary_pose_at(const lsdem_boundary *b, double s, lsdem_pose *pose)

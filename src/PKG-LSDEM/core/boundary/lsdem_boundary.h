@@ -23,11 +23,9 @@
  *   - Lengths in the unit of positions, velocities per unit of time, angles in radians,
  *     everything world-frame unless named otherwise (LAMMPS's units when called from it).
  *
- * Kinds: the shape's SDF kind (LSDEM_SDF_PLANE, LSDEM_SDF_CYLINDER; lsdem_sdf_eval).
- * A further kind (a narrow-band level-set grid for meshes and terrain) is another
- * initialiser that fills b->shape; the three questions above hold unchanged for any kind
- * whose phi is a distance (|phi(p) - phi(q)| <= |p - q|), which is what the bounding-sphere
- * test relies on.
+ * Kinds: the shape's SDF kind (LSDEM_SDF_PLANE, LSDEM_SDF_CYLINDER, LSDEM_SDF_BAND for
+ * meshes and terrain; lsdem_sdf_eval). The three questions hold for any kind with a
+ * gradient bound (lsdem_sdf_lipschitz), which is what the bounding-sphere test relies on.
  *
  * Motion: pose.v is the wall's translation velocity (the caller may change it between
  * steps, e.g. from a LAMMPS variable); a pivoting platen turns about P at platen.omega
@@ -75,6 +73,9 @@ lsdem_status lsdem_boundary_plane(lsdem_boundary *b, const double point[3], cons
  * At rest. LSDEM_ERR_ARG for a bad axis or a radius that is not > 0. */
 lsdem_status lsdem_boundary_cylinder(lsdem_boundary *b, int axis, const double c[2],
                                      double radius, lsdem_error *err);
+/* A wall of any shape: narrow band `band` (a mesh or a terrain, lsdem_band_open; not
+ * owned, must outlive b), its frame the world's at rest (pose x = 0, R = I). */
+void lsdem_boundary_band(lsdem_boundary *b, const lsdem_band *band);
 /* Make a plane a pivoting platen (h, inertia, damping as in lsdem_platen), level and at
  * rest: P = x - h n, the ram axis n. LSDEM_ERR_ARG for another kind of wall or a parameter
  * out of range (the message names it). Also re-levels a platen at its current point. */
@@ -88,16 +89,22 @@ void lsdem_boundary_place_platen(lsdem_boundary *b);
 double lsdem_boundary_distance(const lsdem_boundary *b, const lsdem_pose *w, const double p[3],
                                double normal[3]);
 /* Cheap rejection (DESIGN §3): 0 when the sphere of radius r about c cannot reach the
- * wall's solid at pose w, phi(c) >= r; 1 when it may. */
+ * wall's solid at pose w, phi(c) >= L r (L = lsdem_sdf_lipschitz: 1 for planes and
+ * cylinders); 1 when it may. */
 int lsdem_boundary_may_touch(const lsdem_boundary *b, const lsdem_pose *w, const double c[3],
                              double r);
 /* Has a grain crossed the wall at pose w: its centre c is behind the surface (d < 0), or
  * will be after dt when it moves at velocity v against the wall's motion at c,
  * d + vn dt < 0 with vn = n . (v - w.v - w.omega x (c - w.x)) (the relative velocity of
- * eq 2.6; vn < 0 towards the wall). Returns 1 if so (NaN counts as crossed); d and vn
+ * eq 2.6; vn < 0 towards the wall). A band's d beyond its width is a lower bound, not a
+ * distance: only d < 0 counts there. Returns 1 if so (NaN counts as crossed); d and vn
  * out when not NULL. */
 int lsdem_boundary_crossing(const lsdem_boundary *b, const lsdem_pose *w, const double c[3],
                             const double v[3], double dt, double *d, double *vn);
+/* Whether a contact whose deepest node is `depth` inside the wall went through it: for a
+ * band, the node read the solid-side background (lsdem_band_tunnelled); other kinds
+ * never. */
+int lsdem_boundary_tunnelled(const lsdem_boundary *b, double depth);
 /* The wall's pose at time s after the record's (s < 0: before): the record's pose moved
  * by s v (for a platen P moved so, the tilt held; pose->v of a platen is then the velocity
  * of its point, v + omega x (x - P)). s = 0 gives the pose as stored, bit for bit (a

@@ -151,25 +151,26 @@ static void screened_batch(detection *restrict dt, node_batch *b)
   detect_batch(dt, b);
 }
 
-/* For a distance B: no point of the ball of radius r about centre (A's frame, mapped to
- * B's by q = M x + t) is inside B when phi_B(q) > r (1-Lipschitz). This is how a wall
- * (unbounded: no bounding sphere) skips a grain, or a cluster, with one evaluation
- * instead of one per node. The relative margin covers round-off in phi at the nodes. */
-static double ball_clearance(const lsdem_sdf *sdfB, const double M[9], const double t[3],
-                             const double centre[3], double r)
+/* For B with |grad phi| <= L (lsdem_sdf_lipschitz): no point of the ball of radius r
+ * about centre (A's frame, mapped to B's by q = M x + t) is inside B when phi_B(q) / L > r.
+ * This is how a wall (unbounded: no bounding sphere) skips a grain, or a cluster, with one
+ * evaluation instead of one per node. Returns phi / L - r less a relative margin that
+ * covers round-off in phi at the nodes: a distance the ball must move to touch. */
+static double ball_clearance(const lsdem_sdf *sdfB, double lip, const double M[9],
+                             const double t[3], const double centre[3], double r)
 {
   double q[3], g[3];
   lsdem_affine3(M, t, centre, q);
   const double scale = fabs(q[0]) + fabs(q[1]) + fabs(q[2]) + r;
-  return lsdem_sdf_eval(sdfB, q, g) - r - 1e-12 * scale;
+  return lsdem_sdf_eval(sdfB, q, g) / lip - r - 1e-12 * scale;
 }
 
 /* Node range [start, end) of cluster cl of A when it may touch B (or of all of A when
  * A has no clusters); returns 0 when the cluster's sphere is clear of B's bounding
- * sphere widened by `widen` (cb: B's centre in A's frame) or, for a distance B, of B's
- * solid by more than `clear`. A cluster left out of a list being built gives the list a
+ * sphere widened by `widen` (cb: B's centre in A's frame) or, for B with a gradient
+ * bound lip > 0, of B's solid by more than `clear`. A cluster left out of a list being built gives the list a
  * margin: how far it is from touching. */
-static int cluster_range(detection *dt, int cl, double widen, int distance, double clear,
+static int cluster_range(detection *dt, int cl, double widen, double lip, double clear,
                          const double cb[3], int *start, int *end)
 {
   const lsdem_shape *A = dt->A, *B = dt->B;
@@ -184,8 +185,8 @@ static int cluster_range(detection *dt, int cl, double widen, int distance, doub
     if (L->building) nodelist_margin(L, sqrt(lsdem_dot3(d, d)) - B->radius - sph[3]);
     return 0;
   }
-  if (distance) {
-    const double gap = ball_clearance(&B->sdf, dt->M, dt->t, sph, sph[3]);
+  if (lip > 0.0) {
+    const double gap = ball_clearance(&B->sdf, lip, dt->M, dt->t, sph, sph[3]);
     if (gap > clear) {
       if (L->building) nodelist_margin(L, gap);
       return 0;
@@ -200,19 +201,20 @@ static int cluster_range(detection *dt, int cl, double widen, int distance, doub
  * widened by the skin while a list is built), the kept ones looked up in batches. The
  * kept nodes of successive clusters share a batch (more lookups to overlap); the batch is
  * looked up when full and at the end, so nodes stay in increasing order. */
-static void detect_screened_nodes(detection *restrict dt, const double cb[3], int distance,
+static void detect_screened_nodes(detection *restrict dt, const double cb[3], double lip,
                                   node_batch *batch, int stride)
 {
   const lsdem_shape *A = dt->A;
   const node_list *L = &dt->list;
   const double widen = L->building ? L->skin : 0.0, rb = dt->B->radius + widen, rb2 = rb * rb;
-  const double clear = L->building && isfinite(L->reach) ? L->reach : 0.0;
+  /* a node left out of a list being built has phi >= L s: its ball's gap beyond s */
+  const double clear = L->building && isfinite(L->reach) ? L->skin : 0.0;
   const int nclusters = A->nclusters > 0 && A->cluster_start && A->cluster_sphere
                             ? A->nclusters : 1;
   double nearest = HUGE_VAL; /* squared distance from cb of the nearest node left out */
   for (int cl = 0; cl < nclusters; cl++) {
     int start, end;
-    if (!cluster_range(dt, cl, widen, distance, clear, cb, &start, &end)) continue;
+    if (!cluster_range(dt, cl, widen, lip, clear, cb, &start, &end)) continue;
     int k = (start + stride - 1) / stride * stride;
     while (k < end) {
       const int left = (end - k + stride - 1) / stride, room = NODE_BATCH - batch->n;
@@ -264,12 +266,12 @@ int lsdem_detect_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_s
   lsdem_matT_mul(pb->R, pa->R, dt.M);
   lsdem_matT_vec(pb->R, mdx, dt.t);
 
-  /* an unbounded distance B (a wall) has no bounding sphere to screen with: reject A's
-   * bounding sphere (about A's centroid, the origin of A's frame) and then A's clusters
-   * by B's level set instead */
-  const int distance = !isfinite(rb) && lsdem_sdf_is_distance(&B->sdf);
+  /* an unbounded B with a gradient bound (a wall) has no bounding sphere to screen with:
+   * reject A's bounding sphere (about A's centroid, the origin of A's frame) and then A's
+   * clusters by B's level set instead; lip = 0: no such screening */
+  const double lip = isfinite(rb) ? 0.0 : lsdem_sdf_lipschitz(&B->sdf);
   const double origin[3] = {0.0, 0.0, 0.0};
-  if (distance && ball_clearance(&B->sdf, dt.M, dt.t, origin, A->radius) > 0.0)
+  if (lip > 0.0 && ball_clearance(&B->sdf, lip, dt.M, dt.t, origin, A->radius) > 0.0)
     return no_contact(m, list_out);
 
   const int stride = det->node_stride > 1 ? det->node_stride : 1;
@@ -286,7 +288,7 @@ int lsdem_detect_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_s
   if (dt.list.use)
     detect_listed_nodes(&dt, &batch);
   else
-    detect_screened_nodes(&dt, cb, distance, &batch, stride);
+    detect_screened_nodes(&dt, cb, lip, &batch, stride);
   nodelist_finish(&dt.list);
   return m->n;
 }

@@ -7,25 +7,15 @@
 #include <math.h>
 #include <string.h>
 
-int lsdem_sdf_is_distance(const lsdem_sdf *s)
-{
-  switch (s->kind) {
-  case LSDEM_SDF_SPHERE:
-  case LSDEM_SDF_PLANE:
-  case LSDEM_SDF_CYLINDER:
-  case LSDEM_SDF_BOX:
-  case LSDEM_SDF_ELLIPSOID: return 1;
-  default: return 0;
-  }
-}
-
 /* The node-list reach L s for skin s: a node looked up with phi >= L s cannot reach
  * phi < 0 by moving less than s, L bounding |grad phi| where 0 <= phi <= L s (exact
- * distances: 1; grids that are not inverted: lsdem_grid_outer_lipschitz, within its
- * limit). HUGE_VAL when there is no such bound: every looked-up node is listed. */
+ * distances: 1; bands: LSDEM_BAND_LIPSCHITZ; grids that are not inverted:
+ * lsdem_grid_outer_lipschitz, within its limit). HUGE_VAL when there is no such bound:
+ * every looked-up node is listed. */
 static double list_reach(const lsdem_sdf *s, double skin)
 {
-  if (lsdem_sdf_is_distance(s)) return skin;
+  const double lip = lsdem_sdf_lipschitz(s);
+  if (lip > 0.0) return lip * skin;
   /* the grid's bound holds where its own phi >= 0, not where an inverted one is */
   const lsdem_grid *g = &s->grid;
   if (s->kind == LSDEM_SDF_GRID && !s->inverted && g->lip > 0.0 && g->lip * skin < g->lip_reach)

@@ -23,10 +23,6 @@ typedef struct {
   lsdem_nodelist *out; /* where this step's list goes, or NULL (also without a skin) */
 } node_list;
 
-/* Whether B's level set is an exact signed distance, so |phi(p) - phi(q)| <= |p - q|
- * (also inverted). Grids are not (trilinear interpolation of samples that may be
- * smoothed or approximate), nor is the superellipsoid's first-order distance. */
-int lsdem_sdf_is_distance(const lsdem_sdf *s);
 
 /* Decides whether in's list is used (pose of B in A's frame now: q = M x + t); when it is
  * not and out is given, starts a new one there. */

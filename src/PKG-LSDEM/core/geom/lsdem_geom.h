@@ -91,7 +91,8 @@ typedef enum {
    * degree-1 gauge: exact zero set and normals, approximate magnitude away from the
    * surface (node seeding, checks). Its grid (lsdem_grid_sample) is a true SDF, built by
    * lsdem_grid_from_star. */
-  LSDEM_SDF_SUPERELLIPSOID
+  LSDEM_SDF_SUPERELLIPSOID,
+  LSDEM_SDF_BAND       /* a narrow-band level set (lsdem_band below): walls, not grains */
 } lsdem_sdf_kind;
 
 /* Any shape behind one interface: phi(p) and its outward unit gradient, in the shape's
@@ -103,6 +104,7 @@ typedef struct {
   double a[5];     /* shape parameters (per kind above); a[3], a[4] only for the
                       superellipsoid's exponents e1, e2 (libraries store a[0..2]) */
   lsdem_grid grid; /* used when kind == LSDEM_SDF_GRID */
+  const struct lsdem_band *band; /* used when kind == LSDEM_SDF_BAND (not owned) */
 } lsdem_sdf;
 
 double lsdem_sdf_eval(const lsdem_sdf *s, const double p[3], double grad[3]);
@@ -118,6 +120,15 @@ void lsdem_sdf_eval_many(const lsdem_sdf *s, int n, const double *p, double *phi
 /* Lower-case name of a shape kind ("grid", "sphere", ...), for messages and listings. */
 const char *lsdem_sdf_kind_name(lsdem_sdf_kind k);
 double lsdem_sdf_bound_radius(const lsdem_sdf *s);
+/* A bound L such that phi(p) <= L dist(p, solid) wherever phi(p) >= 0 (also inverted):
+ * what bounding-ball screening and node lists rely on (a ball of radius r about c is
+ * clear of the solid when phi(c) > L r). 1 for exact signed distances,
+ * LSDEM_BAND_LIPSCHITZ for narrow bands (|grad phi| <= sqrt 3 within the stored bricks,
+ * background values below the distance to them), 0 for none: grids have none everywhere
+ * (trilinear interpolation of samples that may be smoothed or approximate;
+ * lsdem_grid_outer_lipschitz bounds it where phi >= 0), nor has the superellipsoid's
+ * first-order distance. */
+double lsdem_sdf_lipschitz(const lsdem_sdf *s);
 void lsdem_grid_free(lsdem_grid *g); /* frees phi allocated by the core; phi = NULL */
 
 /* ------------------------------------------------------ star-shaped solids ---- */
@@ -129,6 +140,81 @@ typedef double (*lsdem_radius_fn)(const double u[3], const void *ctx);
 /* Radius function of an LSDEM_SDF_SUPERELLIPSOID (ctx: its const lsdem_sdf *):
  * 1 / g(u), g the degree-1 gauge of the superellipsoid (evaluated overflow-free). */
 double lsdem_superellipsoid_radius(const double u[3], const void *sdf);
+
+/* ------------------------------------------------- narrow-band level sets ---- */
+
+/* A signed-distance grid stored only near its zero level set, for walls of any shape
+ * (meshes, terrain; report §4.6.3, eqs 4.48-4.49: a dense terrain grid needed 10 GB).
+ * The virtual dense grid (n samples per axis at spacing h from origin, x fastest, as
+ * lsdem_grid) is cut into bricks of LSDEM_BAND_BRICK^3 cells. A brick that may hold a
+ * sample nearer than `width` to the surface is stored: its (LSDEM_BAND_BRICK + 1)^3
+ * samples, x fastest (neighbouring stored bricks repeat their shared faces, so the 8
+ * samples of any cell lie in one brick). Any other brick is background: every sample
+ * +width (the grains' side) or -width (the wall's solid side). Stored samples are exact
+ * signed distances clamped to [-width, width] (float). Memory grows with the surface's
+ * area, not the box's volume.
+ *
+ * Lookup (lsdem_band_eval): one index read for the cell's brick, then the same trilinear
+ * cell interpolation as lsdem_grid (Algorithm 1). Outside the box [origin, origin +
+ * (n-1) h] the value and gradient at the nearest point of the box (the band continues
+ * as its boundary values: a terrain beyond its edge as its edge columns).
+ * Lipschitz bound: the samples are a 1-Lipschitz function's (a clamped distance), so
+ * each trilinear partial derivative is at most 1 and |grad phi| <= sqrt 3 everywhere,
+ * the outside rule included (LSDEM_BAND_LIPSCHITZ, with room for float rounding of
+ * samples up to LSDEM_BAND_MAX_WIDTH_CELLS spacings). A node that reads -width has gone
+ * through the band (tunnelling, lsdem_band_tunnelled). Frame: the wall's own. */
+#define LSDEM_BAND_BRICK_LOG2 3
+#define LSDEM_BAND_BRICK 8                 /* cells per brick edge: 1 << LOG2 */
+#define LSDEM_BAND_BRICK_SIDE 9            /* samples per brick edge */
+#define LSDEM_BAND_BRICK_SAMPLES 729       /* samples per stored brick: 9^3 */
+#define LSDEM_BAND_LIPSCHITZ 1.7321        /* > sqrt 3 = 1.7320508 */
+#define LSDEM_BAND_MAX_WIDTH_CELLS 64.0    /* width / h at most (the bound's rounding room) */
+enum { LSDEM_BAND_OUTSIDE = -1, LSDEM_BAND_INSIDE = -2 }; /* background bricks' index */
+
+typedef struct lsdem_band {
+  int n[3];             /* samples of the virtual dense grid per axis (>= 2) */
+  double h;             /* spacing, length units */
+  double origin[3];     /* position of sample (0,0,0), wall frame */
+  int nb[3];            /* bricks per axis: (n[a] - 2) / LSDEM_BAND_BRICK + 1 */
+  int64_t nbricks;      /* stored bricks */
+  double width;         /* half-width of the band: |phi| <= width, background +-width */
+  const int32_t *index; /* nb[0] nb[1] nb[2] entries, x fastest: stored brick number, or
+                           LSDEM_BAND_OUTSIDE / LSDEM_BAND_INSIDE */
+  const float *phi;     /* nbricks * LSDEM_BAND_BRICK_SAMPLES */
+  const uint16_t *far;  /* per brick slot, the coarse level: a background slot's Chebyshev
+                           distance in bricks to the nearest stored brick (1: adjacent;
+                           capped at 65535), from lsdem_band_far; NULL: background values
+                           are +-width */
+} lsdem_band;
+
+/* phi at p (wall frame) and the unit gradient (normalised trilinear; +x where it
+ * vanishes, e.g. in a background brick). A background slot k bricks from the band reads
+ * +-max(width, (k - 1) LSDEM_BAND_BRICK h): no farther than the stored bricks, which hold
+ * the surface, so a grain far from the wall is rejected by one lookup at its centre. */
+double lsdem_band_eval(const lsdem_band *b, const double p[3], double grad[3]);
+void lsdem_band_eval_many(const lsdem_band *b, int n, const double *p, double *phi,
+                          double *grad);
+/* Whether a penetration depth (-phi of a node) means the node read the solid-side
+ * background: it went through the band. */
+int lsdem_band_tunnelled(const lsdem_band *b, double depth);
+/* The coarse level of b (lsdem_band.far): Chebyshev distance transform of the stored
+ * bricks over the brick slots (exact, two raster passes). Allocates *far (free()). */
+lsdem_status lsdem_band_far(const lsdem_band *b, uint16_t **far, lsdem_error *err);
+/* Sizes, finiteness, index entries in range, samples within [-width, width]. */
+lsdem_status lsdem_band_check(const lsdem_band *b, lsdem_error *err);
+/* Bytes of the index, the coarse level and the stored bricks. */
+size_t lsdem_band_bytes(const lsdem_band *b);
+
+/* A band file (format in doc/wall_band.rst; written by lsdem-shape wall/terrain through
+ * lsdem_band_write, lsdem_prep.h): memory-mapped read-only, so ranks on one machine share
+ * one copy through the page cache. Open checks the header, the checksums, the sizes and
+ * lsdem_band_check. */
+typedef struct lsdem_band_file lsdem_band_file;
+typedef enum { LSDEM_BAND_MESH = 0, LSDEM_BAND_TERRAIN = 1 } lsdem_band_source;
+lsdem_status lsdem_band_open(const char *path, lsdem_band_file **file, lsdem_error *err);
+void lsdem_band_close(lsdem_band_file *file);
+const lsdem_band *lsdem_band_file_band(const lsdem_band_file *file);
+lsdem_band_source lsdem_band_file_source(const lsdem_band_file *file);
 
 /* ------------------------------------------------------------ grain shapes ---- */
 

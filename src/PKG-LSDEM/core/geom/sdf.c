@@ -280,6 +280,7 @@ double lsdem_sdf_eval(const lsdem_sdf *s, const double p[3], double grad[3])
   case LSDEM_SDF_BOX: phi = box_sdf(s->a, p, grad); break;
   case LSDEM_SDF_ELLIPSOID: phi = ellipsoid_sdf(s->a, p, grad); break;
   case LSDEM_SDF_SUPERELLIPSOID: phi = superellipsoid_sdf(s->a, s->a + 3, p, grad); break;
+  case LSDEM_SDF_BAND: phi = lsdem_band_eval(s->band, p, grad); break;
   default: set3(grad, 1.0, 0.0, 0.0); return HUGE_VAL;
   }
   if (s->inverted) {
@@ -295,6 +296,7 @@ void lsdem_sdf_eval_many(const lsdem_sdf *s, int n, const double *p, double *phi
 {
   switch (s->kind) {
   case LSDEM_SDF_GRID: lsdem_grid_eval_many(&s->grid, n, p, phi, grad); break;
+  case LSDEM_SDF_BAND: lsdem_band_eval_many(s->band, n, p, phi, grad); break;
   case LSDEM_SDF_PLANE:
     for (int m = 0; m < n; m++) phi[m] = plane_sdf(&p[3 * m], &grad[3 * m]);
     break;
@@ -449,8 +451,22 @@ double lsdem_sdf_bound_radius(const lsdem_sdf *s)
   case LSDEM_SDF_BOX: return norm3(s->a);
   case LSDEM_SDF_ELLIPSOID: return fmax(s->a[0], fmax(s->a[1], s->a[2]));
   case LSDEM_SDF_SUPERELLIPSOID: return norm3(s->a); /* inside the box of its semi-axes */
+  case LSDEM_SDF_BAND: return HUGE_VAL; /* walls; beyond its box a band continues */
   }
   return HUGE_VAL;
+}
+
+double lsdem_sdf_lipschitz(const lsdem_sdf *s)
+{
+  switch (s->kind) {
+  case LSDEM_SDF_SPHERE:
+  case LSDEM_SDF_PLANE:
+  case LSDEM_SDF_CYLINDER:
+  case LSDEM_SDF_BOX:
+  case LSDEM_SDF_ELLIPSOID: return 1.0;
+  case LSDEM_SDF_BAND: return LSDEM_BAND_LIPSCHITZ;
+  default: return 0.0;
+  }
 }
 
 const char *lsdem_sdf_kind_name(lsdem_sdf_kind k)
@@ -463,6 +479,7 @@ const char *lsdem_sdf_kind_name(lsdem_sdf_kind k)
   case LSDEM_SDF_BOX: return "box";
   case LSDEM_SDF_ELLIPSOID: return "ellipsoid";
   case LSDEM_SDF_SUPERELLIPSOID: return "superellipsoid";
+  case LSDEM_SDF_BAND: return "band";
   }
   return "unknown";
 }

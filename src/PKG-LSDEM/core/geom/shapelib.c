@@ -12,16 +12,12 @@
  * shapes that are used get paged in. Per-shape section checksums are checked on demand
  * by lsdem_library_verify. */
 #define _POSIX_C_SOURCE 200809L
+#include "filemap.h"
 #include "shapelib_format.h"
 
-#include <errno.h>
-#include <fcntl.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 static const char *const ARRAY_NAME[LIB_NARRAYS] = {"cluster_start", "cluster_sphere", "nodes",
                                                     "node_area", "phi"};
@@ -40,7 +36,7 @@ struct lsdem_library {
 static void library_free(lsdem_library *lib)
 {
   if (!lib) return;
-  if (lib->map) munmap(lib->map, lib->size);
+  lsdem_unmap_file(lib->map, lib->size);
   free(lib->shapes);
   free(lib->names);
   free(lib->sec_off);
@@ -194,32 +190,6 @@ static lsdem_status load_entry(lsdem_library *lib, int i, uint64_t *prev_end, co
   return LSDEM_OK;
 }
 
-static lsdem_status map_file(const char *path, lsdem_library *lib, lsdem_error *err)
-{
-  const int fd = open(path, O_RDONLY);
-  if (fd < 0)
-    return lsdem_fail(err, LSDEM_ERR_IO, "shape library '%s': cannot open: %s", path,
-                      strerror(errno));
-  struct stat sb;
-  if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
-    close(fd);
-    return lsdem_fail(err, LSDEM_ERR_IO, "shape library '%s': not a regular file", path);
-  }
-  lib->size = (size_t)sb.st_size;
-  if (lib->size < LIB_HEADER_SIZE) {
-    close(fd);
-    return lsdem_fail(err, LSDEM_ERR_FORMAT, "shape library '%s': %zu bytes, too short for "
-                      "the %d-byte header", path, lib->size, LIB_HEADER_SIZE);
-  }
-  void *m = mmap(NULL, lib->size, PROT_READ, MAP_SHARED, fd, 0);
-  close(fd);
-  if (m == MAP_FAILED)
-    return lsdem_fail(err, LSDEM_ERR_IO, "shape library '%s': cannot map: %s", path,
-                      strerror(errno));
-  lib->map = m;
-  return LSDEM_OK;
-}
-
 lsdem_status lsdem_library_open(const char *path, lsdem_library **out, lsdem_error *err)
 {
   if (!path || !out) return lsdem_fail(err, LSDEM_ERR_ARG, "shape library: NULL argument");
@@ -229,7 +199,7 @@ lsdem_status lsdem_library_open(const char *path, lsdem_library **out, lsdem_err
                       "map the little-endian format", path);
   lsdem_library *lib = (lsdem_library *)calloc(1, sizeof *lib);
   if (!lib) return lsdem_fail(err, LSDEM_ERR_NOMEM, "shape library '%s': out of memory", path);
-  lsdem_status st = map_file(path, lib, err);
+  lsdem_status st = lsdem_map_file(path, "shape library", LIB_HEADER_SIZE, &lib->map, &lib->size, err);
   if (st == LSDEM_OK) st = check_header((const unsigned char *)lib->map, lib->size, path,
                                         &lib->count, err);
   if (st == LSDEM_OK) {

@@ -1,0 +1,155 @@
+/* band.c -- narrow-band level sets (lsdem_geom.h): lookup by brick, checks. Made by
+ * prep/band_build.c, stored by prep/band_write.c, mapped by bandfile.c.
+ *
+ * Grid coordinates as for lsdem_grid: u = (p - origin) / h, sample (i,j,k) at u = (i,j,k).
+ * Cell (i,j,k) lies in brick (i, j, k) >> 3 at local (i, j, k) & 7; its 8 samples are
+ * the brick's samples (li..li+1, lj..lj+1, lk..lk+1) of 0..8. */
+#include "lsdem_geom.h"
+#include "trilinear.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+enum { SIDE = LSDEM_BAND_BRICK_SIDE, PLANE = SIDE * SIDE, MASK = LSDEM_BAND_BRICK - 1 };
+
+/* u clamped to the box [0, n-1]^3 (the outside rule: the boundary's values); the cell
+ * index clamped to n-2 so the upper face uses the last cell at fraction 1. */
+static inline void cell_of(const lsdem_band *b, const double u[3], int c[3], double f[3])
+{
+  for (int a = 0; a < 3; a++) {
+    const double top = (double)(b->n[a] - 1);
+    const double ua = u[a] < 0.0 ? 0.0 : (u[a] > top ? top : u[a]);
+    int i = (int)ua;
+    i = i > b->n[a] - 2 ? b->n[a] - 2 : i;
+    c[a] = i;
+    f[a] = ua - i;
+  }
+}
+
+static inline double band_eval(const lsdem_band *b, double inv_h, const double p[3],
+                               double grad[3])
+{
+  double u[3], f[3], du[3];
+  int c[3];
+  for (int a = 0; a < 3; a++) u[a] = (p[a] - b->origin[a]) * inv_h;
+  if (u[0] != u[0] || u[1] != u[1] || u[2] != u[2]) { /* a NaN position stays NaN */
+    grad[0] = 1.0, grad[1] = grad[2] = 0.0;
+    return u[0] + u[1] + u[2];
+  }
+  cell_of(b, u, c, f);
+  const int64_t slot = (int64_t)(c[0] >> LSDEM_BAND_BRICK_LOG2) +
+                       (int64_t)b->nb[0] * ((int64_t)(c[1] >> LSDEM_BAND_BRICK_LOG2) +
+                       (int64_t)b->nb[1] * (int64_t)(c[2] >> LSDEM_BAND_BRICK_LOG2));
+  const int32_t brick = b->index[slot];
+  if (brick < 0) { /* background: constant over the slot */
+    grad[0] = 1.0, grad[1] = grad[2] = 0.0;
+    const double gap = b->far ? (double)(b->far[slot] - 1) * LSDEM_BAND_BRICK * b->h : 0.0;
+    const double v = gap > b->width ? gap : b->width;
+    return brick == LSDEM_BAND_OUTSIDE ? v : -v;
+  }
+  const float *s = b->phi + (size_t)brick * LSDEM_BAND_BRICK_SAMPLES +
+                   (c[0] & MASK) + SIDE * ((c[1] & MASK) + SIDE * (c[2] & MASK));
+  const float v[8] = {s[0], s[1], s[SIDE], s[SIDE + 1],
+                      s[PLANE], s[PLANE + 1], s[PLANE + SIDE], s[PLANE + SIDE + 1]};
+  const double phi = trilinear_cell(v, f, du);
+  unit_gradient(du, grad);
+  return phi;
+}
+
+double lsdem_band_eval(const lsdem_band *b, const double p[3], double grad[3])
+{
+  return band_eval(b, 1.0 / b->h, p, grad);
+}
+
+void lsdem_band_eval_many(const lsdem_band *b, int n, const double *p, double *phi,
+                          double *grad)
+{
+  const double inv_h = 1.0 / b->h;
+  for (int m = 0; m < n; m++) phi[m] = band_eval(b, inv_h, &p[3 * m], &grad[3 * m]);
+}
+
+int lsdem_band_tunnelled(const lsdem_band *b, double depth)
+{
+  return depth >= b->width * (1.0 - 1e-6);
+}
+
+size_t lsdem_band_bytes(const lsdem_band *b)
+{
+  const size_t slots = (size_t)b->nb[0] * (size_t)b->nb[1] * (size_t)b->nb[2];
+  return slots * (sizeof(int32_t) + (b->far ? sizeof(uint16_t) : 0)) +
+         (size_t)b->nbricks * LSDEM_BAND_BRICK_SAMPLES * sizeof(float);
+}
+
+/* One raster pass of the chessboard distance transform: each slot takes 1 + the least
+ * of its 13 neighbours already visited in this direction (dir = +1 forward, -1 back). */
+static void far_pass(const int nb[3], uint16_t *d, int dir)
+{
+  const int64_t sy = nb[0], sz = (int64_t)nb[0] * nb[1];
+  for (int kk = 0; kk < nb[2]; kk++)
+    for (int jj = 0; jj < nb[1]; jj++)
+      for (int ii = 0; ii < nb[0]; ii++) {
+        const int i = dir > 0 ? ii : nb[0] - 1 - ii, j = dir > 0 ? jj : nb[1] - 1 - jj;
+        const int k = dir > 0 ? kk : nb[2] - 1 - kk;
+        uint16_t *here = &d[i + sy * j + sz * k];
+        unsigned best = *here;
+        /* the neighbours before (i,j,k) in this raster order: (dk < 0) or (dk = 0 and
+         * dj < 0) or (dk = dj = 0 and di < 0), with d = -dir */
+        for (int dk = -1; dk <= 0; dk++)
+          for (int dj = -1; dj <= 1; dj++)
+            for (int di = -1; di <= 1; di++) {
+              if (dk == 0 && (dj > 0 || (dj == 0 && di >= 0))) continue;
+              const int ni = i + dir * di, nj = j + dir * dj, nk = k + dir * dk;
+              if (ni < 0 || nj < 0 || nk < 0 || ni >= nb[0] || nj >= nb[1] || nk >= nb[2])
+                continue;
+              const unsigned v = d[ni + sy * nj + sz * nk] + 1u;
+              if (v < best) best = v;
+            }
+        *here = (uint16_t)best;
+      }
+}
+
+lsdem_status lsdem_band_far(const lsdem_band *b, uint16_t **far, lsdem_error *err)
+{
+  const size_t slots = (size_t)b->nb[0] * (size_t)b->nb[1] * (size_t)b->nb[2];
+  uint16_t *d = (uint16_t *)malloc(slots * sizeof *d);
+  if (!d) return lsdem_fail(err, LSDEM_ERR_NOMEM, "band: cannot allocate its coarse level "
+                            "(%zu slots)", slots);
+  for (size_t s = 0; s < slots; s++) d[s] = b->index[s] >= 0 ? 0 : UINT16_MAX - 1;
+  far_pass(b->nb, d, 1);
+  far_pass(b->nb, d, -1);
+  *far = d;
+  return LSDEM_OK;
+}
+
+lsdem_status lsdem_band_check(const lsdem_band *b, lsdem_error *err)
+{
+  for (int a = 0; a < 3; a++) {
+    if (b->n[a] < 2)
+      return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: %d samples along axis %d (at least 2)",
+                        b->n[a], a);
+    if (b->nb[a] != (b->n[a] - 2) / LSDEM_BAND_BRICK + 1)
+      return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: %d bricks along axis %d for %d samples "
+                        "(expected %d)", b->nb[a], a, b->n[a], (b->n[a] - 2) / LSDEM_BAND_BRICK + 1);
+    if (!isfinite(b->origin[a]))
+      return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: origin is not finite");
+  }
+  if (!(b->h > 0.0) || !isfinite(b->h))
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: spacing %g is not > 0", b->h);
+  if (!(b->width > 0.0) || !(b->width <= LSDEM_BAND_MAX_WIDTH_CELLS * b->h))
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: width %g is not in (0, %g h] (h = %g)",
+                      b->width, LSDEM_BAND_MAX_WIDTH_CELLS, b->h);
+  const int64_t slots = (int64_t)b->nb[0] * b->nb[1] * b->nb[2];
+  for (int64_t s = 0; s < slots; s++)
+    if (b->index[s] < LSDEM_BAND_INSIDE || b->index[s] >= b->nbricks)
+      return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: index entry %lld is %d, not a brick "
+                        "(0..%lld) nor background", (long long)s, (int)b->index[s],
+                        (long long)b->nbricks - 1);
+  const float w = (float)b->width;
+  const size_t total = (size_t)b->nbricks * LSDEM_BAND_BRICK_SAMPLES;
+  for (size_t q = 0; q < total; q++)
+    if (!(b->phi[q] >= -w && b->phi[q] <= w))
+      return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: sample %zu of brick %zu is %g, outside "
+                        "[-width, width] = [%g, %g]", q % LSDEM_BAND_BRICK_SAMPLES,
+                        q / LSDEM_BAND_BRICK_SAMPLES, (double)b->phi[q], -b->width, b->width);
+  return LSDEM_OK;
+}

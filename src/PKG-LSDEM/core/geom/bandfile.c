@@ -1,0 +1,103 @@
+/* bandfile.c -- band files (a wall's narrow band, lsdem_band) mapped read-only: ranks on
+ * one machine share one copy through the page cache (format: bandfile_format.h,
+ * doc/wall_band.rst; writer prep/band_write.c). */
+#include "bandfile_format.h"
+#include "filemap.h"
+#include "lsdem_geom.h"
+
+#include <stdlib.h>
+
+struct lsdem_band_file {
+  void *map;
+  size_t size;
+  uint16_t *far; /* the band's coarse level, made at open (per process, 2 bytes a slot) */
+  lsdem_band band;
+  lsdem_band_source source;
+};
+
+/* The header's fields into f->band (pointers not yet set), checked against the file's
+ * size: magic, version, header checksum, counts, the arrays' extents. */
+static lsdem_status read_header(lsdem_band_file *f, const char *path, lsdem_error *err)
+{
+  const unsigned char *m = (const unsigned char *)f->map;
+  if (memcmp(m + BF_MAGIC, BAND_MAGIC, sizeof BAND_MAGIC) != 0)
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "band file '%s': not a band file (no LSDEMBND "
+                      "magic; made by lsdem-shape wall or terrain)", path);
+  if (get_u32(m + BF_VERSION) != BAND_VERSION)
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "band file '%s': version %u, this reader knows %d",
+                      path, get_u32(m + BF_VERSION), BAND_VERSION);
+  if (fnv1a_update(FNV_BASIS, m, BF_HSUM) != get_u64(m + BF_HSUM))
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "band file '%s': header checksum mismatch (the "
+                      "file is damaged; make it again)", path);
+  lsdem_band *b = &f->band;
+  const uint32_t source = get_u32(m + BF_SOURCE);
+  if (source > LSDEM_BAND_TERRAIN)
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "band file '%s': unknown source %u", path, source);
+  f->source = (lsdem_band_source)source;
+  for (int a = 0; a < 3; a++) {
+    b->n[a] = get_i32(m + BF_N + 4 * a);
+    b->nb[a] = get_i32(m + BF_NB + 4 * a);
+    b->origin[a] = get_f64(m + BF_ORIGIN + 8 * a);
+    if (b->n[a] < 2 || b->nb[a] != band_bricks_for(b->n[a]))
+      return lsdem_fail(err, LSDEM_ERR_FORMAT, "band file '%s': %d samples and %d bricks along "
+                        "axis %d do not match", path, b->n[a], b->nb[a], a);
+  }
+  b->h = get_f64(m + BF_H);
+  b->width = get_f64(m + BF_WIDTH);
+  const uint64_t nbricks = get_u64(m + BF_NBRICKS);
+  const uint64_t phi_off = band_phi_offset(b->nb);
+  const uint64_t brick_bytes = 4u * LSDEM_BAND_BRICK_SAMPLES;
+  if (nbricks > (uint64_t)INT32_MAX || phi_off + nbricks * brick_bytes != (uint64_t)f->size)
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "band file '%s': %zu bytes, expected %llu for "
+                      "%llu bricks (truncated or damaged)", path, f->size,
+                      (unsigned long long)(phi_off + nbricks * brick_bytes),
+                      (unsigned long long)nbricks);
+  b->nbricks = (int64_t)nbricks;
+  b->index = (const int32_t *)(m + BAND_HEADER_SIZE);
+  b->phi = (const float *)(m + phi_off);
+  return LSDEM_OK;
+}
+
+lsdem_status lsdem_band_open(const char *path, lsdem_band_file **out, lsdem_error *err)
+{
+  if (!path || !out) return lsdem_fail(err, LSDEM_ERR_ARG, "band file: NULL argument");
+  *out = NULL;
+  if (!host_is_little_endian())
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "band file '%s': this big-endian host cannot map "
+                      "the little-endian format", path);
+  lsdem_band_file *f = (lsdem_band_file *)calloc(1, sizeof *f);
+  if (!f) return lsdem_fail(err, LSDEM_ERR_NOMEM, "band file '%s': out of memory", path);
+  lsdem_status st = lsdem_map_file(path, "band file", BAND_HEADER_SIZE, &f->map, &f->size, err);
+  if (st == LSDEM_OK) st = read_header(f, path, err);
+  if (st == LSDEM_OK) {
+    const unsigned char *m = (const unsigned char *)f->map;
+    const uint64_t sum = fnv1a_update(FNV_BASIS, m + BAND_HEADER_SIZE, f->size - BAND_HEADER_SIZE);
+    if (sum != get_u64(m + BF_PSUM))
+      st = lsdem_fail(err, LSDEM_ERR_FORMAT, "band file '%s': payload checksum mismatch (the "
+                      "file is damaged; make it again)", path);
+  }
+  if (st == LSDEM_OK) {
+    lsdem_error inner;
+    st = lsdem_band_check(&f->band, &inner);
+    if (st != LSDEM_OK) st = lsdem_fail(err, st, "band file '%s': %s", path, inner.msg);
+  }
+  if (st == LSDEM_OK) st = lsdem_band_far(&f->band, &f->far, err);
+  f->band.far = f->far;
+  if (st != LSDEM_OK) {
+    lsdem_band_close(f);
+    return st;
+  }
+  *out = f;
+  return LSDEM_OK;
+}
+
+void lsdem_band_close(lsdem_band_file *f)
+{
+  if (!f) return;
+  lsdem_unmap_file(f->map, f->size);
+  free(f->far);
+  free(f);
+}
+
+const lsdem_band *lsdem_band_file_band(const lsdem_band_file *f) { return &f->band; }
+lsdem_band_source lsdem_band_file_source(const lsdem_band_file *f) { return f->source; }
