@@ -84,11 +84,12 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
 
   int axis = 2;             // cylinder axis 0,1,2 = x,y,z
   double vel[3] = {0.0, 0.0, 0.0};
-  bool pivot = false;
+  bool pivot = false, spin = false;
   double pivot_prm[3];      // h, I, c
+  double spin_prm[6];       // centre, angular velocity
   while (iarg < narg) {
     std::string key = arg[iarg];
-    int nval = key == "velocity" ? 3 : (key == "pivot" ? 2 : 1);
+    int nval = key == "velocity" ? 3 : (key == "pivot" ? 2 : (key == "spin" ? 6 : 1));
     if (iarg + nval >= narg) error->all(FLERR, "fix wall/lsdem: keyword {} needs a value", key);
     std::string val = arg[iarg + 1];
     if (opts.read_keyword(lmp, "fix wall/lsdem", key, arg[iarg + 1],
@@ -109,6 +110,11 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
     } else if (key == "pivot") {
       nval = parse_pivot(iarg, narg, arg, pivot_prm);
       pivot = true;
+    } else if (key == "spin") {
+      for (int k = 0; k < 6; k++)
+        spin_prm[k] = LsdemInput::number(FLERR, arg[iarg + 1 + k], "fix wall/lsdem",
+                                         k < 3 ? "spin centre" : "spin angular velocity", lmp);
+      spin = true;
     } else error->all(FLERR, "fix wall/lsdem: unknown keyword {}", key);
     iarg += 1 + nval;
   }
@@ -124,6 +130,7 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   else st = lsdem_boundary_cylinder(&bnd, axis, geom, geom[2], &err);
   if (st == LSDEM_OK && pivot)
     st = lsdem_boundary_pivot(&bnd, pivot_prm[0], pivot_prm[1], pivot_prm[2], &err);
+  if (st == LSDEM_OK && spin) st = lsdem_boundary_spin(&bnd, spin_prm, spin_prm + 3, &err);
   if (st != LSDEM_OK) error->all(FLERR, "fix wall/lsdem: {}", err.msg);
   for (int d = 0; d < 3; d++) bnd.pose.v[d] = vel[d];
   flocal[0] = flocal[1] = flocal[2] = 0.0;
@@ -185,7 +192,7 @@ FixWallLsdem::~FixWallLsdem()
 int FixWallLsdem::setmask()
 {
   int mask = POST_FORCE;
-  if (moving || bnd.pivots) mask |= INITIAL_INTEGRATE;
+  if (moving || lsdem_boundary_turns(&bnd)) mask |= INITIAL_INTEGRATE;
   return mask;
 }
 
@@ -328,7 +335,7 @@ bool FixWallLsdem::may_touch(int i, double margin) const
 bool FixWallLsdem::candidates_can_last() const
 {
   return neighbor->dist_check && neighbor->every == 1 && neighbor->delay == 0 &&
-      !neighbor->build_once && neighbor->skin > 0.0 && !bnd.pivots;
+      !neighbor->build_once && neighbor->skin > 0.0 && !lsdem_boundary_turns(&bnd);
 }
 
 /* ----------------------------------------------------------------------
@@ -557,12 +564,12 @@ void FixWallLsdem::add_contact(Lane &lane, int i, const lsdem_contact_result &re
    n = 3,4,5: the wall's reference point (plane point or cylinder axis point) now;
    n = 6,7,8: the wall's body z axis in the world (plane normal or cylinder axis) now;
    n = 9: tilt of a pivoting platen, the angle (degrees) between its normal and the ram axis;
-   n = 10,11,12: its angular velocity (world, radians/time; 0 without pivot)
+   n = 10,11,12: its angular velocity, or a spinning wall's (world, radians/time; else 0)
 ------------------------------------------------------------------------- */
 
 double FixWallLsdem::compute_vector(int n)
 {
-  if (n >= 10) return bnd.pivots ? bnd.platen.omega[n - 10] : 0.0;
+  if (n >= 10) return bnd.pivots ? bnd.platen.omega[n - 10] : bnd.pose.omega[n - 10];
   if (n == 9) {
     if (!bnd.pivots) return 0.0;
     const double normal[3] = {bnd.pose.R[2], bnd.pose.R[5], bnd.pose.R[8]};
@@ -580,11 +587,13 @@ double FixWallLsdem::compute_vector(int n)
 /* ----------------------------------------------------------------------
    restart: the wall's current position, so that a moving wall resumes where it was (3
    doubles); with pivot, PIVOT_TAG first and then the wall point,
-   pivot point, orientation and angular velocity (14 doubles). The tag lets either kind of
-   fix read either kind of file without reading past its end.
+   pivot point, orientation and angular velocity (14 doubles); with spin, SPIN_TAG first
+   and then the wall point, the spin's centre, its point at angle 0 and the angle turned
+   (11 doubles). The tags let any kind of fix read any kind of file without reading past
+   its end.
 ------------------------------------------------------------------------- */
 
-static const double PIVOT_TAG = -DBL_MAX;
+static const double PIVOT_TAG = -DBL_MAX, SPIN_TAG = -0.5 * DBL_MAX;
 
 void FixWallLsdem::write_restart(FILE *fp)
 {
@@ -599,6 +608,14 @@ void FixWallLsdem::write_restart(FILE *fp)
       for (int k = 0; k < 4; k++) list[n++] = p.q[k];
       for (int d = 0; d < 3; d++) list[n++] = p.omega[d];
     }
+    if (bnd.spin.on) {
+      n = 0;
+      list[n++] = SPIN_TAG;
+      for (int d = 0; d < 3; d++) list[n++] = bnd.pose.x[d];
+      for (int d = 0; d < 3; d++) list[n++] = bnd.spin.centre[d];
+      for (int d = 0; d < 3; d++) list[n++] = bnd.spin.x0[d];
+      list[n++] = bnd.spin.angle;
+    }
     int size = n * sizeof(double);
     fwrite(&size, sizeof(int), 1, fp);
     fwrite(list, sizeof(double), n, fp);
@@ -608,9 +625,19 @@ void FixWallLsdem::write_restart(FILE *fp)
 void FixWallLsdem::restart(char *buf)
 {
   const double *list = (const double *) buf;
-  const bool tagged = list[0] == PIVOT_TAG;
-  const double *x = tagged ? list + 1 : list;
+  const bool tagged = list[0] == PIVOT_TAG, spun = list[0] == SPIN_TAG;
+  const double *x = tagged || spun ? list + 1 : list;
   for (int d = 0; d < 3; d++) bnd.pose.x[d] = x[d];
+  if (bnd.spin.on) {
+    lsdem_spin &sp = bnd.spin;
+    for (int d = 0; d < 3; d++) {
+      sp.centre[d] = spun ? list[4 + d] : sp.centre[d];
+      sp.x0[d] = spun ? list[7 + d] : bnd.pose.x[d];
+    }
+    sp.angle = spun ? list[10] : 0.0;  // a file without spin: from where the wall was
+    if (!spun) memcpy(sp.R0, bnd.pose.R, sizeof sp.R0);
+    lsdem_boundary_place_spun(&bnd);
+  }
   if (!bnd.pivots) return;
   lsdem_platen &p = bnd.platen;
   if (tagged) {

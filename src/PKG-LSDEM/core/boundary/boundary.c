@@ -106,6 +106,51 @@ lsdem_status lsdem_boundary_pivot(lsdem_boundary *b, double h, double inertia, d
   return LSDEM_OK;
 }
 
+lsdem_status lsdem_boundary_spin(lsdem_boundary *b, const double centre[3],
+                                 const double omega[3], lsdem_error *err)
+{
+  if (b->pivots)
+    return lsdem_fail(err, LSDEM_ERR_ARG, "a pivoting platen cannot also spin");
+  const double w = sqrt(lsdem_dot3(omega, omega));
+  if (!(w > 0.0) || !isfinite(w))
+    return lsdem_fail(err, LSDEM_ERR_ARG, "spin angular velocity must be finite and not zero");
+  lsdem_spin *sp = &b->spin;
+  sp->on = 1;
+  sp->angle = 0.0;
+  for (int d = 0; d < 3; d++) {
+    sp->centre[d] = centre[d];
+    sp->omega[d] = omega[d];
+    sp->x0[d] = b->pose.x[d];
+  }
+  memcpy(sp->R0, b->pose.R, sizeof sp->R0);
+  lsdem_boundary_place_spun(b);
+  return LSDEM_OK;
+}
+
+/* Rotation by `angle` about the unit axis of omega, as a matrix (row-major). */
+static void spin_matrix(const double omega[3], double angle, double M[9])
+{
+  const double w = sqrt(lsdem_dot3(omega, omega)), s = sin(0.5 * angle) / w;
+  const double q[4] = {cos(0.5 * angle), omega[0] * s, omega[1] * s, omega[2] * s};
+  lsdem_quat_to_matrix(q, M);
+}
+
+void lsdem_boundary_place_spun(lsdem_boundary *b)
+{
+  const lsdem_spin *sp = &b->spin;
+  double M[9], rel[3], turned[3];
+  spin_matrix(sp->omega, sp->angle, M);
+  lsdem_mat_mul(M, sp->R0, b->pose.R);
+  lsdem_sub3(sp->x0, sp->centre, rel);
+  lsdem_mat_vec(M, rel, turned);
+  for (int d = 0; d < 3; d++) {
+    b->pose.x[d] = sp->centre[d] + turned[d];
+    b->pose.omega[d] = sp->omega[d];
+  }
+}
+
+int lsdem_boundary_turns(const lsdem_boundary *b) { return b->pivots || b->spin.on; }
+
 /* pose.v stays the ram's velocity, the one P moves with */
 void lsdem_boundary_place_platen(lsdem_boundary *b)
 {
@@ -165,6 +210,16 @@ void lsdem_boundary_pose_at(const lsdem_boundary *b, double s, lsdem_pose *pose)
     lsdem_pivot_pose(P, b->pose.v, b->platen.q, b->platen.omega, b->platen.h, pose);
     return;
   }
+  if (b->spin.on) {
+    lsdem_boundary moved = *b;
+    if (s != 0.0) lsdem_boundary_advance(&moved, s);
+    *pose = moved.pose;
+    double rel[3], spin_v[3];
+    lsdem_sub3(pose->x, moved.spin.centre, rel);
+    lsdem_cross3(moved.spin.omega, rel, spin_v);
+    for (int d = 0; d < 3; d++) pose->v[d] += spin_v[d];
+    return;
+  }
   *pose = b->pose;
   if (s != 0.0)
     for (int d = 0; d < 3; d++) pose->x[d] += s * b->pose.v[d];
@@ -172,6 +227,16 @@ void lsdem_boundary_pose_at(const lsdem_boundary *b, double s, lsdem_pose *pose)
 
 void lsdem_boundary_advance(lsdem_boundary *b, double dt)
 {
+  if (b->spin.on) {
+    lsdem_spin *sp = &b->spin;
+    sp->angle += sqrt(lsdem_dot3(sp->omega, sp->omega)) * dt;
+    for (int d = 0; d < 3; d++) {
+      sp->centre[d] += dt * b->pose.v[d];
+      sp->x0[d] += dt * b->pose.v[d];
+    }
+    lsdem_boundary_place_spun(b);
+    return;
+  }
   if (!b->pivots) {
     for (int d = 0; d < 3; d++) b->pose.x[d] += dt * b->pose.v[d];
     return;

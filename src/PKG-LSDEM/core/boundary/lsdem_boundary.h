@@ -29,8 +29,9 @@
  *
  * Motion: pose.v is the wall's translation velocity (the caller may change it between
  * steps, e.g. from a LAMMPS variable); a pivoting platen turns about P at platen.omega
- * (pose.omega its current value). Rotation of a whole wall about a prescribed axis is not
- * implemented; it would add a spin to lsdem_boundary_advance and lsdem_boundary_pose_at. */
+ * (pose.omega its current value); a spinning wall (lsdem_boundary_spin: a drum, a mixer)
+ * turns at a prescribed angular velocity about an axis through a centre that moves with
+ * pose.v. */
 #ifndef LSDEM_BOUNDARY_H
 #define LSDEM_BOUNDARY_H
 
@@ -54,6 +55,17 @@ typedef struct {
   double torque[3]; /* load about P of the last force call (lsdem_boundary_platen_load) */
 } lsdem_platen;
 
+/* A prescribed rotation (lsdem_boundary_spin): the wall turns at omega (world, radians
+ * per time) about the axis through `centre`; its pose is the one it had at angle 0 (R0,
+ * x0) turned by `angle` = |omega| t about that axis, so no rounding accumulates in R.
+ * centre and x0 move with pose.v. */
+typedef struct {
+  int on;
+  double centre[3], omega[3];
+  double angle;        /* radians turned so far */
+  double R0[9], x0[3]; /* the pose at angle 0 */
+} lsdem_spin;
+
 typedef struct {
   lsdem_shape shape;   /* the signed distance (shape.sdf) in the wall frame; no nodes,
                           radius HUGE_VAL: never rejected by a bounding sphere of B */
@@ -61,6 +73,7 @@ typedef struct {
                           platen's: that of P, the ram's), omega (a platen's tilt rate) */
   int pivots;          /* 1: a plane that is a pivoting platen (platen below) */
   lsdem_platen platen;
+  lsdem_spin spin;     /* spin.on: a prescribed rotation */
 } lsdem_boundary;
 
 /* A plane through `point` with normal n (any length, scaled internally; the grains' side
@@ -81,6 +94,15 @@ void lsdem_boundary_band(lsdem_boundary *b, const lsdem_band *band);
  * out of range (the message names it). Also re-levels a platen at its current point. */
 lsdem_status lsdem_boundary_pivot(lsdem_boundary *b, double h, double inertia, double damping,
                                   lsdem_error *err);
+/* Make a wall spin at omega (world, radians per time, not zero) about the axis through
+ * centre, from its pose now (angle 0). LSDEM_ERR_ARG for a platen or a bad omega. */
+lsdem_status lsdem_boundary_spin(lsdem_boundary *b, const double centre[3],
+                                 const double omega[3], lsdem_error *err);
+/* A spinning wall's pose (x, R, omega) from its spin record (after restoring it). */
+void lsdem_boundary_place_spun(lsdem_boundary *b);
+/* Whether points of the wall move differently from its point pose.x (it tilts or spins):
+ * a grain list found near the wall cannot be kept by the wall point's motion alone. */
+int lsdem_boundary_turns(const lsdem_boundary *b);
 /* A platen's pose (x, R, omega) from its P, q and omega (after restoring them). */
 void lsdem_boundary_place_platen(lsdem_boundary *b);
 
@@ -107,11 +129,13 @@ int lsdem_boundary_crossing(const lsdem_boundary *b, const lsdem_pose *w, const 
 int lsdem_boundary_tunnelled(const lsdem_boundary *b, double depth);
 /* The wall's pose at time s after the record's (s < 0: before): the record's pose moved
  * by s v (for a platen P moved so, the tilt held; pose->v of a platen is then the velocity
- * of its point, v + omega x (x - P)). s = 0 gives the pose as stored, bit for bit (a
- * platen's from P, q, omega). */
+ * of its point, v + omega x (x - P); a spinning wall turned on by s omega, pose->v the
+ * velocity of its point, v + omega x (x - centre)). s = 0 gives the pose as stored, bit
+ * for bit (a platen's from P, q, omega), except for a spinning wall's v. */
 void lsdem_boundary_pose_at(const lsdem_boundary *b, double s, lsdem_pose *pose);
 /* Move the wall over dt: x += dt v; a platen tilts under platen.torque
- * (lsdem_step_pivot: eqs 2.18, 2.28), P += dt v, and its pose follows. */
+ * (lsdem_step_pivot: eqs 2.18, 2.28), P += dt v, and its pose follows; a spinning wall
+ * turns by |omega| dt about its axis, whose centre moves by dt v. */
 void lsdem_boundary_advance(lsdem_boundary *b, double dt);
 /* A platen's load for its next step: the force f of the grains on the wall and their
  * torque t about the wall's point pose.x, moved to P (platen.torque). */
