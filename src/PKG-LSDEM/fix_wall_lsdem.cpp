@@ -553,6 +553,7 @@ void FixWallLsdem::add_contact(Lane &lane, int i, const lsdem_contact_result &re
   lane.contact.emplace_back();
   Contact &c = lane.contact.back();
   c.i = i;
+  c.npen = res.npen;
   for (int d = 0; d < 3; d++) {
     c.force[d] = res.force[d];
     c.point[d] = res.point[d];

@@ -47,6 +47,7 @@ class FixWallLsdem : public Fix {
   struct Contact {
     int i;                          // local index of the grain
     double force[3], point[3];      // force of the wall on the grain, contact point
+    int npen;                       // penetrating nodes
   };
   template <class Visit> void each_contact(Visit visit) const
   {

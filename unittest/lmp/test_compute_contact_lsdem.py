@@ -3,7 +3,8 @@ level-set cubes: cube 3 rests across cubes 1 and 2, which stand on a floor.
 
 At rest under gravity (g = 1, unit masses):
   - local rows: the pair forces on cube 3 balance its weight, and the contact points
-    lie on the interface plane between the layers;
+    lie on the interface plane between the layers; the floor's rows (other id -1) carry
+    all three weights at height 0, and walls no drops them;
   - per-atom coordination (grain-grain contacts, eq 3.15): 1, 1, 2;
   - compute pair lsdem (the pair's workload counters): 2 contacts;
   - two-way mode gives two rows per contact, each carrying half of the force;
@@ -36,6 +37,8 @@ thermo_style custom step ke c_w[1] c_w[2] c_w[3] c_w[4] v_z1 v_z3
 thermo 1000
 timestep 1e-3
 dump rows all local 4000 rows.dump c_c[1] c_c[2] c_c[3] c_c[4] c_c[5] c_c[6] c_c[7] c_c[8] c_c[9]
+compute nw all contact/lsdem walls no
+dump nowall all local 4000 nowall.dump c_nw[1] c_nw[2]
 dump_modify rows format float %%.17g
 dump coord all custom 4000 coord.dump id c_c
 run 4000
@@ -61,8 +64,16 @@ if check(len(rows) == 5, "oneway: thermo output missing"):
     check(last["c_w[1]"] >= 2 and last["c_w[3]"] >= last["c_w[4]"] > 0,
           "oneway: workload counters (pairs %g, nodes %g, penetrating %g)"
           % (last["c_w[1]"], last["c_w[3]"], last["c_w[4]"]))
-    local = last_block(os.path.join(folder, "rows.dump"))
+    every = last_block(os.path.join(folder, "rows.dump"))
+    local = [r for r in every if r[1] > 0]
+    floor = [r for r in every if r[1] < 0]
     check(len(local) == 2, "oneway: %d local rows, expected 2" % len(local))
+    check(sorted(int(r[0]) for r in floor) == [1, 2] and all(r[1] == -1 for r in floor),
+          "oneway: floor rows %s, expected cubes 1 and 2 against wall -1" % floor)
+    near(sum(r[7] for r in floor), 3.0, rtol=1e-3, msg="oneway: the floor carries 3 weights")
+    check(all(abs(r[4]) < 0.01 for r in floor), "oneway: floor contact points not at z = 0")
+    check(len(last_block(os.path.join(folder, "nowall.dump"))) == 2,
+          "oneway: walls no still lists the floor")
     fz3 = 0.0
     for r in local:
         i, j = int(r[0]), int(r[1])
@@ -79,7 +90,7 @@ if check(len(rows) == 5, "oneway: thermo output missing"):
 
 rows, folder, log = settle("twoway", "mode twoway")
 if check(len(rows) == 5, "twoway: thermo output missing"):
-    local = last_block(os.path.join(folder, "rows.dump"))
+    local = [r for r in last_block(os.path.join(folder, "rows.dump")) if r[1] > 0]
     check(len(local) == 4, "twoway: %d local rows, expected 4 (both directions)" % len(local))
     fz3 = sum((r[7] if int(r[0]) == 3 else -r[7]) for r in local)
     near(fz3, 1.0, rtol=1e-3, msg="twoway: contact forces carry cube 3's weight")
@@ -87,7 +98,7 @@ if check(len(rows) == 5, "twoway: thermo output missing"):
 
 rows, folder, log = settle("zcap", "zcap 1")
 if check(len(rows) == 5, "zcap: thermo output missing"):
-    local = last_block(os.path.join(folder, "rows.dump"))
+    local = [r for r in last_block(os.path.join(folder, "rows.dump")) if r[1] > 0]
     fz3 = sum((r[7] if int(r[0]) == 3 else -r[7]) for r in local)
     near(fz3, 1.0, rtol=1e-3, msg="zcap: the scaled forces still carry cube 3's weight")
     gap = 1.0 - (rows[-1]["v_z3"] - rows[-1]["v_z1"])
