@@ -17,6 +17,10 @@
  *   lsdem-shape membrane PREFIX --radius RS --height H --rb RB ...     (shape_membrane.c)
  *   lsdem-shape to-raw IMAGE.tif OUT.raw                              (shape_image.c)
  *   lsdem-shape voids LIB DATA (--cylinder R Z0 Z1 | --box ...) [options] (shape_voids.c)
+ *   lsdem-shape wall MESH.stl|.obj OUT.band --spacing H [--width W] [--scale S]
+ *                                                                     (shape_wall.c)
+ *   lsdem-shape terrain HEIGHTMAP OUT.band --spacing H [--width W] [--cell C] [--zscale Z]
+ *                                                                     (shape_wall.c)
  *
  * Exit status 0 on success, 1 on any error (with a message on stderr), 2 on bad usage. */
 #include "lsdem.h"
@@ -63,7 +67,10 @@ static int usage(void)
           "                   [--z0 Z] [--outer F] [--density RHO] [--types T_IN T_OUT]\n"
           "                   [--knbb K] [--ksbb K] [--kinter KN KS]\n"
           "       lsdem-shape voids LIB DATA (--cylinder R Z0 Z1 | --box X0 X1 Y0 Y1 Z0 Z1)\n"
-          "                   [--centre X Y] [--inset D] [--spacing H]\n");
+          "                   [--centre X Y] [--inset D] [--spacing H]\n"
+          "       lsdem-shape wall MESH.stl|MESH.obj OUT.band --spacing H [--width W] [--scale S]\n"
+          "       lsdem-shape terrain HEIGHTMAP.asc|.tif|.png OUT.band --spacing H [--width W]\n"
+          "                   [--cell C] [--zscale Z]\n");
   return 2;
 }
 
@@ -581,7 +588,8 @@ int main(int argc, char **argv)
               {"render", cmd_render}, {"surface", cmd_surface},
               {"from-labels", cmd_from_labels}, {"from-mesh", cmd_from_mesh},
               {"random", cmd_random}, {"pack", cmd_pack}, {"membrane", cmd_membrane},
-              {"to-raw", cmd_to_raw}, {"voids", cmd_voids}, {"pick", cmd_pick}};
+              {"to-raw", cmd_to_raw}, {"voids", cmd_voids}, {"pick", cmd_pick},
+              {"wall", cmd_wall}, {"terrain", cmd_terrain}};
   if (argc < 2) return usage();
   for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++)
     if (!strcmp(argv[1], cmds[i].name)) return cmds[i].run(argc - 2, argv + 2);

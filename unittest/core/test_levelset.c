@@ -211,7 +211,7 @@ static void test_check(void)
 static void test_sample(void)
 {
   /* a half-space sampled: phi = z exactly, covering [lo, hi] plus the margin */
-  lsdem_sdf plane = {LSDEM_SDF_PLANE, 0, {0, 0, 0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}};
+  lsdem_sdf plane = {LSDEM_SDF_PLANE, 0, {0, 0, 0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}, NULL};
   const double lo[3] = {-1.0, -0.5, -0.75}, hi[3] = {1.0, 0.5, 0.75};
   lsdem_grid g;
   lsdem_error err;
@@ -242,7 +242,7 @@ static void test_sample(void)
 /* Not a pass/fail timing: prints the cost of one lookup for the record. */
 static void report_speed(void)
 {
-  lsdem_sdf sph = {LSDEM_SDF_SPHERE, 0, {1.0, 0, 0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}};
+  lsdem_sdf sph = {LSDEM_SDF_SPHERE, 0, {1.0, 0, 0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}, NULL};
   const double lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
   lsdem_grid g;
   if (lsdem_grid_sample(&sph, lo, hi, 0.05, 2, &g, NULL) != LSDEM_OK) return;

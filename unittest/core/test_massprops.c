@@ -26,7 +26,7 @@ static float *rotated_ellipsoid_grid(const double a[3], const double q[4], const
   g->h = h;
   for (int k = 0; k < 3; k++) g->origin[k] = c[k] - r;
   float *phi = malloc(sizeof(float) * n * n * n);
-  const lsdem_sdf el = {LSDEM_SDF_ELLIPSOID, 0, {a[0], a[1], a[2]}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}};
+  const lsdem_sdf el = {LSDEM_SDF_ELLIPSOID, 0, {a[0], a[1], a[2]}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}, NULL};
   size_t m = 0;
   for (int k = 0; k < n; k++)
     for (int j = 0; j < n; j++)
@@ -126,7 +126,7 @@ static void test_rotated_ellipsoid(void)
    * ~h^2 k / 6 between samples, shrinking it slightly (0.2% here) */
   CHECK_REL(pp.volume, mp.volume, 5e-3);
   /* the resampled field is the ellipsoid in its own frame (symmetric under axis flips) */
-  const lsdem_sdf el = {LSDEM_SDF_ELLIPSOID, 0, {a[0], a[1], a[2]}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}};
+  const lsdem_sdf el = {LSDEM_SDF_ELLIPSOID, 0, {a[0], a[1], a[2]}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}, NULL};
   double worst = 0;
   int near = 0;
   for (int t = 0; t < 20000; t++) { /* near the surface, away from the medial kinks */

@@ -69,3 +69,12 @@ read_data %s
 
 
 THERMO_FULL = "thermo_modify norm no format float %.17g\n"
+# grain 1's position and velocity as equal-style variables for thermo_style custom
+# (v_px v_py v_pz v_vx v_vy v_vz): thermo keywords cannot name an atom's x[1] in LAMMPS 2021
+GRAIN1 = """variable px equal x[1]
+variable py equal y[1]
+variable pz equal z[1]
+variable vx equal vx[1]
+variable vy equal vy[1]
+variable vz equal vz[1]
+"""

@@ -1,10 +1,12 @@
 /* fileio.c -- reading a whole file into memory, shared by the binary and text readers
- * (TIFF images, STL/OBJ meshes). */
+ * (TIFF images, STL/OBJ meshes, ASCII grids), and file names' extensions. */
 #define _POSIX_C_SOURCE 200809L /* fileno, fstat */
 #include "lsdem_io.h"
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 lsdem_status lsdem_read_file(const char *path, size_t max_bytes, unsigned char **data,
@@ -40,4 +42,10 @@ lsdem_status lsdem_read_file(const char *path, size_t max_bytes, unsigned char *
   *data = buf;
   *size = (size_t)n;
   return LSDEM_OK;
+}
+
+int lsdem_path_has_extension(const char *path, const char *ext)
+{
+  const size_t n = strlen(path), e = strlen(ext);
+  return n >= e && strcasecmp(path + n - e, ext) == 0;
 }

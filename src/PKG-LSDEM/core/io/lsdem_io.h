@@ -1,6 +1,7 @@
 /* lsdem_io.h -- files in and out (not linked into lmp): reading whole files, label images
- * and grey-level volumes (raw; TIFF through libtiff), surface meshes as VTK/PLY, pictures
- * of grains (ray-marched, PNG through libpng). */
+ * and grey-level volumes (raw; TIFF through libtiff), height maps (ESRI ASCII grids,
+ * GeoTIFF, grey PNG), surface meshes as VTK/PLY, pictures of grains (ray-marched, PNG
+ * through libpng). */
 #ifndef LSDEM_IO_H
 #define LSDEM_IO_H
 
@@ -16,6 +17,8 @@ extern "C" {
  * *size); free(*data) when done. */
 lsdem_status lsdem_read_file(const char *path, size_t max_bytes, unsigned char **data,
                              size_t *size, lsdem_error *err);
+/* 1 if path ends in ext (".stl"; compared ignoring case), else 0. */
+int lsdem_path_has_extension(const char *path, const char *ext);
 
 /* ------------------------------------------------------------ label images ---- */
 
@@ -69,6 +72,62 @@ lsdem_status lsdem_tiff_read_volume(const char *path, lsdem_volume *v, lsdem_err
 const char *lsdem_volume_type_name(const lsdem_volume *v);
 void lsdem_volume_free(lsdem_volume *v);
 
+/* GeoTIFF georeferencing of a TIFF's first page (GeoTIFF 1.1: model space from raster
+ * space). Tags absent from the file leave their has_* flag 0. */
+typedef struct {
+  int has_scale, has_tiepoint, has_transform, has_nodata;
+  double scale[3];    /* ModelPixelScaleTag (33550): size of a pixel in x, y, z */
+  double tiepoint[6]; /* ModelTiepointTag (33922), first point: raster I J K, model X Y Z */
+  int pixel_is_point; /* GTRasterTypeGeoKey = RasterPixelIsPoint (else PixelIsArea) */
+  double nodata;      /* GDAL_NODATA (42113), parsed from its text */
+} lsdem_tiff_georef;
+lsdem_status lsdem_tiff_read_georef(const char *path, lsdem_tiff_georef *g, lsdem_error *err);
+
+/* ------------------------------------------------------------ height maps ---- */
+
+/* A terrain's heights on a square raster: z[j nx + i] at (x0 + i cell, y0 + j cell), row
+ * j = 0 first (the south edge: y grows northwards), NaN where there is no data. */
+typedef struct {
+  int nx, ny;
+  double x0, y0, cell;
+  float *z; /* nx*ny, allocated by the readers; lsdem_heightmap_free */
+} lsdem_heightmap;
+
+#define LSDEM_HEIGHTMAP_MAX_SAMPLES 268435456L /* 2^28 heights (1 GB of floats) */
+
+/* ESRI ASCII grid (.asc): a header of "key value" lines -- ncols, nrows, xllcorner or
+ * xllcenter, yllcorner or yllcenter, cellsize, optionally NODATA_value; keys in any order
+ * and case -- then nrows x ncols numbers, rows north to south. A corner origin puts the
+ * first height at the centre of the south-west cell (+cellsize/2). Values equal to
+ * NODATA_value become NaN. LSDEM_ERR_FORMAT naming the file and the line for an unknown,
+ * repeated or missing key, a bad header value, a token that is not a number, a NaN or
+ * infinite value, too few or too many values, or a raster of only nodata. */
+lsdem_status lsdem_heightmap_read_asc(const char *path, lsdem_heightmap *hm, lsdem_error *err);
+/* A single-page, single-band TIFF (lsdem_tiff_read_volume: float or 8/16/32-bit integer
+ * samples) with GeoTIFF georeferencing when present: ModelPixelScaleTag (square pixels)
+ * and ModelTiepointTag place the pixel centres (PixelIsArea, or PixelIsPoint from the
+ * GeoKeyDirectory); GDAL_NODATA and NaN samples are nodata. Rows top first (north).
+ * cell > 0 gives the pixel size of a file without ModelPixelScaleTag (then the south-west
+ * pixel's centre is at x = y = 0); it is refused for a file that has one. */
+lsdem_status lsdem_heightmap_read_tiff(const char *path, double cell, lsdem_heightmap *hm,
+                                       lsdem_error *err);
+/* A grey PNG (8 or 16 bits, lsdem_png_read_grey), rows top first (north): z = value *
+ * zscale at pixel centres (i cell, j cell), south-west pixel at the origin. */
+lsdem_status lsdem_heightmap_read_png(const char *path, double cell, double zscale,
+                                      lsdem_heightmap *hm, lsdem_error *err);
+/* By the extension (any case): .asc, .tif/.tiff (cell as above), .png (cell, zscale);
+ * zscale also multiplies the heights of the other formats. */
+lsdem_status lsdem_heightmap_read(const char *path, double cell, double zscale,
+                                  lsdem_heightmap *hm, lsdem_error *err);
+void lsdem_heightmap_free(lsdem_heightmap *hm);
+
+/* The terrain surface as triangles: a vertex per height that a kept cell uses, two
+ * triangles per cell with four heights ((i,j), (i+1,j), (i+1,j+1)) and ((i,j), (i+1,j+1),
+ * (i,j+1)), counter-clockwise seen from above (normals up: the grains' side); cells with a
+ * nodata corner are left out (holes). LSDEM_ERR_ARG for fewer than 2 x 2 heights, a bad
+ * cell size, no complete cell, or more than LSDEM_MESH_MAX_TRIS triangles. Allocates m
+ * (lsdem_mesh_free). */
+lsdem_status lsdem_heightmap_mesh(const lsdem_heightmap *hm, lsdem_mesh *m, lsdem_error *err);
 
 /* ----------------------------------------------------------- surface files ---- */
 
@@ -110,6 +169,13 @@ lsdem_status lsdem_render(const lsdem_shape *const *shapes, int nshapes,
 /* An 8-bit RGB PNG (rows top first), written by libpng (png.c). */
 lsdem_status lsdem_png_write(const char *path, int width, int height, const unsigned char *rgb,
                              lsdem_error *err);
+/* A grey PNG (1, 2, 4, 8 or 16 bits, any interlacing) read by libpng (png.c): *values
+ * receives width*height samples, rows top first (free()), *bits 8 (also for 1, 2 and 4-bit
+ * images, expanded) or 16. Colour, palette and alpha images are refused naming them. */
+#define LSDEM_PNG_MAX_SIDE 65536
+#define LSDEM_PNG_MAX_PIXELS 268435456L
+lsdem_status lsdem_png_read_grey(const char *path, int *width, int *height, int *bits,
+                                 uint16_t **values, lsdem_error *err);
 
 #ifdef __cplusplus
 }

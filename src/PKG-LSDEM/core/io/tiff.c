@@ -236,6 +236,23 @@ static lsdem_status scan_pages(TIFF *tif, FILE *f, long long file_size, const ch
   return LSDEM_OK;
 }
 
+/* Open path for reading with this file's handlers: errors into te, warnings dropped,
+ * single allocations capped. */
+static lsdem_status open_tiff(const char *path, tiff_errors *te, TIFF **tif, lsdem_error *err)
+{
+  TIFFOpenOptions *opts = TIFFOpenOptionsAlloc();
+  if (!opts) return lsdem_fail(err, LSDEM_ERR_NOMEM, "%s: out of memory", path);
+  TIFFOpenOptionsSetErrorHandlerExtR(opts, on_error, te);
+  TIFFOpenOptionsSetWarningHandlerExtR(opts, on_warning, NULL);
+  TIFFOpenOptionsSetMaxSingleMemAlloc(opts, TIFF_MAX_ALLOC);
+  *tif = TIFFOpenExt(path, "r", opts);
+  TIFFOpenOptionsFree(opts);
+  if (!*tif)
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: not a readable TIFF file: %s", path,
+                      te->failed ? te->msg : "unknown reason");
+  return LSDEM_OK;
+}
+
 lsdem_status lsdem_tiff_read_volume(const char *path, lsdem_volume *v, lsdem_error *err)
 {
   if (!path || !v) return lsdem_fail(err, LSDEM_ERR_ARG, "NULL argument");
@@ -245,21 +262,15 @@ lsdem_status lsdem_tiff_read_volume(const char *path, lsdem_volume *v, lsdem_err
   long long file_size = -1;
   if (fseeko(f, 0, SEEK_END) == 0) file_size = (long long)ftello(f);
   tiff_errors te = {path, 0, ""};
-  TIFFOpenOptions *opts = file_size >= 0 ? TIFFOpenOptionsAlloc() : NULL;
-  if (!opts) {
+  if (file_size < 0) {
     fclose(f);
-    return file_size < 0 ? lsdem_fail(err, LSDEM_ERR_IO, "%s: cannot find the file size", path)
-                         : lsdem_fail(err, LSDEM_ERR_NOMEM, "%s: out of memory", path);
+    return lsdem_fail(err, LSDEM_ERR_IO, "%s: cannot find the file size", path);
   }
-  TIFFOpenOptionsSetErrorHandlerExtR(opts, on_error, &te);
-  TIFFOpenOptionsSetWarningHandlerExtR(opts, on_warning, NULL);
-  TIFFOpenOptionsSetMaxSingleMemAlloc(opts, TIFF_MAX_ALLOC);
-  TIFF *tif = TIFFOpenExt(path, "r", opts);
-  TIFFOpenOptionsFree(opts);
-  if (!tif) {
+  TIFF *tif = NULL;
+  const lsdem_status opened = open_tiff(path, &te, &tif, err);
+  if (opened != LSDEM_OK) {
     fclose(f);
-    return lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: not a readable TIFF file: %s", path,
-                      te.failed ? te.msg : "unknown reason");
+    return opened;
   }
   tiff_page first = {0}, p = {0};
   int npages = 0;
@@ -342,4 +353,73 @@ int lsdem_image_is_tiff(const char *path)
   fclose(f);
   return got == 4 && ((m[0] == 'I' && m[1] == 'I' && (m[2] == 42 || m[2] == 43) && m[3] == 0) ||
                       (m[0] == 'M' && m[1] == 'M' && m[2] == 0 && (m[3] == 42 || m[3] == 43)));
+}
+
+/* ------------------------------------------------------ GeoTIFF georeferencing ---- */
+
+/* An array tag of the first page, of `type`, whatever way libtiff knows it: as a field
+ * with a 16- or 32-bit count, or (GeoTIFF and GDAL tags, unknown to libtiff) as an
+ * anonymous field read with a 32-bit count. 0 when absent or of another type. */
+static int tag_array(TIFF *tif, uint32_t tag, TIFFDataType type, uint32_t *count, void **data)
+{
+  const TIFFField *f = TIFFFindField(tif, tag, TIFF_ANY);
+  *count = 0, *data = NULL;
+  if (!f || TIFFFieldDataType(f) != type) return 0;
+  int ok;
+  if (!TIFFFieldPassCount(f)) {
+    ok = TIFFGetField(tif, tag, data);
+    *count = ok && *data && type == TIFF_ASCII ? (uint32_t)strlen((const char *)*data) + 1 : 0;
+  } else if (TIFFFieldReadCount(f) == TIFF_VARIABLE2) {
+    ok = TIFFGetField(tif, tag, count, data);
+  } else {
+    uint16_t c16 = 0;
+    ok = TIFFGetField(tif, tag, &c16, data);
+    *count = c16;
+  }
+  return ok && *data && *count > 0;
+}
+
+lsdem_status lsdem_tiff_read_georef(const char *path, lsdem_tiff_georef *g, lsdem_error *err)
+{
+  if (!path || !g) return lsdem_fail(err, LSDEM_ERR_ARG, "NULL argument");
+  memset(g, 0, sizeof *g);
+  tiff_errors te = {path, 0, ""};
+  TIFF *tif = NULL;
+  lsdem_status st = open_tiff(path, &te, &tif, err);
+  if (st != LSDEM_OK) return st;
+  uint32_t n;
+  void *d;
+  if (tag_array(tif, 33550, TIFF_DOUBLE, &n, &d) && n >= 2) { /* ModelPixelScaleTag */
+    g->has_scale = 1;
+    memcpy(g->scale, d, (n < 3 ? n : 3) * sizeof(double));
+  }
+  if (tag_array(tif, 33922, TIFF_DOUBLE, &n, &d) && n >= 6) { /* ModelTiepointTag */
+    g->has_tiepoint = 1;
+    memcpy(g->tiepoint, d, 6 * sizeof(double));
+  }
+  g->has_transform = tag_array(tif, 34264, TIFF_DOUBLE, &n, &d); /* ModelTransformationTag */
+  /* GeoKeyDirectoryTag: header of 4 shorts, then (key, location, count, value) quadruples;
+   * GTRasterTypeGeoKey (1025) = 2 is PixelIsPoint (1, the default, PixelIsArea) */
+  if (tag_array(tif, 34735, TIFF_SHORT, &n, &d) && n >= 4) {
+    const uint16_t *k = (const uint16_t *)d;
+    for (uint32_t i = 4; i + 3 < n && (i - 4) / 4 < k[3]; i += 4)
+      if (k[i] == 1025 && k[i + 1] == 0 && k[i + 3] == 2) g->pixel_is_point = 1;
+  }
+  if (tag_array(tif, 42113, TIFF_ASCII, &n, &d)) { /* GDAL_NODATA: the value as text */
+    char text[64];
+    snprintf(text, sizeof text, "%.*s", (int)(n < sizeof text ? n : sizeof text - 1),
+             (const char *)d);
+    char *end;
+    const double v = strtod(text, &end);
+    while (*end == ' ') end++;
+    if (end == text || *end != '\0') {
+      TIFFClose(tif);
+      return lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: GDAL_NODATA tag (42113) '%s' is not a "
+                        "number", path, text);
+    }
+    g->has_nodata = 1;
+    g->nodata = v;
+  }
+  TIFFClose(tif);
+  return LSDEM_OK;
 }

@@ -1,14 +1,11 @@
 /* library_write.c -- writing a shape-library file (format in doc/shape_library.rst; the
  * reader is the kernel's geom/shapelib.c, the shared layout geom/shapelib_format.h). */
-#define _POSIX_C_SOURCE 200809L
 #include "lsdem_prep.h"
+#include "replace_file.h"
 #include "../geom/shapelib_format.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 /* ------------------------------------------------------------------ writer ---- */
 
@@ -121,9 +118,10 @@ static uint64_t encode_header_toc(unsigned char *buf, const lsdem_shape *shapes,
   return pos;
 }
 
-/* Written to a temporary file renamed over `path` at the end, so processes that have
- * the old library mapped keep a consistent copy; a path that exists as anything but a
- * regular file (a device, a pipe) is refused. Every shape must pass lsdem_shape_validate. */
+/* Written to a temporary file renamed over `path` at the end (replace_file.h), so
+ * processes that have the old library mapped keep a consistent copy; a path that exists as
+ * anything but a regular file (a device, a pipe) is refused. Every shape must pass
+ * lsdem_shape_validate. */
 lsdem_status lsdem_library_write(const char *path, const lsdem_shape *shapes,
                                  const char *const *names, int count, lsdem_error *err)
 {
@@ -133,41 +131,24 @@ lsdem_status lsdem_library_write(const char *path, const lsdem_shape *shapes,
   if (!host_is_little_endian())
     return lsdem_fail(err, LSDEM_ERR_ARG, "shape library: a big-endian host cannot write "
                       "the little-endian format");
-  /* The new file is renamed onto path: a device, pipe or folder there would be replaced. */
-  struct stat sb;
-  if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode))
-    return lsdem_fail(err, LSDEM_ERR_IO, "shape library '%s': exists and is not a regular "
-                      "file (a device, pipe, socket or folder, which writing the library "
-                      "would replace); give the path of a file", path);
   for (int i = 0; i < count; i++) {
     const lsdem_status st = check_shape_for_write(&shapes[i], i, names ? names[i] : NULL, err);
     if (st != LSDEM_OK) return st;
   }
   const size_t head = LIB_HEADER_SIZE + (size_t)LIB_ENTRY_SIZE * (size_t)count;
   unsigned char *buf = (unsigned char *)malloc(head);
-  char *tmp = (char *)malloc(strlen(path) + 32);
-  if (!buf || !tmp) {
-    free(buf);
-    free(tmp);
-    return lsdem_fail(err, LSDEM_ERR_NOMEM, "shape library '%s': out of memory", path);
-  }
+  if (!buf) return lsdem_fail(err, LSDEM_ERR_NOMEM, "shape library '%s': out of memory", path);
   encode_header_toc(buf, shapes, names, count);
-  sprintf(tmp, "%s.tmp%ld", path, (long)getpid());
-  FILE *f = fopen(tmp, "wb");
-  int ok = f && fwrite(buf, 1, head, f) == head;
-  for (int i = 0; ok && i < count; i++) {
-    uint64_t unused = FNV_BASIS;
-    ok = emit_section(&shapes[i], f, &unused);
-  }
-  if (f && fclose(f) != 0) ok = 0;
-  if (ok && rename(tmp, path) != 0) ok = 0;
-  lsdem_status st = LSDEM_OK;
-  if (!ok) {
-    st = lsdem_fail(err, LSDEM_ERR_IO, "shape library '%s': cannot write: %s", path,
-                    strerror(errno));
-    remove(tmp);
+  replace_file out;
+  lsdem_status st = replace_file_open(&out, path, "shape library", err);
+  if (st == LSDEM_OK) {
+    int ok = fwrite(buf, 1, head, out.f) == head;
+    for (int i = 0; ok && i < count; i++) {
+      uint64_t unused = FNV_BASIS;
+      ok = emit_section(&shapes[i], out.f, &unused);
+    }
+    st = replace_file_close(&out, ok, err);
   }
   free(buf);
-  free(tmp);
   return st;
 }

@@ -1,6 +1,7 @@
 /* lsdem_prep.h -- preparation of grains (not linked into lmp): grids from SDFs, mass
  * properties, surface nodes, shape building and checks, shapes from voxels, meshes, star-shaped
- * and random grains, Kawamoto/Tan files, packing, and the shape-library writer. */
+ * and random grains, Kawamoto/Tan files, packing, and the shape-library writer; and the
+ * narrow bands of walls (meshes, terrain) with their file writer. */
 #ifndef LSDEM_PREP_H
 #define LSDEM_PREP_H
 
@@ -294,6 +295,43 @@ lsdem_status lsdem_mesh_sdf_grid(const lsdem_mesh *m, double h, int margin, lsde
                                  lsdem_error *err);
 /* Signed volume of the closed mesh (sum of signed tetrahedra; > 0 when outward). */
 double lsdem_mesh_volume(const lsdem_mesh *m);
+
+
+/* ------------------------------------------- walls: narrow bands (band_build.c) ---- */
+
+/* The narrow band (lsdem_band, lsdem_geom.h) of a wall made of triangle mesh m, spacing h,
+ * half-width `width` (h <= width <= LSDEM_BAND_MAX_WIDTH_CELLS h). The box: m's bounding
+ * box grown by width + h on every side. A brick is stored when some triangle's bounding
+ * box grown by width touches it. Samples within width of the surface hold the exact
+ * distance to the closest triangle (every triangle visits the samples within width of its
+ * bounding box), the others +-width, clamped to [-width, width] as floats.
+ * Signs (phi < 0 on the wall's solid side):
+ *   LSDEM_BAND_MESH: a closed, consistently oriented mesh without zero-area triangles
+ *     (else LSDEM_ERR_ARG with the counts of lsdem_mesh_check_closed); the solid is the
+ *     side its faces point away from (its inside when they point outwards; its outside,
+ *     a container, when they all point inwards). Near the surface by the angle-weighted
+ *     pseudonormal of the closest feature, farther by flood fill (brick by brick; 1 byte
+ *     per stored sample).
+ *   LSDEM_BAND_TERRAIN: a height field (lsdem_heightmap_mesh): the solid is below it (z
+ *     up). A sample over the surface is + above it, - below; beside the terrain's xy
+ *     extent or over a hole, near the surface the pseudonormal sign of the closest feature,
+ *     farther the side of the height at its (x, y) clamped to the extent (+ over a hole).
+ *     A brick no triangle touches is background when its samples share their sign, else
+ *     it is stored.
+ * Time O(triangles (extent / h + 2 width / h + 1)^3 + stored bricks); memory while
+ * building about 13 bytes per stored sample plus the result. Allocates b->index and
+ * b->phi (lsdem_band_free); b->far is NULL. LSDEM_ERR_ARG for bad arguments (empty mesh,
+ * h <= 0, width < h or > 64 h, a non-finite vertex), LSDEM_ERR_NOMEM when a count would
+ * pass 2^31 - 1 (samples per axis, brick slots, stored bricks) or memory runs out. */
+lsdem_status lsdem_band_from_mesh(const lsdem_mesh *m, double h, double width,
+                                  lsdem_band_source src, lsdem_band *b, lsdem_error *err);
+/* Frees what lsdem_band_from_mesh allocated (not a mapped band file's band). */
+void lsdem_band_free(lsdem_band *b);
+/* Write a band file (format in doc/wall_band.rst, geom/bandfile_format.h; read by
+ * lsdem_band_open) after lsdem_band_check; to a temporary file renamed onto path, so a
+ * failure leaves no file and readers that map the old one keep it whole. */
+lsdem_status lsdem_band_write(const char *path, const lsdem_band *b, lsdem_band_source src,
+                              lsdem_error *err);
 
 
 /* ------------------------------------------------- random grains (randgrain.c) ---- */

@@ -2,12 +2,12 @@
  * must pass first: closed and consistently oriented (every edge shared by exactly two
  * triangles traversing it in opposite directions) and free of self-intersections.
  *
- * Signed distance: the unsigned distance to the closest triangle (Ericson, Real-Time
- * Collision Detection, 5.1.5, with the Voronoi region of the closest point), signed by
- * the angle-weighted pseudonormal of that region (Baerentzen & Aanaes, IEEE TVCG 11(3),
- * 2005): face normal, sum of the two face normals for an edge, angle-weighted sum for a
- * vertex. The sign is exact for a closed, consistently oriented mesh. */
+ * Signed distance: the distance to the closest triangle signed by the pseudonormal of its
+ * closest feature (mesh_distance.h, shared with the narrow bands of walls). The sign is
+ * exact for a closed, consistently oriented mesh. */
 #include "lsdem_prep.h"
+#include "mesh_distance.h"
+#include "../io/text_lexer.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -19,24 +19,13 @@
 
 /* ------------------------------------------------------------ small vectors ---- */
 
-static const double *vert(const lsdem_mesh *m, int t, int c) { return m->verts + 3 * m->tris[3 * t + c]; }
-
-/* Unnormalised normal (b - a) x (c - a) of triangle t: twice its area. */
-static void tri_normal(const lsdem_mesh *m, int t, double n[3])
-{
-  double e1[3], e2[3];
-  lsdem_sub3(vert(m, t, 1), vert(m, t, 0), e1);
-  lsdem_sub3(vert(m, t, 2), vert(m, t, 0), e2);
-  lsdem_cross3(e1, e2, n);
-}
-
 double lsdem_mesh_volume(const lsdem_mesh *m)
 {
   double v = 0.0;
   for (int t = 0; t < m->ntris; t++) {
     double bc[3];
-    lsdem_cross3(vert(m, t, 1), vert(m, t, 2), bc);
-    v += lsdem_dot3(vert(m, t, 0), bc) / 6.0;
+    lsdem_cross3(mesh_vert(m, t, 1), mesh_vert(m, t, 2), bc);
+    v += lsdem_dot3(mesh_vert(m, t, 0), bc) / 6.0;
   }
   return v;
 }
@@ -133,54 +122,22 @@ static lsdem_status read_stl_binary(const unsigned char *b, size_t count, soup *
   return LSDEM_OK;
 }
 
-/* Whitespace-separated tokens of a NUL-terminated text, with line numbers. */
-typedef struct {
-  const char *p;
-  long line;
-} lexer;
-
-static int next_token(lexer *lx, const char **tok, size_t *len)
-{
-  while (*lx->p && isspace((unsigned char)*lx->p)) lx->line += *lx->p++ == '\n';
-  if (!*lx->p) return 0;
-  *tok = lx->p;
-  while (*lx->p && !isspace((unsigned char)*lx->p)) lx->p++;
-  *len = (size_t)(lx->p - *tok);
-  return 1;
-}
-
-static int token_is(const char *tok, size_t len, const char *word)
-{
-  return len == strlen(word) && strncmp(tok, word, len) == 0;
-}
-
-static int token_number(const char *tok, size_t len, double *v)
-{
-  char buf[64];
-  if (len == 0 || len >= sizeof buf) return 0;
-  memcpy(buf, tok, len);
-  buf[len] = '\0';
-  char *end;
-  *v = strtod(buf, &end);
-  return *end == '\0' && isfinite(*v);
-}
-
 /* ASCII STL: "vertex x y z" three times inside each "outer loop" ... "endloop". */
 static lsdem_status read_stl_ascii(const char *text, soup *s, const char *path, lsdem_error *err)
 {
-  lexer lx = {text, 1};
+  text_lexer lx = {text, 1};
   const char *tok;
   size_t len;
   double v[9];
   int nv = -1; /* vertices in the current loop, -1 outside a loop */
-  while (next_token(&lx, &tok, &len)) {
+  while (lexer_next(&lx, &tok, &len)) {
     if (token_is(tok, len, "outer")) nv = 0;
     else if (token_is(tok, len, "vertex")) {
       if (nv < 0 || nv >= 3)
         return lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: line %ld: vertex %s", path, lx.line,
                           nv < 0 ? "outside an 'outer loop'" : "beyond the third of a facet");
       for (int k = 0; k < 3; k++)
-        if (!next_token(&lx, &tok, &len) || !token_number(tok, len, &v[3 * nv + k]))
+        if (!lexer_next(&lx, &tok, &len) || !token_number(tok, len, &v[3 * nv + k]))
           return lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: line %ld: vertex needs three finite "
                             "numbers", path, lx.line);
       nv++;
@@ -233,13 +190,13 @@ static int push_tri(int **t, long *nt, long *cap, long a, long b, long c)
 }
 
 /* One "f" line (after the keyword): fan triangles (v0, v[i-1], v[i]). */
-static lsdem_status obj_face(lexer *lx, long nv, int **t, long *nt, long *cap, const char *path,
-                             long line, lsdem_error *err)
+static lsdem_status obj_face(text_lexer *lx, long nv, int **t, long *nt, long *cap,
+                             const char *path, long line, lsdem_error *err)
 {
   const char *tok;
   size_t len;
   long first = -1, prev = -1, idx, corners = 0;
-  while (next_token(lx, &tok, &len)) {
+  while (lexer_next(lx, &tok, &len)) {
     if (!obj_index(tok, len, nv, &idx) || idx >= nv)
       return lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: line %ld: face vertex '%.*s' is not one of "
                         "the %ld vertices defined so far", path, line, (int)(len < 40 ? len : 40),
@@ -273,10 +230,10 @@ static lsdem_status read_obj(char *text, lsdem_mesh *m, const char *path, lsdem_
     char *eol = strchr(p, '\n');
     if (eol) *eol = '\0';
     line++;
-    lexer lx = {p, 0};
+    text_lexer lx = {p, 0};
     const char *tok = NULL;
     size_t len = 0;
-    const int any = next_token(&lx, &tok, &len);
+    const int any = lexer_next(&lx, &tok, &len);
     if (any && token_is(tok, len, "v")) {
       if (nv >= 3L * LSDEM_MESH_MAX_TRIS)
         st = lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: more than %ld vertices", path,
@@ -288,7 +245,7 @@ static lsdem_status read_obj(char *text, lsdem_mesh *m, const char *path, lsdem_
         else v = q;
       }
       for (int k = 0; st == LSDEM_OK && k < 3; k++)
-        if (!next_token(&lx, &tok, &len) || !token_number(tok, len, &v[3 * nv + k]))
+        if (!lexer_next(&lx, &tok, &len) || !token_number(tok, len, &v[3 * nv + k]))
           st = lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: line %ld: 'v' needs three finite numbers",
                           path, line);
       nv++;
@@ -305,15 +262,6 @@ static lsdem_status read_obj(char *text, lsdem_mesh *m, const char *path, lsdem_
   }
   m->verts = v, m->nverts = (int)nv, m->tris = t, m->ntris = (int)nt;
   return LSDEM_OK;
-}
-
-static int has_extension(const char *path, const char *ext)
-{
-  const size_t n = strlen(path), e = strlen(ext);
-  if (n < e) return 0;
-  for (size_t i = 0; i < e; i++)
-    if (tolower((unsigned char)path[n - e + i]) != ext[i]) return 0;
-  return 1;
 }
 
 /* Binary STL when the size is 84 + 50 * count and the file does not read as ASCII STL
@@ -365,8 +313,8 @@ lsdem_status lsdem_mesh_read(const char *path, lsdem_mesh *m, lsdem_error *err)
   size_t size = 0;
   lsdem_status st = lsdem_read_file(path, MESH_MAX_FILE_BYTES, (unsigned char **)&data, &size, err);
   if (st != LSDEM_OK) return st;
-  const int obj = has_extension(path, ".obj") ||
-                  (!has_extension(path, ".stl") && !looks_binary_stl(data, size) &&
+  const int obj = lsdem_path_has_extension(path, ".obj") ||
+                  (!lsdem_path_has_extension(path, ".stl") && !looks_binary_stl(data, size) &&
                    strncmp(data, "solid", 5) != 0);
   if (obj && memchr(data, '\0', size))
     st = lsdem_fail(err, LSDEM_ERR_FORMAT, "%s: binary bytes in an OBJ file", path);
@@ -398,10 +346,9 @@ static void note_where(lsdem_mesh_topology *topo, int *first, const double *a, c
   for (int k = 0; k < 3; k++) topo->where[k] = 0.5 * (a[k] + b[k]);
 }
 
-/* Edge analysis: counts into topo, and nbr[3t+e] = the triangle across edge e of t when
- * the edge is shared by exactly two triangles (else -1). nbr may be NULL. */
-static lsdem_status analyse_edges(const lsdem_mesh *m, lsdem_mesh_topology *topo, int *nbr,
-                                  lsdem_error *err)
+/* Edge analysis (mesh_distance.h). */
+lsdem_status mesh_edges(const lsdem_mesh *m, lsdem_mesh_topology *topo, int *nbr,
+                        lsdem_error *err)
 {
   memset(topo, 0, sizeof *topo);
   const size_t ne = 3 * (size_t)m->ntris;
@@ -411,10 +358,10 @@ static lsdem_status analyse_edges(const lsdem_mesh *m, lsdem_mesh_topology *topo
   for (int t = 0; t < m->ntris; t++) {
     const int *v = m->tris + 3 * t;
     double n[3];
-    tri_normal(m, t, n);
+    mesh_tri_normal(m, t, n);
     if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0] || lsdem_dot3(n, n) == 0.0) {
       topo->degenerate_tris++;
-      note_where(topo, &found, vert(m, t, 0), vert(m, t, 1));
+      note_where(topo, &found, mesh_vert(m, t, 0), mesh_vert(m, t, 1));
     }
     for (int e = 0; e < 3; e++) {
       const int a = v[e], b = v[(e + 1) % 3];
@@ -448,7 +395,7 @@ lsdem_status lsdem_mesh_check_closed(const lsdem_mesh *m, lsdem_mesh_topology *t
   if (!m || m->ntris < 1) return lsdem_fail(err, LSDEM_ERR_ARG, "empty mesh");
   lsdem_mesh_topology local;
   if (!topo) topo = &local;
-  lsdem_status st = analyse_edges(m, topo, NULL, err);
+  lsdem_status st = mesh_edges(m, topo, NULL, err);
   if (st != LSDEM_OK) return st;
   if (topo->boundary_edges || topo->nonmanifold_edges || topo->misoriented_edges ||
       topo->degenerate_tris)
@@ -500,8 +447,10 @@ static lsdem_status tri_grid_build(const lsdem_mesh *m, tri_grid *g, lsdem_error
   for (int t = 0; t < m->ntris; t++) {
     double *b = g->box + 6 * t;
     for (int a = 0; a < 3; a++) {
-      b[a] = fmin(vert(m, t, 0)[a], fmin(vert(m, t, 1)[a], vert(m, t, 2)[a]));
-      b[3 + a] = fmax(vert(m, t, 0)[a], fmax(vert(m, t, 1)[a], vert(m, t, 2)[a]));
+      const double x0 = mesh_vert(m, t, 0)[a], x1 = mesh_vert(m, t, 1)[a];
+      const double x2 = mesh_vert(m, t, 2)[a];
+      b[a] = fmin(x0, fmin(x1, x2));
+      b[3 + a] = fmax(x0, fmax(x1, x2));
       lo[a] = fmin(lo[a], b[a]), hi[a] = fmax(hi[a], b[3 + a]);
       ext += (b[3 + a] - b[a]) / (6.0 * m->ntris);
     }
@@ -572,8 +521,8 @@ static int triangles_intersect(const lsdem_mesh *m, int s, int t)
   for (int pass = 0; pass < 2; pass++) {
     const int x = pass ? t : s, y = pass ? s : t;
     for (int e = 0; e < 3; e++)
-      if (segment_hits_triangle(vert(m, x, e), vert(m, x, (e + 1) % 3), vert(m, y, 0),
-                                vert(m, y, 1), vert(m, y, 2)))
+      if (segment_hits_triangle(mesh_vert(m, x, e), mesh_vert(m, x, (e + 1) % 3),
+                                mesh_vert(m, y, 0), mesh_vert(m, y, 1), mesh_vert(m, y, 2)))
         return 1;
   }
   return 0;
@@ -625,123 +574,18 @@ lsdem_status lsdem_mesh_check_self_intersection(const lsdem_mesh *m, int pair[2]
   if (st != LSDEM_OK) return st;
   if (hit_s < 0) return LSDEM_OK;
   if (pair) pair[0] = hit_s, pair[1] = hit_t;
-  const double *a = vert(m, hit_s, 0);
+  const double *a = mesh_vert(m, hit_s, 0);
   return lsdem_fail(err, LSDEM_ERR_FORMAT, "mesh intersects itself: triangles %d and %d cross "
                     "(near (%g, %g, %g))", hit_s, hit_t, a[0], a[1], a[2]);
 }
 
 /* ------------------------------------------------------------ signed distance ---- */
 
-enum { FEAT_FACE = 0, FEAT_EDGE = 1, FEAT_VERTEX = 4 }; /* + edge 0..2 / corner 0..2 */
-
-/* Closest point on triangle abc to p (Ericson 5.1.5); *feat = the Voronoi region. */
-static void closest_on_triangle(const double *p, const double *a, const double *b,
-                                const double *c, double *out, int *feat)
-{
-  double ab[3], ac[3], ap[3], bp[3], cp[3];
-  lsdem_sub3(b, a, ab), lsdem_sub3(c, a, ac), lsdem_sub3(p, a, ap);
-  const double d1 = lsdem_dot3(ab, ap), d2 = lsdem_dot3(ac, ap);
-  if (d1 <= 0.0 && d2 <= 0.0) { memcpy(out, a, 3 * sizeof(double)); *feat = FEAT_VERTEX; return; }
-  lsdem_sub3(p, b, bp);
-  const double d3 = lsdem_dot3(ab, bp), d4 = lsdem_dot3(ac, bp);
-  if (d3 >= 0.0 && d4 <= d3) { memcpy(out, b, 3 * sizeof(double)); *feat = FEAT_VERTEX + 1; return; }
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
-    const double v = d1 / (d1 - d3);
-    for (int k = 0; k < 3; k++) out[k] = a[k] + v * ab[k];
-    *feat = FEAT_EDGE + 0;
-    return;
-  }
-  lsdem_sub3(p, c, cp);
-  const double d5 = lsdem_dot3(ab, cp), d6 = lsdem_dot3(ac, cp);
-  if (d6 >= 0.0 && d5 <= d6) { memcpy(out, c, 3 * sizeof(double)); *feat = FEAT_VERTEX + 2; return; }
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
-    const double w = d2 / (d2 - d6);
-    for (int k = 0; k < 3; k++) out[k] = a[k] + w * ac[k];
-    *feat = FEAT_EDGE + 2;
-    return;
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    for (int k = 0; k < 3; k++) out[k] = b[k] + w * (c[k] - b[k]);
-    *feat = FEAT_EDGE + 1;
-    return;
-  }
-  const double den = 1.0 / (va + vb + vc), v = vb * den, w = vc * den;
-  for (int k = 0; k < 3; k++) out[k] = a[k] + ab[k] * v + ac[k] * w;
-  *feat = FEAT_FACE;
-}
-
-/* Pseudonormals: unit face normals, angle-weighted vertex normals, edge neighbours. */
-typedef struct {
-  double *face, *vertex;
-  int *nbr;
-} pseudonormals;
-
-static lsdem_status build_pseudonormals(const lsdem_mesh *m, pseudonormals *pn, lsdem_error *err)
-{
-  pn->face = malloc(3 * (size_t)m->ntris * sizeof(double));
-  pn->vertex = calloc(3 * (size_t)m->nverts, sizeof(double));
-  pn->nbr = malloc(3 * (size_t)m->ntris * sizeof(int));
-  if (!pn->face || !pn->vertex || !pn->nbr)
-    return lsdem_fail(err, LSDEM_ERR_NOMEM, "cannot allocate mesh normals");
-  lsdem_mesh_topology topo;
-  lsdem_status st = analyse_edges(m, &topo, pn->nbr, err);
-  if (st != LSDEM_OK) return st;
-  for (int t = 0; t < m->ntris; t++) {
-    double *n = pn->face + 3 * t;
-    tri_normal(m, t, n);
-    const double len = sqrt(lsdem_dot3(n, n));
-    for (int k = 0; k < 3; k++) n[k] = len > 0.0 ? n[k] / len : 0.0;
-    for (int c = 0; c < 3; c++) { /* interior angle at corner c */
-      double u[3], w[3];
-      lsdem_sub3(vert(m, t, (c + 1) % 3), vert(m, t, c), u);
-      lsdem_sub3(vert(m, t, (c + 2) % 3), vert(m, t, c), w);
-      const double nu = sqrt(lsdem_dot3(u, u)), nw = sqrt(lsdem_dot3(w, w));
-      const double angle = nu > 0.0 && nw > 0.0 ? acos(fmax(-1.0, fmin(1.0, lsdem_dot3(u, w) / (nu * nw)))) : 0.0;
-      double *vn = pn->vertex + 3 * m->tris[3 * t + c];
-      for (int k = 0; k < 3; k++) vn[k] += angle * n[k];
-    }
-  }
-  return LSDEM_OK;
-}
-
-static void pseudonormals_free(pseudonormals *pn) { free(pn->face), free(pn->vertex), free(pn->nbr); }
-
-static void feature_normal(const lsdem_mesh *m, const pseudonormals *pn, int t, int feat,
-                           double n[3])
-{
-  const double *f = pn->face + 3 * t;
-  if (feat >= FEAT_VERTEX) {
-    memcpy(n, pn->vertex + 3 * m->tris[3 * t + feat - FEAT_VERTEX], 3 * sizeof(double));
-  } else if (feat >= FEAT_EDGE) {
-    const int o = pn->nbr[3 * t + feat - FEAT_EDGE];
-    for (int k = 0; k < 3; k++) n[k] = f[k] + (o >= 0 ? pn->face[3 * o + k] : f[k]);
-  } else {
-    memcpy(n, f, 3 * sizeof(double));
-  }
-}
-
-/* Signed distance from p to triangle t: sign by the pseudonormal of the closest feature. */
-static double signed_distance_to(const lsdem_mesh *m, const pseudonormals *pn, const double p[3],
-                                 int t)
-{
-  double q[3], d[3], n[3];
-  int feat;
-  closest_on_triangle(p, vert(m, t, 0), vert(m, t, 1), vert(m, t, 2), q, &feat);
-  lsdem_sub3(p, q, d);
-  feature_normal(m, pn, t, feat, n);
-  const double dist = sqrt(lsdem_dot3(d, d));
-  return lsdem_dot3(d, n) < 0.0 ? -dist : dist;
-}
-
 /* The sampler's state: per sample the smallest |distance| found, its triangle (-1: none
  * yet) and the signed value. */
 typedef struct {
   const lsdem_mesh *m;
-  const pseudonormals *pn;
+  const mesh_pseudonormals *pn;
   const lsdem_grid *g;
   double *best;
   int *tri;
@@ -757,7 +601,7 @@ static void try_triangle(sdf_work *w, size_t q, int i, int j, int k, int t)
 {
   const lsdem_grid *g = w->g;
   const double p[3] = {g->origin[0] + g->h * i, g->origin[1] + g->h * j, g->origin[2] + g->h * k};
-  const double s = signed_distance_to(w->m, w->pn, p, t);
+  const double s = mesh_signed_distance_to(w->m, w->pn, p, t);
   if (fabs(s) < w->best[q]) w->best[q] = fabs(s), w->tri[q] = t, w->phi[q] = (float)s;
 }
 
@@ -770,7 +614,7 @@ static void rasterize(sdf_work *w, double band)
     int lo[3], hi[3];
     for (int a = 0; a < 3; a++) {
       double bmin = HUGE_VAL, bmax = -HUGE_VAL;
-      for (int c = 0; c < 3; c++) bmin = fmin(bmin, vert(w->m, t, c)[a]), bmax = fmax(bmax, vert(w->m, t, c)[a]);
+      for (int c = 0; c < 3; c++) bmin = fmin(bmin, mesh_vert(w->m, t, c)[a]), bmax = fmax(bmax, mesh_vert(w->m, t, c)[a]);
       lo[a] = (int)fmax(ceil((bmin - band - g->origin[a]) / g->h), 0.0);
       hi[a] = (int)fmin(floor((bmax + band - g->origin[a]) / g->h), g->n[a] - 1.0);
     }
@@ -851,10 +695,10 @@ lsdem_status lsdem_mesh_sdf_grid(const lsdem_mesh *m, double h, int margin, lsde
   lsdem_status st = lsdem_grid_alloc(lo, hi, h, margin, g, &phi, err);
   if (st != LSDEM_OK) return st;
   const size_t total = (size_t)g->n[0] * g->n[1] * g->n[2];
-  pseudonormals pn = {0};
+  mesh_pseudonormals pn = {0};
   sdf_work w = {m, &pn, g, malloc(total * sizeof(double)), malloc(total * sizeof(int)), phi};
   if (!w.best || !w.tri) st = lsdem_fail(err, LSDEM_ERR_NOMEM, "out of memory");
-  if (st == LSDEM_OK) st = build_pseudonormals(m, &pn, err);
+  if (st == LSDEM_OK) st = mesh_pseudonormals_build(m, &pn, NULL, err);
   if (st == LSDEM_OK) {
     const double band = 2.0 * h;
     for (size_t q = 0; q < total; q++) w.best[q] = HUGE_VAL, w.tri[q] = -1;
@@ -863,7 +707,7 @@ lsdem_status lsdem_mesh_sdf_grid(const lsdem_mesh *m, double h, int margin, lsde
       for (int d = 0; d < 8; d++) sweep(&w, d & 1 ? -1 : 1, d & 2 ? -1 : 1, d & 4 ? -1 : 1);
     st = fill_signs(&w, band, err);
   }
-  pseudonormals_free(&pn);
+  mesh_pseudonormals_free(&pn);
   free(w.best), free(w.tri);
   if (st != LSDEM_OK) lsdem_grid_free(g);
   return st;

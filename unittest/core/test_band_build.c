@@ -1,0 +1,633 @@
+/* test_band_build.c -- narrow bands of walls (prep/band_build.c, band_write.c) and height
+ * maps (io/heightmap.c): every stored sample against a closed-form distance (a flat and a
+ * tilted terrain, a cube and the same cube as a container), background bricks' sides,
+ * argument checks, the ESRI ASCII, GeoTIFF and PNG readers and their errors, and the band
+ * file written, read back bit for bit, and refused when damaged. */
+#include "lsdem.h"
+#include "file_writers.h"
+#include "lsdem_test.h"
+
+#include <math.h>
+#include <png.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+/* ----------------------------------------------------------------- helpers ---- */
+
+static void spill_text(const char *path, const char *text)
+{
+  FILE *fp = fopen(path, "w");
+  fputs(text, fp);
+  fclose(fp);
+}
+
+static int file_exists(const char *path)
+{
+  struct stat sb;
+  return stat(path, &sb) == 0;
+}
+
+/* Position of sample (a, b, c) of the brick in slot (bx, by, bz), as the format defines it. */
+static void sample_at(const lsdem_band *b, int bx, int by, int bz, int a, int bb, int c,
+                      double p[3])
+{
+  const int g[3] = {8 * bx + a, 8 * by + bb, 8 * bz + c};
+  for (int k = 0; k < 3; k++) p[k] = b->origin[k] + b->h * g[k];
+}
+
+/* Calls check(p, stored value, ctx) for every sample of every stored brick, and
+ * background(p of the brick's centre, sign, ctx) for every background brick. */
+typedef void (*sample_fn)(const double p[3], float v, void *ctx);
+static void for_each_sample(const lsdem_band *b, sample_fn check, sample_fn background,
+                            void *ctx)
+{
+  for (int bz = 0; bz < b->nb[2]; bz++)
+    for (int by = 0; by < b->nb[1]; by++)
+      for (int bx = 0; bx < b->nb[0]; bx++) {
+        const int32_t ix = b->index[bx + b->nb[0] * (by + b->nb[1] * bz)];
+        double p[3];
+        if (ix < 0) {
+          sample_at(b, bx, by, bz, 4, 4, 4, p);
+          if (background) background(p, ix == LSDEM_BAND_OUTSIDE ? 1.0f : -1.0f, ctx);
+          continue;
+        }
+        for (int c = 0; c < 9; c++)
+          for (int bb = 0; bb < 9; bb++)
+            for (int a = 0; a < 9; a++) {
+              sample_at(b, bx, by, bz, a, bb, c, p);
+              check(p, b->phi[(size_t)ix * 729 + a + 9 * (bb + 9 * c)], ctx);
+            }
+      }
+}
+
+static double clampd(double v, double w) { return v > w ? w : v < -w ? -w : v; }
+
+/* ------------------------------------------------------------ flat terrain ---- */
+
+/* z = 0.3 on [0, 1]^2 (3 x 3 heights, cell 0.5); h = 0.25, width 0.375 (both exact in
+ * float), so no sample lies on the surface: z - 0.3 is at least 0.125 in size. Over the
+ * terrain the distance is |z - 0.3| exactly; beside it, to the square's border. Heights
+ * are floats: the surface is at Z0 = (float)0.3. */
+#define Z0 ((double)0.3f)
+typedef struct {
+  double w, worst;
+  long exact_bad, checked;
+} flat_ctx;
+
+static void flat_check(const double p[3], float v, void *vc)
+{
+  flat_ctx *c = vc;
+  const double dz = p[2] - Z0;
+  const double ox = fmax(0.0, fmax(-p[0], p[0] - 1.0)), oy = fmax(0.0, fmax(-p[1], p[1] - 1.0));
+  c->checked++;
+  if (ox == 0.0 && oy == 0.0) {
+    if (v != (float)clampd(dz, c->w)) {
+      if (c->exact_bad++ < 3)
+        fprintf(stderr, "flat: at (%g, %g, %g) %.9g, expected %.9g\n", p[0], p[1], p[2], v,
+                (float)clampd(dz, c->w));
+    }
+  } else {
+    const double d = sqrt(ox * ox + oy * oy + dz * dz);
+    c->worst = fmax(c->worst, fabs(v - (dz < 0 ? -1 : 1) * fmin(d, c->w)));
+  }
+}
+
+static void flat_background(const double p[3], float s, void *vc)
+{
+  flat_ctx *c = vc;
+  CHECK((p[2] > Z0) == (s > 0), "flat: background brick at z %g on the %s side", p[2],
+        s > 0 ? "grains'" : "solid");
+  c->checked++;
+}
+
+static void test_flat_terrain(void)
+{
+  float z[9];
+  for (int i = 0; i < 9; i++) z[i] = 0.3f;
+  const lsdem_heightmap hm = {3, 3, 0.0, 0.0, 0.5, z};
+  lsdem_mesh m;
+  lsdem_band b;
+  lsdem_error err;
+  CHECK(lsdem_heightmap_mesh(&hm, &m, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(m.nverts == 9 && m.ntris == 8, "%d verts %d tris", m.nverts, m.ntris);
+  for (int t = 0; t < m.ntris; t++) { /* counter-clockwise from above: normals up */
+    const double *a = m.verts + 3 * m.tris[3 * t], *bb = m.verts + 3 * m.tris[3 * t + 1];
+    const double *c = m.verts + 3 * m.tris[3 * t + 2];
+    const double nz = (bb[0] - a[0]) * (c[1] - a[1]) - (bb[1] - a[1]) * (c[0] - a[0]);
+    CHECK(nz > 0.0, "triangle %d faces down (%g)", t, nz);
+  }
+  const double h = 0.25, w = 0.375;
+  CHECK(lsdem_band_from_mesh(&m, h, w, LSDEM_BAND_TERRAIN, &b, &err) == LSDEM_OK, "%s", err.msg);
+  /* the box: [0,1]^2 x {0.3} grown by w + h = 0.625 */
+  CHECK(b.origin[0] == -0.625 && b.origin[1] == -0.625 && b.origin[2] == Z0 - 0.625,
+        "origin %g %g %g", b.origin[0], b.origin[1], b.origin[2]);
+  CHECK(b.n[0] == 10 && b.n[1] == 10 && b.n[2] == 6, "n %d %d %d", b.n[0], b.n[1], b.n[2]);
+  CHECK(b.nb[0] == 2 && b.nb[1] == 2 && b.nb[2] == 1, "nb %d %d %d", b.nb[0], b.nb[1], b.nb[2]);
+  CHECK(b.h == h && b.width == w && b.far == NULL, "h %g width %g", b.h, b.width);
+  CHECK(lsdem_band_check(&b, &err) == LSDEM_OK, "%s", err.msg);
+  flat_ctx c = {w, 0.0, 0, 0};
+  for_each_sample(&b, flat_check, flat_background, &c);
+  CHECK(c.exact_bad == 0, "flat: %ld samples over the terrain differ from z - 0.3", c.exact_bad);
+  CHECK(c.worst <= 1e-6, "flat: samples beside the terrain differ by %g", c.worst);
+  CHECK(c.checked > 500, "flat: only %ld samples", c.checked);
+  printf("flat terrain: %lld bricks, %ld samples checked, beside it max error %.2g\n",
+         (long long)b.nbricks, c.checked, c.worst);
+  lsdem_band_free(&b);
+  lsdem_mesh_free(&m);
+}
+
+/* ---------------------------------------------------------- tilted terrain ---- */
+
+/* z = 1 + 0.2 x + 0.1 y over [0, 2] x [0, 1.6] (cell 0.4, 6 x 5 heights), against the
+ * plane through three of its (float) corner heights. A sample whose foot on the plane
+ * lies over the terrain (with a margin) is at the plane distance; any other sample at
+ * least that far, up to the width (the terrain is part of the plane). */
+typedef struct {
+  double n[4]; /* unit normal and offset of the terrain's plane: n.p + n[3] = distance */
+  double w, worst, worst_bound;
+  long inner, checked;
+} tilt_ctx;
+
+static void tilt_check(const double p[3], float v, void *vc)
+{
+  tilt_ctx *c = vc;
+  const double d = c->n[0] * p[0] + c->n[1] * p[1] + c->n[2] * p[2] + c->n[3];
+  const double fx = p[0] - d * c->n[0], fy = p[1] - d * c->n[1]; /* the foot */
+  c->checked++;
+  if (fx >= 1e-6 && fx <= 2.0 - 1e-6 && fy >= 1e-6 && fy <= 1.6 - 1e-6) {
+    c->inner++;
+    c->worst = fmax(c->worst, fabs(v - clampd(d, c->w)));
+  } else {
+    c->worst_bound = fmax(c->worst_bound, fmin(fabs(d), c->w) - fabs(v));
+  }
+}
+
+static void test_tilted_terrain(void)
+{
+  float z[30];
+  for (int j = 0; j < 5; j++)
+    for (int i = 0; i < 6; i++) z[6 * j + i] = (float)(1.0 + 0.2 * (0.4 * i) + 0.1 * (0.4 * j));
+  const lsdem_heightmap hm = {6, 5, 0.0, 0.0, 0.4, z};
+  lsdem_mesh m;
+  lsdem_band b;
+  lsdem_error err;
+  CHECK(lsdem_heightmap_mesh(&hm, &m, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(m.ntris == 40, "%d tris", m.ntris);
+  /* the float heights lie on a plane to ~1e-7: fit it through three corners */
+  const double *A = m.verts, *B = m.verts + 3 * 5, *C = m.verts + 3 * 24;
+  double e1[3], e2[3], n[3];
+  for (int k = 0; k < 3; k++) e1[k] = B[k] - A[k], e2[k] = C[k] - A[k];
+  lsdem_cross3(e1, e2, n);
+  const double len = sqrt(lsdem_dot3(n, n));
+  tilt_ctx c = {{n[0] / len, n[1] / len, n[2] / len, 0.0}, 0.25, 0.0, 0.0, 0, 0};
+  c.n[3] = -(c.n[0] * A[0] + c.n[1] * A[1] + c.n[2] * A[2]);
+  CHECK(c.n[2] > 0.0, "the plane's normal points down");
+  CHECK(lsdem_band_from_mesh(&m, 0.1, 0.25, LSDEM_BAND_TERRAIN, &b, &err) == LSDEM_OK, "%s",
+        err.msg);
+  CHECK(lsdem_band_check(&b, &err) == LSDEM_OK, "%s", err.msg);
+  for_each_sample(&b, tilt_check, NULL, &c);
+  /* heights rounded to float: the vertices sit off the fitted plane by ~1e-7 */
+  CHECK(c.worst <= 1e-6, "tilted: samples over the terrain differ from the plane distance by "
+        "%g", c.worst);
+  CHECK(c.worst_bound <= 1e-6, "tilted: a sample nearer than the plane by %g", c.worst_bound);
+  CHECK(c.inner > 2000, "tilted: only %ld samples over the terrain", c.inner);
+  printf("tilted terrain: %lld bricks, %ld samples (%ld over the terrain), max error %.2g\n",
+         (long long)b.nbricks, c.checked, c.inner, c.worst);
+  lsdem_band_free(&b);
+  lsdem_mesh_free(&m);
+}
+
+/* ------------------------------------------------------------- closed cube ---- */
+
+/* A cube of half-side 1 centred at (0.1, 0.2, 0.3): the exact box SDF at every stored
+ * sample, and every background brick on its side (INSIDE when its centre is in the cube).
+ * Turned inside out, the same mesh is a container: everything flips. */
+typedef struct {
+  lsdem_sdf box;
+  double c[3], w, worst, flip;
+  long inside_bricks, outside_bricks, wrong_side;
+} cube_ctx;
+
+static double cube_sdf(cube_ctx *c, const double p[3])
+{
+  double g[3];
+  const double q[3] = {p[0] - c->c[0], p[1] - c->c[1], p[2] - c->c[2]};
+  return c->flip * lsdem_sdf_eval(&c->box, q, g);
+}
+
+static void cube_check(const double p[3], float v, void *vc)
+{
+  cube_ctx *c = vc;
+  c->worst = fmax(c->worst, fabs(v - clampd(cube_sdf(c, p), c->w)));
+}
+
+static void cube_background(const double p[3], float s, void *vc)
+{
+  cube_ctx *c = vc;
+  const double e = cube_sdf(c, p);
+  if ((e < 0) != (s < 0)) c->wrong_side++;
+  if (s < 0) c->inside_bricks++;
+  else c->outside_bricks++;
+}
+
+static lsdem_status cube_mesh(lsdem_mesh *m, const double c[3], int skip_face, int flip)
+{
+  tris s = {0};
+  const double hh[3] = {1.0, 1.0, 1.0};
+  add_box(&s, c, hh, skip_face);
+  write_stl_binary("band_cube.stl", &s, 0);
+  free(s.t);
+  lsdem_error err;
+  const lsdem_status st = lsdem_mesh_read("band_cube.stl", m, &err);
+  for (int t = 0; flip && st == LSDEM_OK && t < m->ntris; t++) {
+    const int x = m->tris[3 * t + 1];
+    m->tris[3 * t + 1] = m->tris[3 * t + 2], m->tris[3 * t + 2] = x;
+  }
+  return st;
+}
+
+static void test_cube(void)
+{
+  for (int flip = 0; flip < 2; flip++) {
+    cube_ctx c;
+    memset(&c, 0, sizeof c);
+    c.box.kind = LSDEM_SDF_BOX;
+    c.box.a[0] = c.box.a[1] = c.box.a[2] = 1.0;
+    c.c[0] = 0.1, c.c[1] = 0.2, c.c[2] = 0.3;
+    c.w = 0.1, c.flip = flip ? -1.0 : 1.0;
+    lsdem_mesh m;
+    lsdem_band b;
+    lsdem_error err;
+    CHECK(cube_mesh(&m, c.c, -1, flip) == LSDEM_OK, "cube mesh");
+    CHECK(m.ntris == 12, "%d tris", m.ntris);
+    CHECK(lsdem_band_from_mesh(&m, 0.05, 0.1, LSDEM_BAND_MESH, &b, &err) == LSDEM_OK, "%s",
+          err.msg);
+    CHECK(lsdem_band_check(&b, &err) == LSDEM_OK, "%s", err.msg);
+    for_each_sample(&b, cube_check, cube_background, &c);
+    CHECK(c.worst <= 1e-6, "cube%s: samples differ from the box SDF by %g",
+          flip ? " (container)" : "", c.worst);
+    CHECK(c.wrong_side == 0, "cube: %ld background bricks on the wrong side", c.wrong_side);
+    /* interior [-0.9, 0.9]^3 beyond the band: 36 cells, several whole bricks of 8 */
+    CHECK((flip ? c.outside_bricks : c.inside_bricks) >= 8, "cube: %ld background bricks "
+          "inside", flip ? c.outside_bricks : c.inside_bricks);
+    /* a lookup at a vertex and at a face centre: 0 within float rounding */
+    double g[3];
+    const double corner[3] = {1.1, 1.2, 1.3}, face[3] = {0.1, 0.2, 1.3}, deep[3] = {0.1, 0.2, 0.3};
+    CHECK_NEAR(lsdem_band_eval(&b, corner, g), 0.0, 1e-7);
+    CHECK_NEAR(lsdem_band_eval(&b, face, g), 0.0, 1e-7);
+    CHECK_NEAR(lsdem_band_eval(&b, deep, g), -c.flip * 0.1, 1e-7);
+    printf("cube%s: %lld bricks (%ld inside, %ld outside background), max error %.2g\n",
+           flip ? " as a container" : "", (long long)b.nbricks, c.inside_bricks,
+           c.outside_bricks, c.worst);
+    lsdem_band_free(&b);
+    lsdem_mesh_free(&m);
+  }
+}
+
+/* -------------------------------------------------------------- bad input ---- */
+
+static void expect_band_error(const lsdem_mesh *m, double h, double w, lsdem_band_source src,
+                              lsdem_status want, const char *needle)
+{
+  lsdem_band b;
+  lsdem_error err;
+  err.msg[0] = '\0';
+  const lsdem_status st = lsdem_band_from_mesh(m, h, w, src, &b, &err);
+  CHECK(st == want, "h %g w %g: status %d, expected %d (%s)", h, w, st, want, err.msg);
+  CHECK(strstr(err.msg, needle) != NULL, "h %g w %g: '%s' lacks '%s'", h, w, err.msg, needle);
+  CHECK(b.index == NULL && b.phi == NULL && b.nbricks == 0, "a failed build left a band");
+  if (st == LSDEM_OK) lsdem_band_free(&b);
+}
+
+static void test_bad_arguments(void)
+{
+  const double c[3] = {0, 0, 0};
+  lsdem_mesh m, open;
+  CHECK(cube_mesh(&m, c, -1, 0) == LSDEM_OK, "cube");
+  expect_band_error(&m, 0.0, 0.1, LSDEM_BAND_MESH, LSDEM_ERR_ARG, "spacing h = 0 is not > 0");
+  expect_band_error(&m, -0.1, 0.1, LSDEM_BAND_MESH, LSDEM_ERR_ARG, "is not > 0");
+  expect_band_error(&m, NAN, 0.1, LSDEM_BAND_MESH, LSDEM_ERR_ARG, "is not > 0");
+  expect_band_error(&m, 0.1, 0.05, LSDEM_BAND_MESH, LSDEM_ERR_ARG, "below the spacing");
+  expect_band_error(&m, 0.1, 6.5, LSDEM_BAND_MESH, LSDEM_ERR_ARG, "above 64 h");
+  expect_band_error(&m, 0.1, 0.2, (lsdem_band_source)7, LSDEM_ERR_ARG, "neither a mesh");
+  expect_band_error(&m, 1e-10, 2e-10, LSDEM_BAND_MESH, LSDEM_ERR_NOMEM, "samples along axis 0");
+  expect_band_error(&m, 1e-4, 2e-4, LSDEM_BAND_MESH, LSDEM_ERR_NOMEM, "more than 2^31 - 1 brick "
+                    "slots");
+  lsdem_mesh empty = {0, 0, NULL, NULL};
+  expect_band_error(&empty, 0.1, 0.2, LSDEM_BAND_MESH, LSDEM_ERR_ARG, "empty mesh");
+  m.verts[4] = NAN;
+  expect_band_error(&m, 0.1, 0.2, LSDEM_BAND_MESH, LSDEM_ERR_ARG, "vertex 1 is not finite");
+  lsdem_mesh_free(&m);
+  CHECK(cube_mesh(&open, c, 2, 0) == LSDEM_OK, "open cube");
+  expect_band_error(&open, 0.1, 0.2, LSDEM_BAND_MESH, LSDEM_ERR_ARG, "not closed (4 boundary");
+  /* a closed cube with a zero-area triangle: one bottom triangle split at the midpoint of
+   * an edge, the sliver (c, m, b) closing the split */
+  spill_text("degen.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\n"
+             "v 0 1 1\nv 1 0.5 0\nf 1 3 9\nf 1 9 2\nf 2 9 3\nf 1 4 3\nf 1 2 6\nf 1 6 5\n"
+             "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\nf 5 6 7\nf 5 7 8\n");
+  lsdem_mesh degen;
+  lsdem_mesh_topology topo;
+  lsdem_error err;
+  CHECK(lsdem_mesh_read("degen.obj", &degen, &err) == LSDEM_OK, "%s", err.msg);
+  lsdem_mesh_check_closed(&degen, &topo, NULL);
+  CHECK(topo.degenerate_tris == 1 && topo.boundary_edges == 0 && topo.nonmanifold_edges == 0 &&
+        topo.misoriented_edges == 0, "degen.obj: %d degenerate, %d open", topo.degenerate_tris,
+        topo.boundary_edges);
+  expect_band_error(&degen, 0.1, 0.2, LSDEM_BAND_MESH, LSDEM_ERR_ARG, "1 degenerate triangles");
+  lsdem_mesh_free(&degen);
+  /* the open cube is a fine terrain (an open surface): no error */
+  lsdem_band b;
+  CHECK(lsdem_band_from_mesh(&open, 0.1, 0.2, LSDEM_BAND_TERRAIN, &b, &err) == LSDEM_OK, "%s",
+        err.msg);
+  lsdem_band_free(&b);
+  lsdem_mesh_free(&open);
+  /* height maps a surface cannot come from */
+  float z4[4] = {0, 0, 0, NAN}, z2[2] = {0, 0};
+  const lsdem_heightmap holes = {2, 2, 0, 0, 1, z4}, thin = {2, 1, 0, 0, 1, z2},
+                        nocell = {2, 2, 0, 0, 0, z4};
+  lsdem_mesh hm;
+  CHECK(lsdem_heightmap_mesh(&holes, &hm, &err) == LSDEM_ERR_ARG && strstr(err.msg, "no cell "
+        "has four heights"), "%s", err.msg);
+  CHECK(lsdem_heightmap_mesh(&thin, &hm, &err) == LSDEM_ERR_ARG && strstr(err.msg, "2 x 1 "
+        "heights"), "%s", err.msg);
+  CHECK(lsdem_heightmap_mesh(&nocell, &hm, &err) == LSDEM_ERR_ARG && strstr(err.msg, "cell "
+        "size 0"), "%s", err.msg);
+}
+
+/* --------------------------------------------------------------- holes ---- */
+
+/* A 4 x 4 terrain with one nodata height: the cells touching it are dropped (9 - 4 = 5
+ * cells, 10 triangles, 12 of the 15 heights used), and the band over the hole is built
+ * and checks out. */
+static void test_terrain_hole(void)
+{
+  float z[16];
+  for (int i = 0; i < 16; i++) z[i] = 0.5f;
+  z[5] = NAN; /* (1, 1) */
+  const lsdem_heightmap hm = {4, 4, 10.0, 20.0, 1.0, z};
+  lsdem_mesh m;
+  lsdem_band b;
+  lsdem_error err;
+  CHECK(lsdem_heightmap_mesh(&hm, &m, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(m.ntris == 10 && m.nverts == 12, "%d tris, %d verts", m.ntris, m.nverts);
+  CHECK(lsdem_band_from_mesh(&m, 0.25, 0.5, LSDEM_BAND_TERRAIN, &b, &err) == LSDEM_OK, "%s",
+        err.msg);
+  CHECK(lsdem_band_check(&b, &err) == LSDEM_OK, "%s", err.msg);
+  double g[3];
+  const double above[3] = {12.5, 22.5, 0.75}, below[3] = {12.5, 22.5, 0.25};
+  CHECK_NEAR(lsdem_band_eval(&b, above, g), 0.25, 1e-6);
+  CHECK_NEAR(lsdem_band_eval(&b, below, g), -0.25, 1e-6);
+  lsdem_band_free(&b);
+  lsdem_mesh_free(&m);
+}
+
+/* ----------------------------------------------------- ESRI ASCII grids ---- */
+
+static void expect_asc_error(const char *name, const char *text, const char *needle)
+{
+  spill_text(name, text);
+  lsdem_heightmap hm;
+  lsdem_error err;
+  err.msg[0] = '\0';
+  const lsdem_status st = lsdem_heightmap_read_asc(name, &hm, &err);
+  CHECK(st == LSDEM_ERR_FORMAT, "%s: status %d (%s)", name, st, err.msg);
+  CHECK(strstr(err.msg, name) && strstr(err.msg, needle), "%s: '%s' lacks '%s'", name, err.msg,
+        needle);
+  CHECK(hm.z == NULL && hm.nx == 0, "%s: a failed read left heights", name);
+}
+
+static void test_asc(void)
+{
+  spill_text("good.asc", "ncols 3\nNROWS 2\nxllcorner 100\nyllcorner 200\ncellsize 2\n"
+                         "NODATA_value -9999\n1 2 3\n4 -9999 6.5\n");
+  lsdem_heightmap hm;
+  lsdem_error err;
+  CHECK(lsdem_heightmap_read_asc("good.asc", &hm, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(hm.nx == 3 && hm.ny == 2 && hm.cell == 2.0, "%d x %d cell %g", hm.nx, hm.ny, hm.cell);
+  CHECK(hm.x0 == 101.0 && hm.y0 == 201.0, "corner origin: first centre %g %g", hm.x0, hm.y0);
+  /* file rows north to south: the last row is y = 0 */
+  CHECK(hm.z[0] == 4.0f && isnan(hm.z[1]) && hm.z[2] == 6.5f && hm.z[3] == 1.0f &&
+        hm.z[5] == 3.0f, "heights %g %g %g %g %g", hm.z[0], hm.z[1], hm.z[2], hm.z[3], hm.z[5]);
+  lsdem_heightmap_free(&hm);
+  /* centre origin, keys in another order, values over several lines, CRLF */
+  spill_text("centre.asc", "cellsize 0.5\r\nxllcenter 1\r\nyllcenter -1\r\nncols 2\r\nnrows 2\r\n"
+                           "1\r\n2 3\r\n4\r\n");
+  CHECK(lsdem_heightmap_read_asc("centre.asc", &hm, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(hm.x0 == 1.0 && hm.y0 == -1.0 && hm.z[0] == 3.0f && hm.z[3] == 2.0f, "centre origin");
+  lsdem_heightmap_free(&hm);
+
+  const char *head = "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n";
+  char text[512];
+  expect_asc_error("bad_key.asc", "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncelsize 1\n"
+                   "1 2 3 4\n", "line 5: unknown header key 'celsize'");
+  expect_asc_error("dxdy.asc", "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ndx 1\ndy 2\n1 2 3 4\n",
+                   "line 5: unknown header key 'dx': cells that are not square");
+  expect_asc_error("no_cell.asc", "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\n1 2 3 4\n",
+                   "missing header key 'cellsize'");
+  expect_asc_error("no_x.asc", "ncols 2\nnrows 2\nyllcorner 0\ncellsize 1\n1 2 3 4\n",
+                   "missing header key 'xllcorner' or 'xllcenter'");
+  expect_asc_error("both_x.asc", "ncols 2\nnrows 2\nxllcorner 0\nxllcenter 0\nyllcorner 0\n"
+                   "cellsize 1\n1 2 3 4\n", "both 'xllcorner' and 'xllcenter'");
+  expect_asc_error("twice.asc", "ncols 2\nnrows 2\nncols 3\nxllcorner 0\nyllcorner 0\n"
+                   "cellsize 1\n1 2 3 4\n", "line 3: header key 'ncols' repeated");
+  expect_asc_error("bad_ncols.asc", "ncols 2.5\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n"
+                   "1 2 3 4\n", "line 1: 'ncols' 2.5 is not a positive integer");
+  expect_asc_error("bad_cell.asc", "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize -1\n"
+                   "1 2 3 4\n", "line 5: 'cellsize' -1 is not > 0");
+  expect_asc_error("no_value.asc", "ncols 2\nnrows 2\nxllcorner\nyllcorner 0\ncellsize 1\n"
+                   "1 2 3 4\n", "line 3: header key 'xllcorner' needs a finite number");
+  snprintf(text, sizeof text, "%s1 2\n3\n", head);
+  expect_asc_error("few.asc", text, "line 7: the file ends after 3 of the ncols x nrows = 2 x 2 "
+                   "= 4");
+  snprintf(text, sizeof text, "%s1 2\n3 4\n5\n", head);
+  expect_asc_error("many.asc", text, "line 8: more than the ncols x nrows = 2 x 2 = 4 values");
+  snprintf(text, sizeof text, "%s1 2\n3 x4\n", head);
+  expect_asc_error("word.asc", text, "line 7: 'x4' is not a number");
+  snprintf(text, sizeof text, "%s1 2\nnan 4\n", head);
+  expect_asc_error("nan.asc", text, "line 7: value 'nan' is not finite");
+  expect_asc_error("nodata.asc", "ncols 2\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 1\n"
+                   "NODATA_value -1\n-1 -1\n", "every height is nodata");
+  expect_asc_error("header_only.asc", head, "line 6: the file ends in the header");
+}
+
+/* ------------------------------------------------------ GeoTIFF and PNG ---- */
+
+static void write_geotiff(const char *path, int with_scale)
+{
+  static const TIFFFieldInfo geo[] = {
+      {33550, -1, -1, TIFF_DOUBLE, FIELD_CUSTOM, 1, 1, "ModelPixelScaleTag"},
+      {33922, -1, -1, TIFF_DOUBLE, FIELD_CUSTOM, 1, 1, "ModelTiepointTag"},
+      {42113, -1, -1, TIFF_ASCII, FIELD_CUSTOM, 1, 0, "GDALNoDataValue"}};
+  TIFF *t = TIFFOpen(path, "w");
+  TIFFMergeFieldInfo(t, geo, 3);
+  TIFFSetField(t, TIFFTAG_IMAGEWIDTH, 3);
+  TIFFSetField(t, TIFFTAG_IMAGELENGTH, 2);
+  TIFFSetField(t, TIFFTAG_BITSPERSAMPLE, 32);
+  TIFFSetField(t, TIFFTAG_SAMPLEFORMAT, SAMPLEFORMAT_IEEEFP);
+  TIFFSetField(t, TIFFTAG_SAMPLESPERPIXEL, 1);
+  TIFFSetField(t, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK);
+  TIFFSetField(t, TIFFTAG_ROWSPERSTRIP, 2);
+  const double scale[3] = {5, 5, 0}, tie[6] = {0, 0, 0, 1000, 2000, 0};
+  if (with_scale) {
+    TIFFSetField(t, 33550, 3, scale);
+    TIFFSetField(t, 33922, 6, tie);
+    TIFFSetField(t, 42113, "-32768");
+  }
+  const float px[6] = {1, 2, 3, 4, -32768, 6}; /* row 0 (north) first */
+  TIFFWriteEncodedStrip(t, 0, (void *)px, sizeof px);
+  TIFFClose(t);
+}
+
+static void write_png16(const char *path)
+{
+  FILE *f = fopen(path, "wb");
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+  png_infop info = png_create_info_struct(png);
+  png_init_io(png, f);
+  png_set_IHDR(png, info, 2, 2, 16, PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  const unsigned char rows[2][4] = {{0x00, 0x01, 0x01, 0x00}, {0xff, 0xff, 0x12, 0x34}};
+  png_write_row(png, rows[0]);
+  png_write_row(png, rows[1]);
+  png_write_end(png, NULL);
+  png_destroy_write_struct(&png, &info);
+  fclose(f);
+}
+
+static void test_tiff_png(void)
+{
+  lsdem_heightmap hm;
+  lsdem_error err;
+  write_geotiff("geo.tif", 1);
+  CHECK(lsdem_heightmap_read("geo.tif", 0.0, 1.0, &hm, &err) == LSDEM_OK, "%s", err.msg);
+  /* PixelIsArea: the north-west pixel's centre at (1000 + 2.5, 2000 - 2.5); the south-west
+   * one 5 further south */
+  CHECK(hm.nx == 3 && hm.ny == 2 && hm.cell == 5.0, "%d x %d cell %g", hm.nx, hm.ny, hm.cell);
+  CHECK(hm.x0 == 1002.5 && hm.y0 == 1992.5, "origin %g %g", hm.x0, hm.y0);
+  CHECK(hm.z[0] == 4.0f && isnan(hm.z[1]) && hm.z[3] == 1.0f && hm.z[5] == 3.0f, "heights");
+  lsdem_heightmap_free(&hm);
+  CHECK(lsdem_heightmap_read("geo.tif", 2.0, 1.0, &hm, &err) == LSDEM_ERR_ARG &&
+        strstr(err.msg, "gives its pixel size"), "%s", err.msg);
+  write_geotiff("plain.tif", 0);
+  CHECK(lsdem_heightmap_read("plain.tif", 0.0, 1.0, &hm, &err) == LSDEM_ERR_FORMAT &&
+        strstr(err.msg, "no ModelPixelScaleTag (33550)"), "%s", err.msg);
+  CHECK(lsdem_heightmap_read("plain.tif", 2.0, 0.5, &hm, &err) == LSDEM_OK, "%s", err.msg);
+  /* no GDAL_NODATA: -32768 is a height; zscale 0.5 */
+  CHECK(hm.cell == 2.0 && hm.x0 == 0.0 && hm.z[0] == 2.0f && hm.z[1] == -16384.0f &&
+        hm.z[5] == 1.5f, "plain tiff %g %g %g", hm.z[0], hm.z[1], hm.z[5]);
+  lsdem_heightmap_free(&hm);
+  write_png16("h16.png");
+  CHECK(lsdem_heightmap_read("h16.png", 0.5, 0.01, &hm, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(hm.nx == 2 && hm.ny == 2 && hm.cell == 0.5, "png %d x %d", hm.nx, hm.ny);
+  /* top row (north) is y = 1: 1 and 256; bottom row 65535 and 0x1234 */
+  CHECK(hm.z[2] == 0.01f && hm.z[3] == 2.56f && hm.z[0] == (float)(65535 * 0.01) &&
+        hm.z[1] == (float)(0x1234 * 0.01), "png heights %g %g %g %g", hm.z[0], hm.z[1], hm.z[2],
+        hm.z[3]);
+  lsdem_heightmap_free(&hm);
+  CHECK(lsdem_heightmap_read("h16.png", 0.0, 1.0, &hm, &err) == LSDEM_ERR_ARG &&
+        strstr(err.msg, "needs a cell size"), "%s", err.msg);
+  unsigned char rgb[12] = {0};
+  CHECK(lsdem_png_write("rgb.png", 2, 2, rgb, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(lsdem_heightmap_read("rgb.png", 1.0, 1.0, &hm, &err) == LSDEM_ERR_FORMAT &&
+        strstr(err.msg, "a colour image"), "%s", err.msg);
+  CHECK(lsdem_heightmap_read("x.xyz", 0.0, 1.0, &hm, &err) == LSDEM_ERR_ARG &&
+        strstr(err.msg, "unknown height-map format"), "%s", err.msg);
+}
+
+/* ------------------------------------------------------------ band files ---- */
+
+static unsigned char *slurp(const char *path, size_t *n)
+{
+  FILE *f = fopen(path, "rb");
+  fseek(f, 0, SEEK_END);
+  *n = (size_t)ftell(f);
+  fseek(f, 0, SEEK_SET);
+  unsigned char *b = malloc(*n);
+  *n = fread(b, 1, *n, f);
+  fclose(f);
+  return b;
+}
+
+static void expect_open_error(const char *path, const char *needle)
+{
+  lsdem_band_file *f = NULL;
+  lsdem_error err;
+  CHECK(lsdem_band_open(path, &f, &err) == LSDEM_ERR_FORMAT && f == NULL, "%s opened", path);
+  CHECK(strstr(err.msg, needle) != NULL, "%s: '%s' lacks '%s'", path, err.msg, needle);
+}
+
+static void test_band_file(void)
+{
+  const double c[3] = {0, 0, 0};
+  lsdem_mesh m;
+  lsdem_band b;
+  lsdem_error err;
+  CHECK(cube_mesh(&m, c, -1, 0) == LSDEM_OK, "cube");
+  CHECK(lsdem_band_from_mesh(&m, 0.1, 0.2, LSDEM_BAND_MESH, &b, &err) == LSDEM_OK, "%s", err.msg);
+  remove("cube.band");
+  CHECK(lsdem_band_write("cube.band", &b, LSDEM_BAND_MESH, &err) == LSDEM_OK, "%s", err.msg);
+  lsdem_band_file *f = NULL;
+  CHECK(lsdem_band_open("cube.band", &f, &err) == LSDEM_OK, "%s", err.msg);
+  if (f) {
+    const lsdem_band *r = lsdem_band_file_band(f);
+    const size_t slots = (size_t)b.nb[0] * b.nb[1] * b.nb[2];
+    CHECK(lsdem_band_file_source(f) == LSDEM_BAND_MESH, "source");
+    CHECK(memcmp(r->n, b.n, sizeof b.n) == 0 && memcmp(r->nb, b.nb, sizeof b.nb) == 0 &&
+          memcmp(r->origin, b.origin, sizeof b.origin) == 0 && r->h == b.h &&
+          r->width == b.width && r->nbricks == b.nbricks, "header fields differ");
+    CHECK(memcmp(r->index, b.index, slots * 4) == 0, "index differs");
+    CHECK(memcmp(r->phi, b.phi, (size_t)b.nbricks * 729 * 4) == 0, "samples differ");
+    lsdem_band_close(f);
+  }
+  size_t n;
+  unsigned char *bytes = slurp("cube.band", &n);
+  const size_t index_end = 128 + 4 * (size_t)b.nb[0] * b.nb[1] * b.nb[2];
+  CHECK(n == (index_end + 63) / 64 * 64 + (size_t)b.nbricks * 729 * 4, "file size %zu", n);
+  CHECK(memcmp(bytes, "LSDEMBND", 8) == 0, "magic");
+  bytes[n - 5] ^= 0x10; /* a sample */
+  write_file_bytes("bad_payload.band", bytes, n);
+  expect_open_error("bad_payload.band", "payload checksum mismatch");
+  bytes[n - 5] ^= 0x10;
+  bytes[60] ^= 0x01; /* the origin */
+  write_file_bytes("bad_header.band", bytes, n);
+  expect_open_error("bad_header.band", "header checksum mismatch");
+  bytes[60] ^= 0x01;
+  write_file_bytes("short.band", bytes, n - 4);
+  expect_open_error("short.band", "truncated");
+  free(bytes);
+  /* a terrain file says so */
+  CHECK(lsdem_band_write("terrain.band", &b, LSDEM_BAND_TERRAIN, &err) == LSDEM_OK, "%s",
+        err.msg);
+  CHECK(lsdem_band_open("terrain.band", &f, &err) == LSDEM_OK, "%s", err.msg);
+  if (f) CHECK(lsdem_band_file_source(f) == LSDEM_BAND_TERRAIN, "terrain source");
+  lsdem_band_close(f);
+  /* a failed write leaves nothing: into a missing folder, over a folder */
+  CHECK(lsdem_band_write("no/such/dir/x.band", &b, LSDEM_BAND_MESH, &err) == LSDEM_ERR_IO,
+        "wrote into a missing folder");
+  mkdir("a_folder.band", 0755);
+  CHECK(lsdem_band_write("a_folder.band", &b, LSDEM_BAND_MESH, &err) == LSDEM_ERR_IO &&
+        strstr(err.msg, "not a regular file"), "%s", err.msg);
+  /* a band that fails lsdem_band_check is not written */
+  float *phi = (float *)b.phi;
+  phi[3] = (float)(2.0 * b.width);
+  remove("bad.band");
+  CHECK(lsdem_band_write("bad.band", &b, LSDEM_BAND_MESH, &err) == LSDEM_ERR_ARG &&
+        strstr(err.msg, "outside [-width, width]") && !file_exists("bad.band"), "%s", err.msg);
+  lsdem_band_free(&b);
+  lsdem_mesh_free(&m);
+}
+
+int main(void)
+{
+  test_flat_terrain();
+  test_tilted_terrain();
+  test_cube();
+  test_bad_arguments();
+  test_terrain_hole();
+  test_asc();
+  test_tiff_png();
+  test_band_file();
+  return lsdem_test_summary();
+}

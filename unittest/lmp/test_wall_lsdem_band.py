@@ -1,0 +1,231 @@
+"""fix wall/lsdem mesh|terrain: walls of any shape as narrow-band level sets (issue 32).
+
+Against independent expectations:
+  - a terrain that is a tilted plane gives the plane wall's trajectory of a sliding cube
+    (the band samples the same distance in float: agreement to a relative 1e-5);
+  - on a 25 deg terrain with mu = 0.2 the cube slides at g (sin - mu cos) = 0.2413 g and
+    decelerates on a 3 deg run-out at g (mu cos - sin) = 0.1474 g, within 2 %;
+  - a cube dropped on the top face of an STL cube lands as on the plane of that face;
+  - 1 and 2 ranks give the same bits;
+  - a grain driven deeper than the band is wide stops the run naming it; a file made from
+    the other source, a damaged file and a missing one stop with named errors."""
+import math
+import os
+
+from lsdemtest import run_lmp, thermo, check, near, finish, shape_tool
+from contact_decks import Grain, box_library, write_data, head, quat_axis_angle, THERMO_FULL, GRAIN1
+
+HALF = 0.5           # the sliding cube's half-side; density 1: mass 1
+G = 1.0
+H = 0.1              # band spacing
+lib = box_library("cube.lslib", HALF, 0.05, 600)
+
+
+def write_asc(path, x0, y0, cell, nx, ny, height):
+    """An ESRI ASCII grid of height(x, y) at cell corners (xllcenter: samples at x0 + i cell)."""
+    rows = []
+    for j in reversed(range(ny)):          # north (largest y) first
+        y = y0 + j * cell
+        rows.append(" ".join("%.17g" % height(x0 + i * cell, y) for i in range(nx)))
+    with open(path, "w") as f:
+        f.write("ncols %d\nnrows %d\nxllcenter %r\nyllcenter %r\ncellsize %r\n"
+                "NODATA_value -9999\n" % (nx, ny, x0, y0, cell))
+        f.write("\n".join(rows) + "\n")
+    return path
+
+
+def terrain_band(name, height, x0=-6.0, x1=6.0, y0=-3.0, y1=3.0, cell=0.25, width=2 * H):
+    asc = write_asc(name + ".asc", x0, y0, cell, int(round((x1 - x0) / cell)) + 1,
+                    int(round((y1 - y0) / cell)) + 1, height)
+    out = os.path.abspath(name + ".band")
+    shape_tool("terrain", asc, out, "--spacing", H, "--width", width)
+    return out
+
+
+def write_cube_stl(path, lo, hi):
+    """A closed, outward-oriented box as ASCII STL."""
+    c = [(x, y, z) for z in (lo[2], hi[2]) for y in (lo[1], hi[1]) for x in (lo[0], hi[0])]
+    quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    lines = ["solid box"]
+    for a, b, cc, d in quads:
+        for tri in ((a, b, cc), (a, cc, d)):
+            lines.append(" facet normal 0 0 0\n  outer loop")
+            lines += ["   vertex %r %r %r" % c[v] for v in tri]
+            lines.append("  endloop\n endfacet")
+    lines.append("endsolid box")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return path
+
+
+def slide(name, wall, theta_deg, mu, t_end, x_start, np=1, dt=5e-4, every=100, box=None):
+    """The cube resting on a slope tilted by theta about y (surface z = x tan theta, downhill
+    -x) at x_start, under gravity, against `wall` (a fix wall/lsdem geometry); thermo rows."""
+    th = math.radians(theta_deg)
+    n = (-math.sin(th), 0.0, math.cos(th))
+    q = quat_axis_angle((0, 1, 0), -th)
+    base = (x_start, 0.0, x_start * math.tan(th))
+    x = tuple(b + (HALF + 1e-4) * c for b, c in zip(base, n))
+    write_data(name + ".data", box or (-12, 12, -5, 5, -12, 12), [Grain(x, q=q)])
+    deck = head(lib, name + ".data", boundary="f f f") + """
+pair_style zero 2.0
+pair_coeff * *
+fix grav all gravity %(g)r vector 0 0 -1
+fix 1 all nve/lsdem
+fix w all wall/lsdem %(wall)s 100 100 %(mu)r cn 1.0
+%(grain1)sthermo_style custom step time v_px v_py v_pz v_vx v_vz f_w[1] f_w[2] f_w[3]
+%(thermo)s
+thermo %(every)d
+timestep %(dt)r
+run %(steps)d
+""" % dict(grain1=GRAIN1, g=G, wall=wall, mu=mu, thermo=THERMO_FULL, dt=dt, every=every,
+           steps=int(round(t_end / dt)))
+    rc, log = run_lmp(deck, np=np, cwd=os.path.abspath(name))
+    return thermo(log)
+
+
+def plane_wall(theta_deg):
+    th = math.radians(theta_deg)
+    return "plane 0 0 0 %r 0 %r" % (-math.sin(th), math.cos(th))
+
+
+# ---- a tilted-plane terrain against the plane wall: 1,000 steps -------------------------
+T30 = math.tan(math.radians(30.0))
+band30 = terrain_band("tilt30", lambda x, y: x * T30)
+ref = slide("plane30", plane_wall(30.0), 30.0, 0.3, 0.5, 2.0, every=50)
+ter = slide("terrain30", "terrain " + band30, 30.0, 0.3, 0.5, 2.0, every=50)
+if check(len(ref) == len(ter) and len(ref) > 10, "tilted plane: %d and %d thermo rows"
+         % (len(ref), len(ter))):
+    travel = abs(ref[-1]["v_px"] - ref[0]["v_px"])
+    check(travel > 0.01, "tilted plane: the cube did not slide (%g)" % travel)
+    worst = max(abs(a[k] - b[k]) for a, b in zip(ref, ter) for k in ("v_px", "v_pz"))
+    check(worst <= 1e-5 * travel, "tilted plane: terrain and plane trajectories differ by %.3g "
+          "(travel %.3g, relative %.3g > 1e-5)" % (worst, travel, worst / travel))
+    near(ter[-1]["f_w[3]"], ref[-1]["f_w[3]"], rtol=1e-3, msg="tilted plane: wall force z")
+    print("tilted plane: trajectories agree to %.3g of the travel %.4g" % (worst / travel, travel))
+
+# ---- 25 deg slope, mu = 0.2, running out onto 3 deg ------------------------------------
+T25, T3 = math.tan(math.radians(25.0)), math.tan(math.radians(3.0))
+band_run = terrain_band("runout", lambda x, y: x * (T25 if x > 0 else T3), x0=-10.0, x1=6.0)
+rows = slide("runout", "terrain " + band_run, 25.0, 0.2, 11.0, 4.0, every=200,
+             box=(-14, 10, -5, 5, -6, 8))
+
+
+def speed(r):
+    return math.hypot(r["v_vx"], r["v_vz"])
+
+
+def acceleration(rows, t0, t1):
+    """Rate of change of the speed between times t0 and t1."""
+    a = min(rows, key=lambda r: abs(r["Time"] - t0))
+    b = min(rows, key=lambda r: abs(r["Time"] - t1))
+    return (speed(b) - speed(a)) / (b["Time"] - a["Time"])
+
+
+if check(len(rows) > 20, "run-out: no thermo output"):
+    s25, c25 = math.sin(math.radians(25.0)), math.cos(math.radians(25.0))
+    s3, c3 = math.sin(math.radians(3.0)), math.cos(math.radians(3.0))
+    down = G * (s25 - 0.2 * c25)              # 0.2413 g
+    out = G * (0.2 * c3 - s3)                 # 0.1474 g: deceleration
+    s0 = 4.0 / c25                            # along the slope from the start to the kink
+    t_front, t_back = (math.sqrt(2 * (s0 + d) / down) for d in (-HALF, HALF))
+    t_stop = math.sqrt(2 * s0 / down) + down * math.sqrt(2 * s0 / down) / out
+    window_out = (t_back + 0.5, min(t_stop - 0.5, 10.5))
+    near(acceleration(rows, 1.0, t_front - 0.5), down, rtol=0.02,
+         msg="run-out: acceleration down the 25 deg slope")
+    near(-acceleration(rows, *window_out), out, rtol=0.02,
+         msg="run-out: deceleration on the 3 deg run-out")
+    print("run-out: slope %.4f g (expected %.4f), run-out %.4f g (expected %.4f)" % (
+        acceleration(rows, 1.0, t_front - 0.5), down, -acceleration(rows, *window_out), out))
+
+# ---- 1 and 2 ranks --------------------------------------------------------------------
+ter2 = slide("terrain30_np2", "terrain " + band30, 30.0, 0.3, 0.5, 2.0, np=2, every=50)
+check(len(ter2) == len(ter) and all(a[k] == b[k] for a, b in zip(ter, ter2) for k in a),
+      "terrain: 2 ranks differ from 1 rank")
+
+# ---- an STL cube: its top face is the plane z = 0 --------------------------------------
+stl = write_cube_stl("block.stl", (-3.0, -3.0, -2.0), (3.0, 3.0, 0.0))
+block = os.path.abspath("block.band")
+shape_tool("wall", stl, block, "--spacing", H, "--width", 2 * H)
+flat = slide("plane0", "plane 0 0 0 0 0 1", 0.0, 0.3, 0.3, 0.0, every=50)
+mesh = slide("mesh0", "mesh " + block, 0.0, 0.3, 0.3, 0.0, every=50)
+if check(len(flat) == len(mesh) and len(flat) > 3, "STL cube: thermo rows differ"):
+    worst = max(abs(a["v_pz"] - b["v_pz"]) for a, b in zip(flat, mesh))
+    check(worst < 1e-7, "STL cube: the cube rests %.3g off the plane's result" % worst)
+    near(mesh[-1]["f_w[3]"], -G, rtol=1e-3, msg="STL cube: it carries the weight")
+
+# ---- impulse mode (report 4.4.1): a terrain takes part like a plane -------------------
+# A block on flat terrain under gravity tilted by theta: it sticks at 20 deg (mu = 0.5) at
+# 16 times the step, slides at 35 deg with g (sin - mu cos) within 2 %, as on a plane.
+from impulse_decks import header as impulse_header, library as impulse_library
+
+BLOCK = impulse_library("block.lslib", "box", 0.5, 0.5, 0.25, nodes=120, spacing=0.05)
+flat_imp = terrain_band("flat_impulse", lambda x, y: 0.0, x0=-3.0, x1=3.0, y0=-3.0, y1=3.0)
+
+
+def impulse_incline(name, wall, theta_deg, steps, dt):
+    th = math.radians(theta_deg)
+    with open(name + ".data", "w") as f:
+        f.write("grain\n\n1 atoms\n1 atom types\n\n-3 3 xlo xhi\n-3 3 ylo yhi\n-1 4 zlo zhi\n\n"
+                "Atoms # lsdem\n\n1 1 1 1.0 0 0 0.25 1 0 0 0\n")
+    deck = (impulse_header(BLOCK, name + ".data")
+            + "fix floor all wall/lsdem %s 1.0e4 0 0.5\n" % wall
+            + "fix grav all gravity 9.81 vector %r 0 %r\n" % (math.sin(th), -math.cos(th))
+            + "fix imp all impulse/lsdem 0.5 0.0\ntimestep %r\n" % dt
+            + "variable x equal x[1]\nvariable vx equal vx[1]\n"
+            + "thermo_style custom step time v_x v_vx\nthermo_modify format float %.15g\n"
+            + "thermo 50\nrun %d\n" % steps)
+    rc, log = run_lmp(deck, cwd=os.path.abspath(name))
+    return thermo(log)
+
+
+for wall, tag in (("plane 0 0 0 0 0 1", "plane"), ("terrain " + flat_imp, "terrain")):
+    stick = impulse_incline("impulse_stick_" + tag, wall, 20.0, 300, 16e-3)
+    if check(len(stick) > 3, "impulse %s: no output" % tag):
+        creep = stick[-1]["v_x"] - stick[1]["v_x"]
+        check(abs(creep) < 1e-9, "impulse %s: the block creeps %g at 20 deg" % (tag, creep))
+    slide_rows = impulse_incline("impulse_slide_" + tag, wall, 35.0, 1500, 1e-3)
+    if check(len(slide_rows) > 10, "impulse %s slide: no output" % tag):
+        r1 = next(r for r in slide_rows if r["Step"] == 500)
+        r2 = slide_rows[-1]
+        a = (r2["v_vx"] - r1["v_vx"]) / (r2["Time"] - r1["Time"])
+        th = math.radians(35.0)
+        near(a, 9.81 * (math.sin(th) - 0.5 * math.cos(th)), rtol=0.02,
+             msg="impulse %s: acceleration at 35 deg" % tag)
+
+# ---- errors -------------------------------------------------------------------------
+
+
+def deck_with(wall, v=(0.0, 0.0, 0.0), z=HALF + 1e-4, steps=10, law="100 100 0.3"):
+    write_data("err.data", (-12, 12, -5, 5, -12, 12), [Grain((0.0, 0.0, z), v=v)])
+    return head(lib, "err.data", boundary="f f f") + """
+pair_style zero 2.0
+pair_coeff * *
+fix 1 all nve/lsdem
+fix w all wall/lsdem %s %s
+timestep 5e-4
+run %d
+""" % (wall, law, steps)
+
+
+def refuses(name, deck, *words):
+    rc, log = run_lmp(deck, cwd=os.path.abspath(name), expect_fail=True)
+    ok = rc != 0 and all(w in log for w in words)
+    check(ok, "%s: exit %d, expected an error naming %s:\n%s" % (name, rc, words, log[-1500:]))
+
+
+refuses("wrong_kind", deck_with("terrain " + block), "made from a mesh", "mesh " + block)
+refuses("missing", deck_with("terrain nothere.band"), "nothere.band", "cannot open")
+damaged = os.path.abspath("damaged.band")
+data = bytearray(open(band30, "rb").read())
+data[len(data) // 2] ^= 0x40
+open(damaged, "wb").write(bytes(data))
+refuses("damaged", deck_with("terrain " + damaged), "damaged.band", "checksum")
+# a soft wall and a fast cube: its nodes go deeper than the band is wide (0.2), while its
+# centre stays in front of the surface
+flat_band = terrain_band("flat", lambda x, y: 0.0)
+refuses("tunnel", deck_with("terrain " + flat_band, v=(0.0, 0.0, -30.0), z=HALF + 0.01,
+                            steps=400, law="100 0 0.0"),
+        "grain 1", "tunnelled", "--width")
+
+finish()
