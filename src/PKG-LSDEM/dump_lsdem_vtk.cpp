@@ -32,7 +32,7 @@ using namespace LAMMPS_NS;
 
 DumpLsdemVtk::DumpLsdemVtk(LAMMPS *lmp, int narg, char **arg) :
   Dump(lmp, narg, arg), avec(nullptr), spacing_factor(1.0), step_written(true),
-  step_time(0.0), mesh_library(nullptr)
+  step_time(0.0), series(narg > 4 ? arg[4] : ""), mesh_library(nullptr)
 {
   if (narg < 5) error->all(FLERR, "Illegal dump lsdem/vtk command: dump ID group lsdem/vtk N "
                            "prefix [spacing S]");
@@ -76,7 +76,7 @@ void DumpLsdemVtk::init_style()
 
 std::string DumpLsdemVtk::step_file(bigint step) const
 {
-  return fmt::format("{}_{}.vtp", prefix, step);
+  return series.step_file(step);
 }
 
 /* ----------------------------------------------------------------------
@@ -239,31 +239,12 @@ void DumpLsdemVtk::write_vtp()
 }
 
 /* ----------------------------------------------------------------------
-   prefix.pvd lists every step written so far (a step written again replaces its entry);
-   written to a temporary file and renamed, so a reader never sees half an index
+   prefix.pvd lists every step written so far (LsdemVtkSeries)
 ------------------------------------------------------------------------- */
 
 void DumpLsdemVtk::write_pvd()
 {
-  const std::string vtp = step_file(update->ntimestep);
-  const size_t slash = vtp.find_last_of('/');
-  const std::string rel = slash == std::string::npos ? vtp : vtp.substr(slash + 1);
-  bool replaced = false;
-  for (auto &entry : series)
-    if (entry.second == rel) entry.first = step_time, replaced = true;
-  if (!replaced) series.emplace_back(step_time, rel);
-
-  const std::string pvd = prefix + ".pvd", tmp = pvd + ".tmp";
-  FILE *f = fopen(tmp.c_str(), "w");
-  if (!f)
-    error->one(FLERR, "Dump lsdem/vtk cannot open {}: {}", tmp, utils::getsyserror());
-  fputs("<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" "
-        "byte_order=\"LittleEndian\">\n<Collection>\n", f);
-  for (const auto &entry : series)
-    fmt::print(f, "<DataSet timestep=\"{:.17g}\" group=\"\" part=\"0\" file=\"{}\"/>\n",
-               entry.first, entry.second);
-  fputs("</Collection>\n</VTKFile>\n", f);
-  const bool bad = ferror(f) != 0;
-  if (fclose(f) != 0 || bad || rename(tmp.c_str(), pvd.c_str()) != 0)
-    error->one(FLERR, "Dump lsdem/vtk: writing {} failed", pvd);
+  if (!series.add(update->ntimestep, step_time))
+    error->one(FLERR, "Dump lsdem/vtk: writing {} failed: {}", series.index_file(),
+               utils::getsyserror());
 }

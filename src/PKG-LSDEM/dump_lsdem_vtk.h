@@ -16,6 +16,7 @@ DumpStyle(lsdem/vtk,DumpLsdemVtk);
 
 #include "dump.h"
 #include "lsdem_kernel.h"
+#include "lsdem_vtk_series.h"
 
 #include <string>
 #include <utility>
@@ -45,7 +46,7 @@ class DumpLsdemVtk : public Dump {
   std::vector<double> records;    // filewriter: this step's grains from all ranks
   bool step_written;
   double step_time;
-  std::vector<std::pair<double, std::string>> series;    // (time, vtp name) per step
+  LsdemVtkSeries series;    // prefix_<step>.vtp files and their index prefix.pvd
 
   // shape meshes in their principal frames, extracted on first use (filewriter only)
   const lsdem_library *mesh_library;

@@ -19,6 +19,7 @@
 #include "error.h"
 #include "fix_lsdem_history.h"
 #include "force.h"
+#include "lsdem_vtk_series.h"
 #include "input.h"
 #include "lsdem_input.h"
 #include "math_const.h"
@@ -29,6 +30,7 @@
 #include "variable.h"
 
 #include <algorithm>
+#include <functional>
 #include <cfloat>
 #include <cmath>
 #include <cstring>
@@ -44,7 +46,7 @@ static constexpr tagint WALL_PARTNER = -1;
 
 FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), nlanes(1), ncand(0), fix_history(nullptr), avec(nullptr),
-  band_file(nullptr),
+  band_file(nullptr), map_every(0), map_restart_steps(0), map_booked(-1),
   fall_valid(0), moving(false), passive(false), contact_step(-1), cand(nullptr), maxcand(0),
   cand_nlocal(0), cand_built(-1)
 {
@@ -89,7 +91,7 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   double spin_prm[6];       // centre, angular velocity
   while (iarg < narg) {
     std::string key = arg[iarg];
-    int nval = key == "velocity" ? 3 : (key == "pivot" ? 2 : (key == "spin" ? 6 : 1));
+    int nval = key == "velocity" ? 3 : (key == "pivot" || key == "map" ? 2 : (key == "spin" ? 6 : 1));
     if (iarg + nval >= narg) error->all(FLERR, "fix wall/lsdem: keyword {} needs a value", key);
     std::string val = arg[iarg + 1];
     if (opts.read_keyword(lmp, "fix wall/lsdem", key, arg[iarg + 1],
@@ -110,6 +112,11 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
     } else if (key == "pivot") {
       nval = parse_pivot(iarg, narg, arg, pivot_prm);
       pivot = true;
+    } else if (key == "map") {
+      map_every = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
+      map_prefix = arg[iarg + 2];
+      if (map_every <= 0) error->all(FLERR, "fix wall/lsdem: map N must be > 0");
+      if (!band) error->all(FLERR, "fix wall/lsdem: keyword map is for mesh and terrain walls");
     } else if (key == "spin") {
       for (int k = 0; k < 6; k++)
         spin_prm[k] = LsdemInput::number(FLERR, arg[iarg + 1 + k], "fix wall/lsdem",
@@ -133,6 +140,11 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   if (st == LSDEM_OK && spin) st = lsdem_boundary_spin(&bnd, spin_prm, spin_prm + 3, &err);
   if (st != LSDEM_OK) error->all(FLERR, "fix wall/lsdem: {}", err.msg);
   for (int d = 0; d < 3; d++) bnd.pose.v[d] = vel[d];
+  memset(&map, 0, sizeof(map));
+  if (map_every > 0 && bnd.shape.sdf.band->ntris == 0)
+    error->all(FLERR, "fix wall/lsdem {}: keyword map needs the triangles in the band file; "
+               "make it again with this version of lsdem-shape", arg[4]);
+  if (map_every > 0) map_series.reset(new LsdemVtkSeries(map_prefix));
   flocal[0] = flocal[1] = flocal[2] = 0.0;
   fall[0] = fall[1] = fall[2] = 0.0;
 }
@@ -180,6 +192,7 @@ FixWallLsdem::~FixWallLsdem()
   for (int d = 0; d < 3; d++) delete[] vstr[d];
   delete[] extlist;
   memory->destroy(cand);
+  lsdem_wall_map_free(&map);
   lsdem_band_close(band_file);
   if (fix_history && modify) {
     int ifix = modify->find_fix(history_id);
@@ -230,6 +243,18 @@ void FixWallLsdem::init()
       error->all(FLERR, "fix wall/lsdem: velocity variable {} is not equal-style", vstr[d]);
   }
   if (bnd.shape.sdf.kind == LSDEM_SDF_PLANE) check_plane_in_box();
+  if (map_every > 0 && !map.sum) {
+    // forces in the wall's own quanta; work for sliding up to the band's width per step
+    lsdem_error err;
+    const lsdem_band *b = bnd.shape.sdf.band;
+    if (lsdem_wall_map_init(&map, b->ntris, force_q, b->width, &err) != LSDEM_OK)
+      error->all(FLERR, "fix wall/lsdem {}: {}", id, err.msg);
+    if (!map_restart.empty()) {  // rank 0 holds the restarted sums, the others none
+      std::copy(map_restart.begin(), map_restart.end(), map.sum);
+      map_restart.clear();
+    }
+    map.steps = map_restart_steps;
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -406,6 +431,106 @@ void FixWallLsdem::post_force(int /*vflag*/)
   begin_force_call(lanes_for_call(), w);
   visit_all(w);
   end_force_call();
+  if (map_every > 0 && update->ntimestep > map_booked) {
+    book_map();
+    if (update->ntimestep % map_every == 0) write_map();
+  }
+}
+
+/* ----------------------------------------------------------------------
+   this step's contacts into the map, once per step (setup repeats a step's force call)
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::book_map()
+{
+  map_booked = update->ntimestep;
+  map.steps++;
+  each_contact([&](const Contact &c) {
+    lsdem_wall_map_add(&map, c.tri, c.force, c.normal, c.slide, c.began);
+  });
+}
+
+/* ----------------------------------------------------------------------
+   the map's sums over all ranks (exact integers: the same on any rank count) to rank 0,
+   which writes PREFIX_<step>.vtp and PREFIX.pvd; then a new interval everywhere
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::write_map()
+{
+  const size_t n = (size_t) map.ntris * LSDEM_MAP_FIELDS;
+  std::vector<int64_t> sum(comm->me == 0 ? n : 0);
+  MPI_Reduce(map.sum, comm->me == 0 ? sum.data() : nullptr, (int) n, MPI_INT64_T, MPI_SUM, 0,
+             world);
+  if (comm->me == 0) {
+    const std::string path = map_series->step_file(update->ntimestep);
+    write_map_vtp(path, sum);
+    const double time = update->atime + (update->ntimestep - update->atimestep) * update->dt;
+    if (!map_series->add(update->ntimestep, time))
+      error->one(FLERR, "fix wall/lsdem {}: writing {} failed: {}", id, map_series->index_file(),
+                 utils::getsyserror());
+  }
+  lsdem_wall_map_new_interval(&map);
+}
+
+/* ----------------------------------------------------------------------
+   the wall's surface where it is now, with per triangle (cell data): mean normal force
+   and pressure over the interval, mean tangential force, fraction of the interval's steps
+   in contact, impacts and friction work since the start
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::write_map_vtp(const std::string &path, const std::vector<int64_t> &sum) const
+{
+  const lsdem_band *b = bnd.shape.sdf.band;
+  FILE *fp = fopen(path.c_str(), "w");
+  if (!fp) error->one(FLERR, "fix wall/lsdem {}: cannot open {}: {}", id, path, utils::getsyserror());
+  lsdem_wall_map total = map;  // the reduced sums, read through the core's units
+  total.sum = const_cast<int64_t *>(sum.data());
+  const double steps = total.steps > 0 ? (double) total.steps : 1.0;
+  fmt::print(fp, "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" "
+             "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<PolyData>\n<Piece "
+             "NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+             "NumberOfPolys=\"{}\">\n<Points>\n<DataArray type=\"Float64\" "
+             "NumberOfComponents=\"3\" format=\"ascii\">\n", b->nverts, b->ntris);
+  for (int64_t v = 0; v < b->nverts; v++) {
+    double p[3];
+    lsdem_affine3(bnd.pose.R, bnd.pose.x, &b->verts[3 * v], p);
+    fmt::print(fp, "{:.9g} {:.9g} {:.9g}\n", p[0], p[1], p[2]);
+  }
+  fputs("</DataArray>\n</Points>\n<Polys>\n<DataArray type=\"Int64\" Name=\"connectivity\" "
+        "format=\"ascii\">\n", fp);
+  for (int64_t t = 0; t < b->ntris; t++)
+    fmt::print(fp, "{} {} {}\n", b->tris[3 * t], b->tris[3 * t + 1], b->tris[3 * t + 2]);
+  fputs("</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n", fp);
+  for (int64_t t = 1; t <= b->ntris; t++) fmt::print(fp, "{}\n", 3 * t);
+  fputs("</DataArray>\n</Polys>\n<CellData Scalars=\"pressure\">\n", fp);
+  auto array = [&](const char *name, const std::function<double(int64_t)> &value) {
+    fmt::print(fp, "<DataArray type=\"Float64\" Name=\"{}\" format=\"ascii\">\n", name);
+    for (int64_t t = 0; t < b->ntris; t++) fmt::print(fp, "{:.9g}\n", value(t));
+    fputs("</DataArray>\n", fp);
+  };
+  auto area = [&](int64_t t) {
+    const double *p0 = &b->verts[3 * b->tris[3 * t]], *p1 = &b->verts[3 * b->tris[3 * t + 1]];
+    const double *p2 = &b->verts[3 * b->tris[3 * t + 2]];
+    double e1[3], e2[3], n[3];
+    lsdem_sub3(p1, p0, e1);
+    lsdem_sub3(p2, p0, e2);
+    lsdem_cross3(e1, e2, n);
+    return 0.5 * sqrt(lsdem_dot3(n, n));
+  };
+  array("pressure", [&](int64_t t) {
+    return lsdem_wall_map_value(&total, LSDEM_MAP_FN, t) / steps / area(t);
+  });
+  array("normal_force", [&](int64_t t) { return lsdem_wall_map_value(&total, LSDEM_MAP_FN, t) / steps; });
+  array("shear_force", [&](int64_t t) { return lsdem_wall_map_value(&total, LSDEM_MAP_FT, t) / steps; });
+  array("contact_fraction", [&](int64_t t) {
+    return lsdem_wall_map_value(&total, LSDEM_MAP_CONTACTS, t) / steps;
+  });
+  array("impacts", [&](int64_t t) { return lsdem_wall_map_value(&total, LSDEM_MAP_IMPACTS, t); });
+  array("friction_work", [&](int64_t t) { return lsdem_wall_map_value(&total, LSDEM_MAP_WORK, t); });
+  array("area", area);
+  fputs("</CellData>\n</Piece>\n</PolyData>\n</VTKFile>\n", fp);
+  const bool bad = ferror(fp) != 0;
+  if (fclose(fp) != 0 || bad) error->one(FLERR, "fix wall/lsdem {}: writing {} failed", id, path);
 }
 
 void FixWallLsdem::visit_all(const lsdem_pose &w)
@@ -453,6 +578,7 @@ void FixWallLsdem::visit_candidates(Lane &lane, int from, int to, const lsdem_po
     if (!test && !lane.path.keeps_state(i)) continue;  // far, nothing kept
     lane.path.begin_atom();
     if (test) {
+      const bool began = !lane.path.touched(i, WALL_PARTNER);
       lsdem_pose p;
       LsdemContactPath::pose_of(atom, avec, i, p);
       lsdem_contact_result res;
@@ -468,7 +594,7 @@ void FixWallLsdem::visit_candidates(Lane &lane, int from, int to, const lsdem_po
           lane.f[d] -= fk[d];
           lane.t[d] += tb[d];
         }
-        add_contact(lane, i, res);
+        add_contact(lane, i, res, w, began);
         if (lane.crossing.empty() && lsdem_boundary_tunnelled(&bnd, res.max_depth))
           lane.crossing = tunnelled(i, res.max_depth);
       }
@@ -548,7 +674,8 @@ std::string FixWallLsdem::tunnelled(int i, double depth) const
 
 /* ---------------------------------------------------------------------- */
 
-void FixWallLsdem::add_contact(Lane &lane, int i, const lsdem_contact_result &res)
+void FixWallLsdem::add_contact(Lane &lane, int i, const lsdem_contact_result &res,
+                               const lsdem_pose &w, bool began)
 {
   lane.contact.emplace_back();
   Contact &c = lane.contact.back();
@@ -558,6 +685,28 @@ void FixWallLsdem::add_contact(Lane &lane, int i, const lsdem_contact_result &re
     c.force[d] = res.force[d];
     c.point[d] = res.point[d];
   }
+  c.tri = -1;
+  if (map_every <= 0) return;
+  // the map's inputs: the triangle nearest the contact point (wall frame), the wall's
+  // normal there, the grain's tangential slip at the point relative to the wall over dt
+  double rel[3], local[3], d2, vg[3], vw[3], arm[3], spin[3], vt[3];
+  lsdem_sub3(c.point, w.x, rel);
+  lsdem_matT_vec(w.R, rel, local);
+  c.tri = lsdem_band_closest_triangle(bnd.shape.sdf.band, local, &d2);
+  lsdem_boundary_distance(&bnd, &w, c.point, c.normal);
+  lsdem_sub3(c.point, atom->x[i], arm);
+  lsdem_cross3(atom->omega[i], arm, spin);
+  lsdem_cross3(w.omega, rel, vw);
+  for (int d = 0; d < 3; d++) {
+    vg[d] = atom->v[i][d] + spin[d];
+    vw[d] += w.v[d];
+  }
+  double vr[3];
+  lsdem_sub3(vg, vw, vr);
+  const double vn = lsdem_dot3(vr, c.normal);
+  for (int d = 0; d < 3; d++) vt[d] = vr[d] - vn * c.normal[d];
+  c.slide = sqrt(lsdem_dot3(vt, vt)) * update->dt;
+  c.began = began;
 }
 
 /* ----------------------------------------------------------------------
@@ -590,14 +739,21 @@ double FixWallLsdem::compute_vector(int n)
    doubles); with pivot, PIVOT_TAG first and then the wall point,
    pivot point, orientation and angular velocity (14 doubles); with spin, SPIN_TAG first
    and then the wall point, the spin's centre, its point at angle 0 and the angle turned
-   (11 doubles). The tags let any kind of fix read any kind of file without reading past
-   its end.
+   (11 doubles). With a force map the above is preceded by MAP_TAG and its count and
+   followed by the map (see write_restart). The tags let any kind of fix read any kind of
+   file without reading past its end.
 ------------------------------------------------------------------------- */
 
-static const double PIVOT_TAG = -DBL_MAX, SPIN_TAG = -0.5 * DBL_MAX;
+static const double PIVOT_TAG = -DBL_MAX, SPIN_TAG = -0.5 * DBL_MAX, MAP_TAG = -0.25 * DBL_MAX;
 
 void FixWallLsdem::write_restart(FILE *fp)
 {
+  // the map's sums over all ranks (every rank calls this; rank 0 writes)
+  const size_t nmap = map_every > 0 && map.sum ? (size_t) map.ntris * LSDEM_MAP_FIELDS : 0;
+  std::vector<int64_t> sum(comm->me == 0 ? nmap : 0);
+  if (nmap)
+    MPI_Reduce(map.sum, comm->me == 0 ? sum.data() : nullptr, (int) nmap, MPI_INT64_T, MPI_SUM,
+               0, world);
   if (comm->me == 0) {
     double list[14];
     int n = 0;
@@ -617,15 +773,36 @@ void FixWallLsdem::write_restart(FILE *fp)
       for (int d = 0; d < 3; d++) list[n++] = bnd.spin.x0[d];
       list[n++] = bnd.spin.angle;
     }
+    // with a map: MAP_TAG, the count of the doubles above, them, then the map's
+    // triangles and steps (doubles) and its sums (int64)
+    const double head[2] = {MAP_TAG, (double) n}, tail[2] = {(double) map.ntris, (double) map.steps};
     int size = n * sizeof(double);
+    if (nmap) size += (int) (sizeof head + sizeof tail + nmap * sizeof(int64_t));
     fwrite(&size, sizeof(int), 1, fp);
+    if (nmap) fwrite(head, sizeof(double), 2, fp);
     fwrite(list, sizeof(double), n, fp);
+    if (nmap) {
+      fwrite(tail, sizeof(double), 2, fp);
+      fwrite(sum.data(), sizeof(int64_t), nmap, fp);
+    }
   }
 }
 
 void FixWallLsdem::restart(char *buf)
 {
   const double *list = (const double *) buf;
+  if (list[0] == MAP_TAG) {  // a map's sums after the wall's state
+    const int n = (int) list[1];
+    const double *tail = list + 2 + n;
+    if (map_every > 0 && (int64_t) tail[0] == bnd.shape.sdf.band->ntris && comm->me == 0) {
+      const size_t nmap = (size_t) tail[0] * LSDEM_MAP_FIELDS;
+      map_restart.resize(nmap);
+      memcpy(map_restart.data(), tail + 2, nmap * sizeof(int64_t));
+    }
+    map_restart_steps = (bigint) tail[1];
+    map_booked = update->ntimestep;  // the file's step is in the sums already
+    list += 2;
+  }
   const bool tagged = list[0] == PIVOT_TAG, spun = list[0] == SPIN_TAG;
   const double *x = tagged || spun ? list + 1 : list;
   for (int d = 0; d < 3; d++) bnd.pose.x[d] = x[d];

@@ -48,6 +48,11 @@ class FixWallLsdem : public Fix {
     int i;                          // local index of the grain
     double force[3], point[3];      // force of the wall on the grain, contact point
     int npen;                       // penetrating nodes
+    // for the force map (keyword map): the nearest triangle, the wall's normal at the
+    // point, the grain's sliding distance |v_t| dt, whether the contact began this step
+    int64_t tri;
+    double normal[3], slide;
+    bool began;
   };
   template <class Visit> void each_contact(Visit visit) const
   {
@@ -119,7 +124,7 @@ class FixWallLsdem : public Fix {
   int maxcand, cand_nlocal;
   bigint cand_built;           // neighbor->lastcall when cand was built; -1: stale
   double cand_wall_x[3];       // the wall's point then
-  void add_contact(Lane &, int, const lsdem_contact_result &);
+  void add_contact(Lane &, int, const lsdem_contact_result &, const lsdem_pose &w, bool began);
   bool candidates_can_last() const;
   bool candidates_hold() const;
   void find_candidates();
@@ -131,6 +136,18 @@ class FixWallLsdem : public Fix {
   bool may_touch(int, double margin) const;
   std::string crossing(int, const lsdem_pose &wall) const;
   std::string tunnelled(int, double depth) const;
+
+  // per-triangle force maps of a mesh or terrain wall (keyword map N PREFIX)
+  bigint map_every;               // 0: no map
+  std::string map_prefix;
+  lsdem_wall_map map;             // this rank's sums (allocated at the first init)
+  std::vector<int64_t> map_restart;  // sums read from a restart file (rank 0), until init
+  bigint map_restart_steps;
+  bigint map_booked;              // last step whose contacts are in the map
+  std::unique_ptr<class LsdemVtkSeries> map_series;
+  void book_map();
+  void write_map();
+  void write_map_vtp(const std::string &path, const std::vector<int64_t> &sum) const;
   void open_band(const std::string &kind, const char *path);
 };
 

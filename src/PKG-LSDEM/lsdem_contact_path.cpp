@@ -92,6 +92,14 @@ bool LsdemContactPath::keeps_state(int i) const
 
 /* ---------------------------------------------------------------------- */
 
+bool LsdemContactPath::touched(int i, tagint partner) const
+{
+  lsdem_pair_state in;
+  return store && store->find(i, partner, in) && in.nshear > 0;
+}
+
+/* ---------------------------------------------------------------------- */
+
 int LsdemContactPath::test(int i, tagint partner, const lsdem_shape *A, const lsdem_pose &pa,
                            const lsdem_shape *B, const lsdem_pose &pb,
                            const lsdem_contact_params &prm, bigint step,

@@ -40,6 +40,9 @@ class LsdemContactPath {
   void end_atom(int i);
   void end_step();
   bool keeps_state(int i) const;  // grain i holds a pair state from the last step
+  // grain i touched `partner` on the last step: its pair state holds shear history
+  // (kept when the law has friction, mu > 0; without, always false)
+  bool touched(int i, tagint partner) const;
 
   // one pair: grain i's nodes (shape A at pa) against partner `partner` (B at pb); its
   // state is read and written when the store is set and the pair needs one (friction or

@@ -6,6 +6,7 @@
 #include "lsdem.h"
 #include "file_writers.h"
 #include "lsdem_test.h"
+#include "geom/closest_triangle.h"
 
 #include <math.h>
 #include <png.h>
@@ -277,6 +278,28 @@ static void test_cube(void)
     CHECK_NEAR(lsdem_band_eval(&b, corner, g), 0.0, 1e-7);
     CHECK_NEAR(lsdem_band_eval(&b, face, g), 0.0, 1e-7);
     CHECK_NEAR(lsdem_band_eval(&b, deep, g), -c.flip * 0.1, 1e-7);
+    /* the closest triangle from the brick lists is the brute-force closest, for points
+     * nearer than the width to the surface */
+    int agree = 0, near_points = 0;
+    for (int k = 0; k < 2000; k++) {
+      const double p[3] = {c.c[0] + 1.2 * srand1(), c.c[1] + 1.2 * srand1(), c.c[2] + 1.2 * srand1()};
+      double gp[3];
+      if (fabs(lsdem_band_eval(&b, p, gp)) > 0.09) continue;
+      near_points++;
+      double d2, best = HUGE_VAL;
+      const int64_t t = lsdem_band_closest_triangle(&b, p, &d2);
+      for (int u = 0; u < m.ntris; u++) {
+        double q[3], d[3];
+        int feat;
+        lsdem_closest_on_triangle(p, m.verts + 3 * m.tris[3 * u], m.verts + 3 * m.tris[3 * u + 1],
+                                  m.verts + 3 * m.tris[3 * u + 2], q, &feat);
+        lsdem_sub3(p, q, d);
+        best = fmin(best, lsdem_dot3(d, d));
+      }
+      agree += t >= 0 && d2 == best;
+    }
+    CHECK(near_points > 100 && agree == near_points, "closest triangle: %d of %d agree with "
+          "brute force", agree, near_points);
     printf("cube%s: %lld bricks (%ld inside, %ld outside background), max error %.2g\n",
            flip ? " as a container" : "", (long long)b.nbricks, c.inside_bricks,
            c.outside_bricks, c.worst);
@@ -579,12 +602,25 @@ static void test_band_file(void)
           r->width == b.width && r->nbricks == b.nbricks, "header fields differ");
     CHECK(memcmp(r->index, b.index, slots * 4) == 0, "index differs");
     CHECK(memcmp(r->phi, b.phi, (size_t)b.nbricks * 729 * 4) == 0, "samples differ");
+    CHECK(r->ntris == 12 && r->nverts == b.nverts && b.ntris == 12, "surface: %lld triangles",
+          (long long)r->ntris);
+    if (r->ntris == 12) {
+      CHECK(memcmp(r->verts, b.verts, (size_t)b.nverts * 24) == 0 &&
+            memcmp(r->tris, b.tris, 12 * 12) == 0, "surface differs");
+      CHECK(memcmp(r->brick_tri_start, b.brick_tri_start, ((size_t)b.nbricks + 1) * 8) == 0 &&
+            memcmp(r->brick_tris, b.brick_tris, (size_t)b.brick_tri_start[b.nbricks] * 4) == 0,
+            "brick lists differ");
+    }
     lsdem_band_close(f);
   }
+  /* the size: header, index, then each section at a multiple of 64 bytes */
   size_t n;
   unsigned char *bytes = slurp("cube.band", &n);
-  const size_t index_end = 128 + 4 * (size_t)b.nb[0] * b.nb[1] * b.nb[2];
-  CHECK(n == (index_end + 63) / 64 * 64 + (size_t)b.nbricks * 729 * 4, "file size %zu", n);
+  size_t at = 128 + 4 * (size_t)b.nb[0] * b.nb[1] * b.nb[2];
+  const size_t sections[5] = {(size_t)b.nbricks * 729 * 4, (size_t)b.nverts * 24, 12 * 12,
+                              ((size_t)b.nbricks + 1) * 8, (size_t)b.brick_tri_start[b.nbricks] * 4};
+  for (int k = 0; k < 5; k++) at = (at + 63) / 64 * 64 + sections[k];
+  CHECK(n == at, "file size %zu, expected %zu", n, at);
   CHECK(memcmp(bytes, "LSDEMBND", 8) == 0, "magic");
   bytes[n - 5] ^= 0x10; /* a sample */
   write_file_bytes("bad_payload.band", bytes, n);

@@ -78,3 +78,19 @@ variable vx equal vx[1]
 variable vy equal vy[1]
 variable vz equal vz[1]
 """
+
+
+def write_cube_stl(path, lo, hi):
+    """A closed, outward-oriented box as ASCII STL."""
+    c = [(x, y, z) for z in (lo[2], hi[2]) for y in (lo[1], hi[1]) for x in (lo[0], hi[0])]
+    quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    lines = ["solid box"]
+    for a, b, cc, d in quads:
+        for tri in ((a, b, cc), (a, cc, d)):
+            lines.append(" facet normal 0 0 0\n  outer loop")
+            lines += ["   vertex %r %r %r" % c[v] for v in tri]
+            lines.append("  endloop\n endfacet")
+    lines.append("endsolid box")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return path

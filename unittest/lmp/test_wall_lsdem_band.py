@@ -13,7 +13,8 @@ import math
 import os
 
 from lsdemtest import run_lmp, thermo, check, near, finish, shape_tool
-from contact_decks import Grain, box_library, write_data, head, quat_axis_angle, THERMO_FULL, GRAIN1
+from contact_decks import (Grain, box_library, write_data, head, quat_axis_angle, THERMO_FULL,
+                           GRAIN1, write_cube_stl)
 
 HALF = 0.5           # the sliding cube's half-side; density 1: mass 1
 G = 1.0
@@ -40,22 +41,6 @@ def terrain_band(name, height, x0=-6.0, x1=6.0, y0=-3.0, y1=3.0, cell=0.25, widt
     out = os.path.abspath(name + ".band")
     shape_tool("terrain", asc, out, "--spacing", H, "--width", width)
     return out
-
-
-def write_cube_stl(path, lo, hi):
-    """A closed, outward-oriented box as ASCII STL."""
-    c = [(x, y, z) for z in (lo[2], hi[2]) for y in (lo[1], hi[1]) for x in (lo[0], hi[0])]
-    quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
-    lines = ["solid box"]
-    for a, b, cc, d in quads:
-        for tri in ((a, b, cc), (a, cc, d)):
-            lines.append(" facet normal 0 0 0\n  outer loop")
-            lines += ["   vertex %r %r %r" % c[v] for v in tri]
-            lines.append("  endloop\n endfacet")
-    lines.append("endsolid box")
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    return path
 
 
 def slide(name, wall, theta_deg, mu, t_end, x_start, np=1, dt=5e-4, every=100, box=None):

@@ -141,6 +141,46 @@ void lsdem_boundary_advance(lsdem_boundary *b, double dt);
  * torque t about the wall's point pose.x, moved to P (platen.torque). */
 void lsdem_boundary_platen_load(lsdem_boundary *b, const double f[3], const double t[3]);
 
+/* ------------------------------------------------------ per-triangle maps ---- */
+
+/* What a mesh or terrain wall felt, triangle by triangle (wall_map.c): each grain's wall
+ * contact is booked on the triangle nearest its contact point (lsdem_band_closest_
+ * triangle; grain-scale resolution: one contact, one triangle). Sums are kept as integer
+ * counts of quanta (int64), so they are exact and the same in any order, on any number
+ * of ranks and across a restart:
+ *   fn, ft     normal and tangential force magnitude of the wall on the grains, summed
+ *              over the contacts and steps of the current interval (force quanta)
+ *   contacts   contact-steps of the interval
+ *   impacts    contacts that began (the grain kept no state with the wall the step
+ *              before), since the start
+ *   work       sum of fn |v_t| dt, the friction work measure of Archard's wear law
+ *              (wear volume = K / H x work), since the start (force x length quanta)
+ *   steps      steps in the interval */
+enum { LSDEM_MAP_FN = 0, LSDEM_MAP_FT, LSDEM_MAP_CONTACTS, LSDEM_MAP_IMPACTS, LSDEM_MAP_WORK,
+       LSDEM_MAP_FIELDS };
+typedef struct {
+  int64_t ntris;
+  lsdem_quantum force_q, work_q;
+  int64_t *sum;   /* LSDEM_MAP_FIELDS x ntris, field-major */
+  int64_t steps;
+} lsdem_wall_map;
+
+/* Forces in quanta force_q (the wall's own, so the maps add up to its total force); work
+ * in quanta for force_q's scale times length_scale (the largest sliding distance per
+ * step). Allocates the sums (zero). */
+lsdem_status lsdem_wall_map_init(lsdem_wall_map *m, int64_t ntris, lsdem_quantum force_q,
+                                 double length_scale, lsdem_error *err);
+void lsdem_wall_map_free(lsdem_wall_map *m);
+/* Book one contact on triangle tri: force of the wall on the grain (world), the wall's
+ * unit normal there (out of the wall), the grain's sliding distance |v_t| dt this step,
+ * whether the contact began this step. */
+void lsdem_wall_map_add(lsdem_wall_map *m, int64_t tri, const double force[3],
+                        const double normal[3], double slide, int began);
+/* A field's value on triangle t in its unit (force, count, force x length). */
+double lsdem_wall_map_value(const lsdem_wall_map *m, int field, int64_t t);
+/* Start a new interval: fn, ft, contacts and steps to zero (impacts, work kept). */
+void lsdem_wall_map_new_interval(lsdem_wall_map *m);
+
 #ifdef __cplusplus
 }
 #endif

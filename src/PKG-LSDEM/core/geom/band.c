@@ -5,6 +5,7 @@
  * Cell (i,j,k) lies in brick (i, j, k) >> 3 at local (i, j, k) & 7; its 8 samples are
  * the brick's samples (li..li+1, lj..lj+1, lk..lk+1) of 0..8. */
 #include "lsdem_geom.h"
+#include "closest_triangle.h"
 #include "trilinear.h"
 
 #include <math.h>
@@ -76,8 +77,11 @@ int lsdem_band_tunnelled(const lsdem_band *b, double depth)
 size_t lsdem_band_bytes(const lsdem_band *b)
 {
   const size_t slots = (size_t)b->nb[0] * (size_t)b->nb[1] * (size_t)b->nb[2];
+  const size_t lists = b->ntris ? (size_t)b->brick_tri_start[b->nbricks] : 0;
   return slots * (sizeof(int32_t) + (b->far ? sizeof(uint16_t) : 0)) +
-         (size_t)b->nbricks * LSDEM_BAND_BRICK_SAMPLES * sizeof(float);
+         (size_t)b->nbricks * LSDEM_BAND_BRICK_SAMPLES * sizeof(float) +
+         (size_t)b->nverts * 3 * sizeof(double) + (size_t)b->ntris * 3 * sizeof(int32_t) +
+         (b->ntris ? ((size_t)b->nbricks + 1) * sizeof(int64_t) : 0) + lists * sizeof(int32_t);
 }
 
 /* One raster pass of the chessboard distance transform: each slot takes 1 + the least
@@ -121,6 +125,67 @@ lsdem_status lsdem_band_far(const lsdem_band *b, uint16_t **far, lsdem_error *er
   return LSDEM_OK;
 }
 
+/* The surface's arrays (when kept): finite vertices, triangles naming vertices, brick
+ * lists increasing from 0 and naming triangles. */
+static lsdem_status check_surface(const lsdem_band *b, lsdem_error *err)
+{
+  if (b->ntris == 0) return LSDEM_OK;
+  if (b->ntris < 0 || b->nverts < 3 || !b->verts || !b->tris || !b->brick_tri_start ||
+      !b->brick_tris)
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: surface of %lld triangles without its "
+                      "arrays", (long long)b->ntris);
+  for (int64_t k = 0; k < 3 * b->nverts; k++)
+    if (!isfinite(b->verts[k]))
+      return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: surface vertex %lld is not finite",
+                        (long long)(k / 3));
+  for (int64_t k = 0; k < 3 * b->ntris; k++)
+    if (b->tris[k] < 0 || b->tris[k] >= b->nverts)
+      return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: triangle %lld names vertex %d of %lld",
+                        (long long)(k / 3), (int)b->tris[k], (long long)b->nverts);
+  if (b->brick_tri_start[0] != 0)
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: brick lists do not start at 0");
+  for (int64_t k = 0; k < b->nbricks; k++) {
+    const int64_t s0 = b->brick_tri_start[k], s1 = b->brick_tri_start[k + 1];
+    if (s1 < s0)
+      return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: brick %lld's triangle list ends before "
+                        "it starts", (long long)k);
+    for (int64_t e = s0; e < s1; e++)
+      if (b->brick_tris[e] < 0 || b->brick_tris[e] >= b->ntris)
+        return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: brick %lld lists triangle %d of %lld",
+                          (long long)k, (int)b->brick_tris[e], (long long)b->ntris);
+  }
+  return LSDEM_OK;
+}
+
+int64_t lsdem_band_closest_triangle(const lsdem_band *b, const double p[3], double *d2)
+{
+  *d2 = HUGE_VAL;
+  if (b->ntris == 0) return -1;
+  double u[3], f[3];
+  int c[3];
+  for (int a = 0; a < 3; a++) u[a] = (p[a] - b->origin[a]) / b->h;
+  if (u[0] != u[0] || u[1] != u[1] || u[2] != u[2]) return -1;
+  cell_of(b, u, c, f);
+  const int64_t slot = (int64_t)(c[0] >> LSDEM_BAND_BRICK_LOG2) +
+                       (int64_t)b->nb[0] * ((int64_t)(c[1] >> LSDEM_BAND_BRICK_LOG2) +
+                       (int64_t)b->nb[1] * (int64_t)(c[2] >> LSDEM_BAND_BRICK_LOG2));
+  const int32_t brick = b->index[slot];
+  if (brick < 0) return -1;
+  int64_t best = -1;
+  for (int64_t e = b->brick_tri_start[brick]; e < b->brick_tri_start[brick + 1]; e++) {
+    const int32_t t = b->brick_tris[e];
+    const int32_t *v = &b->tris[3 * (int64_t)t];
+    double q[3], d[3];
+    int feat;
+    lsdem_closest_on_triangle(p, &b->verts[3 * (int64_t)v[0]], &b->verts[3 * (int64_t)v[1]],
+                              &b->verts[3 * (int64_t)v[2]], q, &feat);
+    lsdem_sub3(p, q, d);
+    const double dd = lsdem_dot3(d, d);
+    if (dd < *d2) *d2 = dd, best = t;
+  }
+  return best;
+}
+
 lsdem_status lsdem_band_check(const lsdem_band *b, lsdem_error *err)
 {
   for (int a = 0; a < 3; a++) {
@@ -151,5 +216,5 @@ lsdem_status lsdem_band_check(const lsdem_band *b, lsdem_error *err)
       return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: sample %zu of brick %zu is %g, outside "
                         "[-width, width] = [%g, %g]", q % LSDEM_BAND_BRICK_SAMPLES,
                         q / LSDEM_BAND_BRICK_SAMPLES, (double)b->phi[q], -b->width, b->width);
-  return LSDEM_OK;
+  return check_surface(b, err);
 }

@@ -44,17 +44,30 @@ static lsdem_status read_header(lsdem_band_file *f, const char *path, lsdem_erro
   }
   b->h = get_f64(m + BF_H);
   b->width = get_f64(m + BF_WIDTH);
-  const uint64_t nbricks = get_u64(m + BF_NBRICKS);
-  const uint64_t phi_off = band_phi_offset(b->nb);
-  const uint64_t brick_bytes = 4u * LSDEM_BAND_BRICK_SAMPLES;
-  if (nbricks > (uint64_t)INT32_MAX || phi_off + nbricks * brick_bytes != (uint64_t)f->size)
+  const uint64_t nbricks = get_u64(m + BF_NBRICKS), nverts = get_u64(m + BF_NVERTS);
+  const uint64_t ntris = get_u64(m + BF_NTRIS), nlist = get_u64(m + BF_NLIST);
+  if (nbricks > (uint64_t)INT32_MAX || nverts > (uint64_t)INT32_MAX ||
+      ntris > (uint64_t)INT32_MAX || nlist > ((uint64_t)1 << 40) || (ntris == 0) != (nlist == 0))
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "band file '%s': counts out of range (%llu "
+                      "bricks, %llu vertices, %llu triangles, %llu list entries)", path,
+                      (unsigned long long)nbricks, (unsigned long long)nverts,
+                      (unsigned long long)ntris, (unsigned long long)nlist);
+  uint64_t off[BS_COUNT];
+  const uint64_t end = band_layout(b->nb, nbricks, nverts, ntris, nlist, off);
+  if (end != (uint64_t)f->size)
     return lsdem_fail(err, LSDEM_ERR_FORMAT, "band file '%s': %zu bytes, expected %llu for "
-                      "%llu bricks (truncated or damaged)", path, f->size,
-                      (unsigned long long)(phi_off + nbricks * brick_bytes),
-                      (unsigned long long)nbricks);
+                      "%llu bricks and %llu triangles (truncated or damaged)", path, f->size,
+                      (unsigned long long)end, (unsigned long long)nbricks,
+                      (unsigned long long)ntris);
   b->nbricks = (int64_t)nbricks;
   b->index = (const int32_t *)(m + BAND_HEADER_SIZE);
-  b->phi = (const float *)(m + phi_off);
+  b->phi = (const float *)(m + off[BS_PHI]);
+  b->nverts = (int64_t)nverts;
+  b->ntris = (int64_t)ntris;
+  b->verts = ntris ? (const double *)(m + off[BS_VERTS]) : NULL;
+  b->tris = ntris ? (const int32_t *)(m + off[BS_TRIS]) : NULL;
+  b->brick_tri_start = ntris ? (const int64_t *)(m + off[BS_STARTS]) : NULL;
+  b->brick_tris = ntris ? (const int32_t *)(m + off[BS_LIST]) : NULL;
   return LSDEM_OK;
 }
 

@@ -5,8 +5,13 @@
  *
  *   [0, 128)        header: fields below
  *   [128, ...)      index: int32 per brick slot, nb[0] nb[1] nb[2] of them, x fastest
- *   [phi_off, end)  samples: float32, LSDEM_BAND_BRICK_SAMPLES per stored brick;
- *                   phi_off = the index's end rounded up to 64 bytes
+ *   then, each section starting at a multiple of 64 bytes (band_layout):
+ *     samples: float32, LSDEM_BAND_BRICK_SAMPLES per stored brick
+ *     vertices: float64, 3 per vertex
+ *     triangles: int32, 3 vertex indices each
+ *     brick list starts: int64, nbricks + 1
+ *     brick lists: int32 triangle numbers
+ * with zero bytes between sections.
  *
  * The header checksum (FNV-1a 64) covers bytes [0, BF_HSUM); the payload checksum
  * bytes [128, end). */
@@ -19,20 +24,33 @@ enum {
   BAND_VERSION = 1,
   BAND_HEADER_SIZE = 128,
   /* header fields: magic, version (u32), source (u32: lsdem_band_source), n[3] (i32),
-   * nb[3] (i32), nbricks (u64), h, origin[3], width (f64), payload checksum (u64),
-   * header checksum (u64) */
+   * nb[3] (i32), nbricks (u64), h, origin[3], width (f64), nverts, ntris, nlist (u64:
+   * entries of the brick lists), payload checksum (u64), header checksum (u64) */
   BF_MAGIC = 0, BF_VERSION = 8, BF_SOURCE = 12, BF_N = 16, BF_NB = 28, BF_NBRICKS = 40,
-  BF_H = 48, BF_ORIGIN = 56, BF_WIDTH = 80, BF_PSUM = 88, BF_HSUM = 96
+  BF_H = 48, BF_ORIGIN = 56, BF_WIDTH = 80, BF_NVERTS = 88, BF_NTRIS = 96, BF_NLIST = 104,
+  BF_PSUM = 112, BF_HSUM = 120
 };
 
-/* Bytes of the index of nb bricks per axis, and where the samples start. */
+/* Bytes of the index of nb bricks per axis. */
 static inline uint64_t band_index_bytes(const int nb[3])
 {
   return 4u * (uint64_t)nb[0] * (uint64_t)nb[1] * (uint64_t)nb[2];
 }
-static inline uint64_t band_phi_offset(const int nb[3])
+static inline uint64_t band_align64(uint64_t n) { return (n + 63u) & ~(uint64_t)63u; }
+
+/* Where each section starts (BS_* order) and the file's size. */
+enum { BS_PHI = 0, BS_VERTS, BS_TRIS, BS_STARTS, BS_LIST, BS_COUNT };
+static inline uint64_t band_layout(const int nb[3], uint64_t nbricks, uint64_t nverts,
+                                   uint64_t ntris, uint64_t nlist, uint64_t off[BS_COUNT])
 {
-  return (BAND_HEADER_SIZE + band_index_bytes(nb) + 63u) & ~(uint64_t)63u;
+  const uint64_t bytes[BS_COUNT] = {4u * LSDEM_BAND_BRICK_SAMPLES * nbricks, 24u * nverts,
+                                    12u * ntris, ntris ? 8u * (nbricks + 1u) : 0u, 4u * nlist};
+  uint64_t at = BAND_HEADER_SIZE + band_index_bytes(nb);
+  for (int k = 0; k < BS_COUNT; k++) {
+    off[k] = band_align64(at);
+    at = off[k] + bytes[k];
+  }
+  return at;
 }
 /* Bricks per axis for n samples: enough bricks of LSDEM_BAND_BRICK cells for n - 1
  * cells. */

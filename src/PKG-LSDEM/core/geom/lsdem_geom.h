@@ -185,6 +185,16 @@ typedef struct lsdem_band {
                            distance in bricks to the nearest stored brick (1: adjacent;
                            capped at 65535), from lsdem_band_far; NULL: background values
                            are +-width */
+  /* The surface it was made from (ntris = 0: not kept): triangles in the wall frame, and
+   * per stored brick the triangles whose bounding box grown by `width` touches it (so a
+   * point of the brick nearer than width to the surface finds its closest triangle there):
+   * brick k's are brick_tris[brick_tri_start[k] .. brick_tri_start[k+1]). For per-triangle
+   * force maps (lsdem_band_closest_triangle) and output. */
+  int64_t nverts, ntris;
+  const double *verts;            /* 3 nverts */
+  const int32_t *tris;            /* 3 ntris vertex indices, counter-clockwise from outside */
+  const int64_t *brick_tri_start; /* nbricks + 1 */
+  const int32_t *brick_tris;
 } lsdem_band;
 
 /* phi at p (wall frame) and the unit gradient (normalised trilinear; +x where it
@@ -194,15 +204,21 @@ typedef struct lsdem_band {
 double lsdem_band_eval(const lsdem_band *b, const double p[3], double grad[3]);
 void lsdem_band_eval_many(const lsdem_band *b, int n, const double *p, double *phi,
                           double *grad);
+/* The triangle nearest to p (wall frame) among those listed for p's brick, and its
+ * squared distance in *d2: exact when p is nearer than width to the surface; -1 when p's
+ * brick is background or the band keeps no surface. */
+int64_t lsdem_band_closest_triangle(const lsdem_band *b, const double p[3], double *d2);
 /* Whether a penetration depth (-phi of a node) means the node read the solid-side
  * background: it went through the band. */
 int lsdem_band_tunnelled(const lsdem_band *b, double depth);
 /* The coarse level of b (lsdem_band.far): Chebyshev distance transform of the stored
  * bricks over the brick slots (exact, two raster passes). Allocates *far (free()). */
 lsdem_status lsdem_band_far(const lsdem_band *b, uint16_t **far, lsdem_error *err);
-/* Sizes, finiteness, index entries in range, samples within [-width, width]. */
+/* Sizes, finiteness, index entries in range, samples within [-width, width]; the surface's
+ * vertices finite, triangles naming vertices, brick lists increasing and naming
+ * triangles. */
 lsdem_status lsdem_band_check(const lsdem_band *b, lsdem_error *err);
-/* Bytes of the index, the coarse level and the stored bricks. */
+/* Bytes of the index, the coarse level, the stored bricks and the surface. */
 size_t lsdem_band_bytes(const lsdem_band *b);
 
 /* A band file (format in doc/wall_band.rst; written by lsdem-shape wall/terrain through

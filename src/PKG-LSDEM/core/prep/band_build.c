@@ -657,10 +657,58 @@ static void assemble(const builder *B, float *phi)
   }
 }
 
+/* The surface kept with band b (its index set): a copy of the mesh, and per stored brick
+ * the triangles whose box grown by width touches it (select_bricks' rule, so the lists cover every
+ * point of a brick nearer than width to the surface), counted then filled. */
+static lsdem_status keep_surface(const builder *B, lsdem_band *b, lsdem_error *err)
+{
+  const lsdem_mesh *m = B->m;
+  double *verts = malloc((size_t)m->nverts * 3 * sizeof(double));
+  int32_t *tris = malloc((size_t)m->ntris * 3 * sizeof(int32_t));
+  int64_t *start = calloc((size_t)B->nbricks + 1, sizeof(int64_t));
+  b->verts = verts, b->tris = tris, b->brick_tri_start = start;
+  if (!verts || !tris || !start)
+    return lsdem_fail(err, LSDEM_ERR_NOMEM, "band: cannot allocate the surface's copy");
+  memcpy(verts, m->verts, (size_t)m->nverts * 3 * sizeof(double));
+  for (int64_t k = 0; k < 3 * (int64_t)m->ntris; k++) tris[k] = m->tris[k];
+  const double g = B->w * (1.0 + 1e-9) + 1e-9 * B->h;
+  int32_t *list = NULL;
+  for (int pass = 0; pass < 2; pass++) {
+    for (int t = 0; t < m->ntris; t++) {
+      double lo[3], hi[3];
+      int b0[3], b1[3];
+      grown_box(m, t, g, lo, hi);
+      for (int a = 0; a < 3; a++) brick_range(B, a, lo[a], hi[a], &b0[a], &b1[a]);
+      for (int bz = b0[2]; bz <= b1[2]; bz++)
+        for (int by = b0[1]; by <= b1[1]; by++)
+          for (int bx = b0[0]; bx <= b1[0]; bx++) {
+            const int32_t k = b->index[slot_index(B, bx, by, bz)];
+            if (k < 0) continue;
+            if (pass == 0) start[k + 1]++;
+            else list[start[k]++] = t;
+          }
+    }
+    if (pass == 0) { /* counts -> starts */
+      for (int64_t k = 0; k < B->nbricks; k++) start[k + 1] += start[k];
+      list = malloc((size_t)start[B->nbricks] * sizeof(int32_t) + 1);
+      b->brick_tris = list;
+      if (!list)
+        return lsdem_fail(err, LSDEM_ERR_NOMEM, "band: cannot allocate %lld brick list entries",
+                          (long long)start[B->nbricks]);
+    }
+  }
+  for (int64_t k = B->nbricks; k > 0; k--) start[k] = start[k - 1]; /* filled: shift back */
+  start[0] = 0;
+  b->nverts = m->nverts, b->ntris = m->ntris;
+  return LSDEM_OK;
+}
+
 void lsdem_band_free(lsdem_band *b)
 {
   if (!b) return;
   free((void *)b->index), free((void *)b->phi);
+  free((void *)b->verts), free((void *)b->tris);
+  free((void *)b->brick_tri_start), free((void *)b->brick_tris);
   memset(b, 0, sizeof *b);
 }
 
@@ -719,9 +767,11 @@ lsdem_status lsdem_band_from_mesh(const lsdem_mesh *m, double h, double width,
     b->h = h, b->width = width, b->nbricks = B.nbricks;
     b->index = B.index, b->phi = phi;
     B.index = NULL; /* now the band's */
+    st = keep_surface(&B, b, err);
   } else {
     free(phi);
   }
   builder_free(&B);
+  if (st != LSDEM_OK) lsdem_band_free(b);
   return st;
 }

@@ -22,10 +22,25 @@ lsdem_status lsdem_band_write(const char *path, const lsdem_band *b, lsdem_band_
   lsdem_error inner;
   lsdem_status st = lsdem_band_check(b, &inner);
   if (st != LSDEM_OK) return lsdem_fail(err, LSDEM_ERR_ARG, "band file '%s': %s", path, inner.msg);
+  const uint64_t nlist = b->ntris ? (uint64_t)b->brick_tri_start[b->nbricks] : 0;
+  uint64_t off[BS_COUNT];
+  const uint64_t nverts = b->ntris ? (uint64_t)b->nverts : 0;
+  band_layout(b->nb, (uint64_t)b->nbricks, nverts, (uint64_t)b->ntris, nlist, off);
+  /* the sections in order, each after zero padding up to its offset */
+  const void *data[BS_COUNT] = {b->phi, b->verts, b->tris, b->brick_tri_start, b->brick_tris};
+  const size_t bytes[BS_COUNT] = {(size_t)b->nbricks * LSDEM_BAND_BRICK_SAMPLES * sizeof(float),
+                                  (size_t)nverts * 24u,
+                                  (size_t)b->ntris * 12u,
+                                  b->ntris ? ((size_t)b->nbricks + 1u) * 8u : 0,
+                                  (size_t)nlist * 4u};
+  size_t pad[BS_COUNT];
+  uint64_t at = BAND_HEADER_SIZE + band_index_bytes(b->nb);
+  for (int k = 0; k < BS_COUNT; k++) {
+    pad[k] = (size_t)(off[k] - at);
+    at = off[k] + bytes[k];
+  }
   static const unsigned char zeros[64] = {0};
   const size_t index_bytes = (size_t)band_index_bytes(b->nb);
-  const size_t pad = (size_t)(band_phi_offset(b->nb) - BAND_HEADER_SIZE) - index_bytes;
-  const size_t phi_bytes = (size_t)b->nbricks * LSDEM_BAND_BRICK_SAMPLES * sizeof(float);
   unsigned char head[BAND_HEADER_SIZE];
   memset(head, 0, sizeof head);
   memcpy(head + BF_MAGIC, BAND_MAGIC, sizeof BAND_MAGIC);
@@ -39,17 +54,23 @@ lsdem_status lsdem_band_write(const char *path, const lsdem_band *b, lsdem_band_
   put_u64(head + BF_NBRICKS, (uint64_t)b->nbricks);
   put_f64(head + BF_H, b->h);
   put_f64(head + BF_WIDTH, b->width);
+  put_u64(head + BF_NVERTS, nverts);
+  put_u64(head + BF_NTRIS, (uint64_t)b->ntris);
+  put_u64(head + BF_NLIST, nlist);
   uint64_t sum = fnv1a_update(FNV_BASIS, b->index, index_bytes);
-  sum = fnv1a_update(sum, zeros, pad);
-  if (phi_bytes) sum = fnv1a_update(sum, b->phi, phi_bytes);
+  for (int k = 0; k < BS_COUNT; k++) {
+    sum = fnv1a_update(sum, zeros, pad[k]);
+    if (bytes[k]) sum = fnv1a_update(sum, data[k], bytes[k]);
+  }
   put_u64(head + BF_PSUM, sum);
   put_u64(head + BF_HSUM, fnv1a_update(FNV_BASIS, head, BF_HSUM));
   replace_file out;
   st = replace_file_open(&out, path, "band file", err);
   if (st != LSDEM_OK) return st;
-  const int ok = fwrite(head, 1, sizeof head, out.f) == sizeof head &&
-                 fwrite(b->index, 1, index_bytes, out.f) == index_bytes &&
-                 fwrite(zeros, 1, pad, out.f) == pad &&
-                 (phi_bytes == 0 || fwrite(b->phi, 1, phi_bytes, out.f) == phi_bytes);
+  int ok = fwrite(head, 1, sizeof head, out.f) == sizeof head &&
+           fwrite(b->index, 1, index_bytes, out.f) == index_bytes;
+  for (int k = 0; k < BS_COUNT && ok; k++)
+    ok = fwrite(zeros, 1, pad[k], out.f) == pad[k] &&
+         (bytes[k] == 0 || fwrite(data[k], 1, bytes[k], out.f) == bytes[k]);
   return replace_file_close(&out, ok, err);
 }

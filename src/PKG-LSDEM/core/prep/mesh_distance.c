@@ -70,7 +70,7 @@ double mesh_signed_distance_to(const lsdem_mesh *m, const mesh_pseudonormals *pn
 {
   double q[3], d[3], n[3];
   int feat;
-  mesh_closest_on_triangle(p, mesh_vert(m, t, 0), mesh_vert(m, t, 1), mesh_vert(m, t, 2), q,
+  lsdem_closest_on_triangle(p, mesh_vert(m, t, 0), mesh_vert(m, t, 1), mesh_vert(m, t, 2), q,
                            &feat);
   lsdem_sub3(p, q, d);
   feature_normal(m, pn, t, feat, n);
