@@ -26,6 +26,7 @@ DECKS = [
      ["sample.data"]),
     ("triaxial", "in.triaxial", {"ncons": 30, "epsmax": 1.0e-4, "every": 10},
      ["triaxial.csv"]),
+    ("drum", "in.drum", {"nsteps": 40}, ["drum.csv", "drum_end.data"]),
 ]
 
 
