@@ -58,8 +58,13 @@ int main(int argc, char **argv)
          relief, m.ntris);
   printf("grid %d x %d x %d, stored bricks %lld of %lld\n", b.n[0], b.n[1], b.n[2],
          (long long)b.nbricks, (long long)b.nb[0] * b.nb[1] * b.nb[2]);
-  printf("band %.1f MB (index and bricks), dense grid %.1f MB\n",
-         lsdem_band_bytes(&b) / 1048576.0, dense / 1048576.0);
+  lsdem_band level = b; /* the level set alone: the band without its kept surface */
+  level.ntris = level.nverts = 0;
+  const double mb_level = lsdem_band_bytes(&level) / 1048576.0;
+  printf("band %.1f MB: level set %.1f MB (index and bricks, %.1f %% of the dense grid's "
+         "%.1f MB) + surface for maps %.1f MB\n", lsdem_band_bytes(&b) / 1048576.0, mb_level,
+         100.0 * mb_level * 1048576.0 / dense, dense / 1048576.0,
+         lsdem_band_bytes(&b) / 1048576.0 - mb_level);
   printf("time: mesh %.2f s, band %.2f s; peak resident memory %.0f MB\n", t1 - t0, t2 - t1,
          ru.ru_maxrss / 1024.0);
   lsdem_band_free(&b);

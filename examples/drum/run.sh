@@ -21,4 +21,4 @@ start=$SECONDS
 echo "lmp took $((SECONDS - start)) s"
 grep "^Loop time" log.lammps
 /usr/bin/python3 "$here/plot.py" drum.csv drum.png
-echo "results: $out/log.lammps, $out/drum.csv, $out/drum.png, $out/out/drum.pvd (ParaView)"
+echo "results: $out/log.lammps, $out/drum.csv, $out/drum.png, $out/vtk/drum.pvd (ParaView)"

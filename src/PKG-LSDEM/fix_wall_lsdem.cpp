@@ -86,7 +86,7 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
 
   int axis = 2;             // cylinder axis 0,1,2 = x,y,z
   double vel[3] = {0.0, 0.0, 0.0};
-  bool pivot = false, spin = false;
+  bool pivot = false, spin = false, exact = false;
   double pivot_prm[3];      // h, I, c
   double spin_prm[6];       // centre, angular velocity
   while (iarg < narg) {
@@ -112,6 +112,10 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
     } else if (key == "pivot") {
       nval = parse_pivot(iarg, narg, arg, pivot_prm);
       pivot = true;
+    } else if (key == "exact") {
+      if (val != "yes" && val != "no") error->all(FLERR, "fix wall/lsdem: exact must be yes or no");
+      if (!band) error->all(FLERR, "fix wall/lsdem: keyword exact is for mesh and terrain walls");
+      exact = val == "yes";
     } else if (key == "map") {
       map_every = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
       map_prefix = arg[iarg + 2];
@@ -145,6 +149,8 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "fix wall/lsdem {}: keyword map needs the triangles in the band file; "
                "make it again with this version of lsdem-shape", arg[4]);
   if (map_every > 0) map_series.reset(new LsdemVtkSeries(map_prefix));
+  memset(&exact_pn, 0, sizeof(exact_pn));
+  if (exact) use_exact_band(arg[4]);
   flocal[0] = flocal[1] = flocal[2] = 0.0;
   fall[0] = fall[1] = fall[2] = 0.0;
 }
@@ -166,6 +172,26 @@ void FixWallLsdem::open_band(const std::string &kind, const char *path)
                "write fix wall/lsdem {} {}", kind, path, terrain ? "height map" : "mesh",
                terrain ? "terrain" : "wall", terrain ? "terrain" : "mesh", path);
   lsdem_boundary_band(&bnd, lsdem_band_file_band(band_file));
+}
+
+/* ----------------------------------------------------------------------
+   exact yes: the wall's level set is the band with the surface's pseudonormals, so that
+   inside the band values and normals come from the closest triangle (sharp edges)
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::use_exact_band(const char *path)
+{
+  const lsdem_band *b = lsdem_band_file_band(band_file);
+  if (b->ntris == 0)
+    error->all(FLERR, "fix wall/lsdem: exact needs the triangles in {}; make it again with "
+               "this version of lsdem-shape", path);
+  lsdem_error err;
+  if (lsdem_pseudonormals_make(b->verts, b->nverts, b->tris, b->ntris, b->nbr, &exact_pn,
+                               &err) != LSDEM_OK)
+    error->all(FLERR, "fix wall/lsdem {}: {}", path, err.msg);
+  exact_band = *b;
+  exact_band.exact = &exact_pn;
+  bnd.shape.sdf.band = &exact_band;
 }
 
 /* ----------------------------------------------------------------------
@@ -193,6 +219,7 @@ FixWallLsdem::~FixWallLsdem()
   delete[] extlist;
   memory->destroy(cand);
   lsdem_wall_map_free(&map);
+  lsdem_pseudonormals_free(&exact_pn);
   lsdem_band_close(band_file);
   if (fix_history && modify) {
     int ifix = modify->find_fix(history_id);

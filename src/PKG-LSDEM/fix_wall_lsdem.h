@@ -101,6 +101,8 @@ class FixWallLsdem : public Fix {
  private:
   lsdem_boundary bnd;          // the wall: kind, pose, velocity, pivoting platen
   lsdem_band_file *band_file;  // mesh and terrain walls: the mapped band (else nullptr)
+  lsdem_band exact_band;       // keyword exact yes: the band with its pseudonormals (the
+  lsdem_pseudonormals exact_pn;   // wall's level set then), else unused
   LsdemContactOptions opts;    // the contact law and detection keywords
   lsdem_contact_params prm;    // what the core gets (node skin and dt set at init)
   lsdem_quantum force_q, torque_q;  // order-free sums of the wall's force and torque
@@ -149,6 +151,7 @@ class FixWallLsdem : public Fix {
   void write_map();
   void write_map_vtp(const std::string &path, const std::vector<int64_t> &sum) const;
   void open_band(const std::string &kind, const char *path);
+  void use_exact_band(const char *path);
 };
 
 }    // namespace LAMMPS_NS

@@ -300,6 +300,40 @@ static void test_cube(void)
     }
     CHECK(near_points > 100 && agree == near_points, "closest triangle: %d of %d agree with "
           "brute force", agree, near_points);
+    /* exact mode against the analytic box, near its edges and corners (convex for the
+     * cube, concave for the container): trilinear rounds them by about h, exact is exact */
+    lsdem_pseudonormals pn;
+    CHECK(lsdem_pseudonormals_make(b.verts, b.nverts, b.tris, b.ntris, b.nbr, &pn, &err) ==
+          LSDEM_OK, "%s", err.msg);
+    lsdem_band exact = b;
+    exact.exact = &pn;
+    double worst_grid = 0.0, worst_exact = 0.0, worst_normal = 0.0;
+    int edge_points = 0;
+    for (int k = 0; k < 4000; k++) {
+      /* near an edge: two coordinates within 0.1 of +-1 */
+      double u[3] = {srand1(), srand1(), srand1()};
+      const int a0 = k % 3, a1 = (k + 1) % 3;
+      u[a0] = (u[a0] > 0 ? 1.0 : -1.0) + 0.08 * srand1();
+      u[a1] = (u[a1] > 0 ? 1.0 : -1.0) + 0.08 * srand1();
+      const double p[3] = {c.c[0] + u[0], c.c[1] + u[1], c.c[2] + u[2]};
+      double ga[3], gg[3], ge[3];
+      const double truth = c.flip * lsdem_sdf_eval(&c.box, u, ga);
+      if (fabs(truth) > 0.09) continue;
+      edge_points++;
+      worst_grid = fmax(worst_grid, fabs(lsdem_band_eval(&b, p, gg) - truth));
+      worst_exact = fmax(worst_exact, fabs(lsdem_band_eval(&exact, p, ge) - truth));
+      if (fabs(truth) > 1e-3) /* the normal is the analytic gradient's (flipped for a container) */
+        worst_normal = fmax(worst_normal, fabs(ge[0] - c.flip * ga[0]) + fabs(ge[1] - c.flip * ga[1]) +
+                                              fabs(ge[2] - c.flip * ga[2]));
+    }
+    printf("cube%s near edges and corners (%d points): grid path error %.3g h, exact %.2g\n",
+           flip ? " as a container" : "", edge_points, worst_grid / 0.05, worst_exact);
+    CHECK(edge_points > 500, "%d points near the edges", edge_points);
+    CHECK(worst_exact <= 1e-6, "exact mode: %.3g off the box's distance", worst_exact);
+    /* the mesh holds the box to ~5e-8: its normals, 1e-3 away, to ~5e-5 */
+    CHECK(worst_normal <= 1e-4, "exact mode: normals %.3g off the box's", worst_normal);
+    CHECK(worst_grid > 10 * worst_exact, "the grid path rounds the edges (%.3g)", worst_grid);
+    lsdem_pseudonormals_free(&pn);
     printf("cube%s: %lld bricks (%ld inside, %ld outside background), max error %.2g\n",
            flip ? " as a container" : "", (long long)b.nbricks, c.inside_bricks,
            c.outside_bricks, c.worst);
@@ -610,6 +644,7 @@ static void test_band_file(void)
       CHECK(memcmp(r->brick_tri_start, b.brick_tri_start, ((size_t)b.nbricks + 1) * 8) == 0 &&
             memcmp(r->brick_tris, b.brick_tris, (size_t)b.brick_tri_start[b.nbricks] * 4) == 0,
             "brick lists differ");
+      CHECK(memcmp(r->nbr, b.nbr, 12 * 12) == 0, "triangle neighbours differ");
     }
     lsdem_band_close(f);
   }
@@ -617,9 +652,10 @@ static void test_band_file(void)
   size_t n;
   unsigned char *bytes = slurp("cube.band", &n);
   size_t at = 128 + 4 * (size_t)b.nb[0] * b.nb[1] * b.nb[2];
-  const size_t sections[5] = {(size_t)b.nbricks * 729 * 4, (size_t)b.nverts * 24, 12 * 12,
-                              ((size_t)b.nbricks + 1) * 8, (size_t)b.brick_tri_start[b.nbricks] * 4};
-  for (int k = 0; k < 5; k++) at = (at + 63) / 64 * 64 + sections[k];
+  const size_t sections[6] = {(size_t)b.nbricks * 729 * 4, (size_t)b.nverts * 24, 12 * 12,
+                              ((size_t)b.nbricks + 1) * 8, (size_t)b.brick_tri_start[b.nbricks] * 4,
+                              12 * 12};
+  for (int k = 0; k < 6; k++) at = (at + 63) / 64 * 64 + sections[k];
   CHECK(n == at, "file size %zu, expected %zu", n, at);
   CHECK(memcmp(bytes, "LSDEMBND", 8) == 0, "magic");
   bytes[n - 5] ^= 0x10; /* a sample */

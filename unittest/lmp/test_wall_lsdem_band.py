@@ -5,7 +5,8 @@ Against independent expectations:
     (the band samples the same distance in float: agreement to a relative 1e-5);
   - on a 25 deg terrain with mu = 0.2 the cube slides at g (sin - mu cos) = 0.2413 g and
     decelerates on a 3 deg run-out at g (mu cos - sin) = 0.1474 g, within 2 %;
-  - a cube dropped on the top face of an STL cube lands as on the plane of that face;
+  - a cube dropped on the top face of an STL cube lands as on the plane of that face, also
+    at the block's edge with exact yes (the grid path rounds the edge by about h);
   - 1 and 2 ranks give the same bits;
   - a grain driven deeper than the band is wide stops the run naming it; a file made from
     the other source, a damaged file and a missing one stop with named errors."""
@@ -43,7 +44,8 @@ def terrain_band(name, height, x0=-6.0, x1=6.0, y0=-3.0, y1=3.0, cell=0.25, widt
     return out
 
 
-def slide(name, wall, theta_deg, mu, t_end, x_start, np=1, dt=5e-4, every=100, box=None):
+def slide(name, wall, theta_deg, mu, t_end, x_start, np=1, dt=5e-4, every=100, box=None,
+          keys=""):
     """The cube resting on a slope tilted by theta about y (surface z = x tan theta, downhill
     -x) at x_start, under gravity, against `wall` (a fix wall/lsdem geometry); thermo rows."""
     th = math.radians(theta_deg)
@@ -57,13 +59,13 @@ pair_style zero 2.0
 pair_coeff * *
 fix grav all gravity %(g)r vector 0 0 -1
 fix 1 all nve/lsdem
-fix w all wall/lsdem %(wall)s 100 100 %(mu)r cn 1.0
+fix w all wall/lsdem %(wall)s 100 100 %(mu)r cn 1.0 %(keys)s
 %(grain1)sthermo_style custom step time v_px v_py v_pz v_vx v_vz f_w[1] f_w[2] f_w[3]
 %(thermo)s
 thermo %(every)d
 timestep %(dt)r
 run %(steps)d
-""" % dict(grain1=GRAIN1, g=G, wall=wall, mu=mu, thermo=THERMO_FULL, dt=dt, every=every,
+""" % dict(grain1=GRAIN1, keys=keys, g=G, wall=wall, mu=mu, thermo=THERMO_FULL, dt=dt, every=every,
            steps=int(round(t_end / dt)))
     rc, log = run_lmp(deck, np=np, cwd=os.path.abspath(name))
     return thermo(log)
@@ -138,6 +140,23 @@ if check(len(flat) == len(mesh) and len(flat) > 3, "STL cube: thermo rows differ
     worst = max(abs(a["v_pz"] - b["v_pz"]) for a, b in zip(flat, mesh))
     check(worst < 1e-7, "STL cube: the cube rests %.3g off the plane's result" % worst)
     near(mesh[-1]["f_w[3]"], -G, rtol=1e-3, msg="STL cube: it carries the weight")
+
+# ---- exact mode: a cube at the block's edge (its side 0.01 from the edge, within h = 0.1
+# of it): trilinear interpolation rounds the edge by about h, the exact mode does not --
+# the cube rests as on the plane
+EDGE_X = 3.0 - HALF - 0.01
+flat_edge = slide("plane_edge", "plane 0 0 0 0 0 1", 0.0, 0.3, 0.3, EDGE_X, every=50)
+grid_edge = slide("mesh_edge", "mesh " + block, 0.0, 0.3, 0.3, EDGE_X, every=50)
+exact_edge = slide("exact_edge", "mesh " + block, 0.0, 0.3, 0.3, EDGE_X, every=50,
+                   keys="exact yes")
+if check(len(flat_edge) == len(exact_edge) == len(grid_edge) > 3, "edge: thermo rows differ"):
+    worst_exact = max(abs(a["v_pz"] - b["v_pz"]) + abs(a["v_px"] - b["v_px"])
+                      for a, b in zip(flat_edge, exact_edge))
+    worst_grid = max(abs(a["v_pz"] - b["v_pz"]) + abs(a["v_px"] - b["v_px"])
+                     for a, b in zip(flat_edge, grid_edge))
+    check(worst_exact < 1e-7, "edge: exact mode %.3g off the plane's result" % worst_exact)
+    print("edge of the block: grid path %.3g off the plane's rest, exact %.3g" % (worst_grid,
+                                                                               worst_exact))
 
 # ---- impulse mode (report 4.4.1): a terrain takes part like a plane -------------------
 # A block on flat terrain under gravity tilted by theta: it sticks at 20 deg (mu = 0.5) at

@@ -27,6 +27,21 @@ static inline void cell_of(const lsdem_band *b, const double u[3], int c[3], dou
   }
 }
 
+/* Exact mode: the signed distance to the closest triangle of brick's list and its
+ * direction (the list holds every triangle nearer than width to a point of the brick). */
+static double exact_value(const lsdem_band *b, int32_t brick, const double p[3], double grad[3])
+{
+  double best = HUGE_VAL, value = b->width;
+  for (int64_t e = b->brick_tri_start[brick]; e < b->brick_tri_start[brick + 1]; e++) {
+    double g[3];
+    const double d = lsdem_signed_distance_to_triangle(b->verts, b->tris, b->exact, p,
+                                                       b->brick_tris[e], g);
+    if (fabs(d) < best) best = fabs(d), value = d, grad[0] = g[0], grad[1] = g[1], grad[2] = g[2];
+  }
+  if (best == HUGE_VAL) grad[0] = 1.0, grad[1] = grad[2] = 0.0;
+  return value;
+}
+
 static inline double band_eval(const lsdem_band *b, double inv_h, const double p[3],
                                double grad[3])
 {
@@ -53,6 +68,7 @@ static inline double band_eval(const lsdem_band *b, double inv_h, const double p
   const float v[8] = {s[0], s[1], s[SIDE], s[SIDE + 1],
                       s[PLANE], s[PLANE + 1], s[PLANE + SIDE], s[PLANE + SIDE + 1]};
   const double phi = trilinear_cell(v, f, du);
+  if (b->exact && phi > -b->width && phi < b->width) return exact_value(b, brick, p, grad);
   unit_gradient(du, grad);
   return phi;
 }
@@ -77,7 +93,7 @@ int lsdem_band_tunnelled(const lsdem_band *b, double depth)
 size_t lsdem_band_bytes(const lsdem_band *b)
 {
   const size_t slots = (size_t)b->nb[0] * (size_t)b->nb[1] * (size_t)b->nb[2];
-  const size_t lists = b->ntris ? (size_t)b->brick_tri_start[b->nbricks] : 0;
+  const size_t lists = b->ntris ? (size_t)b->brick_tri_start[b->nbricks] + 3 * (size_t)b->ntris : 0;
   return slots * (sizeof(int32_t) + (b->far ? sizeof(uint16_t) : 0)) +
          (size_t)b->nbricks * LSDEM_BAND_BRICK_SAMPLES * sizeof(float) +
          (size_t)b->nverts * 3 * sizeof(double) + (size_t)b->ntris * 3 * sizeof(int32_t) +
@@ -142,6 +158,10 @@ static lsdem_status check_surface(const lsdem_band *b, lsdem_error *err)
     if (b->tris[k] < 0 || b->tris[k] >= b->nverts)
       return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: triangle %lld names vertex %d of %lld",
                         (long long)(k / 3), (int)b->tris[k], (long long)b->nverts);
+  for (int64_t k = 0; b->nbr && k < 3 * b->ntris; k++)
+    if (b->nbr[k] < -1 || b->nbr[k] >= b->ntris)
+      return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: triangle %lld's neighbour is %d of %lld",
+                        (long long)(k / 3), (int)b->nbr[k], (long long)b->ntris);
   if (b->brick_tri_start[0] != 0)
     return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: brick lists do not start at 0");
   for (int64_t k = 0; k < b->nbricks; k++) {

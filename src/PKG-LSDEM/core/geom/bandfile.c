@@ -68,6 +68,7 @@ static lsdem_status read_header(lsdem_band_file *f, const char *path, lsdem_erro
   b->tris = ntris ? (const int32_t *)(m + off[BS_TRIS]) : NULL;
   b->brick_tri_start = ntris ? (const int64_t *)(m + off[BS_STARTS]) : NULL;
   b->brick_tris = ntris ? (const int32_t *)(m + off[BS_LIST]) : NULL;
+  b->nbr = ntris ? (const int32_t *)(m + off[BS_NBR]) : NULL;
   return LSDEM_OK;
 }
 

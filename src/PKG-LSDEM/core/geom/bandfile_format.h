@@ -11,6 +11,7 @@
  *     triangles: int32, 3 vertex indices each
  *     brick list starts: int64, nbricks + 1
  *     brick lists: int32 triangle numbers
+ *     triangle neighbours: int32, 3 per triangle (the triangle across each edge, -1 none)
  * with zero bytes between sections.
  *
  * The header checksum (FNV-1a 64) covers bytes [0, BF_HSUM); the payload checksum
@@ -39,12 +40,13 @@ static inline uint64_t band_index_bytes(const int nb[3])
 static inline uint64_t band_align64(uint64_t n) { return (n + 63u) & ~(uint64_t)63u; }
 
 /* Where each section starts (BS_* order) and the file's size. */
-enum { BS_PHI = 0, BS_VERTS, BS_TRIS, BS_STARTS, BS_LIST, BS_COUNT };
+enum { BS_PHI = 0, BS_VERTS, BS_TRIS, BS_STARTS, BS_LIST, BS_NBR, BS_COUNT };
 static inline uint64_t band_layout(const int nb[3], uint64_t nbricks, uint64_t nverts,
                                    uint64_t ntris, uint64_t nlist, uint64_t off[BS_COUNT])
 {
   const uint64_t bytes[BS_COUNT] = {4u * LSDEM_BAND_BRICK_SAMPLES * nbricks, 24u * nverts,
-                                    12u * ntris, ntris ? 8u * (nbricks + 1u) : 0u, 4u * nlist};
+                                    12u * ntris, ntris ? 8u * (nbricks + 1u) : 0u, 4u * nlist,
+                                    12u * ntris};
   uint64_t at = BAND_HEADER_SIZE + band_index_bytes(nb);
   for (int k = 0; k < BS_COUNT; k++) {
     off[k] = band_align64(at);

@@ -141,6 +141,30 @@ typedef double (*lsdem_radius_fn)(const double u[3], const void *ctx);
  * 1 / g(u), g the degree-1 gauge of the superellipsoid (evaluated overflow-free). */
 double lsdem_superellipsoid_radius(const double u[3], const void *sdf);
 
+/* ------------------------------------------------- triangle pseudonormals ---- */
+
+/* Angle-weighted pseudonormals of a triangle surface (Baerentzen & Aanaes, IEEE TVCG 11(3),
+ * 2005): the sign of the distance to the closest feature of a closed, consistently oriented
+ * surface, exact when the triangle is the closest one. Triangles are vertex index triples
+ * (counter-clockwise seen from outside); nbr[3t + e] is the triangle across edge e of t
+ * (corner e to corner e + 1), -1 when there is none (an open edge). */
+typedef struct {
+  double *face;      /* 3 per triangle: unit face normal (0 for a degenerate triangle) */
+  double *vertex;    /* 3 per vertex: sum of the incident faces' normals times their angle */
+  const int *nbr;    /* 3 per triangle (not owned) */
+} lsdem_pseudonormals;
+lsdem_status lsdem_pseudonormals_make(const double *verts, int64_t nverts, const int *tris,
+                                      int64_t ntris, const int *nbr, lsdem_pseudonormals *pn,
+                                      lsdem_error *err);
+void lsdem_pseudonormals_free(lsdem_pseudonormals *pn);
+/* Signed distance from p to triangle t: to its closest point q (lsdem_closest_on_triangle),
+ * signed by the pseudonormal of q's feature (face, edge: the two faces' sum, vertex); when
+ * grad is not NULL, the unit vector sign (p - q) / |p - q| (the face normal when p is on
+ * the surface). */
+double lsdem_signed_distance_to_triangle(const double *verts, const int *tris,
+                                         const lsdem_pseudonormals *pn, const double p[3],
+                                         int64_t t, double grad[3]);
+
 /* ------------------------------------------------- narrow-band level sets ---- */
 
 /* A signed-distance grid stored only near its zero level set, for walls of any shape
@@ -195,10 +219,18 @@ typedef struct lsdem_band {
   const int32_t *tris;            /* 3 ntris vertex indices, counter-clockwise from outside */
   const int64_t *brick_tri_start; /* nbricks + 1 */
   const int32_t *brick_tris;
+  const int32_t *nbr;             /* 3 ntris: the triangle across each edge (-1: open) */
+  /* Exact mode (set by the user of a band, e.g. fix wall/lsdem exact yes): pseudonormals
+   * made from the surface; inside the band, values and normals come from the closest
+   * triangle instead of trilinear interpolation. NULL: trilinear everywhere. */
+  const lsdem_pseudonormals *exact;
 } lsdem_band;
 
 /* phi at p (wall frame) and the unit gradient (normalised trilinear; +x where it
- * vanishes, e.g. in a background brick). A background slot k bricks from the band reads
+ * vanishes, e.g. in a background brick); with b->exact, where the trilinear value is
+ * within the band (|phi| < width), the exact signed distance to the closest triangle of
+ * p's brick and its direction (lsdem_signed_distance_to_triangle): sharp edges and
+ * corners as they are, not rounded or filled by about h. A background slot k bricks from the band reads
  * +-max(width, (k - 1) LSDEM_BAND_BRICK h): no farther than the stored bricks, which hold
  * the surface, so a grain far from the wall is rejected by one lookup at its centre. */
 double lsdem_band_eval(const lsdem_band *b, const double p[3], double grad[3]);

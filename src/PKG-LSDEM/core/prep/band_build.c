@@ -669,8 +669,11 @@ static lsdem_status keep_surface(const builder *B, lsdem_band *b, lsdem_error *e
   b->verts = verts, b->tris = tris, b->brick_tri_start = start;
   if (!verts || !tris || !start)
     return lsdem_fail(err, LSDEM_ERR_NOMEM, "band: cannot allocate the surface's copy");
+  int32_t *nbr = malloc((size_t)m->ntris * 3 * sizeof(int32_t));
+  b->nbr = nbr;
+  if (!nbr) return lsdem_fail(err, LSDEM_ERR_NOMEM, "band: cannot allocate the surface's copy");
   memcpy(verts, m->verts, (size_t)m->nverts * 3 * sizeof(double));
-  for (int64_t k = 0; k < 3 * (int64_t)m->ntris; k++) tris[k] = m->tris[k];
+  for (int64_t k = 0; k < 3 * (int64_t)m->ntris; k++) tris[k] = m->tris[k], nbr[k] = B->pn.nbr[k];
   const double g = B->w * (1.0 + 1e-9) + 1e-9 * B->h;
   int32_t *list = NULL;
   for (int pass = 0; pass < 2; pass++) {
@@ -703,12 +706,41 @@ static lsdem_status keep_surface(const builder *B, lsdem_band *b, lsdem_error *e
   return LSDEM_OK;
 }
 
+/* Stored bricks whose 729 samples are all +width or all -width read exactly as background
+ * (a constant): they become background (LSDEM_BAND_OUTSIDE / INSIDE) and the rest are
+ * renumbered in order, their samples moved down. Returns the bricks kept. (About a tenth
+ * of a terrain's bricks: the conservative selection by grown triangle boxes.) */
+static int64_t drop_flat_bricks(int32_t *index, int64_t nslots, float *phi, int64_t nbricks,
+                                float w)
+{
+  int64_t kept = 0;
+  int32_t *renumber = malloc((size_t)nbricks * sizeof(int32_t) + 1);
+  if (!renumber) return nbricks; /* keep them all: correct, a little larger */
+  for (int64_t k = 0; k < nbricks; k++) {
+    const float *v = phi + (size_t)k * LSDEM_BAND_BRICK_SAMPLES;
+    int pos = 1, neg = 1;
+    for (int q = 0; q < LSDEM_BAND_BRICK_SAMPLES; q++) pos &= v[q] == w, neg &= v[q] == -w;
+    if (pos || neg) {
+      renumber[k] = pos ? LSDEM_BAND_OUTSIDE : LSDEM_BAND_INSIDE;
+      continue;
+    }
+    if (kept != k)
+      memmove(phi + (size_t)kept * LSDEM_BAND_BRICK_SAMPLES, v,
+              LSDEM_BAND_BRICK_SAMPLES * sizeof(float));
+    renumber[k] = (int32_t)kept++;
+  }
+  for (int64_t s = 0; s < nslots; s++)
+    if (index[s] >= 0) index[s] = renumber[index[s]];
+  free(renumber);
+  return kept;
+}
+
 void lsdem_band_free(lsdem_band *b)
 {
   if (!b) return;
   free((void *)b->index), free((void *)b->phi);
   free((void *)b->verts), free((void *)b->tris);
-  free((void *)b->brick_tri_start), free((void *)b->brick_tris);
+  free((void *)b->brick_tri_start), free((void *)b->brick_tris), free((void *)b->nbr);
   memset(b, 0, sizeof *b);
 }
 
@@ -763,6 +795,9 @@ lsdem_status lsdem_band_from_mesh(const lsdem_mesh *m, double h, double width,
   }
   if (st == LSDEM_OK) {
     assemble(&B, phi);
+    B.nbricks = drop_flat_bricks(B.index, B.nslots, phi, B.nbricks, (float)width);
+    float *fit = realloc(phi, (size_t)B.nbricks * LSDEM_BAND_BRICK_SAMPLES * sizeof(float) + 1);
+    if (fit) phi = fit;
     for (int a = 0; a < 3; a++) b->n[a] = B.n[a], b->nb[a] = B.nb[a], b->origin[a] = B.origin[a];
     b->h = h, b->width = width, b->nbricks = B.nbricks;
     b->index = B.index, b->phi = phi;

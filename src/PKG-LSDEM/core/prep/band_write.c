@@ -27,12 +27,13 @@ lsdem_status lsdem_band_write(const char *path, const lsdem_band *b, lsdem_band_
   const uint64_t nverts = b->ntris ? (uint64_t)b->nverts : 0;
   band_layout(b->nb, (uint64_t)b->nbricks, nverts, (uint64_t)b->ntris, nlist, off);
   /* the sections in order, each after zero padding up to its offset */
-  const void *data[BS_COUNT] = {b->phi, b->verts, b->tris, b->brick_tri_start, b->brick_tris};
+  const void *data[BS_COUNT] = {b->phi, b->verts, b->tris, b->brick_tri_start, b->brick_tris,
+                                b->nbr};
   const size_t bytes[BS_COUNT] = {(size_t)b->nbricks * LSDEM_BAND_BRICK_SAMPLES * sizeof(float),
                                   (size_t)nverts * 24u,
                                   (size_t)b->ntris * 12u,
                                   b->ntris ? ((size_t)b->nbricks + 1u) * 8u : 0,
-                                  (size_t)nlist * 4u};
+                                  (size_t)nlist * 4u, (size_t)b->ntris * 12u};
   size_t pad[BS_COUNT];
   uint64_t at = BAND_HEADER_SIZE + band_index_bytes(b->nb);
   for (int k = 0; k < BS_COUNT; k++) {

@@ -41,10 +41,10 @@ static inline double mesh_distance2_to(const lsdem_mesh *m, const double p[3], i
   return lsdem_dot3(d, d);
 }
 
-/* Pseudonormals: unit face normals, angle-weighted vertex normals, edge neighbours. */
+/* Pseudonormals (the kernel's lsdem_pseudonormals) with the edge neighbours they use. */
 typedef struct {
-  double *face, *vertex;
-  int *nbr;
+  lsdem_pseudonormals pn;
+  int *nbr; /* 3 per triangle: the triangle across each edge, -1 none (owned) */
 } mesh_pseudonormals;
 
 /* Builds them (the edges through mesh_edges, whose counts go to topo when not NULL).
