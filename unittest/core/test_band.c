@@ -93,6 +93,16 @@ static void free_band(test_band *t)
   free((void *)t->band.far);
 }
 
+/* make_band's near-plane band (width 0.1) with its coarse level on */
+static void make_band_with_far(test_band *t)
+{
+  make_band(t, 0.1, 0);
+  lsdem_error err;
+  uint16_t *far = NULL;
+  CHECK(lsdem_band_far(&t->band, &far, &err) == LSDEM_OK, "%s", err.msg);
+  t->band.far = far;
+}
+
 static void random_point(double p[3])
 {
   p[0] = 2.4 * urand(), p[1] = 2.4 * urand(), p[2] = 1.6 * urand();
@@ -140,11 +150,7 @@ static void test_lookup_matches_plane_and_dense(void)
 static void test_background_is_a_lower_bound(void)
 {
   test_band t;
-  make_band(&t, 0.1, 0);
-  lsdem_error err;
-  uint16_t *far = NULL;
-  CHECK(lsdem_band_far(&t.band, &far, &err) == LSDEM_OK, "%s", err.msg);
-  t.band.far = far;
+  make_band_with_far(&t);
   CHECK(t.band.nbricks < t.band.nb[0] * t.band.nb[1] * t.band.nb[2] / 2,
         "%lld bricks stored: the band should leave most slots empty", (long long)t.band.nbricks);
   int bad = 0, sign = 0, beyond = 0;
@@ -198,11 +204,7 @@ static void test_tunnelled_and_checks(void)
 static void test_band_wall(void)
 {
   test_band t;
-  make_band(&t, 0.1, 0);
-  lsdem_error err;
-  uint16_t *far = NULL;
-  CHECK(lsdem_band_far(&t.band, &far, &err) == LSDEM_OK, "%s", err.msg);
-  t.band.far = far;
+  make_band_with_far(&t);
   lsdem_boundary w;
   lsdem_boundary_band(&w, &t.band);
   /* 1.3 above the plane where it is lowest, two brick layers from the stored ones */
