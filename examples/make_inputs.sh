@@ -22,6 +22,8 @@ inputs() {
     container_release) echo grains.lslib packed.data filled.data ;;
     triaxial) echo all.lslib packed.data mem.data mem.in mem.tri ;;
     c_driver) echo grains.lslib data.driver ;;
+    drum) echo grains.lslib packed.data ;;
+    hopper) echo hopper.stl hopper.band hopper.txt sphere.lslib hopper.data ;;
   esac
 }
 
@@ -39,7 +41,7 @@ EOF
 }
 
 names=("$@")
-[ ${#names[@]} -gt 0 ] || names=(settle avatars ct_scan container_release triaxial c_driver)
+[ ${#names[@]} -gt 0 ] || names=(settle avatars ct_scan container_release triaxial c_driver drum hopper)
 for name in "${names[@]}"; do
   files=$(inputs "$name")
   [ -n "$files" ] || { echo "make_inputs.sh: no example '$name'" >&2; exit 2; }

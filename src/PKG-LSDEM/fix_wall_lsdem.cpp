@@ -270,6 +270,7 @@ void FixWallLsdem::init()
       error->all(FLERR, "fix wall/lsdem: velocity variable {} is not equal-style", vstr[d]);
   }
   if (bnd.shape.sdf.kind == LSDEM_SDF_PLANE) check_plane_in_box();
+  if (bnd.shape.sdf.kind == LSDEM_SDF_BAND) check_band_width();
   if (map_every > 0 && !map.sum) {
     // forces in the wall's own quanta; work for sliding up to the band's width per step
     lsdem_error err;
@@ -308,6 +309,26 @@ void FixWallLsdem::check_plane_in_box() const
                "whole box on the wall's solid side (n.p = {:.6g}); the plane must cut the box: "
                "n.p in [{:.6g}, {:.6g}] for normal ({:.6g} {:.6g} {:.6g})", id, p[0], p[1],
                p[2], sp, smin, smax, n[0], n[1], n[2]);
+}
+
+/* ----------------------------------------------------------------------
+   an analytic sphere touches a band wall through one lookup of its centre (depth =
+   radius - phi), which needs phi to be a distance out to the radius: the band must be
+   wider than the largest sphere of the library
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::check_band_width() const
+{
+  const double width = bnd.shape.sdf.band->width;
+  for (int k = 0; k < avec->nshapes(); k++) {
+    const lsdem_shape *s = lsdem_library_shape(avec->library(), k);
+    if (s->sdf.kind == LSDEM_SDF_SPHERE && !(s->sdf.a[0] < width))
+      error->all(FLERR, "fix wall/lsdem {}: the band is {:.6g} wide, no wider than the library's "
+                 "sphere {} of radius {:.6g}: a sphere touches the wall by one lookup at its "
+                 "centre, which needs the distance out to its radius; make the band again with "
+                 "lsdem-shape ... --width above {:.6g}", id, width, k + 1, s->sdf.a[0],
+                 s->sdf.a[0]);
+  }
 }
 
 /* ----------------------------------------------------------------------

@@ -134,6 +134,7 @@ class FixWallLsdem : public Fix {
   void reduce_pivot_load();
   void update_velocity();
   void check_plane_in_box() const;
+  void check_band_width() const;
 
   bool may_touch(int, double margin) const;
   std::string crossing(int, const lsdem_pose &wall) const;

@@ -27,6 +27,8 @@ DECKS = [
     ("triaxial", "in.triaxial", {"ncons": 30, "epsmax": 1.0e-4, "every": 10},
      ["triaxial.csv"]),
     ("drum", "in.drum", {"nsteps": 40}, ["drum.csv", "drum_end.data"]),
+    ("hopper", "in.hopper", {"nsettle": 40, "ndischarge": 20, "nvtk": 0},
+     ["hopper.csv", "hopper_settled.dump"]),
 ]
 
 

@@ -232,4 +232,19 @@ refuses("tunnel", deck_with("terrain " + flat_band, v=(0.0, 0.0, -30.0), z=HALF 
                             steps=400, law="100 0 0.0"),
         "grain 1", "tunnelled", "--width")
 
+# an analytic sphere touches the wall by its centre's value: a band no wider than the
+# sphere's radius is refused at the start (it would push every sphere by r - width)
+ball = os.path.abspath("ball.lslib")
+shape_tool("analytic", ball, "sphere", 0.5, "--nodes", 20, "--analytic")
+write_data("ball.data", (-12, 12, -5, 5, -12, 12), [Grain((0.0, 0.0, 3.0))])
+rc, log = run_lmp(head(ball, "ball.data", boundary="f f f") + """
+pair_style zero 2.0
+pair_coeff * *
+fix 1 all nve/lsdem
+fix w all wall/lsdem terrain %s 100 100 0.3
+run 1
+""" % flat_band, cwd=os.path.abspath("narrow_for_spheres"), expect_fail=True)
+check(rc != 0 and "no wider than the library's sphere 1 of radius 0.5" in log,
+      "a band narrower than a sphere was not refused:\n%s" % log[-1200:])
+
 finish()

@@ -379,7 +379,7 @@ static int is_sphere(const lsdem_shape *s) { return s->sdf.kind == LSDEM_SDF_SPH
 /* Sphere B in closed form (sphere_pair_overlap); any other B with ONE level-set lookup of
  * the sphere centre in B's frame (report §2.3.5): depth d = radius - phi_B(centre), normal
  * = B's gradient there; for a centre outside B's grid, its distance found by descent over
- * the grid's box (outside_distance). */
+ * the grid's box (outside_distance); none for a centre at or beyond a band's width. */
 int lsdem_sphere_overlap(double radius, const lsdem_pose *pa, const lsdem_shape *B,
                          const lsdem_pose *pb, double n[3], double *d, int *lookups)
 {
@@ -397,8 +397,13 @@ int lsdem_sphere_overlap(double radius, const lsdem_pose *pa, const lsdem_shape 
   if (B->sdf.kind == LSDEM_SDF_GRID && !B->sdf.inverted &&
       !lsdem_grid_box_contains(&B->sdf.grid, q))
     *d = radius - outside_distance(&B->sdf, q, g, lookups);
-  else
-    *d = radius - lsdem_sdf_eval(&B->sdf, q, g);
+  else {
+    const double phi = lsdem_sdf_eval(&B->sdf, q, g);
+    /* a band's value at or beyond its width is a bound, not a distance: no depth to take
+     * from it (fix wall/lsdem requires bands wider than the spheres) */
+    if (B->sdf.kind == LSDEM_SDF_BAND && phi >= B->sdf.band->width) return 0;
+    *d = radius - phi;
+  }
   if (!(*d > 0.0)) return 0;
   lsdem_mat_vec(pb->R, g, n);
   return 1;
