@@ -24,6 +24,7 @@ inputs() {
     c_driver) echo grains.lslib data.driver ;;
     drum) echo grains.lslib packed.data ;;
     hopper) echo hopper.stl hopper.band hopper.txt sphere.lslib hopper.data ;;
+    avalanche) echo grains.lslib source.data valley.asc valley.band ;;
   esac
 }
 
@@ -41,7 +42,7 @@ EOF
 }
 
 names=("$@")
-[ ${#names[@]} -gt 0 ] || names=(settle avatars ct_scan container_release triaxial c_driver drum hopper)
+[ ${#names[@]} -gt 0 ] || names=(settle avatars ct_scan container_release triaxial c_driver drum hopper avalanche)
 for name in "${names[@]}"; do
   files=$(inputs "$name")
   [ -n "$files" ] || { echo "make_inputs.sh: no example '$name'" >&2; exit 2; }

@@ -230,7 +230,15 @@ int cmd_terrain(int argc, char **argv)
   }
   printf("%s: %d x %d heights, cell %g, first at (%g, %g), heights %g .. %g, %ld nodata\n",
          path, hm.nx, hm.ny, hm.cell, hm.x0, hm.y0, zmin, zmax, nodata);
-  const lsdem_status st = lsdem_heightmap_mesh(&hm, &m, &err);
+  /* beyond its border the terrain continues flat at the edge's heights, out past the
+   * band's box (width + spacing beyond the surface), so no grain finds a cliff there */
+  const int pad = (int)ceil((o.width + o.spacing) / hm.cell) + 1;
+  lsdem_status st = lsdem_heightmap_pad(&hm, pad, &err);
+  if (st == LSDEM_OK) {
+    printf("padded by %d cells of edge heights on every side: the terrain continues flat "
+           "beyond its border\n", pad);
+    st = lsdem_heightmap_mesh(&hm, &m, &err);
+  }
   lsdem_heightmap_free(&hm);
   if (st != LSDEM_OK) {
     fprintf(stderr, "lsdem-shape: terrain: %s: %s\n", path, err.msg);

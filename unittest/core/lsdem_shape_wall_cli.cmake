@@ -63,7 +63,8 @@ set(asc_head "ncols 4\nnrows 3\nxllcorner 10\nyllcorner 20\ncellsize 1\nNODATA_v
 file(WRITE ${WORK}/good.asc "${asc_head}1 2 3 4\n2 -9999 4 5\n3 4 5 6\n")
 run_rc(0 terrain good.asc good.band --spacing 0.25)
 expect_in("${out}" "good.asc: 4 x 3 heights, cell 1, first at (10.5, 20.5), heights 1 .. 6, 1 nodata"
-  "surface: 4 triangles" "width 0.5 (2 h)" "good.band: band file of a terrain")
+  "padded by 2 cells of edge heights" "surface: 76 triangles" "width 0.5 (2 h)"
+  "good.band: band file of a terrain")
 if(NOT EXISTS ${WORK}/good.band)
   message(FATAL_ERROR "terrain: good.band not written")
 endif()

@@ -232,6 +232,19 @@ refuses("tunnel", deck_with("terrain " + flat_band, v=(0.0, 0.0, -30.0), z=HALF 
                             steps=400, law="100 0 0.0"),
         "grain 1", "tunnelled", "--width")
 
+# beyond its border the terrain continues flat (lsdem-shape terrain pads the raster with
+# the edge heights): cubes resting 0.5 and 1.5 beyond the edge of the flat terrain rest as
+# on the plane z = 0 (before the padding the border was a cliff edge that threw them up)
+for beyond in (0.5, 1.5):
+    tag = "beyond%g" % beyond
+    on_plane = slide(tag + "_plane", "plane 0 0 0 0 0 1", 0.0, 0.3, 0.3, 6.0 + beyond, every=50)
+    on_band = slide(tag + "_terrain", "terrain " + flat_band, 0.0, 0.3, 0.3, 6.0 + beyond, every=50)
+    if check(len(on_plane) == len(on_band) > 3, "%s: thermo rows differ" % tag):
+        worst = max(abs(a["v_pz"] - b["v_pz"]) + abs(a["v_px"] - b["v_px"])
+                    for a, b in zip(on_plane, on_band))
+        check(worst < 1e-7, "%s: the cube beyond the terrain's edge is %.3g off the plane's "
+              "rest" % (tag, worst))
+
 # an analytic sphere touches the wall by its centre's value: a band no wider than the
 # sphere's radius is refused at the start (it would push every sphere by r - width)
 ball = os.path.abspath("ball.lslib")

@@ -33,6 +33,26 @@ static lsdem_status alloc_heights(lsdem_heightmap *hm, long nx, long ny, const c
   return LSDEM_OK;
 }
 
+lsdem_status lsdem_heightmap_pad(lsdem_heightmap *hm, int cells, lsdem_error *err)
+{
+  if (cells < 0) return lsdem_fail(err, LSDEM_ERR_ARG, "height map: pad by %d cells", cells);
+  const long nx = (long)hm->nx + 2L * cells, ny = (long)hm->ny + 2L * cells;
+  lsdem_heightmap out = *hm;
+  lsdem_status st = alloc_heights(&out, nx, ny, "height map (padded)", err);
+  if (st != LSDEM_OK) return st;
+  for (long j = 0; j < ny; j++)
+    for (long i = 0; i < nx; i++) { /* the nearest height of the raster: its edge's */
+      const long si = i < cells ? 0 : (i - cells >= hm->nx ? hm->nx - 1 : i - cells);
+      const long sj = j < cells ? 0 : (j - cells >= hm->ny ? hm->ny - 1 : j - cells);
+      out.z[(size_t)j * nx + i] = hm->z[(size_t)sj * hm->nx + si];
+    }
+  out.x0 = hm->x0 - cells * hm->cell;
+  out.y0 = hm->y0 - cells * hm->cell;
+  free(hm->z);
+  *hm = out;
+  return LSDEM_OK;
+}
+
 /* A raster of only nodata holds no terrain. */
 static lsdem_status check_some_data(const lsdem_heightmap *hm, const char *path,
                                     lsdem_error *err)

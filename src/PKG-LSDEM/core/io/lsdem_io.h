@@ -120,6 +120,11 @@ lsdem_status lsdem_heightmap_read_png(const char *path, double cell, double zsca
 lsdem_status lsdem_heightmap_read(const char *path, double cell, double zscale,
                                   lsdem_heightmap *hm, lsdem_error *err);
 void lsdem_heightmap_free(lsdem_heightmap *hm);
+/* Grow the raster by `cells` on every side, each new height the nearest edge height (a
+ * nodata edge stays nodata): the terrain continues flat beyond its edge, so that a band
+ * made from it (whose box reaches width + h beyond the surface) has no cliff at the
+ * raster's border. x0, y0 move out by cells * cell. */
+lsdem_status lsdem_heightmap_pad(lsdem_heightmap *hm, int cells, lsdem_error *err);
 
 /* The terrain surface as triangles: a vertex per height that a kept cell uses, two
  * triangles per cell with four heights ((i,j), (i+1,j), (i+1,j+1)) and ((i,j), (i+1,j+1),

@@ -1,8 +1,9 @@
 /* band_build.c -- the narrow band of a wall (lsdem_band, lsdem_geom.h) from a triangle
  * mesh: a closed mesh (its inside solid) or a terrain surface (solid below).
  *
- * Layout: the mesh's bounding box grown by width + h on every side, spacing h, cut into
- * bricks of LSDEM_BAND_BRICK cells. A brick is stored when the bounding box of some
+ * Layout: the mesh's bounding box grown by width + h on every side (a terrain's: only
+ * below and above; across, its xy extent), spacing h, cut into bricks of LSDEM_BAND_BRICK
+ * cells. A brick is stored when the bounding box of some
  * triangle grown by width touches it (conservative: every sample nearer than width to
  * the surface lies in a stored brick).
  *
@@ -230,8 +231,18 @@ static lsdem_status plan(builder *B, const lsdem_mesh *m, double h, double width
   B->m = m, B->src = src, B->h = h, B->w = width;
   B->nslots = 1;
   for (int a = 0; a < 3; a++) {
-    B->origin[a] = B->lo[a] - (width + h);
-    const double cells = ceil((B->hi[a] - B->lo[a] + 2.0 * (width + h)) / h * (1.0 - 1e-12));
+    /* a terrain's box ends at its xy extent, where its last sample columns still see the
+     * surface above or below them: beyond, the lookup's outside rule repeats those columns
+     * (the ground continues flat at its edge heights; lsdem-shape terrain pads the raster
+     * with edge heights first, so that the columns near the border are flat too) */
+    const int flush = src == LSDEM_BAND_TERRAIN && a < 2;
+    const double margin = flush ? 0.0 : width + h;
+    B->origin[a] = B->lo[a] - margin;
+    const double span = (B->hi[a] - B->lo[a] + 2.0 * margin) / h;
+    double cells = flush ? fmax(floor(span * (1.0 + 1e-12)), 1.0) : ceil(span * (1.0 - 1e-12));
+    /* the last sample n - 1 must be a stored brick's own (local 0..7): a multiple of 8
+     * would be the first sample of a brick beyond the grid, which gets no distance */
+    if (flush && cells > 1.0 && fmod(cells, LSDEM_BAND_BRICK) == 0.0) cells -= 1.0;
     if (!(cells + 1.0 <= (double)(INT32_MAX - 2 * BRICK)))
       return lsdem_fail(err, LSDEM_ERR_NOMEM, "band: %.0f samples along axis %d (the box %g "
                         "wide at spacing %g): above 2^31; use a coarser spacing", cells + 1.0,
