@@ -29,6 +29,8 @@ DECKS = [
     ("drum", "in.drum", {"nsteps": 40}, ["drum.csv", "drum_end.data"]),
     ("hopper", "in.hopper", {"nsettle": 40, "ndischarge": 20, "nvtk": 0},
      ["hopper.csv", "hopper_settled.dump"]),
+    ("avalanche", "in.avalanche", {"nsteps": 40},
+     ["avalanche.csv", "deposit.dump", "avalanche_end.data", "vtk/grains.pvd", "vtk/terrain.pvd"]),
 ]
 
 

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Rock avalanche down a synthetic valley: make the valley and the source, run the avalanche
+# until it is at rest, and plot it (front, centroid, speed, H/L, deposit thickness).
+# Called by `./lsdem example avalanche` (which sets LSDEM_LMP and LSDEM_SHAPE_TOOL).
+# Environment: NGRAINS (400), RUNOUT (inclination of the run-out plane, 0 or 3 degrees; 0),
+# VALLEY (the valley's cross-section, U or V; U), SEED (the packing's, 7), METHOD (penalty
+# or impulse: 16 times the penalty step), NP (2),
+# TIME (simulated time at most, 10: the run stops once the grains are at rest), VTK
+# (simulated time between ParaView frames of the grains, 1.0), OUT (output folder, out/).
+#   run.sh [prepare]   (prepare: make valley.asc, valley.band, grains.lslib, source.data only)
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+lmp=${LSDEM_LMP:-$here/../../build/lmp}
+shape=${LSDEM_SHAPE_TOOL:-$here/../../build/lsdem-shape}
+py=/usr/bin/python3
+n=${NGRAINS:-400} runout=${RUNOUT:-0} seed=${SEED:-7} method=${METHOD:-penalty} np=${NP:-2}
+t_end=${TIME:-10} vtk=${VTK:-1.0}
+out=${OUT:-$here/out}
+case "$method" in penalty|impulse) ;; *) echo "run.sh: METHOD must be penalty or impulse, not '$method'" >&2; exit 2 ;; esac
+mkdir -p "$out"
+cd "$out"
+LSDEM_SHAPE_TOOL=$shape bash "$here/make_scene.sh" . "$n" "$runout" "$seed"
+# the penalty step: 0.2 sqrt(m_min / (5 kn)), below fix nve/lsdem's bound for a flat contact
+# of five nodes (eq 4.47's 0.1 sqrt(m_min / kn) is just above it); kn = 3e4, density 2.65
+vmin=$("$shape" list grains.lslib | awk 'NR > 2 && NF { v = $(NF - 3); if (m == "" || v < m) m = v } END { print m }')
+dt=$("$py" -c "print('%.2g' % (0.2 * (2.65 * $vmin / (5 * 3.0e4)) ** 0.5))")
+echo "dt $dt"
+[ "${1:-}" = prepare ] && exit 0
+# the terrain's west end and half-width, for the deck's count of grains near its edges
+edge_x=$(awk 'tolower($1) == "xllcenter" { print $2 }' valley.asc)
+edge_y=$(awk 'tolower($1) == "yllcenter" { print -$2 }' valley.asc)
+mpi=()
+[ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
+echo "avalanche: $method, up to $t_end time units, $np rank(s) (log in $out/log.lammps)"
+rm -rf vtk
+start=$SECONDS
+"${mpi[@]}" "$lmp" -in "$here/in.avalanche" -var method "$method" -var dt "$dt" \
+  -var time "$t_end" -var vtkevery "$vtk" -var edge_x "$edge_x" -var edge_y "$edge_y" \
+  -log log.lammps -screen none
+echo "lmp took $((SECONDS - start)) s"
+grep -E "^Loop time|^end:" log.lammps
+"$py" "$here/plot.py" avalanche.csv deposit.dump valley.asc source.data avalanche.png deposit.png
+echo "results: $out/log.lammps, avalanche.csv, avalanche.png, deposit.png, deposit.dump," \
+  "avalanche_end.data, vtk/grains.pvd, vtk/deposit.pvd, vtk/terrain.pvd (ParaView)"
