@@ -33,6 +33,11 @@ static double exact_value(const lsdem_band *b, int32_t brick, const double p[3],
 {
   double best = HUGE_VAL, value = b->width;
   for (int64_t e = b->brick_tri_start[brick]; e < b->brick_tri_start[brick + 1]; e++) {
+    /* a triangle whose bounding sphere is no nearer than the best so far cannot be nearer
+     * (ties keep the earlier: the same triangle as without pruning) */
+    const double *sph = b->exact->sphere + 4 * (int64_t)b->brick_tris[e];
+    const double dc[3] = {p[0] - sph[0], p[1] - sph[1], p[2] - sph[2]};
+    if (best < HUGE_VAL && sqrt(lsdem_dot3(dc, dc)) - sph[3] >= best) continue;
     double g[3];
     const double d = lsdem_signed_distance_to_triangle(b->verts, b->tris, b->exact, p,
                                                        b->brick_tris[e], g);

@@ -151,6 +151,7 @@ double lsdem_superellipsoid_radius(const double u[3], const void *sdf);
 typedef struct {
   double *face;      /* 3 per triangle: unit face normal (0 for a degenerate triangle) */
   double *vertex;    /* 3 per vertex: sum of the incident faces' normals times their angle */
+  double *sphere;    /* 4 per triangle: a bounding sphere (centroid, radius), for pruning */
   const int *nbr;    /* 3 per triangle (not owned) */
 } lsdem_pseudonormals;
 lsdem_status lsdem_pseudonormals_make(const double *verts, int64_t nverts, const int *tris,

@@ -19,11 +19,22 @@ lsdem_status lsdem_pseudonormals_make(const double *verts, int64_t nverts, const
 {
   pn->face = malloc(3 * (size_t)ntris * sizeof(double) + 1);
   pn->vertex = calloc(3 * (size_t)nverts + 1, sizeof(double));
+  pn->sphere = malloc(4 * (size_t)ntris * sizeof(double) + 1);
   pn->nbr = nbr;
-  if (!pn->face || !pn->vertex)
+  if (!pn->face || !pn->vertex || !pn->sphere)
     return lsdem_fail(err, LSDEM_ERR_NOMEM, "cannot allocate the normals of %lld triangles",
                       (long long)ntris);
   for (int64_t t = 0; t < ntris; t++) {
+    double *sph = pn->sphere + 4 * t;
+    sph[3] = 0.0;
+    for (int k = 0; k < 3; k++)
+      sph[k] = (corner(verts, tris, t, 0)[k] + corner(verts, tris, t, 1)[k] +
+                corner(verts, tris, t, 2)[k]) / 3.0;
+    for (int c = 0; c < 3; c++) {
+      double d[3];
+      lsdem_sub3(corner(verts, tris, t, c), sph, d);
+      sph[3] = fmax(sph[3], sqrt(lsdem_dot3(d, d)));
+    }
     double *n = pn->face + 3 * t, e1[3], e2[3];
     lsdem_sub3(corner(verts, tris, t, 1), corner(verts, tris, t, 0), e1);
     lsdem_sub3(corner(verts, tris, t, 2), corner(verts, tris, t, 0), e2);
@@ -46,8 +57,8 @@ lsdem_status lsdem_pseudonormals_make(const double *verts, int64_t nverts, const
 
 void lsdem_pseudonormals_free(lsdem_pseudonormals *pn)
 {
-  free(pn->face), free(pn->vertex);
-  pn->face = pn->vertex = NULL;
+  free(pn->face), free(pn->vertex), free(pn->sphere);
+  pn->face = pn->vertex = pn->sphere = NULL;
   pn->nbr = NULL;
 }
 
