@@ -312,6 +312,21 @@ static void column_heights(const builder *B, int bx, int by, double H[SIDE * SID
                                        &inside[a + SIDE * b]);
 }
 
+/* column_heights for the column of bricks (bx, by) when one of its slots is stored
+ * (stored = 1) or still unmarked (0); returns 0, computing nothing, when none is. */
+static int column_heights_for(const builder *B, int bx, int by, int stored,
+                              double H[SIDE * SIDE], int inside[SIDE * SIDE])
+{
+  for (int bz = 0; bz < B->nb[2]; bz++) {
+    const int32_t ix = B->index[slot_index(B, bx, by, bz)];
+    if (stored ? ix >= 0 : ix == BG_UNKNOWN) {
+      column_heights(B, bx, by, H, inside);
+      return 1;
+    }
+  }
+  return 0;
+}
+
 /* Terrain: an unmarked slot is background when its 729 samples share one sign (that
  * sign), else it is stored (index 0). */
 static void terrain_backgrounds(builder *B)
@@ -320,11 +335,7 @@ static void terrain_backgrounds(builder *B)
   int inside[SIDE * SIDE];
   for (int by = 0; by < B->nb[1]; by++)
     for (int bx = 0; bx < B->nb[0]; bx++) {
-      int have = 0;
-      for (int bz = 0; bz < B->nb[2] && !have; bz++)
-        have = B->index[slot_index(B, bx, by, bz)] == BG_UNKNOWN;
-      if (!have) continue;
-      column_heights(B, bx, by, H, inside);
+      if (!column_heights_for(B, bx, by, 0, H, inside)) continue;
       for (int bz = 0; bz < B->nb[2]; bz++) {
         int32_t *ix = &B->index[slot_index(B, bx, by, bz)];
         if (*ix != BG_UNKNOWN) continue;
@@ -422,11 +433,7 @@ static void terrain_values(builder *B)
   int inside[SIDE * SIDE];
   for (int by = 0; by < B->nb[1]; by++)
     for (int bx = 0; bx < B->nb[0]; bx++) {
-      int have = 0;
-      for (int bz = 0; bz < B->nb[2] && !have; bz++)
-        have = B->index[slot_index(B, bx, by, bz)] >= 0;
-      if (!have) continue;
-      column_heights(B, bx, by, H, inside);
+      if (!column_heights_for(B, bx, by, 1, H, inside)) continue;
       for (int bz = 0; bz < B->nb[2]; bz++) {
         const int32_t brick = B->index[slot_index(B, bx, by, bz)];
         if (brick < 0) continue;
