@@ -626,7 +626,7 @@ void FixWallLsdem::visit_candidates(Lane &lane, int from, int to, const lsdem_po
     if (!test && !lane.path.keeps_state(i)) continue;  // far, nothing kept
     lane.path.begin_atom();
     if (test) {
-      const bool began = !lane.path.touched(i, WALL_PARTNER);
+      const bool began = map_every > 0 && !lane.path.touched(i, WALL_PARTNER);  // maps only
       lsdem_pose p;
       LsdemContactPath::pose_of(atom, avec, i, p);
       lsdem_contact_result res;
