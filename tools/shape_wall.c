@@ -1,6 +1,7 @@
 /* shape_wall.c -- `lsdem-shape wall` and `lsdem-shape terrain`: the narrow band of a wall
- * (lsdem_band_from_mesh) from a closed triangle mesh or a terrain height map, written as a
- * band file (lsdem_band_write) and checked by reading it back (lsdem_band_open). */
+ * (lsdem_band_from_mesh) from a closed triangle mesh or a terrain height map, or a terrain
+ * kept as its heights (`--heights`, lsdem_band_from_heights), written as a band file
+ * (lsdem_band_write) and checked by reading it back (lsdem_band_open). */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include "lsdem.h"
 #include "lsdem_shape_cmds.h"
@@ -15,13 +16,18 @@
 
 typedef struct {
   double spacing, width, scale, cell, zscale; /* width 0: 2 spacing; cell 0: from the file */
+  int heights; /* terrain: keep the heights (spacing = the raster's cell), not bricks */
 } wall_options;
 
 static int parse_wall_options(const char *cmd, int argc, char **argv, int terrain,
                               wall_options *o)
 {
-  *o = (wall_options){0.0, 0.0, 1.0, 0.0, 1.0};
+  *o = (wall_options){0.0, 0.0, 1.0, 0.0, 1.0, 0};
   for (int i = 0; i < argc; i++) {
+    if (terrain && !strcmp(argv[i], "--heights")) {
+      o->heights = 1;
+      continue;
+    }
     const int has = i + 1 < argc;
     double *v = !strcmp(argv[i], "--spacing")              ? &o->spacing
                 : !strcmp(argv[i], "--width")              ? &o->width
@@ -33,10 +39,16 @@ static int parse_wall_options(const char *cmd, int argc, char **argv, int terrai
     if (!ok) {
       fprintf(stderr, "lsdem-shape: %s: bad option or value near '%s' (options: --spacing H > 0, "
               "--width W > 0%s)\n", cmd, argv[i],
-              terrain ? ", --cell C > 0, --zscale Z > 0" : ", --scale S > 0");
+              terrain ? ", --cell C > 0, --zscale Z > 0, --heights" : ", --scale S > 0");
       return 0;
     }
   }
+  if (o->heights && o->spacing > 0.0) {
+    fprintf(stderr, "lsdem-shape: %s: --heights keeps the raster's own spacing (its cell): "
+            "drop --spacing\n", cmd);
+    return 0;
+  }
+  if (o->heights) return 1; /* width: 2 cells once the raster is read */
   if (!(o->spacing > 0.0)) {
     fprintf(stderr, "lsdem-shape: %s: --spacing H is required (the band's grid spacing)\n", cmd);
     return 0;
@@ -107,8 +119,90 @@ static double surface_misfit(const lsdem_band *b, const lsdem_mesh *m)
   return worst;
 }
 
-/* Build, write and read back the band of m; print the report. 0, or 1 after a message
- * (the output then does not exist). */
+/* Largest |phi| of a band kept as heights at its columns' vertices (0 up to rounding:
+ * its lookups are exact). */
+static double heights_misfit(const lsdem_band *b)
+{
+  double worst = 0.0, g[3];
+  for (int j = 0; j < b->n[1]; j++)
+    for (int i = 0; i < b->n[0]; i++) {
+      const double p[3] = {b->origin[0] + b->h * i, b->origin[1] + b->h * j,
+                           b->heights[(size_t)i + (size_t)b->n[0] * j]};
+      worst = fmax(worst, fabs(lsdem_band_eval(b, p, g)));
+    }
+  return worst;
+}
+
+/* Samples of the dense grid the band stands for: a brick band's box, or for heights the
+ * columns' extent times the relief plus width + h above and below. */
+static double dense_samples(const lsdem_band *b)
+{
+  if (!b->heights) return (double)b->n[0] * b->n[1] * b->n[2];
+  float lo = INFINITY, hi = -INFINITY;
+  for (size_t k = 0; k < (size_t)b->n[0] * b->n[1]; k++)
+    lo = fminf(lo, b->heights[k]), hi = fmaxf(hi, b->heights[k]);
+  return (double)b->n[0] * b->n[1] * (floor(((double)hi - lo + 2.0 * (b->width + b->h)) / b->h) + 1.0);
+}
+
+/* Print the band's report, write it and read it back (the file as lmp will read it);
+ * surface check against m, or at the columns for heights. Frees b. 0, or 1 after a
+ * message (the output then does not exist). */
+static int write_and_check(const char *cmd, lsdem_band *b, lsdem_band_source src,
+                           double build_s, const lsdem_mesh *m, const char *out)
+{
+  const double dense = 4.0 * dense_samples(b);
+  if (b->heights) {
+    printf("heights: %d x %d columns at spacing %g, width %g (%.3g h), exact distances at "
+           "lookup\n", b->n[0], b->n[1], b->h, b->width, b->width / b->h);
+    printf("memory %.3g MB (heights and tile ranges) against %.3g MB for the dense grid (%.2f "
+           "%%)\n", lsdem_band_bytes(b) / 1048576.0, dense / 1048576.0,
+           100.0 * lsdem_band_bytes(b) / dense);
+  } else {
+    const double slots = (double)b->nb[0] * b->nb[1] * b->nb[2];
+    printf("band: spacing %g, width %g (%.3g h); grid %d x %d x %d samples, %d x %d x %d bricks "
+           "of %d cells\n", b->h, b->width, b->width / b->h, b->n[0], b->n[1], b->n[2],
+           b->nb[0], b->nb[1], b->nb[2], LSDEM_BAND_BRICK);
+    printf("stored bricks: %lld of %.0f (%.2f %%); memory %.3g MB (index and bricks) against "
+           "%.3g MB for the dense grid (%.2f %%)\n", (long long)b->nbricks, slots,
+           100.0 * (double)b->nbricks / slots, lsdem_band_bytes(b) / 1048576.0,
+           dense / 1048576.0, 100.0 * lsdem_band_bytes(b) / dense);
+  }
+  printf("build time: %.2f s\n", build_s);
+  lsdem_error err;
+  int rc = 0;
+  if (lsdem_band_write(out, b, src, &err) != LSDEM_OK) {
+    fprintf(stderr, "lsdem-shape: %s: %s\n", cmd, err.msg);
+    rc = 1;
+  }
+  lsdem_band_free(b);
+  lsdem_band_file *f = NULL;
+  if (!rc && lsdem_band_open(out, &f, &err) != LSDEM_OK) {
+    fprintf(stderr, "lsdem-shape: %s: reading the band file back failed: %s\n", cmd, err.msg);
+    remove(out);
+    rc = 1;
+  }
+  if (!rc) {
+    const lsdem_band *r = lsdem_band_file_band(f);
+    if (m) {
+      const double misfit = surface_misfit(r, m);
+      printf("surface check: max |phi| at the %d vertices and %d triangle centroids %.3g h "
+             "(%.3g)\n", m->nverts, m->ntris, misfit / r->h, misfit);
+    } else {
+      const double misfit = heights_misfit(r);
+      printf("surface check: max |phi| at the %d columns' vertices %.3g h (%.3g)\n",
+             r->n[0] * r->n[1], misfit / r->h, misfit);
+    }
+    struct stat sb;
+    printf("%s: band file of a %s, %lld bytes\n", out,
+           src == LSDEM_BAND_MESH ? "closed mesh"
+                                  : (src == LSDEM_BAND_TERRAIN ? "terrain" : "terrain's heights"),
+           stat(out, &sb) == 0 ? (long long)sb.st_size : -1LL);
+    lsdem_band_close(f);
+  }
+  return rc;
+}
+
+/* Build the band of m, then write_and_check. */
 static int build_and_write(const char *cmd, const lsdem_mesh *m, lsdem_band_source src,
                            const wall_options *o, const char *out)
 {
@@ -120,41 +214,7 @@ static int build_and_write(const char *cmd, const lsdem_mesh *m, lsdem_band_sour
     fprintf(stderr, "lsdem-shape: %s: %s\n", cmd, err.msg);
     return 1;
   }
-  const double build_s = seconds_since(&t0);
-  const double slots = (double)b.nb[0] * b.nb[1] * b.nb[2];
-  const double dense = 4.0 * b.n[0] * (double)b.n[1] * b.n[2];
-  printf("band: spacing %g, width %g (%.3g h); grid %d x %d x %d samples, %d x %d x %d bricks "
-         "of %d cells\n", b.h, b.width, b.width / b.h, b.n[0], b.n[1], b.n[2], b.nb[0], b.nb[1],
-         b.nb[2], LSDEM_BAND_BRICK);
-  printf("stored bricks: %lld of %.0f (%.2f %%); memory %.3g MB (index and bricks) against "
-         "%.3g MB for the dense grid (%.2f %%)\n", (long long)b.nbricks, slots,
-         100.0 * (double)b.nbricks / slots, lsdem_band_bytes(&b) / 1048576.0, dense / 1048576.0,
-         100.0 * lsdem_band_bytes(&b) / dense);
-  printf("build time: %.2f s\n", build_s);
-  int rc = 0;
-  if (lsdem_band_write(out, &b, src, &err) != LSDEM_OK) {
-    fprintf(stderr, "lsdem-shape: %s: %s\n", cmd, err.msg);
-    rc = 1;
-  }
-  lsdem_band_free(&b);
-  lsdem_band_file *f = NULL;
-  if (!rc && lsdem_band_open(out, &f, &err) != LSDEM_OK) { /* the file as lmp will read it */
-    fprintf(stderr, "lsdem-shape: %s: reading the band file back failed: %s\n", cmd, err.msg);
-    remove(out);
-    rc = 1;
-  }
-  if (!rc) {
-    const lsdem_band *r = lsdem_band_file_band(f);
-    const double misfit = surface_misfit(r, m);
-    printf("surface check: max |phi| at the %d vertices and %d triangle centroids %.3g h "
-           "(%.3g)\n", m->nverts, m->ntris, misfit / r->h, misfit);
-    struct stat sb;
-    printf("%s: band file of a %s, %lld bytes\n", out,
-           src == LSDEM_BAND_MESH ? "closed mesh" : "terrain",
-           stat(out, &sb) == 0 ? (long long)sb.st_size : -1LL);
-    lsdem_band_close(f);
-  }
-  return rc;
+  return write_and_check(cmd, &b, src, seconds_since(&t0), m, out);
 }
 
 static int wall_usage(void)
@@ -205,7 +265,9 @@ int cmd_wall(int argc, char **argv)
 static int terrain_usage(void)
 {
   fprintf(stderr, "usage: lsdem-shape terrain HEIGHTMAP.asc|.tif|.tiff|.png OUT.band --spacing H "
-          "[--width W]\n                   [--cell C] [--zscale Z]\n");
+          "[--width W]\n                   [--cell C] [--zscale Z]\n"
+          "       lsdem-shape terrain HEIGHTMAP OUT.band --heights [--width W] [--cell C] "
+          "[--zscale Z]\n");
   return 2;
 }
 
@@ -232,13 +294,26 @@ int cmd_terrain(int argc, char **argv)
          path, hm.nx, hm.ny, hm.cell, hm.x0, hm.y0, zmin, zmax, nodata);
   /* beyond its border the terrain continues flat at the edge's heights, out past the
    * band's box (width + spacing beyond the surface), so no grain finds a cliff there */
+  if (o.heights) o.spacing = hm.cell;
+  if (o.heights && o.width == 0.0) o.width = 2.0 * hm.cell;
   const int pad = (int)ceil((o.width + o.spacing) / hm.cell) + 1;
   lsdem_status st = lsdem_heightmap_pad(&hm, pad, &err);
-  if (st == LSDEM_OK) {
+  if (st == LSDEM_OK)
     printf("padded by %d cells of edge heights on every side: the terrain continues flat "
            "beyond its border\n", pad);
-    st = lsdem_heightmap_mesh(&hm, &m, &err);
+  if (st == LSDEM_OK && o.heights) {
+    lsdem_band b;
+    struct timespec t0;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    st = lsdem_band_from_heights(&hm, o.width, &b, &err);
+    lsdem_heightmap_free(&hm);
+    if (st != LSDEM_OK) {
+      fprintf(stderr, "lsdem-shape: terrain: %s: %s\n", path, err.msg);
+      return 1;
+    }
+    return write_and_check("terrain", &b, LSDEM_BAND_HEIGHTS, seconds_since(&t0), NULL, argv[1]);
   }
+  if (st == LSDEM_OK) st = lsdem_heightmap_mesh(&hm, &m, &err);
   lsdem_heightmap_free(&hm);
   if (st != LSDEM_OK) {
     fprintf(stderr, "lsdem-shape: terrain: %s: %s\n", path, err.msg);

@@ -145,6 +145,10 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   if (st != LSDEM_OK) error->all(FLERR, "fix wall/lsdem: {}", err.msg);
   for (int d = 0; d < 3; d++) bnd.pose.v[d] = vel[d];
   memset(&map, 0, sizeof(map));
+  if (map_every > 0 && bnd.shape.sdf.band->heights)
+    error->all(FLERR, "fix wall/lsdem {}: keyword map needs the terrain's triangles, which a "
+               "terrain kept as heights does not store: make it with lsdem-shape terrain "
+               "without --heights", arg[4]);
   if (map_every > 0 && bnd.shape.sdf.band->ntris == 0)
     error->all(FLERR, "fix wall/lsdem {}: keyword map needs the triangles in the band file; "
                "make it again with this version of lsdem-shape", arg[4]);
@@ -166,7 +170,7 @@ void FixWallLsdem::open_band(const std::string &kind, const char *path)
   lsdem_error err;
   if (lsdem_band_open(path, &band_file, &err) != LSDEM_OK)
     error->all(FLERR, "fix wall/lsdem {}: {}", kind, err.msg);
-  const bool terrain = lsdem_band_file_source(band_file) == LSDEM_BAND_TERRAIN;
+  const bool terrain = lsdem_band_file_source(band_file) != LSDEM_BAND_MESH;
   if (terrain != (kind == "terrain"))
     error->all(FLERR, "fix wall/lsdem {} {}: the file was made from a {} (lsdem-shape {}): "
                "write fix wall/lsdem {} {}", kind, path, terrain ? "height map" : "mesh",
@@ -182,6 +186,7 @@ void FixWallLsdem::open_band(const std::string &kind, const char *path)
 void FixWallLsdem::use_exact_band(const char *path)
 {
   const lsdem_band *b = lsdem_band_file_band(band_file);
+  if (b->heights) return; /* a terrain kept as heights is exact already */
   if (b->ntris == 0)
     error->all(FLERR, "fix wall/lsdem: exact needs the triangles in {}; make it again with "
                "this version of lsdem-shape", path);

@@ -85,6 +85,17 @@ expect_in("${err}" "an ASCII grid gives its cell size")
 run_rc(1 terrain good.xyz x.band --spacing 0.25)
 expect_in("${err}" "unknown height-map format")
 expect_no_file(x.band)
+# kept as heights: no holes, the raster's own spacing
+file(WRITE ${WORK}/full.asc "${asc_head}1 2 3 4\n2 3 4 5\n3 4 5 6\n")
+run_rc(0 terrain full.asc full.band --heights)
+expect_in("${out}" "padded by 4 cells" "heights: 12 x 11 columns at spacing 1, width 2 (2 h)"
+  "surface check: max |phi| at the 132 columns' vertices 0 h"
+  "full.band: band file of a terrain's heights")
+run_rc(1 terrain good.asc holes.band --heights)
+expect_in("${err}" "is nodata: a terrain kept as heights has no holes")
+expect_no_file(holes.band)
+run_rc(2 terrain full.asc x.band --heights --spacing 0.5)
+expect_in("${err}" "--heights keeps the raster's own spacing")
 # an output path that is a folder is refused and left as it was
 file(MAKE_DIRECTORY ${WORK}/folder.band)
 run_rc(1 terrain good.asc folder.band --spacing 0.25)

@@ -694,6 +694,111 @@ static void test_band_file(void)
   lsdem_mesh_free(&m);
 }
 
+/* ------------------------------------------------- a terrain kept as heights ---- */
+
+/* A rough terrain (smooth relief, a one-cell spike and a one-cell slot: sharp features a
+ * trilinear band rounds) kept as heights: at random points, within the band the value is
+ * the exact signed distance to the nearest of all its triangles (brute force, pseudonormal
+ * signs) and equals the brick band's exact mode; beyond, a lower bound >= width with the
+ * right sign; the file round trip keeps the bits; nodata is refused. */
+static void test_heights(void)
+{
+  enum { NX = 40, NY = 30 };
+  float z[NX * NY];
+  for (int j = 0; j < NY; j++)
+    for (int i = 0; i < NX; i++)
+      z[NX * j + i] = (float)(3.0 * sin(0.15 * i) * cos(0.1 * j) + 0.05 * srand1());
+  z[NX * 12 + 20] += 2.0f; /* spike */
+  z[NX * 20 + 8] -= 1.5f;  /* slot */
+  const lsdem_heightmap hm = {NX, NY, -3.0, 2.0, 0.5, z};
+  lsdem_mesh m;
+  lsdem_band bricks, heights;
+  lsdem_pseudonormals pn;
+  lsdem_error err;
+  CHECK(lsdem_heightmap_mesh(&hm, &m, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(lsdem_band_from_mesh(&m, 0.5, 1.0, LSDEM_BAND_TERRAIN, &bricks, &err) == LSDEM_OK,
+        "%s", err.msg);
+  CHECK(lsdem_pseudonormals_make(bricks.verts, bricks.nverts, bricks.tris, bricks.ntris,
+                                 bricks.nbr, &pn, &err) == LSDEM_OK, "%s", err.msg);
+  bricks.exact = &pn;
+  CHECK(lsdem_band_from_heights(&hm, 1.0, &heights, &err) == LSDEM_OK, "%s", err.msg);
+  float *tiles = NULL;
+  CHECK(lsdem_heights_tiles(&heights, &tiles, heights.nt, &err) == LSDEM_OK, "%s", err.msg);
+  heights.tile_range = tiles;
+  CHECK(lsdem_band_check(&heights, &err) == LSDEM_OK, "%s", err.msg);
+  double worst = 0.0, worst_bricks = 0.0, worst_grad = 0.0, worst_bound = 0.0;
+  long inside = 0, beyond = 0, wrong_side = 0;
+  for (int k = 0; k < 20000; k++) {
+    const double p[3] = {-3.0 + 19.5 * urand(), 2.0 + 14.5 * urand(), -5.0 + 12.0 * urand()};
+    double best = HUGE_VAL, d_true = 0.0, g_true[3] = {0, 0, 0}, g[3], gb[3];
+    for (int64_t t = 0; t < m.ntris; t++) {
+      double gt[3];
+      const double d = lsdem_signed_distance_to_triangle(m.verts, m.tris, &pn, p, t, gt);
+      if (fabs(d) < best) best = fabs(d), d_true = d, memcpy(g_true, gt, sizeof gt);
+    }
+    const double v = lsdem_band_eval(&heights, p, g);
+    if ((v > 0) != (d_true > 0) && best > 1e-9) wrong_side++;
+    if (best < 0.999 * heights.width) {
+      inside++;
+      worst = fmax(worst, fabs(v - d_true));
+      worst_bricks = fmax(worst_bricks, fabs(lsdem_band_eval(&bricks, p, gb) - v));
+      if (best > 1e-6)
+        for (int a = 0; a < 3; a++) worst_grad = fmax(worst_grad, fabs(g[a] - g_true[a]));
+    } else if (best > 1.001 * heights.width) {
+      beyond++;
+      /* a lower bound, never nearer than width nor farther than the truth */
+      worst_bound = fmax(worst_bound, fmax(heights.width - fabs(v), fabs(v) - best));
+    }
+  }
+  CHECK(inside > 3000 && beyond > 3000, "%ld points in the band, %ld beyond", inside, beyond);
+  CHECK(wrong_side == 0, "%ld points on the wrong side", wrong_side);
+  CHECK(worst <= 1e-12, "heights vs the nearest of all triangles: %g", worst);
+  CHECK(worst_bricks <= 1e-12, "heights vs the brick band's exact mode: %g", worst_bricks);
+  CHECK(worst_grad <= 1e-9, "heights' direction vs the nearest triangle's: %g", worst_grad);
+  CHECK(worst_bound <= 1e-12, "beyond the band: a bound off by %g", worst_bound);
+  printf("heights: %ld points in the band (max error %.2g, bricks' exact mode %.2g), %ld "
+         "beyond; %zu bytes against %zu for bricks\n", inside, worst, worst_bricks, beyond,
+         lsdem_band_bytes(&heights), lsdem_band_bytes(&bricks));
+  /* file round trip: the same bits at the same points */
+  remove("heights.band");
+  CHECK(lsdem_band_write("heights.band", &heights, LSDEM_BAND_HEIGHTS, &err) == LSDEM_OK, "%s",
+        err.msg);
+  CHECK(lsdem_band_write("heights2.band", &heights, LSDEM_BAND_TERRAIN, &err) == LSDEM_ERR_ARG,
+        "heights written as bricks");
+  lsdem_band_file *f = NULL;
+  CHECK(lsdem_band_open("heights.band", &f, &err) == LSDEM_OK, "%s", err.msg);
+  if (f) {
+    const lsdem_band *r = lsdem_band_file_band(f);
+    CHECK(lsdem_band_file_source(f) == LSDEM_BAND_HEIGHTS && r->heights && !r->index,
+          "read back as heights");
+    long differ = 0;
+    for (int k = 0; k < 2000; k++) {
+      const double p[3] = {-5.0 + 24.0 * urand(), 0.0 + 18.0 * urand(), -5.0 + 12.0 * urand()};
+      double g1[3], g2[3];
+      differ += lsdem_band_eval(r, p, g1) != lsdem_band_eval(&heights, p, g2) ||
+                memcmp(g1, g2, sizeof g1) != 0;
+    }
+    CHECK(differ == 0, "%ld lookups differ after the round trip", differ);
+    lsdem_band_close(f);
+  }
+  size_t n;
+  unsigned char *bytes = slurp("heights.band", &n);
+  bytes[n - 3] ^= 0x10; /* a height */
+  write_file_bytes("bad_heights.band", bytes, n);
+  expect_open_error("bad_heights.band", "payload checksum mismatch");
+  free(bytes);
+  /* nodata cannot be kept as heights */
+  z[NX * 3 + 4] = NAN;
+  lsdem_band holes;
+  CHECK(lsdem_band_from_heights(&hm, 1.0, &holes, &err) == LSDEM_ERR_ARG &&
+        strstr(err.msg, "nodata") && strstr(err.msg, "(4, 3)"), "%s", err.msg);
+  free(tiles);
+  lsdem_pseudonormals_free(&pn);
+  lsdem_band_free(&heights);
+  lsdem_band_free(&bricks);
+  lsdem_mesh_free(&m);
+}
+
 int main(void)
 {
   test_flat_terrain();
@@ -704,5 +809,6 @@ int main(void)
   test_asc();
   test_tiff_png();
   test_band_file();
+  test_heights();
   return lsdem_test_summary();
 }

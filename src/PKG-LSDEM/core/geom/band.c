@@ -80,6 +80,7 @@ static inline double band_eval(const lsdem_band *b, double inv_h, const double p
 
 double lsdem_band_eval(const lsdem_band *b, const double p[3], double grad[3])
 {
+  if (b->heights) return lsdem_heights_eval(b, p, grad);
   return band_eval(b, 1.0 / b->h, p, grad);
 }
 
@@ -87,7 +88,10 @@ void lsdem_band_eval_many(const lsdem_band *b, int n, const double *p, double *p
                           double *grad)
 {
   const double inv_h = 1.0 / b->h;
-  for (int m = 0; m < n; m++) phi[m] = band_eval(b, inv_h, &p[3 * m], &grad[3 * m]);
+  if (b->heights)
+    for (int m = 0; m < n; m++) phi[m] = lsdem_heights_eval(b, &p[3 * m], &grad[3 * m]);
+  else
+    for (int m = 0; m < n; m++) phi[m] = band_eval(b, inv_h, &p[3 * m], &grad[3 * m]);
 }
 
 int lsdem_band_tunnelled(const lsdem_band *b, double depth)
@@ -97,6 +101,9 @@ int lsdem_band_tunnelled(const lsdem_band *b, double depth)
 
 size_t lsdem_band_bytes(const lsdem_band *b)
 {
+  if (b->heights)
+    return (size_t)b->n[0] * (size_t)b->n[1] * sizeof(float) +
+           2 * (size_t)b->nt[0] * (size_t)b->nt[1] * sizeof(float);
   const size_t slots = (size_t)b->nb[0] * (size_t)b->nb[1] * (size_t)b->nb[2];
   const size_t lists = b->ntris ? (size_t)b->brick_tri_start[b->nbricks] + 3 * (size_t)b->ntris : 0;
   return slots * (sizeof(int32_t) + (b->far ? sizeof(uint16_t) : 0)) +
@@ -213,6 +220,15 @@ int64_t lsdem_band_closest_triangle(const lsdem_band *b, const double p[3], doub
 
 lsdem_status lsdem_band_check(const lsdem_band *b, lsdem_error *err)
 {
+  if (!(b->h > 0.0) || !isfinite(b->h))
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: spacing %g is not > 0", b->h);
+  if (!(b->width > 0.0) || !(b->width <= LSDEM_BAND_MAX_WIDTH_CELLS * b->h))
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: width %g is not in (0, %g h] (h = %g)",
+                      b->width, LSDEM_BAND_MAX_WIDTH_CELLS, b->h);
+  for (int a = 0; a < 3; a++)
+    if (!isfinite(b->origin[a]))
+      return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: origin is not finite");
+  if (b->heights) return lsdem_heights_check(b, err);
   for (int a = 0; a < 3; a++) {
     if (b->n[a] < 2)
       return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: %d samples along axis %d (at least 2)",
@@ -220,14 +236,7 @@ lsdem_status lsdem_band_check(const lsdem_band *b, lsdem_error *err)
     if (b->nb[a] != (b->n[a] - 2) / LSDEM_BAND_BRICK + 1)
       return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: %d bricks along axis %d for %d samples "
                         "(expected %d)", b->nb[a], a, b->n[a], (b->n[a] - 2) / LSDEM_BAND_BRICK + 1);
-    if (!isfinite(b->origin[a]))
-      return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: origin is not finite");
   }
-  if (!(b->h > 0.0) || !isfinite(b->h))
-    return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: spacing %g is not > 0", b->h);
-  if (!(b->width > 0.0) || !(b->width <= LSDEM_BAND_MAX_WIDTH_CELLS * b->h))
-    return lsdem_fail(err, LSDEM_ERR_FORMAT, "band: width %g is not in (0, %g h] (h = %g)",
-                      b->width, LSDEM_BAND_MAX_WIDTH_CELLS, b->h);
   const int64_t slots = (int64_t)b->nb[0] * b->nb[1] * b->nb[2];
   for (int64_t s = 0; s < slots; s++)
     if (b->index[s] < LSDEM_BAND_INSIDE || b->index[s] >= b->nbricks)

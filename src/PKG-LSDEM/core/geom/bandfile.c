@@ -11,6 +11,7 @@ struct lsdem_band_file {
   void *map;
   size_t size;
   uint16_t *far; /* the band's coarse level, made at open (per process, 2 bytes a slot) */
+  float *tiles;  /* heights: the tiles' height ranges, made at open */
   lsdem_band band;
   lsdem_band_source source;
 };
@@ -31,14 +32,16 @@ static lsdem_status read_header(lsdem_band_file *f, const char *path, lsdem_erro
                       "file is damaged; make it again)", path);
   lsdem_band *b = &f->band;
   const uint32_t source = get_u32(m + BF_SOURCE);
-  if (source > LSDEM_BAND_TERRAIN)
+  if (source > LSDEM_BAND_HEIGHTS)
     return lsdem_fail(err, LSDEM_ERR_FORMAT, "band file '%s': unknown source %u", path, source);
   f->source = (lsdem_band_source)source;
+  const int heights = source == LSDEM_BAND_HEIGHTS;
   for (int a = 0; a < 3; a++) {
     b->n[a] = get_i32(m + BF_N + 4 * a);
     b->nb[a] = get_i32(m + BF_NB + 4 * a);
     b->origin[a] = get_f64(m + BF_ORIGIN + 8 * a);
-    if (b->n[a] < 2 || b->nb[a] != band_bricks_for(b->n[a]))
+    const int n_ok = heights ? (a < 2 ? b->n[a] >= 2 : b->n[a] == 1) : b->n[a] >= 2;
+    if (!n_ok || b->nb[a] != (heights ? 0 : band_bricks_for(b->n[a])))
       return lsdem_fail(err, LSDEM_ERR_FORMAT, "band file '%s': %d samples and %d bricks along "
                         "axis %d do not match", path, b->n[a], b->nb[a], a);
   }
@@ -47,21 +50,24 @@ static lsdem_status read_header(lsdem_band_file *f, const char *path, lsdem_erro
   const uint64_t nbricks = get_u64(m + BF_NBRICKS), nverts = get_u64(m + BF_NVERTS);
   const uint64_t ntris = get_u64(m + BF_NTRIS), nlist = get_u64(m + BF_NLIST);
   if (nbricks > (uint64_t)INT32_MAX || nverts > (uint64_t)INT32_MAX ||
-      ntris > (uint64_t)INT32_MAX || nlist > ((uint64_t)1 << 40) || (ntris == 0) != (nlist == 0))
+      ntris > (uint64_t)INT32_MAX || nlist > ((uint64_t)1 << 40) || (ntris == 0) != (nlist == 0) ||
+      (heights && (nbricks || ntris)))
     return lsdem_fail(err, LSDEM_ERR_FORMAT, "band file '%s': counts out of range (%llu "
                       "bricks, %llu vertices, %llu triangles, %llu list entries)", path,
                       (unsigned long long)nbricks, (unsigned long long)nverts,
                       (unsigned long long)ntris, (unsigned long long)nlist);
   uint64_t off[BS_COUNT];
-  const uint64_t end = band_layout(b->nb, nbricks, nverts, ntris, nlist, off);
+  const uint64_t end = band_layout(b->nb, band_samples(b->n, nbricks, heights), nbricks, nverts,
+                                   ntris, nlist, off);
   if (end != (uint64_t)f->size)
     return lsdem_fail(err, LSDEM_ERR_FORMAT, "band file '%s': %zu bytes, expected %llu for "
                       "%llu bricks and %llu triangles (truncated or damaged)", path, f->size,
                       (unsigned long long)end, (unsigned long long)nbricks,
                       (unsigned long long)ntris);
   b->nbricks = (int64_t)nbricks;
-  b->index = (const int32_t *)(m + BAND_HEADER_SIZE);
-  b->phi = (const float *)(m + off[BS_PHI]);
+  b->index = heights ? NULL : (const int32_t *)(m + BAND_HEADER_SIZE);
+  b->phi = heights ? NULL : (const float *)(m + off[BS_PHI]);
+  b->heights = heights ? (const float *)(m + off[BS_PHI]) : NULL;
   b->nverts = (int64_t)nverts;
   b->ntris = (int64_t)ntris;
   b->verts = ntris ? (const double *)(m + off[BS_VERTS]) : NULL;
@@ -95,8 +101,12 @@ lsdem_status lsdem_band_open(const char *path, lsdem_band_file **out, lsdem_erro
     st = lsdem_band_check(&f->band, &inner);
     if (st != LSDEM_OK) st = lsdem_fail(err, st, "band file '%s': %s", path, inner.msg);
   }
-  if (st == LSDEM_OK) st = lsdem_band_far(&f->band, &f->far, err);
+  if (st == LSDEM_OK && f->band.heights)
+    st = lsdem_heights_tiles(&f->band, &f->tiles, f->band.nt, err);
+  else if (st == LSDEM_OK)
+    st = lsdem_band_far(&f->band, &f->far, err);
   f->band.far = f->far;
+  f->band.tile_range = f->tiles;
   if (st != LSDEM_OK) {
     lsdem_band_close(f);
     return st;
@@ -110,6 +120,7 @@ void lsdem_band_close(lsdem_band_file *f)
   if (!f) return;
   lsdem_unmap_file(f->map, f->size);
   free(f->far);
+  free(f->tiles);
   free(f);
 }
 

@@ -5,8 +5,10 @@
  *
  *   [0, 128)        header: fields below
  *   [128, ...)      index: int32 per brick slot, nb[0] nb[1] nb[2] of them, x fastest
+ *                   (none for heights: nb = 0 0 0)
  *   then, each section starting at a multiple of 64 bytes (band_layout):
- *     samples: float32, LSDEM_BAND_BRICK_SAMPLES per stored brick
+ *     samples: float32, LSDEM_BAND_BRICK_SAMPLES per stored brick; for a terrain kept as
+ *              heights (source LSDEM_BAND_HEIGHTS) its n[0] n[1] heights, x fastest
  *     vertices: float64, 3 per vertex
  *     triangles: int32, 3 vertex indices each
  *     brick list starts: int64, nbricks + 1
@@ -39,12 +41,18 @@ static inline uint64_t band_index_bytes(const int nb[3])
 }
 static inline uint64_t band_align64(uint64_t n) { return (n + 63u) & ~(uint64_t)63u; }
 
+/* Floats in the samples section: the bricks' samples, or the heights. */
+static inline uint64_t band_samples(const int n[3], uint64_t nbricks, int heights)
+{
+  return heights ? (uint64_t)n[0] * (uint64_t)n[1] : LSDEM_BAND_BRICK_SAMPLES * nbricks;
+}
 /* Where each section starts (BS_* order) and the file's size. */
 enum { BS_PHI = 0, BS_VERTS, BS_TRIS, BS_STARTS, BS_LIST, BS_NBR, BS_COUNT };
-static inline uint64_t band_layout(const int nb[3], uint64_t nbricks, uint64_t nverts,
-                                   uint64_t ntris, uint64_t nlist, uint64_t off[BS_COUNT])
+static inline uint64_t band_layout(const int nb[3], uint64_t samples, uint64_t nbricks,
+                                   uint64_t nverts, uint64_t ntris, uint64_t nlist,
+                                   uint64_t off[BS_COUNT])
 {
-  const uint64_t bytes[BS_COUNT] = {4u * LSDEM_BAND_BRICK_SAMPLES * nbricks, 24u * nverts,
+  const uint64_t bytes[BS_COUNT] = {4u * samples, 24u * nverts,
                                     12u * ntris, ntris ? 8u * (nbricks + 1u) : 0u, 4u * nlist,
                                     12u * ntris};
   uint64_t at = BAND_HEADER_SIZE + band_index_bytes(nb);

@@ -225,6 +225,14 @@ typedef struct lsdem_band {
    * made from the surface; inside the band, values and normals come from the closest
    * triangle instead of trilinear interpolation. NULL: trilinear everywhere. */
   const lsdem_pseudonormals *exact;
+  /* A terrain kept as its heights (the column form; source LSDEM_BAND_HEIGHTS): n[0] x n[1]
+   * heights, x fastest, column (i,j) at (origin[0] + h i, origin[1] + h j); n[2] = 1, no
+   * bricks, no index, no kept surface; lookups give the exact signed distance to its
+   * triangles (lsdem_heights_eval). NULL: bricks. */
+  const float *heights;
+  const float *tile_range; /* per tile of LSDEM_HEIGHTS_TILE^2 cells, x fastest: its lowest
+                              and highest height (lsdem_heights_tiles, made at open) */
+  int nt[2];               /* tiles per axis */
 } lsdem_band;
 
 /* phi at p (wall frame) and the unit gradient (normalised trilinear; +x where it
@@ -237,6 +245,20 @@ typedef struct lsdem_band {
 double lsdem_band_eval(const lsdem_band *b, const double p[3], double grad[3]);
 void lsdem_band_eval_many(const lsdem_band *b, int n, const double *p, double *phi,
                           double *grad);
+/* A band kept as heights: within width of the surface the exact signed distance to its
+ * nearest triangle (lsdem_heightmap_mesh's: cell (i,j) split along (i,j)-(i+1,j+1)) and its
+ * direction (the triangle's upward normal on the surface); beyond, +-a lower bound >= width
+ * from the height ranges of p's tile and its neighbours (at most LSDEM_HEIGHTS_TILE h), so
+ * a far grain is rejected by one lookup at its centre. Outside: above the surface. Beyond
+ * the columns' xy extent, the value at the nearest column (as bricks: the outside rule).
+ * lsdem_band_eval calls it for such bands. */
+#define LSDEM_HEIGHTS_TILE 16
+double lsdem_heights_eval(const lsdem_band *b, const double p[3], double grad[3]);
+/* The tiles' height ranges of a band kept as heights. Allocates *range (free()). */
+lsdem_status lsdem_heights_tiles(const lsdem_band *b, float **range, int nt[2],
+                                 lsdem_error *err);
+/* Sizes (at least 2 x 2 columns, n[2] = 1, no bricks nor surface) and finite heights. */
+lsdem_status lsdem_heights_check(const lsdem_band *b, lsdem_error *err);
 /* The triangle nearest to p (wall frame) among those listed for p's brick, and its
  * squared distance in *d2: exact when p is nearer than width to the surface; -1 when p's
  * brick is background or the band keeps no surface. */
@@ -259,7 +281,13 @@ size_t lsdem_band_bytes(const lsdem_band *b);
  * one copy through the page cache. Open checks the header, the checksums, the sizes and
  * lsdem_band_check. */
 typedef struct lsdem_band_file lsdem_band_file;
-typedef enum { LSDEM_BAND_MESH = 0, LSDEM_BAND_TERRAIN = 1 } lsdem_band_source;
+/* What a band file holds: a closed mesh's bricks, a terrain's bricks, or a terrain's
+ * heights (lsdem_band.heights). */
+typedef enum {
+  LSDEM_BAND_MESH = 0,
+  LSDEM_BAND_TERRAIN = 1,
+  LSDEM_BAND_HEIGHTS = 2
+} lsdem_band_source;
 lsdem_status lsdem_band_open(const char *path, lsdem_band_file **file, lsdem_error *err);
 void lsdem_band_close(lsdem_band_file *file);
 const lsdem_band *lsdem_band_file_band(const lsdem_band_file *file);

@@ -759,7 +759,35 @@ void lsdem_band_free(lsdem_band *b)
   free((void *)b->index), free((void *)b->phi);
   free((void *)b->verts), free((void *)b->tris);
   free((void *)b->brick_tri_start), free((void *)b->brick_tris), free((void *)b->nbr);
+  free((void *)b->heights);
   memset(b, 0, sizeof *b);
+}
+
+lsdem_status lsdem_band_from_heights(const lsdem_heightmap *hm, double width, lsdem_band *b,
+                                     lsdem_error *err)
+{
+  if (!b || !hm || !hm->z) return lsdem_fail(err, LSDEM_ERR_ARG, "band: NULL argument");
+  memset(b, 0, sizeof *b);
+  if (hm->nx < 2 || hm->ny < 2 || !(hm->cell > 0.0) || !isfinite(hm->cell) ||
+      !(width >= hm->cell && width <= LSDEM_BAND_MAX_WIDTH_CELLS * hm->cell))
+    return lsdem_fail(err, LSDEM_ERR_ARG, "band: %d x %d heights at cell %g, width %g (at "
+                      "least 2 x 2 heights, cell > 0, cell <= width <= %g cells)", hm->nx,
+                      hm->ny, hm->cell, width, LSDEM_BAND_MAX_WIDTH_CELLS);
+  const size_t count = (size_t)hm->nx * (size_t)hm->ny;
+  for (size_t k = 0; k < count; k++)
+    if (isnan(hm->z[k]))
+      return lsdem_fail(err, LSDEM_ERR_ARG, "band: height (%zu, %zu) is nodata: a terrain kept "
+                        "as heights has no holes (fill them, or keep it as bricks)",
+                        k % (size_t)hm->nx, k / (size_t)hm->nx);
+  float *z = (float *)malloc(count * sizeof *z);
+  if (!z) return lsdem_fail(err, LSDEM_ERR_NOMEM, "band: cannot allocate %zu heights", count);
+  memcpy(z, hm->z, count * sizeof *z);
+  b->heights = z;
+  b->n[0] = hm->nx, b->n[1] = hm->ny, b->n[2] = 1;
+  b->h = hm->cell;
+  b->origin[0] = hm->x0, b->origin[1] = hm->y0, b->origin[2] = 0.0;
+  b->width = width;
+  return LSDEM_OK;
 }
 
 lsdem_status lsdem_band_from_mesh(const lsdem_mesh *m, double h, double width,

@@ -9,11 +9,12 @@
 lsdem_status lsdem_band_write(const char *path, const lsdem_band *b, lsdem_band_source src,
                               lsdem_error *err)
 {
-  if (!path || !b || !b->index || (b->nbricks > 0 && !b->phi) || b->nbricks < 0 ||
-      b->nbricks > INT32_MAX)
+  const int heights = src == LSDEM_BAND_HEIGHTS;
+  if (!path || !b || (!heights && !b->index) || (b->nbricks > 0 && !b->phi) || b->nbricks < 0 ||
+      b->nbricks > INT32_MAX || heights != (b->heights != NULL))
     return lsdem_fail(err, LSDEM_ERR_ARG, "band file: bad arguments (path %s)",
                       path ? path : "NULL");
-  if (src != LSDEM_BAND_MESH && src != LSDEM_BAND_TERRAIN)
+  if (src != LSDEM_BAND_MESH && src != LSDEM_BAND_TERRAIN && !heights)
     return lsdem_fail(err, LSDEM_ERR_ARG, "band file '%s': source %d is neither a mesh nor a "
                       "terrain", path, (int)src);
   if (!host_is_little_endian())
@@ -25,11 +26,12 @@ lsdem_status lsdem_band_write(const char *path, const lsdem_band *b, lsdem_band_
   const uint64_t nlist = b->ntris ? (uint64_t)b->brick_tri_start[b->nbricks] : 0;
   uint64_t off[BS_COUNT];
   const uint64_t nverts = b->ntris ? (uint64_t)b->nverts : 0;
-  band_layout(b->nb, (uint64_t)b->nbricks, nverts, (uint64_t)b->ntris, nlist, off);
+  const uint64_t samples = band_samples(b->n, (uint64_t)b->nbricks, heights);
+  band_layout(b->nb, samples, (uint64_t)b->nbricks, nverts, (uint64_t)b->ntris, nlist, off);
   /* the sections in order, each after zero padding up to its offset */
-  const void *data[BS_COUNT] = {b->phi, b->verts, b->tris, b->brick_tri_start, b->brick_tris,
-                                b->nbr};
-  const size_t bytes[BS_COUNT] = {(size_t)b->nbricks * LSDEM_BAND_BRICK_SAMPLES * sizeof(float),
+  const void *data[BS_COUNT] = {heights ? b->heights : b->phi, b->verts, b->tris,
+                                b->brick_tri_start, b->brick_tris, b->nbr};
+  const size_t bytes[BS_COUNT] = {(size_t)samples * sizeof(float),
                                   (size_t)nverts * 24u,
                                   (size_t)b->ntris * 12u,
                                   b->ntris ? ((size_t)b->nbricks + 1u) * 8u : 0,
@@ -58,7 +60,7 @@ lsdem_status lsdem_band_write(const char *path, const lsdem_band *b, lsdem_band_
   put_u64(head + BF_NVERTS, nverts);
   put_u64(head + BF_NTRIS, (uint64_t)b->ntris);
   put_u64(head + BF_NLIST, nlist);
-  uint64_t sum = fnv1a_update(FNV_BASIS, b->index, index_bytes);
+  uint64_t sum = index_bytes ? fnv1a_update(FNV_BASIS, b->index, index_bytes) : FNV_BASIS;
   for (int k = 0; k < BS_COUNT; k++) {
     sum = fnv1a_update(sum, zeros, pad[k]);
     if (bytes[k]) sum = fnv1a_update(sum, data[k], bytes[k]);
@@ -69,7 +71,7 @@ lsdem_status lsdem_band_write(const char *path, const lsdem_band *b, lsdem_band_
   st = replace_file_open(&out, path, "band file", err);
   if (st != LSDEM_OK) return st;
   int ok = fwrite(head, 1, sizeof head, out.f) == sizeof head &&
-           fwrite(b->index, 1, index_bytes, out.f) == index_bytes;
+           (index_bytes == 0 || fwrite(b->index, 1, index_bytes, out.f) == index_bytes);
   for (int k = 0; k < BS_COUNT && ok; k++)
     ok = fwrite(zeros, 1, pad[k], out.f) == pad[k] &&
          (bytes[k] == 0 || fwrite(data[k], 1, bytes[k], out.f) == bytes[k]);

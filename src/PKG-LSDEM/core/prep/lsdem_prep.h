@@ -325,7 +325,14 @@ double lsdem_mesh_volume(const lsdem_mesh *m);
  * pass 2^31 - 1 (samples per axis, brick slots, stored bricks) or memory runs out. */
 lsdem_status lsdem_band_from_mesh(const lsdem_mesh *m, double h, double width,
                                   lsdem_band_source src, lsdem_band *b, lsdem_error *err);
-/* Frees what lsdem_band_from_mesh allocated (not a mapped band file's band). */
+/* A terrain band kept as its heights (lsdem_band.heights, the column form: 4 bytes per
+ * column, exact distances at lookup): hm's heights copied, spacing hm's cell, half-width
+ * width (h <= width <= LSDEM_BAND_MAX_WIDTH_CELLS h). LSDEM_ERR_ARG for fewer than 2 x 2
+ * heights, bad sizes, or any nodata height (heights cannot hold holes: fill them, or make
+ * bricks with lsdem_heightmap_mesh + lsdem_band_from_mesh). Allocates b->heights. */
+lsdem_status lsdem_band_from_heights(const lsdem_heightmap *hm, double width, lsdem_band *b,
+                                     lsdem_error *err);
+/* Frees what lsdem_band_from_mesh or _from_heights allocated (not a mapped file's band). */
 void lsdem_band_free(lsdem_band *b);
 /* Write a band file (format in doc/wall_band.rst, geom/bandfile_format.h; read by
  * lsdem_band_open) after lsdem_band_check; to a temporary file renamed onto path, so a
