@@ -50,7 +50,7 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   fall_valid(0), moving(false), passive(false), contact_step(-1), cand(nullptr), maxcand(0),
   cand_nlocal(0), cand_built(-1)
 {
-  for (int d = 0; d < 3; d++) {
+  for (int d = 0; d < 6; d++) {
     vstr[d] = nullptr;
     vvar[d] = -1;
   }
@@ -122,9 +122,17 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
       if (map_every <= 0) error->all(FLERR, "fix wall/lsdem: map N must be > 0");
       if (!band) error->all(FLERR, "fix wall/lsdem: keyword map is for mesh and terrain walls");
     } else if (key == "spin") {
-      for (int k = 0; k < 6; k++)
-        spin_prm[k] = LsdemInput::number(FLERR, arg[iarg + 1 + k], "fix wall/lsdem",
-                                         k < 3 ? "spin centre" : "spin angular velocity", lmp);
+      for (int k = 0; k < 6; k++) {
+        const char *val_k = arg[iarg + 1 + k];
+        spin_prm[k] = 0.0;
+        if (k >= 3 && utils::strmatch(val_k, "^v_")) vstr[k] = utils::strdup(val_k + 2);
+        else spin_prm[k] = LsdemInput::number(FLERR, val_k, "fix wall/lsdem",
+                                              k < 3 ? "spin centre" : "spin angular velocity", lmp);
+      }
+      if (!vstr[3] && !vstr[4] && !vstr[5] && spin_prm[3] == 0.0 && spin_prm[4] == 0.0 &&
+          spin_prm[5] == 0.0)
+        error->all(FLERR, "fix wall/lsdem: spin angular velocity must not be zero (give a "
+                   "number or v_name for each component)");
       spin = true;
     } else error->all(FLERR, "fix wall/lsdem: unknown keyword {}", key);
     iarg += 1 + nval;
@@ -220,7 +228,7 @@ int FixWallLsdem::parse_pivot(int iarg, int narg, char **arg, double p[3])
 
 FixWallLsdem::~FixWallLsdem()
 {
-  for (int d = 0; d < 3; d++) delete[] vstr[d];
+  for (int d = 0; d < 6; d++) delete[] vstr[d];
   delete[] extlist;
   memory->destroy(cand);
   lsdem_wall_map_free(&map);
@@ -267,12 +275,13 @@ void FixWallLsdem::init()
   LsdemContactOptions::sum_quanta(
       LsdemContactOptions::node_spring(opts.law.kn, opts.law.normal, opts.stride, avec), avec,
       force_q, torque_q);
-  for (int d = 0; d < 3; d++) {
+  for (int d = 0; d < 6; d++) {
     if (!vstr[d]) continue;
+    const char *what = d < 3 ? "velocity" : "spin";
     vvar[d] = input->variable->find(vstr[d]);
-    if (vvar[d] < 0) error->all(FLERR, "fix wall/lsdem: velocity variable {} does not exist", vstr[d]);
+    if (vvar[d] < 0) error->all(FLERR, "fix wall/lsdem: {} variable {} does not exist", what, vstr[d]);
     if (!input->variable->equalstyle(vvar[d]))
-      error->all(FLERR, "fix wall/lsdem: velocity variable {} is not equal-style", vstr[d]);
+      error->all(FLERR, "fix wall/lsdem: {} variable {} is not equal-style", what, vstr[d]);
   }
   if (bnd.shape.sdf.kind == LSDEM_SDF_PLANE) check_plane_in_box();
   if (bnd.shape.sdf.kind == LSDEM_SDF_BAND) check_band_width();
@@ -337,13 +346,20 @@ void FixWallLsdem::check_band_width() const
 }
 
 /* ----------------------------------------------------------------------
-   velocity components given as equal-style variables, evaluated once per step
+   velocity and spin components given as equal-style variables, evaluated once per step
 ------------------------------------------------------------------------- */
 
 void FixWallLsdem::update_velocity()
 {
   for (int d = 0; d < 3; d++)
     if (vstr[d]) bnd.pose.v[d] = input->variable->compute_equal(vvar[d]);
+  if (!vstr[3] && !vstr[4] && !vstr[5]) return;
+  double omega[3];
+  for (int d = 0; d < 3; d++)
+    omega[d] = vstr[3 + d] ? input->variable->compute_equal(vvar[3 + d]) : bnd.spin.omega[d];
+  lsdem_error err;
+  if (lsdem_boundary_spin_omega(&bnd, omega, &err) != LSDEM_OK)
+    error->all(FLERR, "fix wall/lsdem {} at step {}: {}", id, update->ntimestep, err.msg);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -791,8 +807,8 @@ double FixWallLsdem::compute_vector(int n)
    restart: the wall's current position, so that a moving wall resumes where it was (3
    doubles); with pivot, PIVOT_TAG first and then the wall point,
    pivot point, orientation and angular velocity (14 doubles); with spin, SPIN_TAG first
-   and then the wall point, the spin's centre, its point at angle 0 and the angle turned
-   (11 doubles). With a force map the above is preceded by MAP_TAG and its count and
+   and then the wall point, the spin's centre, its point at angle 0, the angle turned and
+   the axis (14 doubles). With a force map the above is preceded by MAP_TAG and its count and
    followed by the map (see write_restart). The tags let any kind of fix read any kind of
    file without reading past its end.
 ------------------------------------------------------------------------- */
@@ -825,6 +841,7 @@ void FixWallLsdem::write_restart(FILE *fp)
       for (int d = 0; d < 3; d++) list[n++] = bnd.spin.centre[d];
       for (int d = 0; d < 3; d++) list[n++] = bnd.spin.x0[d];
       list[n++] = bnd.spin.angle;
+      for (int d = 0; d < 3; d++) list[n++] = bnd.spin.axis[d];
     }
     // with a map: MAP_TAG, the count of the doubles above, them, then the map's
     // triangles and steps (doubles) and its sums (int64)
@@ -866,6 +883,7 @@ void FixWallLsdem::restart(char *buf)
       sp.x0[d] = spun ? list[7 + d] : bnd.pose.x[d];
     }
     sp.angle = spun ? list[10] : 0.0;  // a file without spin: from where the wall was
+    for (int d = 0; spun && d < 3; d++) sp.axis[d] = list[11 + d];
     if (!spun) memcpy(sp.R0, bnd.pose.R, sizeof sp.R0);
     lsdem_boundary_place_spun(&bnd);
   }

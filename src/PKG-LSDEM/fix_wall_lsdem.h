@@ -112,8 +112,10 @@ class FixWallLsdem : public Fix {
 
   double flocal[3], fall[3];   // force of the grains on the wall: this rank, all ranks
   int fall_valid;
-  char *vstr[3];               // velocity components given as equal-style variables
-  int vvar[3];
+  // motion given as equal-style variables: velocity (0-2) and spin angular velocity (3-5)
+  // components, nullptr for a number
+  char *vstr[6];
+  int vvar[6];
   bool moving;                 // a velocity is set (constant or variable)
   bool passive;                // taken over by fix impulse/lsdem: no forces of its own
 

@@ -7,6 +7,9 @@
   - a spinning cylindrical drum (axis horizontal) lifts a cube from the bottom on the
     side its bottom moves to;
   - a run restarted mid-way gives the uninterrupted run's bits, and 1 and 2 ranks agree;
+  - spin by equal-style variables: a rate that reverses after 1500 steps turns a plane by
+    the rate's integral and back to the start (1e-12), a constant variable gives the
+    number's bits, and a direction change stops the run naming the step;
   - a platen cannot also spin, omega = 0 is refused."""
 import math
 import os
@@ -112,6 +115,53 @@ if check(len(drum) > 2, "drum: no thermo output"):
     check(drum[-1]["v_ang"] < -0.3, "drum: the cube was not lifted (angle %g)" % drum[-1]["v_ang"])
 
 
+# ---- spin by variables ---------------------------------------------------------------
+# an equal-style variable of constant value gives the number's bits
+DT2 = 1.0 / 1024.0  # binary time step: the switch time and the angles are exact
+write_data("turn.data", (-3, 3, -3, 3, -1, 3), [Grain((2.0, 2.0, 2.0))])
+
+
+def turning_plane(name, spin, steps, pre="", expect_fail=False):
+    """A plane spinning about x (no grain near it): its normal f_w[7..9] each 1500 steps."""
+    d = head(lib, "turn.data", boundary="f f f") + """
+pair_style zero 1.0
+pair_coeff * *
+fix 1 all nve/lsdem
+%s
+fix w all wall/lsdem plane 0 0 -0.9 0 0 1 300 300 0.5 spin 0 0 0 %s
+thermo_style custom step time f_w[7] f_w[8] f_w[9] f_w[11]
+thermo_modify format float %%.17g
+thermo 1500
+timestep %r
+run %d
+""" % (pre, spin, DT2, steps)
+    rc, log = run_lmp(d, cwd=os.path.abspath(name), expect_fail=expect_fail)
+    return (rc, log) if expect_fail else thermo(log)
+
+
+# the rate reverses after 1500 steps: the plane turns by 0.3 * 1500 dt about x, then back
+rev = turning_plane("reverse", "v_wx 0 0", 3000,
+                    pre="variable wx equal 0.3*(1-2*(time>%r))" % (1500 * DT2))
+if check(len(rev) == 3, "reversing spin: %d thermo rows" % len(rev)):
+    th = 0.3 * 1500 * DT2
+    mid, end = rev[1], rev[2]
+    near(mid["f_w[8]"], -math.sin(th), atol=1e-12, msg="reversing spin: normal y after the turn")
+    near(mid["f_w[9]"], math.cos(th), atol=1e-12, msg="reversing spin: normal z after the turn")
+    near(end["f_w[8]"], 0.0, atol=1e-12, msg="reversing spin: back to the start (y)")
+    near(end["f_w[9]"], 1.0, atol=1e-12, msg="reversing spin: back to the start (z)")
+    near(end["f_w[11]"], -0.3, rtol=0.0, msg="reversing spin: output 11 is the rate now")
+# a constant variable gives the number's bits
+num = turning_plane("spin_number", "0.3 0 0", 3000)
+var = turning_plane("spin_variable", "v_wx 0 0", 3000, pre="variable wx equal 0.3")
+check(len(num) == 3 and num == var, "spin by a constant variable differs from the number:\n%s\n%s"
+      % (num, var))
+# the axis may not turn
+rc, log = turning_plane("spin_turns", "v_wx 0 v_wz", 100, expect_fail=True,
+                        pre="variable wx equal 0.3\nvariable wz equal 0.3*(step>10)")
+check(rc != 0 and "not along the axis" in log and "at step 11" in log,
+      "spin changing direction: expected an error naming the step:\n%s" % log[-1500:])
+
+
 def refuses(name, wall, *words):
     write_data("err.data", (-3, 3, -3, 3, -1, 3), [Grain((1.0, 0.0, HALF + 1e-4))])
     d = head(lib, "err.data", boundary="f f f") + """
@@ -128,5 +178,5 @@ run 1
 
 refuses("platen_spin", "plane 0 0 0 0 0 1 300 300 0.5 pivot 1 1 spin 0 0 0 0 0 1",
         "platen cannot also spin")
-refuses("zero_spin", "plane 0 0 0 0 0 1 300 300 0.5 spin 0 0 0 0 0 0", "not zero")
+refuses("zero_spin", "plane 0 0 0 0 0 1 300 300 0.5 spin 0 0 0 0 0 0", "must not be zero")
 finish()

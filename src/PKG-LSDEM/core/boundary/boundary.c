@@ -111,27 +111,47 @@ lsdem_status lsdem_boundary_spin(lsdem_boundary *b, const double centre[3],
 {
   if (b->pivots)
     return lsdem_fail(err, LSDEM_ERR_ARG, "a pivoting platen cannot also spin");
-  const double w = sqrt(lsdem_dot3(omega, omega));
-  if (!(w > 0.0) || !isfinite(w))
-    return lsdem_fail(err, LSDEM_ERR_ARG, "spin angular velocity must be finite and not zero");
   lsdem_spin *sp = &b->spin;
+  memset(sp, 0, sizeof *sp);
   sp->on = 1;
-  sp->angle = 0.0;
   for (int d = 0; d < 3; d++) {
     sp->centre[d] = centre[d];
-    sp->omega[d] = omega[d];
     sp->x0[d] = b->pose.x[d];
   }
   memcpy(sp->R0, b->pose.R, sizeof sp->R0);
-  lsdem_boundary_place_spun(b);
+  const lsdem_status st = lsdem_boundary_spin_omega(b, omega, err);
+  if (st != LSDEM_OK) sp->on = 0;
+  else lsdem_boundary_place_spun(b);
+  return st;
+}
+
+lsdem_status lsdem_boundary_spin_omega(lsdem_boundary *b, const double omega[3],
+                                       lsdem_error *err)
+{
+  lsdem_spin *sp = &b->spin;
+  const double w = sqrt(lsdem_dot3(omega, omega));
+  if (!isfinite(w))
+    return lsdem_fail(err, LSDEM_ERR_ARG, "spin angular velocity (%g, %g, %g) is not finite",
+                      omega[0], omega[1], omega[2]);
+  const int has_axis = lsdem_dot3(sp->axis, sp->axis) > 0.0;
+  if (w > 0.0 && !has_axis)
+    for (int d = 0; d < 3; d++) sp->axis[d] = omega[d] / w;
+  double off[3];
+  lsdem_cross3(omega, sp->axis, off);
+  if (w > 0.0 && sqrt(lsdem_dot3(off, off)) > 1e-9 * w)
+    return lsdem_fail(err, LSDEM_ERR_ARG, "spin angular velocity (%g, %g, %g) is not along the "
+                      "axis (%g, %g, %g) it first turned about: vary its rate (and sign), not "
+                      "its direction", omega[0], omega[1], omega[2], sp->axis[0], sp->axis[1],
+                      sp->axis[2]);
+  for (int d = 0; d < 3; d++) sp->omega[d] = b->pose.omega[d] = omega[d];
   return LSDEM_OK;
 }
 
-/* Rotation by `angle` about the unit axis of omega, as a matrix (row-major). */
-static void spin_matrix(const double omega[3], double angle, double M[9])
+/* The rotation by angle about unit axis (the identity before the axis is known). */
+static void spin_matrix(const double axis[3], double angle, double M[9])
 {
-  const double w = sqrt(lsdem_dot3(omega, omega)), s = sin(0.5 * angle) / w;
-  const double q[4] = {cos(0.5 * angle), omega[0] * s, omega[1] * s, omega[2] * s};
+  const double s = sin(0.5 * angle);
+  const double q[4] = {cos(0.5 * angle), axis[0] * s, axis[1] * s, axis[2] * s};
   lsdem_quat_to_matrix(q, M);
 }
 
@@ -139,7 +159,7 @@ void lsdem_boundary_place_spun(lsdem_boundary *b)
 {
   const lsdem_spin *sp = &b->spin;
   double M[9], rel[3], turned[3];
-  spin_matrix(sp->omega, sp->angle, M);
+  spin_matrix(sp->axis, sp->angle, M);
   lsdem_mat_mul(M, sp->R0, b->pose.R);
   lsdem_sub3(sp->x0, sp->centre, rel);
   lsdem_mat_vec(M, rel, turned);
@@ -229,7 +249,7 @@ void lsdem_boundary_advance(lsdem_boundary *b, double dt)
 {
   if (b->spin.on) {
     lsdem_spin *sp = &b->spin;
-    sp->angle += sqrt(lsdem_dot3(sp->omega, sp->omega)) * dt;
+    sp->angle += lsdem_dot3(sp->omega, sp->axis) * dt;
     for (int d = 0; d < 3; d++) {
       sp->centre[d] += dt * b->pose.v[d];
       sp->x0[d] += dt * b->pose.v[d];

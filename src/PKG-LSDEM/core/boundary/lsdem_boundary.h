@@ -57,12 +57,15 @@ typedef struct {
 
 /* A prescribed rotation (lsdem_boundary_spin): the wall turns at omega (world, radians
  * per time) about the axis through `centre`; its pose is the one it had at angle 0 (R0,
- * x0) turned by `angle` = |omega| t about that axis, so no rounding accumulates in R.
- * centre and x0 move with pose.v. */
+ * x0) turned by `angle` (the integral of omega . axis over time) about that axis, so no
+ * rounding accumulates in R. The axis is fixed by the first non-zero omega; omega may
+ * then change its rate and sign, not its direction (lsdem_boundary_spin_omega). centre
+ * and x0 move with pose.v. */
 typedef struct {
   int on;
   double centre[3], omega[3];
-  double angle;        /* radians turned so far */
+  double axis[3];      /* unit axis (0 0 0 until omega is first non-zero) */
+  double angle;        /* radians turned so far, right-handed about axis */
   double R0[9], x0[3]; /* the pose at angle 0 */
 } lsdem_spin;
 
@@ -94,10 +97,17 @@ void lsdem_boundary_band(lsdem_boundary *b, const lsdem_band *band);
  * out of range (the message names it). Also re-levels a platen at its current point. */
 lsdem_status lsdem_boundary_pivot(lsdem_boundary *b, double h, double inertia, double damping,
                                   lsdem_error *err);
-/* Make a wall spin at omega (world, radians per time, not zero) about the axis through
- * centre, from its pose now (angle 0). LSDEM_ERR_ARG for a platen or a bad omega. */
+/* Make a wall spin at omega (world, radians per time; zero: at rest until it is set)
+ * about the axis through centre, from its pose now (angle 0). LSDEM_ERR_ARG for a platen
+ * or a non-finite omega. */
 lsdem_status lsdem_boundary_spin(lsdem_boundary *b, const double centre[3],
                                  const double omega[3], lsdem_error *err);
+/* A spinning wall's angular velocity from now on (e.g. a LAMMPS variable's value each
+ * step): zero, or along the spin's axis with any rate and sign (the first non-zero omega
+ * fixes the axis). LSDEM_ERR_ARG, omega unchanged, for another direction or a non-finite
+ * value. */
+lsdem_status lsdem_boundary_spin_omega(lsdem_boundary *b, const double omega[3],
+                                       lsdem_error *err);
 /* A spinning wall's pose (x, R, omega) from its spin record (after restoring it). */
 void lsdem_boundary_place_spun(lsdem_boundary *b);
 /* Whether points of the wall move differently from its point pose.x (it tilts or spins):
