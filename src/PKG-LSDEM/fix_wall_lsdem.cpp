@@ -334,6 +334,15 @@ void FixWallLsdem::check_plane_in_box() const
 void FixWallLsdem::check_band_width() const
 {
   const double width = bnd.shape.sdf.band->width;
+  const double overlap = LsdemContactOptions::OVERLAP_WARN * avec->max_shape_radius();
+  if (!(prm.detect.node_skin + overlap < width))
+    error->all(FLERR, "fix wall/lsdem {}: the band is {:.6g} wide, no wider than the node skin "
+               "{:.6g} plus the largest expected overlap {:.6g} ({:.0f} % of the largest grain "
+               "radius {:.6g}): a node that deep would read the band's clamped value; make the "
+               "band again with lsdem-shape ... --width above {:.6g} (or a smaller nodelist "
+               "skin)", id, width, prm.detect.node_skin, overlap,
+               100.0 * LsdemContactOptions::OVERLAP_WARN, avec->max_shape_radius(),
+               prm.detect.node_skin + overlap);
   for (int k = 0; k < avec->nshapes(); k++) {
     const lsdem_shape *s = lsdem_library_shape(avec->library(), k);
     if (s->sdf.kind == LSDEM_SDF_SPHERE && !(s->sdf.a[0] < width))

@@ -24,6 +24,10 @@ class LsdemContactOptions {
   // node lists' auto skin: this fraction of the smallest bounding radius of a grain shape
   // that has nodes (spheres have none)
   static constexpr double NODE_SKIN_AUTO = 0.02;
+  // the deepest a node is expected to penetrate, as a fraction of a grain's bounding
+  // radius: pair lsdem warns beyond it at setup, band walls must be wider than it plus
+  // the node skin
+  static constexpr double OVERLAP_WARN = 0.05;
 
   lsdem_penalty_law law;
   int stride;       // test every stride-th node (report §3.4.1)

@@ -33,7 +33,7 @@ using MathConst::MY_PI;
 
 // setup warns when a node penetrates deeper than this fraction of the smaller grain's
 // equivalent-sphere radius (grains generated or imported overlapping)
-static constexpr double OVERLAP_WARN = 0.05;
+static constexpr double OVERLAP_WARN = LsdemContactOptions::OVERLAP_WARN;
 static const char HISTORY_ID[] = "LSDEM_PAIR_HISTORY";
 
 /* ---------------------------------------------------------------------- */

@@ -245,6 +245,10 @@ def refuses(name, deck, *words):
 
 refuses("wrong_kind", deck_with("terrain " + block), "made from a mesh", "mesh " + block)
 refuses("missing", deck_with("terrain nothere.band"), "nothere.band", "cannot open")
+# a band no wider than the node skin plus 5 % of the cube's bounding radius 0.866
+refuses("thin_band", deck_with("terrain " + band_half, law="100 100 0.3 nodelist 0.47"),
+        "no wider than the node skin 0.47 plus the largest expected overlap 0.0433",
+        "--width above 0.513")
 refuses("heights_map", deck_with("terrain " + band_half, law="100 100 0.3 map 10 hmap"),
         "kept as heights",
         "without --heights")
