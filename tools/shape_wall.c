@@ -133,6 +133,31 @@ static double heights_misfit(const lsdem_band *b)
   return worst;
 }
 
+/* Every ridge and slot narrower than 2 spacings, which trilinear interpolation cannot
+ * hold (the band then rounds or closes them): named with their thinnest width and place. */
+static int report_thin_features(const char *cmd, const lsdem_band *b)
+{
+  enum { SHOWN = 40 };
+  lsdem_thin_feature *f = NULL;
+  int n = 0;
+  lsdem_error err;
+  if (lsdem_band_thin_features(b, 2.0 * b->h, &f, &n, &err) != LSDEM_OK) {
+    fprintf(stderr, "lsdem-shape: %s: %s\n", cmd, err.msg);
+    return 1;
+  }
+  printf("ridges and slots narrower than 2 h (%g): %d\n", 2.0 * b->h, n);
+  for (int k = 0; k < n && k < SHOWN; k++)
+    printf("  %s %d: %d triangles, %.3g h (%.3g) across at (%.6g, %.6g, %.6g), triangle %d\n",
+           f[k].ridge ? "ridge" : "slot", k + 1, f[k].ntris, f[k].thinnest / b->h,
+           f[k].thinnest, f[k].at[0], f[k].at[1], f[k].at[2], (int)f[k].tri);
+  if (n > SHOWN) printf("  ... and %d more (make the band finer to hold them)\n", n - SHOWN);
+  else if (n > 0)
+    printf("  (the band rounds ridges and closes slots this narrow: a finer --spacing, or "
+           "exact yes in fix wall/lsdem)\n");
+  free(f);
+  return 0;
+}
+
 /* Samples of the dense grid the band stands for: a brick band's box, or for heights the
  * columns' extent times the relief plus width + h above and below. */
 static double dense_samples(const lsdem_band *b)
@@ -187,6 +212,7 @@ static int write_and_check(const char *cmd, lsdem_band *b, lsdem_band_source src
       const double misfit = surface_misfit(r, m);
       printf("surface check: max |phi| at the %d vertices and %d triangle centroids %.3g h "
              "(%.3g)\n", m->nverts, m->ntris, misfit / r->h, misfit);
+      rc = report_thin_features(cmd, r);
     } else {
       const double misfit = heights_misfit(r);
       printf("surface check: max |phi| at the %d columns' vertices %.3g h (%.3g)\n",

@@ -38,7 +38,7 @@ file(WRITE ${WORK}/open.obj "${cube_v}${cube_sides}")
 run_rc(0 wall cube.obj cube.band --spacing 0.05)
 expect_in("${out}" "cube.obj: 12 triangles, 0 degenerate (zero area), 0 duplicate, 0 open edges"
   "width 0.1 (2 h)" "stored bricks:" "build time:" "surface check: max |phi| at the 8 vertices"
-  "cube.band: band file of a closed mesh")
+  "ridges and slots narrower than 2 h (0.1): 0" "cube.band: band file of a closed mesh")
 if(NOT EXISTS ${WORK}/cube.band)
   message(FATAL_ERROR "wall: cube.band not written")
 endif()

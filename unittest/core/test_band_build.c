@@ -799,6 +799,50 @@ static void test_heights(void)
   lsdem_mesh_free(&m);
 }
 
+/* ------------------------------------------------------- ridges and slots ---- */
+
+/* A plate 0.15 thick (a ridge at h = 0.1: thinner than 2 h) under a block 0.33 thick (float
+ * STL coordinates: widths to 1e-6)
+ * with a 0.12 gap between them (a slot): exactly one of each, with their widths; at
+ * h = 0.05 (2 h = 0.1) neither. */
+static void test_thin_features(void)
+{
+  tris s = {0};
+  const double c1[3] = {0.0, 0.0, 0.075}, h1[3] = {1.0, 1.0, 0.075};
+  const double c2[3] = {0.0, 0.0, 0.435}, h2[3] = {1.0, 1.0, 0.165};
+  add_box(&s, c1, h1, -1);
+  add_box(&s, c2, h2, -1);
+  write_stl_binary("band_thin.stl", &s, 0);
+  free(s.t);
+  lsdem_mesh m;
+  lsdem_error err;
+  CHECK(lsdem_mesh_read("band_thin.stl", &m, &err) == LSDEM_OK, "%s", err.msg);
+  for (int fine = 0; fine < 2; fine++) {
+    const double h = fine ? 0.05 : 0.1;
+    lsdem_band b;
+    lsdem_thin_feature *f = NULL;
+    int n = -1;
+    CHECK(lsdem_band_from_mesh(&m, h, 2.0 * h, LSDEM_BAND_MESH, &b, &err) == LSDEM_OK, "%s",
+          err.msg);
+    CHECK(lsdem_band_thin_features(&b, 2.0 * h, &f, &n, &err) == LSDEM_OK, "%s", err.msg);
+    if (fine) {
+      CHECK(n == 0, "h = 0.05: %d thin features, expected none", n);
+    } else {
+      CHECK(n == 2, "h = 0.1: %d thin features, expected a ridge and a slot", n);
+    }
+    if (!fine && n == 2) {
+      CHECK(f[0].ridge && f[0].ntris == 4 && fabs(f[0].thinnest - 0.15) < 1e-6 &&
+            fabs(f[0].at[2] - (f[0].at[2] > 0.1 ? 0.15 : 0.0)) < 1e-6,
+            "ridge: %d triangles, %g across at z = %g", f[0].ntris, f[0].thinnest, f[0].at[2]);
+      CHECK(!f[1].ridge && f[1].ntris == 4 && fabs(f[1].thinnest - 0.12) < 1e-6,
+            "slot: %d triangles, %g across", f[1].ntris, f[1].thinnest);
+    }
+    free(f);
+    lsdem_band_free(&b);
+  }
+  lsdem_mesh_free(&m);
+}
+
 int main(void)
 {
   test_flat_terrain();
@@ -810,5 +854,6 @@ int main(void)
   test_tiff_png();
   test_band_file();
   test_heights();
+  test_thin_features();
   return lsdem_test_summary();
 }
