@@ -17,15 +17,21 @@
 typedef struct {
   double spacing, width, scale, cell, zscale; /* width 0: 2 spacing; cell 0: from the file */
   int heights; /* terrain: keep the heights (spacing = the raster's cell), not bricks */
+  int closed;  /* wall: refuse a mesh with holes (else signed by its winding number) */
+  int open;    /* wall: the mesh has holes */
 } wall_options;
 
 static int parse_wall_options(const char *cmd, int argc, char **argv, int terrain,
                               wall_options *o)
 {
-  *o = (wall_options){0.0, 0.0, 1.0, 0.0, 1.0, 0};
+  *o = (wall_options){0.0, 0.0, 1.0, 0.0, 1.0, 0, 0, 0};
   for (int i = 0; i < argc; i++) {
     if (terrain && !strcmp(argv[i], "--heights")) {
       o->heights = 1;
+      continue;
+    }
+    if (!terrain && !strcmp(argv[i], "--closed")) {
+      o->closed = 1;
       continue;
     }
     const int has = i + 1 < argc;
@@ -39,7 +45,7 @@ static int parse_wall_options(const char *cmd, int argc, char **argv, int terrai
     if (!ok) {
       fprintf(stderr, "lsdem-shape: %s: bad option or value near '%s' (options: --spacing H > 0, "
               "--width W > 0%s)\n", cmd, argv[i],
-              terrain ? ", --cell C > 0, --zscale Z > 0, --heights" : ", --scale S > 0");
+              terrain ? ", --cell C > 0, --zscale Z > 0, --heights" : ", --scale S > 0, --closed");
       return 0;
     }
   }
@@ -236,7 +242,9 @@ static int build_and_write(const char *cmd, const lsdem_mesh *m, lsdem_band_sour
   lsdem_error err;
   struct timespec t0;
   clock_gettime(CLOCK_MONOTONIC, &t0);
-  if (lsdem_band_from_mesh(m, o->spacing, o->width, src, &b, &err) != LSDEM_OK) {
+  const lsdem_status st = o->open ? lsdem_band_from_open_mesh(m, o->spacing, o->width, &b, &err)
+                                  : lsdem_band_from_mesh(m, o->spacing, o->width, src, &b, &err);
+  if (st != LSDEM_OK) {
     fprintf(stderr, "lsdem-shape: %s: %s\n", cmd, err.msg);
     return 1;
   }
@@ -246,7 +254,7 @@ static int build_and_write(const char *cmd, const lsdem_mesh *m, lsdem_band_sour
 static int wall_usage(void)
 {
   fprintf(stderr, "usage: lsdem-shape wall MESH.stl|MESH.obj OUT.band --spacing H [--width W] "
-          "[--scale S]\n");
+          "[--scale S] [--closed]\n");
   return 2;
 }
 
@@ -267,11 +275,19 @@ int cmd_wall(int argc, char **argv)
   const lsdem_status closed = lsdem_mesh_check_closed(&m, &topo, &err);
   report_surface(path, &m, &topo, "");
   int rc = 0;
-  if (closed != LSDEM_OK) {
-    fprintf(stderr, "lsdem-shape: wall: %s: %s: a wall from a mesh needs a closed surface "
-            "(for a terrain, an open surface, use lsdem-shape terrain)\n", path, err.msg);
+  o.open = closed != LSDEM_OK && !o.closed && topo.nonmanifold_edges == 0 &&
+           topo.misoriented_edges == 0 && topo.degenerate_tris == 0;
+  if (closed != LSDEM_OK && !o.open) {
+    fprintf(stderr, "lsdem-shape: wall: %s: %s: a wall from a mesh needs a closed surface%s "
+            "(for a terrain, an open surface, use lsdem-shape terrain)\n", path, err.msg,
+            o.closed ? " (--closed)" : ", or one with holes but otherwise manifold and "
+            "consistently oriented");
     rc = 1;
   }
+  if (o.open)
+    printf("%s: a mesh with %d open edges: signed near its holes by the generalised winding "
+           "number (holes narrower than about 2 W are closed; --closed refuses it)\n", path,
+           topo.boundary_edges);
   if (!rc && lsdem_mesh_check_self_intersection(&m, NULL, &err) != LSDEM_OK) {
     fprintf(stderr, "lsdem-shape: wall: %s: %s\n", path, err.msg);
     rc = 1;

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """What a band wall costs against a plane wall: 288 level-set cubes (300 nodes) settling on
 the floor z = 0 for 6,000 steps, the floor as (1) a plane wall, (2) a flat terrain band
-(spacing 0.05, width 0.1) and (3) the same band with exact yes; the runs alternate, ROUNDS
+(spacing 0.05, width 0.1), (3) the same band with exact yes and (4) the floor kept as heights
+(lsdem-shape terrain --heights, cell 0.05, width 0.1: exact distances); the runs alternate, ROUNDS
 times, and the figures are lmp's loop times and their ratios to the plane's.
     python3 bench/band/wall_cost.py [ROUNDS] [BUILD_DIR]     (default 2, build/)"""
 import os
@@ -29,8 +30,14 @@ with open("flat.asc", "w") as f:
         f.write(" ".join(["0"] * 49) + "\n")
 subprocess.run([os.environ["LSDEM_SHAPE_TOOL"], "terrain", "flat.asc", "flat.band", "--spacing",
                 "0.05", "--width", "0.1"], check=True, stdout=subprocess.DEVNULL)
+with open("flat_fine.asc", "w") as f:  # the same floor at cell 0.05, kept as heights
+    f.write("ncols 241\nnrows 241\nxllcenter -6\nyllcenter -6\ncellsize 0.05\n")
+    for _ in range(241):
+        f.write(" ".join(["0"] * 241) + "\n")
+subprocess.run([os.environ["LSDEM_SHAPE_TOOL"], "terrain", "flat_fine.asc", "heights.band",
+                "--heights", "--width", "0.1"], check=True, stdout=subprocess.DEVNULL)
 WALLS = (("plane", "plane 0 0 0 0 0 1", ""), ("band", "terrain flat.band", ""),
-         ("band exact", "terrain flat.band", " exact yes"))
+         ("band exact", "terrain flat.band", " exact yes"), ("heights", "terrain heights.band", ""))
 times = {name: [] for name, _, _ in WALLS}
 for r in range(ROUNDS):
     for name, wall, keys in WALLS:

@@ -44,9 +44,15 @@ if(NOT EXISTS ${WORK}/cube.band)
 endif()
 run_rc(0 wall cube.obj scaled.band --spacing 0.1 --width 0.3 --scale 2)
 expect_in("${out}" "width 0.3 (3 h)")
+# a cube without its top: a mesh with holes, signed by winding number -- but the hole (a
+# whole face) is far wider than the band: refused naming where; with --closed refused as open
 run_rc(1 wall open.obj open.band --spacing 0.05)
-expect_in("${out}" "10 triangles" "4 open edges")
-expect_in("${err}" "lsdem-shape: wall: open.obj: mesh is not closed: 4 boundary edges")
+expect_in("${out}" "10 triangles" "4 open edges" "signed near its holes by the generalised winding number")
+expect_in("${err}" "the mesh's holes are too wide to close")
+expect_no_file(open.band)
+run_rc(1 wall open.obj open.band --spacing 0.05 --closed)
+expect_in("${err}" "lsdem-shape: wall: open.obj: mesh is not closed: 4 boundary edges"
+  "needs a closed surface (--closed)")
 expect_no_file(open.band)
 run_rc(1 wall missing.obj x.band --spacing 0.05)
 expect_in("${err}" "missing.obj: cannot open")

@@ -843,6 +843,108 @@ static void test_thin_features(void)
   lsdem_mesh_free(&m);
 }
 
+/* ------------------------------------------------------- meshes with holes ---- */
+
+/* Samples of a band against the sphere of radius 1 at the origin: stored samples farther
+ * than `skip` from it on the wrong side, and background slots on the wrong side; points
+ * of the sphere above z = zcut (a hole's chord plane, which a winding number spans instead
+ * of the cap) are not counted. */
+static int sphere_side_known(const double p[3], double skip, double zcut)
+{
+  const double r = sqrt(lsdem_dot3(p, p));
+  return fabs(r - 1.0) > skip && !(p[2] > zcut - skip && r < 1.0 + skip);
+}
+
+static long sphere_sign_errors(const lsdem_band *b, double skip, double zcut)
+{
+  long wrong = 0;
+  for (int bz = 0; bz < b->nb[2]; bz++)
+    for (int by = 0; by < b->nb[1]; by++)
+      for (int bx = 0; bx < b->nb[0]; bx++) {
+        const int32_t k = b->index[bx + (int64_t)b->nb[0] * (by + (int64_t)b->nb[1] * bz)];
+        if (k < 0) { /* background: its centre's side */
+          double c[3];
+          sample_at(b, bx, by, bz, 4, 4, 4, c);
+          if (sphere_side_known(c, 0.0, zcut))
+            wrong += (sqrt(lsdem_dot3(c, c)) > 1.0) != (k == LSDEM_BAND_OUTSIDE);
+          continue;
+        }
+        for (int cc = 0; cc < 9; cc++)
+          for (int bb = 0; bb < 9; bb++)
+            for (int a = 0; a < 9; a++) {
+              double p[3];
+              sample_at(b, bx, by, bz, a, bb, cc, p);
+              const double r = sqrt(lsdem_dot3(p, p));
+              const float v = b->phi[729 * (size_t)k + a + 9 * (bb + 9 * cc)];
+              if (sphere_side_known(p, skip, zcut)) wrong += (v > 0.0f) != (r > 1.0);
+            }
+      }
+  return wrong;
+}
+
+/* An icosphere (1280 triangles, edges ~0.13) with one triangle removed: refused as a
+ * closed mesh; as a mesh with holes every sample and background brick is on the sphere's
+ * side (the winding number closes the hole); the closed icosphere gives the same bits by
+ * either path; with a cap of radius 0.6 cut off the hole is too wide and is refused. */
+static void test_open_mesh(void)
+{
+  tris s = {0};
+  add_icosphere(&s, 1.0, 3);
+  lsdem_mesh m;
+  lsdem_band closed, open, hole;
+  lsdem_error err;
+  write_stl_binary("band_ico.stl", &s, 0);
+  CHECK(lsdem_mesh_read("band_ico.stl", &m, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(lsdem_band_from_mesh(&m, 0.05, 0.1, LSDEM_BAND_MESH, &closed, &err) == LSDEM_OK, "%s",
+        err.msg);
+  CHECK(lsdem_band_from_open_mesh(&m, 0.05, 0.1, &open, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(closed.nbricks == open.nbricks &&
+        memcmp(closed.phi, open.phi, (size_t)closed.nbricks * 729 * sizeof(float)) == 0,
+        "a closed mesh differs between the closed and the open path");
+  CHECK(sphere_sign_errors(&closed, 0.01, 2.0) == 0, "closed icosphere: samples on the wrong side");
+  lsdem_band_free(&open);
+  lsdem_band_free(&closed);
+  lsdem_mesh_free(&m);
+  /* one triangle out (the first: on the face around a vertex at (.., 0.85, ..)) */
+  tris one = s;
+  one.t += 9, one.n -= 1;
+  write_stl_binary("band_ico_hole.stl", &one, 0);
+  CHECK(lsdem_mesh_read("band_ico_hole.stl", &m, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(lsdem_band_from_mesh(&m, 0.05, 0.1, LSDEM_BAND_MESH, &hole, &err) == LSDEM_ERR_ARG &&
+        strstr(err.msg, "3 boundary edges"), "a mesh with a hole as closed: %s", err.msg);
+  CHECK(lsdem_band_from_open_mesh(&m, 0.05, 0.1, &hole, &err) == LSDEM_OK, "%s", err.msg);
+  const long wrong = sphere_sign_errors(&hole, 0.01, 2.0);
+  CHECK(wrong == 0, "icosphere with a hole: %ld samples or bricks on the wrong side", wrong);
+  lsdem_band_free(&hole);
+  lsdem_mesh_free(&m);
+  /* a cap above z = 0.95 cut off (a hole 0.6 across), band 0.4 wide: the winding number
+   * spans the hole by about its chord plane, so the samples over the hole within 0.05 of
+   * the sphere, on which the rim's pseudonormals are wrong, are outside; 0.1 wide, the hole
+   * is too wide and the fill meets itself through it */
+  for (int wide = 0; wide < 2; wide++) {
+    tris cut = {0};
+    const double zcut = wide ? 0.8 : 0.95;
+    for (int t = 0; t < s.n; t++) {
+      const double zc = (s.t[9 * t + 2] + s.t[9 * t + 5] + s.t[9 * t + 8]) / 3.0;
+      if (zc < zcut) add_tri(&cut, s.t + 9 * t, s.t + 9 * t + 3, s.t + 9 * t + 6);
+    }
+    write_stl_binary("band_ico_cut.stl", &cut, 0);
+    free(cut.t);
+    CHECK(lsdem_mesh_read("band_ico_cut.stl", &m, &err) == LSDEM_OK, "%s", err.msg);
+    if (wide) {
+      CHECK(lsdem_band_from_open_mesh(&m, 0.05, 0.1, &hole, &err) == LSDEM_ERR_ARG &&
+            strstr(err.msg, "holes are too wide"), "a wide hole: %s", err.msg);
+    } else {
+      CHECK(lsdem_band_from_open_mesh(&m, 0.05, 0.4, &hole, &err) == LSDEM_OK, "%s", err.msg);
+      const long off = sphere_sign_errors(&hole, 0.01, zcut);
+      CHECK(off == 0, "icosphere without its cap: %ld samples or bricks on the wrong side", off);
+      lsdem_band_free(&hole);
+    }
+    lsdem_mesh_free(&m);
+  }
+  free(s.t);
+}
+
 int main(void)
 {
   test_flat_terrain();
@@ -855,5 +957,6 @@ int main(void)
   test_band_file();
   test_heights();
   test_thin_features();
+  test_open_mesh();
   return lsdem_test_summary();
 }

@@ -10,43 +10,6 @@
 
 /* ------------------------------------------------------------- test meshes ---- */
 
-static void midpoint_on_sphere(const double *a, const double *b, double r, double *m)
-{
-  double s = 0.0;
-  for (int k = 0; k < 3; k++) m[k] = a[k] + b[k], s += m[k] * m[k];
-  for (int k = 0; k < 3; k++) m[k] *= r / sqrt(s);
-}
-
-static void subdivide(tris *s, const double *a, const double *b, const double *c, double r, int level)
-{
-  if (level == 0) {
-    add_tri(s, a, b, c);
-    return;
-  }
-  double ab[3], bc[3], ca[3];
-  midpoint_on_sphere(a, b, r, ab), midpoint_on_sphere(b, c, r, bc), midpoint_on_sphere(c, a, r, ca);
-  subdivide(s, a, ab, ca, r, level - 1);
-  subdivide(s, ab, b, bc, r, level - 1);
-  subdivide(s, ca, bc, c, r, level - 1);
-  subdivide(s, ab, bc, ca, r, level - 1);
-}
-
-static void add_icosphere(tris *s, double r, int level)
-{
-  const double p = (1.0 + sqrt(5.0)) / 2.0;
-  double v[12][3] = {{-1, p, 0}, {1, p, 0}, {-1, -p, 0}, {1, -p, 0}, {0, -1, p}, {0, 1, p},
-                     {0, -1, -p}, {0, 1, -p}, {p, 0, -1}, {p, 0, 1}, {-p, 0, -1}, {-p, 0, 1}};
-  static const int f[20][3] = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11},
-                               {1, 5, 9}, {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                               {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9},
-                               {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
-  for (int i = 0; i < 12; i++) {
-    const double n = sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
-    for (int k = 0; k < 3; k++) v[i][k] *= r / n;
-  }
-  for (int i = 0; i < 20; i++) subdivide(s, v[f[i][0]], v[f[i][1]], v[f[i][2]], r, level);
-}
-
 static void spill_text(const char *path, const char *text)
 {
   FILE *fp = fopen(path, "w");

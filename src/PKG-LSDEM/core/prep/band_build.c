@@ -162,6 +162,7 @@ typedef struct {
   signed char *sign;   /* per owned sample (closed meshes): S_* */
   int outside;         /* sign outside the mesh's box: S_POS, or S_NEG for a closed mesh
                           whose faces point inwards (its solid is the outside) */
+  int open;            /* a mesh with holes: signs near its open edges by winding number */
   mesh_pseudonormals pn;
   terrain_grid tg;
 } builder;
@@ -460,8 +461,25 @@ static void terrain_values(builder *B)
 
 /* ------------------------------------------------- closed meshes: the sign fill ---- */
 
+/* Whether triangle t has an open edge (a hole's rim). */
+static int on_rim(const builder *B, int t)
+{
+  return B->pn.nbr[3 * t] < 0 || B->pn.nbr[3 * t + 1] < 0 || B->pn.nbr[3 * t + 2] < 0;
+}
+
+/* The side of p by the generalised winding number w: enclosed (|w| > 1/2: the solid of
+ * an outward-oriented mesh, the grains' side of an inward-oriented one) or not. */
+static int winding_sign(const builder *B, const double p[3])
+{
+  const int enclosed = fabs(mesh_winding_number(B->m, p)) > 0.5;
+  return enclosed ? -B->outside : B->outside;
+}
+
 /* Closed mesh: values of the reached samples, signs of the reached samples and of the
- * unreached ones outside the mesh's box (seeds of the fill). */
+ * unreached ones outside the mesh's box (seeds of the fill). A mesh with holes (B->open):
+ * a reached sample whose closest triangle lies on a hole's rim takes the winding number's
+ * side, so that a hole narrower than about 2 width is closed as the winding number spans
+ * it (the fill then cannot pass it). */
 static void mesh_reached(builder *B)
 {
   const double w2 = B->w * B->w, eps = 1e-9 * B->h;
@@ -484,6 +502,7 @@ static void mesh_reached(builder *B)
       }
       const double s = mesh_signed_distance_to(B->m, &B->pn, p, B->tri[q]);
       B->sign[q] = s > 0.0 ? S_POS : s < 0.0 ? S_NEG : S_ZERO;
+      if (B->sign[q] != S_ZERO && B->open && on_rim(B, B->tri[q])) B->sign[q] = winding_sign(B, p);
       B->best[q] = band_value(B, fabs(s), B->sign[q]);
     }
   }
@@ -571,6 +590,46 @@ static int fill_background(builder *B, int64_t slot)
   return 0;
 }
 
+/* After the fill of a mesh with holes: whether two neighbours across a grid edge that no
+ * surface crosses (an unreached sample and a signed neighbour; two background slots)
+ * have opposite signs -- the fill went through a hole from both sides. *at: where. */
+static int fill_conflict(const builder *B, double at[3])
+{
+  for (int64_t brick = 0; brick < B->nbricks; brick++) {
+    int bc[3];
+    slot_coords(B, B->slot_of[brick], bc);
+    for (int l = 0; l < OWN; l++) {
+      const size_t q = (size_t)brick * OWN + l;
+      if (!isnan(B->best[q])) continue; /* reached: the surface may pass next to it */
+      const int loc[3] = {l % BRICK, l / BRICK % BRICK, l / (BRICK * BRICK)};
+      for (int d = 0; d < 6; d++) {
+        int64_t g[3];
+        for (int a = 0; a < 3; a++) g[a] = (int64_t)BRICK * bc[a] + loc[a] + DIRS[d][a];
+        const int v = node_sign(B, g);
+        if ((v == S_POS || v == S_NEG) && v != B->sign[q]) {
+          for (int a = 0; a < 3; a++) at[a] = sample_pos(B, a, (int64_t)BRICK * bc[a] + loc[a]);
+          return 1;
+        }
+      }
+    }
+  }
+  for (int64_t s = 0; s < B->nslots; s++) {
+    if (B->index[s] >= 0) continue;
+    int bc[3];
+    slot_coords(B, s, bc);
+    for (int d = 0; d < 6; d++) {
+      int nc[3], ok = 1;
+      for (int a = 0; a < 3; a++) nc[a] = bc[a] + DIRS[d][a], ok &= nc[a] >= 0 && nc[a] < B->nb[a];
+      const int32_t other = ok ? B->index[slot_index(B, nc[0], nc[1], nc[2])] : 0;
+      if (ok && other < 0 && other != B->index[s]) {
+        for (int a = 0; a < 3; a++) at[a] = sample_pos(B, a, (int64_t)BRICK * bc[a] + BRICK / 2);
+        return 1;
+      }
+    }
+  }
+  return 0;
+}
+
 /* Signs of the unreached samples and the background slots of a closed mesh. */
 static lsdem_status mesh_fill(builder *B, lsdem_error *err)
 {
@@ -622,6 +681,14 @@ static lsdem_status mesh_fill(builder *B, lsdem_error *err)
     }
   }
   free(queue), free(queued);
+  if (B->open) {
+    double at[3];
+    if (fill_conflict(B, at))
+      return lsdem_fail(err, LSDEM_ERR_ARG, "band: the mesh's holes are too wide to close: its "
+                        "inside and outside meet through a hole near (%g, %g, %g); close the "
+                        "holes, or make the band wider than half the widest hole", at[0], at[1],
+                        at[2]);
+  }
   /* whatever no seed reached (a mesh too small to reach any sample) is outside */
   for (int64_t s = 0; s < B->nslots; s++)
     if (B->index[s] == BG_UNKNOWN)
@@ -790,13 +857,15 @@ lsdem_status lsdem_band_from_heights(const lsdem_heightmap *hm, double width, ls
   return LSDEM_OK;
 }
 
-lsdem_status lsdem_band_from_mesh(const lsdem_mesh *m, double h, double width,
-                                  lsdem_band_source src, lsdem_band *b, lsdem_error *err)
+/* The band of m (lsdem_band_from_mesh; open: holes allowed, lsdem_band_from_open_mesh). */
+static lsdem_status build_band(const lsdem_mesh *m, double h, double width, lsdem_band_source src,
+                               int open, lsdem_band *b, lsdem_error *err)
 {
   if (!b) return lsdem_fail(err, LSDEM_ERR_ARG, "band: NULL output");
   memset(b, 0, sizeof *b);
   builder B;
   memset(&B, 0, sizeof B);
+  B.open = open;
   lsdem_status st = plan(&B, m, h, width, src, err);
   if (st == LSDEM_OK) {
     B.index = malloc((size_t)B.nslots * sizeof(int32_t));
@@ -806,11 +875,12 @@ lsdem_status lsdem_band_from_mesh(const lsdem_mesh *m, double h, double width,
   lsdem_mesh_topology topo;
   if (st == LSDEM_OK) st = mesh_pseudonormals_build(m, &B.pn, &topo, err);
   if (st == LSDEM_OK && src == LSDEM_BAND_MESH &&
-      (topo.boundary_edges || topo.nonmanifold_edges || topo.misoriented_edges ||
+      ((topo.boundary_edges && !open) || topo.nonmanifold_edges || topo.misoriented_edges ||
        topo.degenerate_tris))
     st = lsdem_fail(err, LSDEM_ERR_ARG, "band: the mesh is not closed (%d boundary edges, %d "
                     "non-manifold, %d with inconsistent orientation, %d degenerate triangles; "
-                    "first near (%g, %g, %g)): a wall from a mesh needs a closed surface "
+                    "first near (%g, %g, %g)): a wall from a mesh needs a closed surface, "
+                    "or one with holes but otherwise manifold and consistently oriented "
                     "(zero-area triangles leave the sign undefined near them)",
                     topo.boundary_edges, topo.nonmanifold_edges, topo.misoriented_edges,
                     topo.degenerate_tris, topo.where[0], topo.where[1], topo.where[2]);
@@ -855,4 +925,16 @@ lsdem_status lsdem_band_from_mesh(const lsdem_mesh *m, double h, double width,
   builder_free(&B);
   if (st != LSDEM_OK) lsdem_band_free(b);
   return st;
+}
+
+lsdem_status lsdem_band_from_mesh(const lsdem_mesh *m, double h, double width,
+                                  lsdem_band_source src, lsdem_band *b, lsdem_error *err)
+{
+  return build_band(m, h, width, src, 0, b, err);
+}
+
+lsdem_status lsdem_band_from_open_mesh(const lsdem_mesh *m, double h, double width,
+                                       lsdem_band *b, lsdem_error *err)
+{
+  return build_band(m, h, width, LSDEM_BAND_MESH, 1, b, err);
 }

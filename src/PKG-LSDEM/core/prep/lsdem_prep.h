@@ -325,6 +325,15 @@ double lsdem_mesh_volume(const lsdem_mesh *m);
  * pass 2^31 - 1 (samples per axis, brick slots, stored bricks) or memory runs out. */
 lsdem_status lsdem_band_from_mesh(const lsdem_mesh *m, double h, double width,
                                   lsdem_band_source src, lsdem_band *b, lsdem_error *err);
+/* The band of a mesh with holes (boundary edges; otherwise as lsdem_band_from_mesh with
+ * LSDEM_BAND_MESH: manifold, consistently oriented, no zero-area triangles): a reached
+ * sample whose closest triangle lies on a hole's rim takes its side from the generalised
+ * winding number (|w| > 1/2: enclosed), so a hole narrower than about 2 width is closed
+ * as the winding number spans it; a wider hole, through which the sign fill meets itself
+ * with both signs, is refused naming where (LSDEM_ERR_ARG). Extra cost: O(triangles) per
+ * sample near a rim. */
+lsdem_status lsdem_band_from_open_mesh(const lsdem_mesh *m, double h, double width,
+                                       lsdem_band *b, lsdem_error *err);
 /* A terrain band kept as its heights (lsdem_band.heights, the column form: 4 bytes per
  * column, exact distances at lookup): hm's heights copied, spacing hm's cell, half-width
  * width (h <= width <= LSDEM_BAND_MAX_WIDTH_CELLS h). LSDEM_ERR_ARG for fewer than 2 x 2

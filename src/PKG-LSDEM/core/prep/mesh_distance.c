@@ -14,6 +14,24 @@ void mesh_tri_normal(const lsdem_mesh *m, int t, double n[3])
   lsdem_cross3(e1, e2, n);
 }
 
+double mesh_winding_number(const lsdem_mesh *m, const double p[3])
+{
+  double sum = 0.0;
+  for (int t = 0; t < m->ntris; t++) {
+    double a[3], b[3], c[3], bc[3];
+    lsdem_sub3(mesh_vert(m, t, 0), p, a);
+    lsdem_sub3(mesh_vert(m, t, 1), p, b);
+    lsdem_sub3(mesh_vert(m, t, 2), p, c);
+    const double la = sqrt(lsdem_dot3(a, a)), lb = sqrt(lsdem_dot3(b, b)), lc = sqrt(lsdem_dot3(c, c));
+    lsdem_cross3(b, c, bc);
+    /* tan(Omega / 2) = a . (b x c) / (|a||b||c| + (a.b)|c| + (a.c)|b| + (b.c)|a|) */
+    const double den = la * lb * lc + lsdem_dot3(a, b) * lc + lsdem_dot3(a, c) * lb +
+                       lsdem_dot3(b, c) * la;
+    sum += 2.0 * atan2(lsdem_dot3(a, bc), den);
+  }
+  return sum / (4.0 * M_PI);
+}
+
 lsdem_status mesh_pseudonormals_build(const lsdem_mesh *m, mesh_pseudonormals *pn,
                                       lsdem_mesh_topology *topo, lsdem_error *err)
 {

@@ -24,6 +24,13 @@ static inline const double *mesh_vert(const lsdem_mesh *m, int t, int c)
 /* Unnormalised normal (b - a) x (c - a) of triangle t: twice its area (mesh_distance.c). */
 void mesh_tri_normal(const lsdem_mesh *m, int t, double n[3]);
 
+/* Generalised winding number of m at p (Jacobson, Kavan & Sorkine-Hornung, SIGGRAPH 2013):
+ * the triangles' signed solid angles seen from p (Van Oosterom & Strackee, IEEE TBME 30(2),
+ * 1983) over 4 pi: 1 inside a closed outward-oriented mesh, 0 outside, -1 inside an
+ * inward-oriented one; for a mesh with holes, a smooth value between that is more than 1/2
+ * in magnitude where the holes' mouths, spanned, would enclose p. O(triangles). */
+double mesh_winding_number(const lsdem_mesh *m, const double p[3]);
+
 /* Edge analysis (mesh_import.c): counts into topo, and nbr[3t+e] = the triangle across
  * edge e of t (corner e to corner e+1) when the edge is shared by exactly two triangles
  * (else -1). nbr may be NULL. */
