@@ -15,6 +15,10 @@
 
 enum { TILE = LSDEM_HEIGHTS_TILE };
 
+/* max and min without libm's NaN rules (called per lookup: kept inline) */
+static inline double maxd(double a, double b) { return a > b ? a : b; }
+static inline double mind(double a, double b) { return a < b ? a : b; }
+
 static inline double height_at(const lsdem_band *b, int i, int j)
 {
   return (double)b->heights[(size_t)i + (size_t)b->n[0] * (size_t)j];
@@ -23,8 +27,8 @@ static inline double height_at(const lsdem_band *b, int i, int j)
 /* The cell holding grid coordinate u (clamped to the last cell) and the fraction in it. */
 static inline int cell_along(double u, int n, double *f)
 {
-  int i = (int)floor(u);
-  i = i < 0 ? 0 : (i > n - 2 ? n - 2 : i);
+  const double top = (double)(n - 2);
+  int i = u <= 0.0 ? 0 : (u >= top ? n - 2 : (int)u); /* (int) is the floor for u > 0 */
   *f = u - i;
   return i;
 }
@@ -52,7 +56,7 @@ static double tile_bound(const lsdem_band *b, const double p[3])
     for (int i = ti - 1; i <= ti + 1; i++) {
       if (i < 0 || j < 0 || i >= b->nt[0] || j >= b->nt[1]) continue;
       const float *r = &b->tile_range[2 * ((size_t)i + (size_t)b->nt[0] * (size_t)j)];
-      const double g = fmax(0.0, fmax((double)r[0] - p[2], p[2] - (double)r[1]));
+      const double g = maxd(0.0, maxd((double)r[0] - p[2], p[2] - (double)r[1]));
       if (g < gap) gap = g;
     }
   return gap;
@@ -72,18 +76,18 @@ static void cell_triangle(const lsdem_band *b, int i, int j, int t, double v[3][
 
 /* Squared distance from p to the nearest triangle of cell (i,j) if below *best2 (then
  * *best2 and q updated, and n the triangle's upward normal). */
-static void visit_cell(const lsdem_band *b, int i, int j, const double p[3], double *best2,
+static inline void visit_cell(const lsdem_band *b, int i, int j, const double p[3], double *best2,
                        double q[3], double n[3])
 {
   const double x0 = b->origin[0] + b->h * i, y0 = b->origin[1] + b->h * j;
-  const double dx = fmax(0.0, fmax(x0 - p[0], p[0] - (x0 + b->h)));
-  const double dy = fmax(0.0, fmax(y0 - p[1], p[1] - (y0 + b->h)));
+  const double dx = maxd(0.0, maxd(x0 - p[0], p[0] - (x0 + b->h)));
+  const double dy = maxd(0.0, maxd(y0 - p[1], p[1] - (y0 + b->h)));
   if (dx * dx + dy * dy >= *best2) return;
   const double z[4] = {height_at(b, i, j), height_at(b, i + 1, j), height_at(b, i, j + 1),
                        height_at(b, i + 1, j + 1)};
-  const double lo = fmin(fmin(z[0], z[1]), fmin(z[2], z[3]));
-  const double hi = fmax(fmax(z[0], z[1]), fmax(z[2], z[3]));
-  const double dz = fmax(0.0, fmax(lo - p[2], p[2] - hi));
+  const double lo = mind(mind(z[0], z[1]), mind(z[2], z[3]));
+  const double hi = maxd(maxd(z[0], z[1]), maxd(z[2], z[3]));
+  const double dz = maxd(0.0, maxd(lo - p[2], p[2] - hi));
   if (dx * dx + dy * dy + dz * dz >= *best2) return;
   for (int t = 0; t < 2; t++) {
     double v[3][3], c[3], d[3];
@@ -111,8 +115,8 @@ double lsdem_heights_eval(const lsdem_band *b, const double p_in[3], double grad
   /* the outside rule: beyond the box, the value at the nearest point of its columns */
   const double xmax = b->origin[0] + b->h * (b->n[0] - 1);
   const double ymax = b->origin[1] + b->h * (b->n[1] - 1);
-  const double p[3] = {fmin(fmax(p_in[0], b->origin[0]), xmax),
-                       fmin(fmax(p_in[1], b->origin[1]), ymax), p_in[2]};
+  const double p[3] = {mind(maxd(p_in[0], b->origin[0]), xmax),
+                       mind(maxd(p_in[1], b->origin[1]), ymax), p_in[2]};
   const double side = p[2] >= surface_height(b, p[0], p[1]) ? 1.0 : -1.0;
   const double bound = tile_bound(b, p);
   grad[0] = grad[1] = 0.0, grad[2] = 1.0;
@@ -131,9 +135,13 @@ double lsdem_heights_eval(const lsdem_band *b, const double p_in[3], double grad
   const int i1 = cell_along((p[0] + r - b->origin[0]) / b->h, nx, &f);
   const int j0 = cell_along((p[1] - r - b->origin[1]) / b->h, ny, &f);
   const int j1 = cell_along((p[1] + r - b->origin[1]) / b->h, ny, &f);
-  for (int j = j0; j <= j1; j++)
+  for (int j = j0; j <= j1; j++) {
+    const double y0 = b->origin[1] + b->h * j;
+    const double dy = maxd(0.0, maxd(y0 - p[1], p[1] - (y0 + b->h)));
+    if (dy * dy >= best2) continue; /* the whole row is no nearer */
     for (int i = i0; i <= i1; i++)
       if (i != ic || j != jc) visit_cell(b, i, j, p, &best2, q, n);
+  }
   if (best2 >= b->width * b->width) return side * b->width;
   const double d = sqrt(best2);
   if (d > 1e-12 * b->h) {
