@@ -3,7 +3,8 @@
 16 d) with angular grains instead of analytic spheres, at one or more orifice diameters D.
 
 Usage: angular.py [OUTDIR] [--orifices 6 8] [--grains 1500] [--nsettle 15000]
-                  [--ndischarge 50000] [--np 2] [--nodes 100] [--twoway] [--report-only]
+                  [--ndischarge 50000] [--np 2] [--nodes 100] [--seed 5] [--twoway]
+                  [--report-only]
   (OUTDIR default angular_out; a D whose hopper.csv exists is not run again; --report-only
   analyses what is there.) Prints per D: rho_b, fill height, W with its error and window,
   C at k = 1.4, the discharged and remaining grains, whether the flow clogged (no grain out
@@ -46,7 +47,7 @@ def sh(cmd, cwd, log=None):
         subprocess.run(cmd, cwd=cwd, check=True, stdout=f, stderr=subprocess.STDOUT)
 
 
-def grains(out, n, nodes):
+def grains(out, n, nodes, seed=5):
     lib = os.path.join(out, "ang.lslib")
     if not os.path.exists(lib):
         sh([SHAPE, "random", "ang.lslib", "--count", "6", "--size", "1.0", "--elongation",
@@ -56,7 +57,7 @@ def grains(out, n, nodes):
     data = os.path.join(out, "ang_%d.data" % n)
     if not os.path.exists(data):
         sh([SHAPE, "pack", "ang.lslib", "packed.data", "--count", str(n), "--cylinder", "5.9",
-            "28", "--density", "1", "--weights", "1,1,1,1,1,1", "--seed", "5",
+            "28", "--density", "1", "--weights", "1,1,1,1,1,1", "--seed", str(seed),
             "--max-tries", "5000", "--strict"], out, "pack.txt")
         lift = 3.3
         lines = open(os.path.join(out, "packed.data")).read().split("\n")
@@ -201,6 +202,7 @@ def main(argv):
     ap.add_argument("--nsettle", type=int, default=15000)
     ap.add_argument("--ndischarge", type=int, default=50000)
     ap.add_argument("--np", type=int, default=2)
+    ap.add_argument("--seed", type=int, default=5, help="the packing's seed (lsdem-shape pack)")
     ap.add_argument("--twoway", action="store_true",
                     help="pair_style lsdem mode twoway (both grains test their nodes)")
     ap.add_argument("--report-only", action="store_true")
@@ -208,7 +210,7 @@ def main(argv):
     out = os.path.abspath(a.out)
     os.makedirs(out, exist_ok=True)
     if not a.report_only:
-        lib, data = grains(out, a.grains, a.nodes)
+        lib, data = grains(out, a.grains, a.nodes, a.seed)
         for D in a.orifices:
             d = os.path.join(out, "D%g" % D)
             if os.path.exists(os.path.join(d, "hopper.csv")):
