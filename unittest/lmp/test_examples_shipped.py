@@ -3,7 +3,8 @@ inputs that ship beside each deck), and in each example's folder `lmp -in in.NAM
 2 ranks for a few steps, with only the step counts shortened on the command line. Checked:
 lmp exits 0, reads the shipped grains (the atom count of the shipped data file), runs the
 steps asked for, and writes what the deck writes; the Python example runs from its folder
-through LAMMPS's Python module, the C driver on the shipped scene."""
+through LAMMPS's Python module, the C driver on the shipped scene; in.ct_scan names a grain
+lost from its box instead of failing in write_data."""
 import os
 import re
 import shutil
@@ -98,5 +99,18 @@ for np_ in (1, 2):
     check(p.returncode == 0 and os.path.exists(os.path.join(root, "python", "grains.npz")),
           "python example on %d rank(s) from its folder: exit %d\n%s"
           % (np_, p.returncode, p.stdout[-1500:]))
+
+# in.ct_scan stops with a named error, not write_data's "Atom count is inconsistent", when a
+# grain left the box (forced here: the deck with one grain deleted after its run)
+ct = os.path.join(root, "ct_scan")
+text = open(os.path.join(ct, "in.ct_scan")).read()
+assert "\nrun             ${nsteps}\n" in text
+open(os.path.join(ct, "in.lost"), "w").write(text.replace(
+    "\nrun             ${nsteps}\n", "\nrun             ${nsteps}\ngroup gone id 1\ndelete_atoms group gone\n"))
+if os.path.exists(os.path.join(ct, "settled.data")):
+    os.remove(os.path.join(ct, "settled.data"))
+rc, log = run_lmp(os.path.join(ct, "in.lost"), vars={"nsteps": 10}, cwd=ct, expect_fail=True)
+check(rc != 0 and "1 of 21 grains left the box" in log and not os.path.exists(os.path.join(ct, "settled.data")),
+      "ct_scan: a lost grain is named before write_data (exit %d):\n%s" % (rc, log[-800:]))
 
 finish()
