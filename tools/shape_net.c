@@ -218,6 +218,8 @@ static int write_include(const net_opts *o, const shape_grain_file *gf, const ls
   fprintf(f, "# %s lattice, %d x %d balls of radius %.6g, spacing %.6g, rest length %.6g\n",
           net->lattice == LSDEM_NET_HEX ? "hexagonal" : "square", net->n1, net->n2, o->rb,
           net->spacing, net->rest);
+  /* ghosts out to two spacings: a bond's far ball stays a ghost up to 100 % strain */
+  fprintf(f, "comm_modify vel yes cutoff %.15g\n", 2.0 * net->spacing + 2.0 * o->rb);
   fprintf(f, "bond_style lsdem/net\nbond_coeff 1 %.15g %.15g", o->k, net->rest);
   if (o->damp > 0) fprintf(f, " damp %.15g", o->damp);
   if (o->brk) fprintf(f, " break %s %.15g", o->brk, o->limit);
