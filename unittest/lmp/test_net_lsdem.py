@@ -1,0 +1,192 @@
+"""bond_style lsdem/net + fix net/lsdem + lsdem-shape net, through lmp.
+
+1. Statics: a clamped hexagonal net with pretension under gravity, run to rest with
+   damping, against an independent Newton solve of the same spring network (numpy, the
+   bond law written out again): every ball within 1e-6; the anchors' reaction equals the
+   free balls' weight; the residual height and largest strain equal the solve's.
+2. Waves: a 1-D ball chain (clamped ends) in its first longitudinal mode oscillates at the
+   frequency of a wave speed a sqrt(k/m), within 1 % (and the discrete chain's dispersion
+   relation within 0.1 %).
+3. Rupture: a chain stretched uniformly (every ball driven), one bond of it with a break
+   strain: it breaks at the first step whose strain exceeds the limit, once, the same on
+   1 and 2 ranks (the bond crosses the ranks' boundary); its force is gone afterwards.
+4. Bad input: a net file with a bond to a missing ball, an empty clamp group, a break
+   limit <= 0 stop with messages that say what is wrong."""
+import math
+import re
+
+import numpy as np
+
+from lsdemtest import run_lmp, thermo, check, near, finish
+from net_common import HERE, RB, make_ball, make_net, head, bonds, read_dump
+
+make_ball()
+
+# ---- 1. statics against a Newton solve -------------------------------------------------
+K, R0, G = 0.1, 0.9, 0.2
+make_net("sag", "--spacing", 1, "--size", 5, 4, "--rest", R0, "--k", K, "--damp", 0.02)
+deck = head("sag") + """
+fix int net_free nve/lsdem damping 0.5
+fix g net_free gravity {g} vector 0 0 -1
+fix net net net/lsdem sag.net clamp net_clamp
+timestep 0.02
+thermo 1000
+thermo_style custom step ke f_net[1] f_net[2] f_net[3] f_net[4] f_net[5]
+thermo_modify format float %.17g
+run 8000
+write_dump net custom rest.dump id type x y z mass modify format float %.17g
+""".format(g=G)
+rc, log = run_lmp(deck)
+rest = read_dump("rest.dump")
+bl = bonds("sag")
+ids = sorted(rest)
+free = [i for i in ids if int(rest[i]["type"]) == 1]
+col = {i: n for n, i in enumerate(free)}
+mass = {i: rest[i]["mass"] for i in ids}
+x0 = {i: np.array([rest[i][c] for c in "xyz"]) for i in ids}
+x0 = {i: (x0[i] if i not in col else np.array([x0[i][0], x0[i][1], 0.0])) for i in ids}
+
+
+def residual_and_jacobian(X):
+    """Net force on every free ball (bonds + weight) and its Jacobian."""
+    pos = lambda i: X[3 * col[i]:3 * col[i] + 3] if i in col else x0[i]
+    F = np.zeros(3 * len(free))
+    J = np.zeros((3 * len(free), 3 * len(free)))
+    for i in free:
+        F[3 * col[i] + 2] -= mass[i] * G
+    for _, i, j in bl:
+        d = pos(j) - pos(i)
+        L = np.linalg.norm(d)
+        u = d / L
+        fj = -K * (L - R0) * u
+        # d fj / d xj = -K [(1 - R0/L)(I - u u) + u u]
+        Kb = -K * ((1 - R0 / L) * (np.eye(3) - np.outer(u, u)) + np.outer(u, u))
+        for a, s in ((j, 1.0), (i, -1.0)):
+            if a not in col:
+                continue
+            F[3 * col[a]:3 * col[a] + 3] += s * fj
+            for b, t in ((j, 1.0), (i, -1.0)):
+                if b in col:
+                    J[3 * col[a]:3 * col[a] + 3, 3 * col[b]:3 * col[b] + 3] += s * t * Kb
+    return F, J
+
+
+X = np.concatenate([x0[i] - np.array([0, 0, 0.1]) for i in free])
+for it in range(50):
+    F, J = residual_and_jacobian(X)
+    X -= np.linalg.solve(J, F)
+    if np.abs(F).max() < 1e-15:
+        break
+F, _ = residual_and_jacobian(X)
+check(np.abs(F).max() < 1e-14, "Newton solve did not converge: residual %g" % np.abs(F).max())
+err = max(np.abs(np.array([rest[i][c] for c in "xyz"]) - X[3 * col[i]:3 * col[i] + 3]).max()
+          for i in free)
+check(err < 1e-6, "rest positions differ from the Newton solve by %g (> 1e-6)" % err)
+low = min(X[2::3])
+print("statics: %d free balls, sag %.9f, largest difference to the Newton solve %.3g"
+      % (len(free), -low, err))
+row = thermo(log)[-1]
+weight = sum(mass[i] for i in free) * G
+near(row["f_net[3]"], weight, rtol=1e-9, msg="anchor reaction = weight of the free balls")
+near(row["f_net[1]"], 0.0, atol=1e-9, msg="anchor reaction x")
+near(row["f_net[5]"], low, atol=1e-6, msg="residual height = lowest ball of the solve")
+pos = lambda i: X[3 * col[i]:3 * col[i] + 3] if i in col else x0[i]
+strain = max((np.linalg.norm(pos(j) - pos(i)) - R0) / R0 for _, i, j in bl)
+near(row["f_net[4]"], strain, atol=1e-6, msg="largest strain = the solve's")
+
+# ---- 2. a 1-D chain carries waves at a sqrt(k/m) ---------------------------------------
+KC, A, NSEG, AMP = 1.0, 1.0, 50, 0.01
+make_net("chain", "--lattice", "square", "--spacing", A, "--size", NSEG * A, 0,
+         "--clamp", "u0,u1", "--k", KC)
+deck = head("chain") + """
+variable dx atom {amp}*sin(PI*x/{L})
+displace_atoms net_free move v_dx 0 0
+fix int net_free nve/lsdem
+timestep 0.01
+variable xm equal x[{mid}]-{xmid}
+variable m equal mass[{mid}]
+thermo 5
+thermo_style custom step time v_xm v_m
+thermo_modify format float %.17g
+run 4000
+""".format(amp=AMP, L=NSEG * A, mid=NSEG // 2 + 1, xmid=(NSEG // 2) * A)
+rc, log = run_lmp(deck)
+rows = thermo(log)
+m = rows[0]["v_m"]
+t = [r["Time"] for r in rows]
+u = [r["v_xm"] for r in rows]
+down = [t[k] + (t[k + 1] - t[k]) * u[k] / (u[k] - u[k + 1])
+        for k in range(len(u) - 1) if u[k] > 0 >= u[k + 1]]
+check(len(down) >= 2, "middle ball: %d downward zero crossings" % len(down))
+if len(down) >= 2:
+    period = (down[-1] - down[0]) / (len(down) - 1)
+    q = math.pi / (NSEG * A)
+    c = 2 * math.pi / period / q
+    c0 = A * math.sqrt(KC / m)
+    print("waves: period %.6f, speed %.6f against a sqrt(k/m) = %.6f (ratio %.5f)"
+          % (period, c, c0, c / c0))
+    near(c, c0, rtol=0.01, msg="wave speed against a sqrt(k/m)")
+    omega = 2 * math.sqrt(KC / m) * math.sin(q * A / 2)  # the discrete chain's mode 1
+    near(2 * math.pi / period, omega, rtol=1e-3, msg="mode-1 frequency of the chain")
+
+# ---- 3. rupture at the step the law says, once, on 1 and 2 ranks ------------------------
+RATE, DT, S = 0.01, 0.01, 0.012345
+make_net("pull", "--lattice", "square", "--spacing", 1, "--size", 10, 0, "--clamp", "u0",
+         "--k", 1, "--margin", 3)
+text = open("pull.data").read().replace("1 bond types", "2 bond types")
+text = re.sub(r"\n(\d+) 1 5 6\n", r"\n\1 2 5 6\n", text)  # the bond x = 4 -> 5
+open("pull.data", "w").write(text)
+deck = head("pull", pre="processors * 1 1\n") + """
+bond_coeff 2 1 1 break strain {s}
+fix x0 all store/state 0 x
+variable dx atom {rate}*time*f_x0
+variable vx atom {rate}*f_x0
+fix drive net_free move variable v_dx NULL NULL v_vx NULL NULL
+fix net net net/lsdem {here}/pull.net clamp net_clamp
+timestep {dt}
+thermo 1
+thermo_style custom step ebond f_net[4] f_net[6]
+thermo_modify format float %.17g norm no
+run 200
+""".format(s=S, rate=RATE, dt=DT, here=HERE)
+runs = {}
+for np_ in (1, 2):
+    rc, log = run_lmp(deck, np=np_, cwd="pull%d" % np_)
+    runs[np_] = thermo(log)
+rows = runs[1]
+expect = next(r["Step"] for r in rows if RATE * r["Step"] * DT > S)
+broken = [int(r["f_net[6]"]) for r in rows]
+first = next((r["Step"] for r in rows if r["f_net[6]"] > 0), None)
+print("rupture: strain limit %g, expected at step %d, broke at step %s" % (S, expect, first))
+first = int(first) if first is not None else None
+check(first == expect, "the bond broke at step %s, the law says %d" % (first, expect))
+check(max(broken) == 1 and broken[-1] == 1, "bonds broken over the run: %s" % sorted(set(broken)))
+for r in rows:
+    strain = RATE * r["Step"] * DT
+    intact = 10 if r["Step"] < expect else 9
+    near(r["E_bond"], intact * 0.5 * strain * strain, rtol=1e-9, atol=1e-15,
+         msg="bond energy at step %d (%d intact bonds)" % (r["Step"], intact))
+net_cols = lambda rows: [(r["Step"], r["f_net[4]"], r["f_net[6]"]) for r in rows]
+check(net_cols(runs[1]) == net_cols(runs[2]), "1 and 2 ranks give different net outputs")
+for r1, r2 in zip(runs[1], runs[2]):  # energy: LAMMPS's sum over ranks, last bits aside
+    near(r2["E_bond"], r1["E_bond"], rtol=1e-12, msg="bond energy on 2 ranks")
+
+# ---- 4. bad input: named errors ---------------------------------------------------------
+text = open("sag.net").read().splitlines()
+k = text.index(next(l for l in text if l.startswith("bonds")))
+text[k + 3] = text[k + 3].split()[0] + " 999"
+open("broken.net", "w").write("\n".join(text) + "\n")
+cases = [
+    ("fix net net net/lsdem %s/broken.net clamp net_clamp" % HERE + "\nrun 0\n",
+     r"bond 3 joins atom ID 999, which is not a ball"),
+    ("group nothing id 100000\nfix net net net/lsdem %s/sag.net clamp nothing" % HERE + "\nrun 0\n",
+     r"clamp group 'nothing' is empty"),
+    ("bond_coeff 1 0.1 0.9 break strain 0\n", r"break strain limit \(0\) must be > 0"),
+    ("bond_coeff 1 0.1 0.9 break force -1\n", r"break force limit \(-1\) must be > 0"),
+]
+for n, (tail, pattern) in enumerate(cases):
+    rc, log = run_lmp(head("sag") + tail, expect_fail=True, cwd="bad%d" % n)
+    check(rc != 0 and re.search(pattern, log), "case %d: expected an error matching '%s', got:\n%s"
+          % (n, pattern, log[-600:]))
+
+finish()
