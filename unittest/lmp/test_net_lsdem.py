@@ -9,7 +9,8 @@
    relation within 0.1 %).
 3. Rupture: a chain stretched uniformly (every ball driven), one bond of it with a break
    strain: it breaks at the first step whose strain exceeds the limit, once, the same on
-   1 and 2 ranks (the bond crosses the ranks' boundary); its force is gone afterwards.
+   1 and 2 ranks (the bond crosses the ranks' boundary); its force is gone afterwards, and
+   stays gone across a restart (the outputs after read_restart equal those before).
 4. Bad input: a net file with a bond to a missing ball, an empty clamp group, a break
    limit <= 0 stop with messages that say what is wrong."""
 import math
@@ -148,6 +149,7 @@ thermo 1
 thermo_style custom step ebond f_net[4] f_net[6]
 thermo_modify format float %.17g norm no
 run 200
+write_restart pull.200
 """.format(s=S, rate=RATE, dt=DT, here=HERE)
 runs = {}
 for np_ in (1, 2):
@@ -170,6 +172,19 @@ net_cols = lambda rows: [(r["Step"], r["f_net[4]"], r["f_net[6]"]) for r in rows
 check(net_cols(runs[1]) == net_cols(runs[2]), "1 and 2 ranks give different net outputs")
 for r1, r2 in zip(runs[1], runs[2]):  # energy: LAMMPS's sum over ranks, last bits aside
     near(r2["E_bond"], r1["E_bond"], rtol=1e-12, msg="bond energy on 2 ranks")
+
+# restart: the broken bond stays broken (type 0 in the restart file), the coefficients
+# come back, and the outputs follow from the atoms alone
+rc, log = run_lmp("""read_restart pull1/pull.200
+fix net net net/lsdem {here}/pull.net clamp net_clamp
+thermo_style custom step ebond f_net[4] f_net[6]
+thermo_modify format float %.17g norm no
+run 0
+""".format(here=HERE))
+back = thermo(log)[-1]
+check(back["f_net[6]"] == 1 and back["E_bond"] == rows[-1]["E_bond"] and
+      back["f_net[4]"] == rows[-1]["f_net[4]"],
+      "after the restart: %s, before: %s" % (back, rows[-1]))
 
 # ---- 4. bad input: named errors ---------------------------------------------------------
 text = open("sag.net").read().splitlines()
