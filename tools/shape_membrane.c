@@ -35,8 +35,7 @@ static int membrane_usage(void)
 
 static int bad(const char *what, const char *value)
 {
-  fprintf(stderr, "lsdem-shape membrane: bad %s '%s'\n", what, value);
-  return 2;
+  return shape_bad_value("membrane", what, value);
 }
 
 /* Two non-negative stiffnesses after an option (--kouter, --kinter). */

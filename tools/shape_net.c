@@ -37,8 +37,7 @@ static int net_usage(void)
 
 static int bad(const char *what, const char *value)
 {
-  fprintf(stderr, "lsdem-shape net: bad %s '%s'\n", what, value);
-  return 2;
+  return shape_bad_value("net", what, value);
 }
 
 static int parse_vec(char **argv, int i, double v[3])

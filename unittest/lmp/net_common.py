@@ -13,6 +13,10 @@ def make_ball(radius=RB, name="ball.lslib"):
 
 
 def make_net(prefix, *args, library="ball.lslib", shape=1, rb=RB):
+    """lsdem-shape net PREFIX with args (library=None: the library, shape and radius are
+    among args)."""
+    if library is None:
+        return shape_tool("net", prefix, *args)
     return shape_tool("net", prefix, "--library", library, "--shape", shape, "--rb", rb, *args)
 
 

@@ -12,13 +12,15 @@
    1 and 2 ranks (the bond crosses the ranks' boundary); its force is gone afterwards, and
    stays gone across a restart (the outputs after read_restart equal those before).
 4. Bad input: a net file with a bond to a missing ball, an empty clamp group, a break
-   limit <= 0 stop with messages that say what is wrong."""
+   limit <= 0 stop with messages that say what is wrong.
+5. Grains through the net: a grain falling through a cell of the net counts from the step
+   its centre is below the net, not before; a grain beside the footprint never counts."""
 import math
 import re
 
 import numpy as np
 
-from lsdemtest import run_lmp, thermo, check, near, finish
+from lsdemtest import run_lmp, shape_tool, thermo, check, near, finish
 from net_common import HERE, RB, make_ball, make_net, head, bonds, read_dump
 
 make_ball()
@@ -203,5 +205,47 @@ for n, (tail, pattern) in enumerate(cases):
     rc, log = run_lmp(head("sag") + tail, expect_fail=True, cwd="bad%d" % n)
     check(rc != 0 and re.search(pattern, log), "case %d: expected an error matching '%s', got:\n%s"
           % (n, pattern, log[-600:]))
+
+# ---- 5. grains through the net ------------------------------------------------------------
+# a sphere grain (radius 0.2) falls through the middle of a square cell (spacing 1, balls of
+# radius 0.1) without touching; a second one falls beside the footprint
+make_ball(0.1, "small.lslib")
+make_ball(0.2, "grain.lslib")
+shape_tool("merge", "through.lslib", "small.lslib", "grain.lslib")
+open("two.data", "w").write("""two grains
+
+2 atoms
+1 atom types
+
+-1 9 xlo xhi
+-1 4 ylo yhi
+-3 3 zlo zhi
+
+Atoms # lsdem
+
+1 1 2 1.0 1.5 1.5 1.0 1 0 0 0
+2 1 2 1.0 8.0 1.5 1.0 1 0 0 0
+""")
+make_net("hole", "--library", "through.lslib", "--shape", 1, "--rb", 0.1, "--lattice", "square",
+         "--spacing", 1, "--size", 3, 3, "--grains", "two.data", library=None)
+deck = head("hole", library="through.lslib") + """
+velocity grains set 0 0 -1
+fix int grains nve/lsdem
+fix net net net/lsdem {here}/hole.net clamp net_clamp grains grains
+timestep 0.01
+variable z1 equal z[1]
+thermo 10
+thermo_style custom step v_z1 f_net[5] f_net[7]
+thermo_modify format float %.17g
+run 250
+""".format(here=HERE)
+rc, log = run_lmp(deck)
+rows = thermo(log)
+check(len(rows) == 26, "thermo rows %d" % len(rows))
+for r in rows:
+    if abs(r["v_z1"]) > 1e-6:
+        check(r["f_net[7]"] == (1 if r["v_z1"] < 0 else 0),
+              "grain at z = %g: %g grains through" % (r["v_z1"], r["f_net[7]"]))
+check(all(r["f_net[5]"] == 0 for r in rows), "the net moved without contact")
 
 finish()
