@@ -9,7 +9,7 @@
    relation within 0.1 %).
 3. Rupture: a chain stretched uniformly (every ball driven), one bond of it with a break
    strain: it breaks at the first step whose strain exceeds the limit, once, the same on
-   1 and 2 ranks (the bond crosses the ranks' boundary); its force is gone afterwards, and
+   1 and 2 ranks (the bond crosses the ranks' boundary) and with newton_bond off; its force is gone afterwards, and
    stays gone across a restart (the outputs after read_restart equal those before).
 4. Bad input: a net file with a bond to a missing ball, an empty clamp group, a break
    limit <= 0 stop with messages that say what is wrong.
@@ -170,8 +170,12 @@ for r in rows:
     intact = 10 if r["Step"] < expect else 9
     near(r["E_bond"], intact * 0.5 * strain * strain, rtol=1e-9, atol=1e-15,
          msg="bond energy at step %d (%d intact bonds)" % (r["Step"], intact))
+# newton_bond off: both ranks of the crossing bond compute it and break their own halves
+rc, log = run_lmp(deck.replace("newton on\n", "newton on off\n"), np=2, cwd="pull_off")
+runs["off"] = thermo(log)
 net_cols = lambda rows: [(r["Step"], r["f_net[4]"], r["f_net[6]"]) for r in rows]
 check(net_cols(runs[1]) == net_cols(runs[2]), "1 and 2 ranks give different net outputs")
+check(net_cols(runs[1]) == net_cols(runs["off"]), "newton_bond off gives other net outputs")
 for r1, r2 in zip(runs[1], runs[2]):  # energy: LAMMPS's sum over ranks, last bits aside
     near(r2["E_bond"], r1["E_bond"], rtol=1e-12, msg="bond energy on 2 ranks")
 
