@@ -29,9 +29,9 @@ ax[0].set_ylabel("kinetic energy")
 ax[0].legend(fontsize=8)
 ax[1].plot(t, height, "k-")
 ax[1].set_ylabel("residual height (lowest ball)")
-ax[1].set_xlabel("time (dt = 2e-4: 5,000 steps per unit)")
+ax[1].set_xlabel("time (at dt = 2e-4: 5,000 steps per unit)")
 fig.suptitle("Grains falling into a flexible net (report Figure 4.6)")
 fig.tight_layout()
 fig.savefig(out, dpi=120)
-print("%s: net KE peak %.3e at t = %.2f, below 1 %% of it from t = %.2f (step %.0f); residual "
-      "height %.4f" % (out, peak, t[k_peak], below, below / 2e-4, height[-1]))
+print("%s: net KE peak %.3e at t = %.2f, below 1 %% of it from t = %.2f (step %.0f at dt = "
+      "2e-4); residual height %.4f" % (out, peak, t[k_peak], below, below / 2e-4, height[-1]))
