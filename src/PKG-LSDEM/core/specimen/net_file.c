@@ -3,6 +3,7 @@
 #include "lsdem_specimen.h"
 #include "../base/lsdem_vec3.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -92,6 +93,13 @@ static lsdem_status header(reader *r, lsdem_net *net, lsdem_error *err)
     if (!keyed(r, keys[k], counts[k], dest[k]))
       return lsdem_fail(err, LSDEM_ERR_FORMAT, "net file %s line %d: expected '%s' and %d "
                         "numbers", r->path, r->line, keys[k], counts[k]);
+  int finite = 1;
+  for (int k = 0; k < 7; k++)
+    for (int j = 0; j < counts[k]; j++) finite &= isfinite(dest[k][j]);
+  if (!finite || !(c[0] >= 1 && c[0] < 1e9 && c[1] >= 1 && c[1] < 1e9) || !(net->spacing > 0) ||
+      !(net->rest > 0))
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "net file %s line %d: header values must be "
+                      "finite, counts >= 1, spacing and rest > 0", r->path, r->line);
   net->n1 = (int) c[0];
   net->n2 = (int) c[1];
   lsdem_cross3(net->e1, net->e2, net->normal);
