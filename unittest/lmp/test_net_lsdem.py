@@ -3,7 +3,8 @@
 1. Statics: a clamped hexagonal net with pretension under gravity, run to rest with
    damping, against an independent Newton solve of the same spring network (numpy, the
    bond law written out again): every ball within 1e-6; the anchors' reaction equals the
-   free balls' weight; the residual height and largest strain equal the solve's.
+   free balls' weight; the residual height and largest strain equal the solve's. Once
+   horizontal, once in a plane tilted by 45 degrees (given by a skew e2).
 2. Waves: a 1-D ball chain (clamped ends) in its first longitudinal mode oscillates at the
    frequency of a wave speed a sqrt(k/m), within 1 % (and the discrete chain's dispersion
    relation within 0.1 %).
@@ -27,75 +28,97 @@ make_ball()
 
 # ---- 1. statics against a Newton solve -------------------------------------------------
 K, R0, G = 0.1, 0.9, 0.2
-make_net("sag", "--spacing", 1, "--size", 5, 4, "--rest", R0, "--k", K, "--damp", 0.02)
-deck = head("sag") + """
+
+
+def atoms(prefix):
+    """{id: (type, position)} of the data file's Atoms section as written."""
+    text = open(prefix + ".data").read().split("Atoms # hybrid")[1].split("\nBonds")[0]
+    rows = [l.split() for l in text.strip().splitlines()]
+    return {int(r[0]): (int(r[1]), np.array(list(map(float, r[2:5])))) for r in rows}
+
+
+def newton(bl, x0, free, mass):
+    """Rest positions of the free balls (bonds + weight along -z), Newton's method on the
+    spring network written out again; returns {id: position}."""
+    col = {i: n for n, i in enumerate(free)}
+    pos = lambda X, i: X[3 * col[i]:3 * col[i] + 3] if i in col else x0[i]
+
+    def residual_and_jacobian(X):
+        F = np.zeros(3 * len(free))
+        J = np.zeros((3 * len(free), 3 * len(free)))
+        for i in free:
+            F[3 * col[i] + 2] -= mass[i] * G
+        for _, i, j in bl:
+            d = pos(X, j) - pos(X, i)
+            L = np.linalg.norm(d)
+            u = d / L
+            fj = -K * (L - R0) * u
+            # d fj / d xj = -K [(1 - R0/L)(I - u u) + u u]
+            Kb = -K * ((1 - R0 / L) * (np.eye(3) - np.outer(u, u)) + np.outer(u, u))
+            for a, s in ((j, 1.0), (i, -1.0)):
+                if a not in col:
+                    continue
+                F[3 * col[a]:3 * col[a] + 3] += s * fj
+                for b, t in ((j, 1.0), (i, -1.0)):
+                    if b in col:
+                        J[3 * col[a]:3 * col[a] + 3, 3 * col[b]:3 * col[b] + 3] += s * t * Kb
+        return F, J
+
+    X = np.concatenate([x0[i] - np.array([0, 0, 0.1]) for i in free])
+    for it in range(50):
+        F, J = residual_and_jacobian(X)
+        X -= np.linalg.solve(J, F)
+        if np.abs(F).max() < 1e-15:
+            break
+    F, _ = residual_and_jacobian(X)
+    check(np.abs(F).max() < 1e-14, "Newton solve did not converge: residual %g"
+          % np.abs(F).max())
+    return {i: pos(X, i) for i in x0}
+
+
+def statics(prefix, origin, e1, e2):
+    """A net in the plane (origin, e1, e2) sags under gravity along -z: rest state against
+    the Newton solve; anchors, residual height along the net's normal, largest strain."""
+    make_net(prefix, "--spacing", 1, "--size", 5, 4, "--rest", R0, "--k", K, "--damp", 0.02,
+             "--origin", *origin, "--e1", *e1, "--e2", *e2)
+    deck = head(prefix) + """
 fix int net_free nve/lsdem damping 0.5
 fix g net_free gravity {g} vector 0 0 -1
-fix net net net/lsdem sag.net clamp net_clamp
+fix net net net/lsdem {here}/{p}.net clamp net_clamp
 timestep 0.02
 thermo 1000
 thermo_style custom step ke f_net[1] f_net[2] f_net[3] f_net[4] f_net[5]
 thermo_modify format float %.17g
 run 8000
 write_dump net custom rest.dump id type x y z mass modify format float %.17g
-""".format(g=G)
-rc, log = run_lmp(deck)
-rest = read_dump("rest.dump")
-bl = bonds("sag")
-ids = sorted(rest)
-free = [i for i in ids if int(rest[i]["type"]) == 1]
-col = {i: n for n, i in enumerate(free)}
-mass = {i: rest[i]["mass"] for i in ids}
-x0 = {i: np.array([rest[i][c] for c in "xyz"]) for i in ids}
-x0 = {i: (x0[i] if i not in col else np.array([x0[i][0], x0[i][1], 0.0])) for i in ids}
+""".format(g=G, p=prefix, here=HERE)
+    rc, log = run_lmp(deck, cwd=prefix)
+    rest = read_dump(prefix + "/rest.dump")
+    built = atoms(prefix)
+    bl = bonds(prefix)
+    free = sorted(i for i in built if built[i][0] == 1)
+    mass = {i: rest[i]["mass"] for i in rest}
+    x = newton(bl, {i: built[i][1] for i in built}, free, mass)
+    err = max(np.abs(np.array([rest[i][c] for c in "xyz"]) - x[i]).max() for i in free)
+    check(err < 1e-6, "%s: rest positions differ from the Newton solve by %g (> 1e-6)"
+          % (prefix, err))
+    n = np.cross(e1, np.array(e2) - np.dot(e2, e1) / np.dot(e1, e1) * np.array(e1))
+    n = n / np.linalg.norm(n)
+    low = min(np.dot(x[i] - np.array(origin), n) for i in x)
+    print("statics (%s): %d free balls, residual height %.9f, largest difference to the "
+          "Newton solve %.3g" % (prefix, len(free), low, err))
+    row = thermo(log)[-1]
+    weight = sum(mass[i] for i in free) * G
+    near(row["f_net[3]"], weight, rtol=1e-9, msg="%s: anchor reaction = free balls' weight"
+         % prefix)
+    near(row["f_net[1]"], 0.0, atol=1e-9, msg="%s: anchor reaction x" % prefix)
+    near(row["f_net[5]"], low, atol=1e-6, msg="%s: residual height = the solve's" % prefix)
+    strain = max((np.linalg.norm(x[j] - x[i]) - R0) / R0 for _, i, j in bl)
+    near(row["f_net[4]"], strain, atol=1e-6, msg="%s: largest strain = the solve's" % prefix)
 
 
-def residual_and_jacobian(X):
-    """Net force on every free ball (bonds + weight) and its Jacobian."""
-    pos = lambda i: X[3 * col[i]:3 * col[i] + 3] if i in col else x0[i]
-    F = np.zeros(3 * len(free))
-    J = np.zeros((3 * len(free), 3 * len(free)))
-    for i in free:
-        F[3 * col[i] + 2] -= mass[i] * G
-    for _, i, j in bl:
-        d = pos(j) - pos(i)
-        L = np.linalg.norm(d)
-        u = d / L
-        fj = -K * (L - R0) * u
-        # d fj / d xj = -K [(1 - R0/L)(I - u u) + u u]
-        Kb = -K * ((1 - R0 / L) * (np.eye(3) - np.outer(u, u)) + np.outer(u, u))
-        for a, s in ((j, 1.0), (i, -1.0)):
-            if a not in col:
-                continue
-            F[3 * col[a]:3 * col[a] + 3] += s * fj
-            for b, t in ((j, 1.0), (i, -1.0)):
-                if b in col:
-                    J[3 * col[a]:3 * col[a] + 3, 3 * col[b]:3 * col[b] + 3] += s * t * Kb
-    return F, J
-
-
-X = np.concatenate([x0[i] - np.array([0, 0, 0.1]) for i in free])
-for it in range(50):
-    F, J = residual_and_jacobian(X)
-    X -= np.linalg.solve(J, F)
-    if np.abs(F).max() < 1e-15:
-        break
-F, _ = residual_and_jacobian(X)
-check(np.abs(F).max() < 1e-14, "Newton solve did not converge: residual %g" % np.abs(F).max())
-err = max(np.abs(np.array([rest[i][c] for c in "xyz"]) - X[3 * col[i]:3 * col[i] + 3]).max()
-          for i in free)
-check(err < 1e-6, "rest positions differ from the Newton solve by %g (> 1e-6)" % err)
-low = min(X[2::3])
-print("statics: %d free balls, sag %.9f, largest difference to the Newton solve %.3g"
-      % (len(free), -low, err))
-row = thermo(log)[-1]
-weight = sum(mass[i] for i in free) * G
-near(row["f_net[3]"], weight, rtol=1e-9, msg="anchor reaction = weight of the free balls")
-near(row["f_net[1]"], 0.0, atol=1e-9, msg="anchor reaction x")
-near(row["f_net[5]"], low, atol=1e-6, msg="residual height = lowest ball of the solve")
-pos = lambda i: X[3 * col[i]:3 * col[i] + 3] if i in col else x0[i]
-strain = max((np.linalg.norm(pos(j) - pos(i)) - R0) / R0 for _, i, j in bl)
-near(row["f_net[4]"], strain, atol=1e-6, msg="largest strain = the solve's")
+statics("sag", (0, 0, 0), (1, 0, 0), (0, 1, 0))
+statics("tilted", (0.5, -0.2, 1.0), (1, 0, 1), (0.3, 1, 0))  # 45 degrees about y, skew e2
 
 # ---- 2. a 1-D chain carries waves at a sqrt(k/m) ---------------------------------------
 KC, A, NSEG, AMP = 1.0, 1.0, 50, 0.01
