@@ -25,6 +25,7 @@ inputs() {
     drum) echo grains.lslib packed.data ;;
     hopper) echo hopper.stl hopper.band hopper.txt sphere.lslib hopper.data ;;
     avalanche) echo grains.lslib source.data valley.asc valley.band ;;
+    net_drop) echo all.lslib net.data net.in net.net ;;
   esac
 }
 
@@ -42,7 +43,7 @@ EOF
 }
 
 names=("$@")
-[ ${#names[@]} -gt 0 ] || names=(settle avatars ct_scan container_release triaxial c_driver drum hopper avalanche)
+[ ${#names[@]} -gt 0 ] || names=(settle avatars ct_scan container_release triaxial c_driver drum hopper avalanche net_drop)
 for name in "${names[@]}"; do
   files=$(inputs "$name")
   [ -n "$files" ] || { echo "make_inputs.sh: no example '$name'" >&2; exit 2; }

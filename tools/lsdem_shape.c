@@ -15,6 +15,7 @@
  *   lsdem-shape pack LIB OUT.data --count N (--box X Y Z | --cylinder R H) [options]
  *                                                                     (shape_pack.c)
  *   lsdem-shape membrane PREFIX --radius RS --height H --rb RB ...     (shape_membrane.c)
+ *   lsdem-shape net PREFIX --library LIB --shape ID --rb RB --spacing A ... (shape_net.c)
  *   lsdem-shape to-raw IMAGE.tif OUT.raw                              (shape_image.c)
  *   lsdem-shape voids LIB DATA (--cylinder R Z0 Z1 | --box ...) [options] (shape_voids.c)
  *   lsdem-shape wall MESH.stl|.obj OUT.band --spacing H [--width W] [--scale S]
@@ -66,6 +67,11 @@ static int usage(void)
           "                   --shapes SHAPE_IN SHAPE_OUT [--grains GRAINS.data] [--centre X Y]\n"
           "                   [--z0 Z] [--outer F] [--density RHO] [--types T_IN T_OUT]\n"
           "                   [--knbb K] [--ksbb K] [--kinter KN KS]\n"
+          "       lsdem-shape net PREFIX --library LIB --shape ID --rb RB --spacing A --size L1 L2\n"
+          "                   [--lattice hex|square] [--origin X Y Z] [--e1 X Y Z] [--e2 X Y Z]\n"
+          "                   [--rest R0] [--clamp all|none|u0,u1,v0,v1] [--density RHO | --mass M]\n"
+          "                   [--k K] [--damp C] [--break strain S | --break force F]\n"
+          "                   [--types TFREE TCLAMP] [--grains GRAINS.data] [--margin D]\n"
           "       lsdem-shape voids LIB DATA (--cylinder R Z0 Z1 | --box X0 X1 Y0 Y1 Z0 Z1)\n"
           "                   [--centre X Y] [--inset D] [--spacing H]\n"
           "       lsdem-shape wall MESH.stl|MESH.obj OUT.band --spacing H [--width W] [--scale S]\n"
@@ -588,6 +594,7 @@ int main(int argc, char **argv)
               {"render", cmd_render}, {"surface", cmd_surface},
               {"from-labels", cmd_from_labels}, {"from-mesh", cmd_from_mesh},
               {"random", cmd_random}, {"pack", cmd_pack}, {"membrane", cmd_membrane},
+              {"net", cmd_net},
               {"to-raw", cmd_to_raw}, {"voids", cmd_voids}, {"pick", cmd_pick},
               {"wall", cmd_wall}, {"terrain", cmd_terrain}};
   if (argc < 2) return usage();

@@ -16,6 +16,7 @@ int cmd_random(int argc, char **argv); /* shape_random.c */
 int cmd_pack(int argc, char **argv);   /* shape_pack.c */
 
 int cmd_membrane(int argc, char **argv); /* shape_membrane.c */
+int cmd_net(int argc, char **argv);      /* shape_net.c */
 int cmd_wall(int argc, char **argv);     /* shape_wall.c */
 int cmd_terrain(int argc, char **argv);  /* shape_wall.c */
 int cmd_voids(int argc, char **argv);    /* shape_voids.c */

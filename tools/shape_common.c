@@ -26,6 +26,12 @@ void shape_progress(const char *what, int done, int total)
   fputc('\n', stderr);
 }
 
+int shape_bad_value(const char *cmd, const char *what, const char *value)
+{
+  fprintf(stderr, "lsdem-shape %s: bad %s '%s'\n", cmd, what, value);
+  return 2;
+}
+
 int parse_number(const char *s, int positive, double *v)
 {
   char *end;

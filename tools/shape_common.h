@@ -7,6 +7,8 @@
 
 /* A whole-string finite number into *v; positive when `positive` is set. 1 if valid. */
 int parse_number(const char *s, int positive, double *v);
+/* "lsdem-shape CMD: bad WHAT 'VALUE'" on stderr; returns 2 (a usage error). */
+int shape_bad_value(const char *cmd, const char *what, const char *value);
 /* A whole-string integer in [lo, hi] into *v. 1 if valid. */
 int parse_count(const char *s, long lo, long hi, long *v);
 

@@ -7,26 +7,13 @@
  * fields): id type x y z shape-ID density qw qx qy qz molecule-ID. */
 #include "lsdem_shape_cmds.h"
 #include "shape_common.h"
+#include "shape_grains.h"
 
 #include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-typedef struct {
-  long id;
-  int type, shape;
-  double density, x[3], q[4];
-} grain_line;
-
-typedef struct {
-  int n, ntypes;
-  double lo[3], hi[3];
-  grain_line *g;
-  char **vel; /* Velocities lines (copied verbatim), n or NULL */
-  int nvel;
-} grain_file;
 
 typedef struct {
   const char *prefix, *grains, *library;
@@ -48,8 +35,7 @@ static int membrane_usage(void)
 
 static int bad(const char *what, const char *value)
 {
-  fprintf(stderr, "lsdem-shape membrane: bad %s '%s'\n", what, value);
-  return 2;
+  return shape_bad_value("membrane", what, value);
 }
 
 /* Two non-negative stiffnesses after an option (--kouter, --kinter). */
@@ -137,157 +123,16 @@ static int parse_opts(int argc, char **argv, membrane_opts *o)
   return 0;
 }
 
-/* --------------------------------------------------------- grain data file ---- */
-
-static void free_grains(grain_file *gf)
-{
-  for (int i = 0; i < gf->nvel; i++) free(gf->vel[i]);
-  free(gf->vel);
-  free(gf->g);
-}
-
-/* The next non-blank line (comments stripped) into buf; 0 at end of file. */
-static int next_line(FILE *f, char *buf, int size, int *lineno)
-{
-  while (fgets(buf, size, f)) {
-    (*lineno)++;
-    char *h = strchr(buf, '#');
-    if (h) *h = '\0';
-    char *s = buf;
-    while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\n') s++;
-    if (*s) return 1;
-  }
-  return 0;
-}
-
-/* A header line "N keyword" (keyword exactly, then only blanks): 1 and *n = N. */
-static int header_count(const char *buf, const char *keyword, long *n)
-{
-  char *end;
-  *n = strtol(buf, &end, 10);
-  if (end == buf) return 0;
-  end += strspn(end, " \t");
-  size_t len = strlen(keyword);
-  return !strncmp(end, keyword, len) && strspn(end + len, " \t\r\n") == strlen(end + len);
-}
-
-static int grains_error(const char *path, int line, const char *what)
-{
-  fprintf(stderr, "lsdem-shape membrane: %s line %d: %s\n", path, line, what);
-  return 1;
-}
-
-/* A data file for atom_style lsdem (as written by lsdem-shape pack / from-labels):
- * header counts and box, Atoms (id type shape density x y z qw qx qy qz), optional
- * Velocities. */
-static int read_grains(const char *path, grain_file *gf)
-{
-  memset(gf, 0, sizeof(*gf));
-  FILE *f = fopen(path, "r");
-  if (!f) {
-    fprintf(stderr, "lsdem-shape membrane: cannot open %s\n", path);
-    return 1;
-  }
-  char buf[1024];
-  int line = 0, rc = 0;
-  long natoms = -1;
-  gf->ntypes = 1;
-  if (!fgets(buf, sizeof buf, f)) rc = grains_error(path, 1, "empty file");
-  line = 1;
-  while (!rc && next_line(f, buf, sizeof buf, &line)) {
-    double a, b;
-    long n;
-    char w1[64], w2[64];
-    if (header_count(buf, "atoms", &n)) {
-      natoms = n;
-      if (n < 0 || n > 100000000) rc = grains_error(path, line, "bad atom count");
-      else if (!(gf->g = calloc((size_t) (n ? n : 1), sizeof(grain_line))))
-        rc = grains_error(path, line, "out of memory");
-    } else if (header_count(buf, "atom types", &n)) {
-      gf->ntypes = (int) n;
-    } else if (sscanf(buf, "%lf %lf %63s %63s", &a, &b, w1, w2) == 4 && w1[1] == 'l' &&
-               w1[0] >= 'x' && w1[0] <= 'z') {
-      gf->lo[w1[0] - 'x'] = a;
-      gf->hi[w1[0] - 'x'] = b;
-    } else if (sscanf(buf, "%63s", w1) == 1 && !strcmp(w1, "Atoms")) {
-      if (natoms < 0) {
-        rc = grains_error(path, line, "Atoms before the atom count");
-        break;
-      }
-      for (long i = 0; i < natoms && !rc; i++) {
-        grain_line *g = gf->g + i;
-        if (!next_line(f, buf, sizeof buf, &line) ||
-            sscanf(buf, "%ld %d %d %lf %lf %lf %lf %lf %lf %lf %lf", &g->id, &g->type, &g->shape,
-                   &g->density, g->x, g->x + 1, g->x + 2, g->q, g->q + 1, g->q + 2, g->q + 3) != 11)
-          rc = grains_error(path, line, "expected 'id type shape density x y z qw qx qy qz' "
-                                        "(atom_style lsdem)");
-      }
-      gf->n = (int) natoms;
-    } else if (sscanf(buf, "%63s", w1) == 1 && !strcmp(w1, "Velocities")) {
-      gf->vel = calloc((size_t) (natoms > 0 ? natoms : 1), sizeof(char *));
-      for (long i = 0; i < natoms && !rc; i++) {
-        if (!next_line(f, buf, sizeof buf, &line)) rc = grains_error(path, line, "short Velocities");
-        else gf->vel[gf->nvel++] = strdup(buf);
-      }
-    } else if (isalpha((unsigned char) buf[strspn(buf, " \t")])) {
-      rc = grains_error(path, line, "unsupported section or header line (expected a data "
-                                    "file of atom_style lsdem)");
-    }
-  }
-  fclose(f);
-  if (!rc && natoms < 0) rc = grains_error(path, line, "no atom count");
-  if (rc) free_grains(gf);
-  return rc;
-}
-
 /* ----------------------------------------------------------------- output ---- */
 
 /* The two membrane shapes must be analytic spheres of radius rb and outer_factor rb. */
 static int check_shapes(const membrane_opts *o, const lsdem_membrane *m)
 {
-  lsdem_library *lib;
-  lsdem_error err;
-  if (lsdem_library_open(o->library, &lib, &err) != LSDEM_OK) {
-    fprintf(stderr, "lsdem-shape membrane: %s\n", err.msg);
-    return 1;
-  }
   int rc = 0;
-  for (int layer = 0; layer < (m->nrings[1] ? 2 : 1) && !rc; layer++) {
-    if (o->shape[layer] > lsdem_library_count(lib)) {
-      fprintf(stderr, "lsdem-shape membrane: shape-ID %d not in %s (%d shapes)\n",
-              o->shape[layer], o->library, lsdem_library_count(lib));
-      rc = 1;
-      break;
-    }
-    const lsdem_shape *s = lsdem_library_shape(lib, o->shape[layer] - 1);
-    double r = m->sphere_radius[layer];
-    if (s->sdf.kind != LSDEM_SDF_SPHERE || fabs(s->sdf.a[0] - r) > 1e-9 * r) {
-      fprintf(stderr, "lsdem-shape membrane: shape-ID %d of %s must be an analytic sphere of "
-              "radius %g for the %s layer (make it with: lsdem-shape analytic OUT.lslib "
-              "sphere %g --analytic)\n", o->shape[layer], o->library, r,
-              layer ? "outer" : "inner", r);
-      rc = 1;
-    }
-  }
-  lsdem_library_close(lib);
+  for (int layer = 0; layer < (m->nrings[1] ? 2 : 1) && !rc; layer++)
+    rc = shape_check_sphere("membrane", o->library, o->shape[layer], m->sphere_radius[layer],
+                            layer ? "the outer layer" : "the inner layer");
   return rc;
-}
-
-static FILE *open_out(const char *prefix, const char *ext, char *path, size_t size)
-{
-  snprintf(path, size, "%s%s", prefix, ext);
-  FILE *f = fopen(path, "w");
-  if (!f) fprintf(stderr, "lsdem-shape membrane: cannot write %s\n", path);
-  return f;
-}
-
-static int close_out(FILE *f, const char *path)
-{
-  if (fclose(f) != 0) {
-    fprintf(stderr, "lsdem-shape membrane: writing %s failed\n", path);
-    return 1;
-  }
-  return 0;
 }
 
 /* bond types written: the kinds up to the last one used (3 for a single layer, else 9) */
@@ -306,11 +151,11 @@ static int sphere_molecule(const lsdem_membrane *m, int i)
   return m->ring[i] == m->nrings[m->layer[i]] - 1 ? 2 : 3;
 }
 
-static int write_data(const membrane_opts *o, const grain_file *gf, const lsdem_membrane *m,
+static int write_data(const membrane_opts *o, const shape_grain_file *gf, const lsdem_membrane *m,
                       long id0, int ntypes)
 {
   char path[4096];
-  FILE *f = open_out(o->prefix, ".data", path, sizeof path);
+  FILE *f = shape_open_out("membrane", o->prefix, ".data", path, sizeof path);
   if (!f) return 1;
   double lo[3], hi[3], reach = m->ring_radius[m->nrings[1] ? 1 : 0] + 2.0 * o->mp.rb * 1.1;
   for (int k = 0; k < 2; k++) {
@@ -328,32 +173,25 @@ static int write_data(const membrane_opts *o, const grain_file *gf, const lsdem_
           ntypes, m->nbonds, bond_types(m));
   for (int k = 0; k < 3; k++) fprintf(f, "%.12g %.12g %clo %chi\n", lo[k], hi[k], 'x' + k, 'x' + k);
   fprintf(f, "\nAtoms # hybrid\n\n");
-  for (int i = 0; i < gf->n; i++) {
-    const grain_line *g = gf->g + i;
-    fprintf(f, "%ld %d %.12g %.12g %.12g %d %.12g %.15g %.15g %.15g %.15g 0\n", g->id, g->type,
-            g->x[0], g->x[1], g->x[2], g->shape, g->density, g->q[0], g->q[1], g->q[2], g->q[3]);
-  }
+  shape_write_grain_atoms(f, gf);
   for (int i = 0; i < m->nspheres; i++) {
     int layer = m->layer[i];
     fprintf(f, "%ld %d %.15g %.15g %.15g %d %.12g 1 0 0 0 %d\n", id0 + i, o->type[layer],
             m->x[3 * i], m->x[3 * i + 1], m->x[3 * i + 2], o->shape[layer], o->density,
             sphere_molecule(m, i));
   }
-  if (gf->nvel) {
-    fprintf(f, "\nVelocities\n\n");
-    for (int i = 0; i < gf->nvel; i++) fputs(gf->vel[i], f);
-  }
+  shape_write_velocities(f, gf);
   fprintf(f, "\nBonds\n\n");
   for (int b = 0; b < m->nbonds; b++)
     fprintf(f, "%d %d %ld %ld\n", b + 1, m->bond_kind[b] + 1, id0 + m->bond[2 * b],
             id0 + m->bond[2 * b + 1]);
-  return close_out(f, path);
+  return shape_close_out("membrane", f, path);
 }
 
 static int write_triangles(const membrane_opts *o, const lsdem_membrane *m, long id0)
 {
   char path[4096];
-  FILE *f = open_out(o->prefix, ".tri", path, sizeof path);
+  FILE *f = shape_open_out("membrane", o->prefix, ".tri", path, sizeof path);
   if (!f) return 1;
   int layers = m->nrings[1] ? 2 : 1;
   fprintf(f, "lsdem-membrane-triangles 1\n# written by lsdem-shape membrane; atom IDs of %s.data\n",
@@ -382,7 +220,7 @@ static int write_triangles(const membrane_opts *o, const lsdem_membrane *m, long
   for (int e = 0; e < m->ncap_edges; e++)
     fprintf(f, "%ld %ld %d %d\n", id0 + m->cap_edge[2 * e], id0 + m->cap_edge[2 * e + 1],
             m->cap_layer[e], m->cap_end[e] + 1);
-  return close_out(f, path);
+  return shape_close_out("membrane", f, path);
 }
 
 static int write_include(const membrane_opts *o, const lsdem_membrane *m)
@@ -392,7 +230,7 @@ static int write_include(const membrane_opts *o, const lsdem_membrane *m)
       "outer, in ring",        "outer, to upper ring +half step", "outer, to upper ring -half step",
       "outer -> inner, -half", "outer -> inner, +half",            "outer -> inner, apex above"};
   char path[4096];
-  FILE *f = open_out(o->prefix, ".in", path, sizeof path);
+  FILE *f = shape_open_out("membrane", o->prefix, ".in", path, sizeof path);
   if (!f) return 1;
   fprintf(f, "# membrane of %s.data (lsdem-shape membrane): include after read_data\n", o->prefix);
   fprintf(f, "# %d spheres per ring, %d + %d rings, ring spacing %.6g, centre radii %.6g %.6g\n",
@@ -413,7 +251,7 @@ static int write_include(const membrane_opts *o, const lsdem_membrane *m)
   else
     fprintf(f, "group membrane type %d\ngroup membrane_inner type %d\n", o->type[0], o->type[0]);
   fprintf(f, "group membrane_bottom molecule 1\ngroup membrane_top molecule 2\n");
-  return close_out(f, path);
+  return shape_close_out("membrane", f, path);
 }
 
 int cmd_membrane(int argc, char **argv)
@@ -421,12 +259,10 @@ int cmd_membrane(int argc, char **argv)
   membrane_opts o;
   int rc = parse_opts(argc, argv, &o);
   if (rc) return rc;
-  grain_file gf;
+  shape_grain_file gf;
   memset(&gf, 0, sizeof gf);
-  if (o.grains && read_grains(o.grains, &gf)) return 1;
-  long id0 = 1;
-  for (int i = 0; i < gf.n; i++)
-    if (gf.g[i].id >= id0) id0 = gf.g[i].id + 1;
+  if (o.grains && shape_read_grains(o.grains, &gf)) return 1;
+  long id0 = shape_next_id(&gf);
   if (o.type[0] == 0) {
     o.type[0] = gf.n ? gf.ntypes + 1 : 1;
     o.type[1] = o.type[0] + 1;
@@ -439,7 +275,7 @@ int cmd_membrane(int argc, char **argv)
   lsdem_error err;
   if (lsdem_membrane_build(&o.mp, &m, &err) != LSDEM_OK) {
     fprintf(stderr, "lsdem-shape membrane: %s\n", err.msg);
-    free_grains(&gf);
+    shape_free_grains(&gf);
     return 1;
   }
   rc = check_shapes(&o, &m);
@@ -452,6 +288,6 @@ int cmd_membrane(int argc, char **argv)
            m.nspheres, m.nper, m.nrings[0], m.nrings[1], m.dz, m.nbonds, m.ntris,
            m.ring_radius[0], m.ring_radius[1], id0, id0 + m.nspheres - 1);
   lsdem_membrane_free(&m);
-  free_grains(&gf);
+  shape_free_grains(&gf);
   return rc;
 }

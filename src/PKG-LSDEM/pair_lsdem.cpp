@@ -604,6 +604,9 @@ void *PairLsdem::extract(const char *str, int &dim)
 {
   dim = 0;
   if (strcmp(str, "kn_max") == 0) return (void *) &kn_max;
+  // bond_style lsdem/net rounds its terms to (at least) this quantum: the balls' force
+  // sums stay order-free with the contacts' terms in them
+  if (strcmp(str, "force_quantum") == 0) return (void *) &force_q.q;
   return nullptr;
 }
 

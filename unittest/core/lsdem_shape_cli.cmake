@@ -59,6 +59,17 @@ list(LENGTH atoms natoms)
 if(NOT placed OR NOT natoms EQUAL CMAKE_MATCH_1 OR natoms GREATER_EQUAL 40)
   message(FATAL_ERROR "overfull pack: reported '${placed}', ${natoms} Atoms lines written")
 endif()
+
+# nets (shape_net.c): a 5 x 3 square net has 2*15 - 5 - 3 = 22 bonds; clamping side u0
+# (3 balls) and v1 (5) clamps 7; refusals name the problem
+run(1 net n --library s.lslib --shape 1 --rb 2 --spacing 5 --size 20 10 --lattice square --clamp u0,v1)
+expect_in("${out}" "5 x 3 balls (7 clamped), 22 bonds" "atom IDs 1-15")
+run(0 net x --library s.lslib --shape 1 --rb 1 --spacing 5)
+expect_in("${err}" "must be an analytic sphere of radius 1")
+run(0 net x --library s.lslib --shape 1 --rb 2 --spacing 5 --clamp u2)
+expect_in("${err}" "bad clamp edges 'u2'")
+run(0 net x --library s.lslib --shape 1 --rb 2 --spacing 5 --e1 1 0 0 --e2 2 0 0)
+expect_in("${err}" "not parallel")
 run(0 pack e.lslib q.data --count 40 --box 8 6 3 --seed 3 --max-tries 200 --strict)
 # morphology files a grain cannot use are refused naming the shape: 3 x 3 x 3 grids, one
 # with no negative value (no solid: said before any other check or warning, here the grid

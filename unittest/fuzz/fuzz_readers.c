@@ -209,6 +209,23 @@ static int fuzz_mesh(const char *path, fuzz_tally *t)
   return broken;
 }
 
+/* An accepted net file: every bond joins two balls of the file, clamp flags are 0 or 1. */
+static int fuzz_net(const char *path, fuzz_tally *t)
+{
+  lsdem_net net;
+  lsdem_error err = {{0}};
+  lsdem_status st = lsdem_net_read(path, &net, &err);
+  if (contract_broken(st, &err) || (st != LSDEM_OK && (net.id || net.clamp || net.bond)))
+    return 1;
+  if (st != LSDEM_OK) return 0;
+  t->net_ok++;
+  int broken = 0;
+  for (int b = 0; b < 2 * net.nbonds; b++) broken |= net.bond[b] < 0 || net.bond[b] >= net.nballs;
+  for (int b = 0; b < net.nballs; b++) broken |= net.clamp[b] != 0 && net.clamp[b] != 1;
+  lsdem_net_free(&net);
+  return broken;
+}
+
 /* Header/TOC checksum as doc/shape_library.rst defines it (FNV-1a 64 over header bytes
  * 0..55, then the TOC), stored little-endian at byte 56. */
 void lsdem_fuzz_reseal_library(unsigned char *b, size_t n)
@@ -236,7 +253,7 @@ int lsdem_fuzz_readers(const uint8_t *data, size_t size, fuzz_tally *t)
   fuzz_tally unused = {0};
   if (!t) t = &unused;
   return fuzz_morph(path, t) + fuzz_rows(path, t) + fuzz_library(path, t) +
-         fuzz_images(path, size, t) + fuzz_mesh(path, t);
+         fuzz_images(path, size, t) + fuzz_mesh(path, t) + fuzz_net(path, t);
 }
 
 #ifdef LSDEM_LIBFUZZER

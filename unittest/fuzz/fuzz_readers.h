@@ -11,6 +11,7 @@
 typedef struct {
   long morph_ok, rows_ok, library_open, library_shapes_ok;
   long image_ok, mesh_ok; /* TIFF or raw label images, STL/OBJ meshes accepted */
+  long net_ok;            /* net files accepted */
 } fuzz_tally;
 
 /* Run every reader over `data`; returns the number of contract violations (a non-OK

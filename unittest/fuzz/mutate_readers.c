@@ -1,7 +1,7 @@
 /* mutate_readers.c -- deterministic mutation test of the file readers (CTest, under ASan
  * and UBSan): valid morphology, positions, rotations, shape-library, multi-page TIFF (one
  * written by hand, two by libtiff: LZW strips, a Deflate-tiled BigTIFF volume), binary and
- * ASCII STL and OBJ files are written, then every reader runs over all their truncations and a few thousand variants with
+ * ASCII STL and OBJ files and a net file are written, then every reader runs over all their truncations and a few thousand variants with
  * flipped, replaced, inserted or deleted bytes. For library variants whose header/TOC was
  * edited, the header checksum is re-sealed half of the time (lsdem_fuzz_reseal_library)
  * so the mutation reaches the TOC checks instead of stopping at the checksum. Passes when
@@ -18,7 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { MUTATIONS_PER_SEED = 800, NSEEDS = 10 };
+enum { MUTATIONS_PER_SEED = 800, NSEEDS = 11 };
 
 typedef struct {
   unsigned char *data;
@@ -106,6 +106,20 @@ static void make_image_mesh_seeds(void)
   spill("seed_mesh.obj", obj, strlen(obj));
 }
 
+/* The net seed: a 3 x 3 hexagonal net, two sides clamped (lsdem_net_write). */
+static int make_net_seed(void)
+{
+  lsdem_net_params p = {LSDEM_NET_HEX, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 1.8}, 1.0, 0.9,
+                        LSDEM_NET_EDGE_U0 | LSDEM_NET_EDGE_V1};
+  lsdem_net net;
+  lsdem_error err;
+  if (lsdem_net_build(&p, &net, &err) != LSDEM_OK) return 0;
+  for (int b = 0; b < net.nballs; b++) net.id[b] = 10 + b;
+  const lsdem_status st = lsdem_net_write("seed_net.net", &net, &err);
+  lsdem_net_free(&net);
+  return st == LSDEM_OK;
+}
+
 /* Valid seeds: a morph file, positions, rotations, a library of a grid shape (from the
  * morph) and an analytic sphere, then the image and mesh seeds. */
 static int make_seeds(seed_file seeds[NSEEDS])
@@ -138,10 +152,11 @@ static int make_seeds(seed_file seeds[NSEEDS])
     return 0;
   }
   make_image_mesh_seeds();
+  if (!make_net_seed()) return 0;
   const char *files[NSEEDS] = {"seed_morph.dat", "seed_positions.dat", "seed_rotations.dat",
                                "seed_library.lslib", "seed_image.tif", "seed_image_lzw.tif",
                                "seed_image_zip.tif", "seed_mesh_binary.stl",
-                               "seed_mesh_ascii.stl", "seed_mesh.obj"};
+                               "seed_mesh_ascii.stl", "seed_mesh.obj", "seed_net.net"};
   for (int s = 0; s < NSEEDS; s++) {
     seeds[s].data = slurp(files[s], &seeds[s].size);
     seeds[s].is_library = s == 3;
@@ -183,7 +198,7 @@ static void write_seeds(const char *dir, const seed_file seeds[NSEEDS])
 {
   const char *names[NSEEDS] = {"morph.dat", "positions.dat", "rotations.dat", "library.lslib",
                                "image.tif", "image_lzw.tif", "image_zip.tif", "mesh_binary.stl",
-                               "mesh_ascii.stl", "mesh.obj"};
+                               "mesh_ascii.stl", "mesh.obj", "net.net"};
   char path[4096];
   for (int s = 0; s < NSEEDS; s++) {
     snprintf(path, sizeof path, "%s/%s", dir, names[s]);
@@ -213,6 +228,7 @@ int main(int argc, char **argv)
     const int accepted = s == 0 ? t.morph_ok > before.morph_ok
                        : s == 3 ? t.library_shapes_ok == before.library_shapes_ok + 2
                        : s >= 4 && s <= 6 ? t.image_ok > before.image_ok
+                       : s == 10 ? t.net_ok > before.net_ok
                        : s >= 7 ? t.mesh_ok > before.mesh_ok
                                 : t.rows_ok > before.rows_ok || s == 2;
     if (!accepted) {
@@ -233,13 +249,13 @@ int main(int argc, char **argv)
     free(buf);
   }
   printf("%ld variants: morph accepted %ld, positions accepted %ld, library opened %ld "
-         "(shapes verified %ld), images accepted %ld, meshes accepted %ld, contract "
-         "violations %ld\n", variants, t.morph_ok, t.rows_ok, t.library_open,
-         t.library_shapes_ok, t.image_ok, t.mesh_ok, broken);
+         "(shapes verified %ld), images accepted %ld, meshes accepted %ld, nets accepted %ld, "
+         "contract violations %ld\n", variants, t.morph_ok, t.rows_ok, t.library_open,
+         t.library_shapes_ok, t.image_ok, t.mesh_ok, t.net_ok, broken);
   const int both_outcomes = t.morph_ok > 1 && t.rows_ok > 1 && t.library_open > 1 &&
                             t.morph_ok < variants && t.library_open < variants &&
                             t.image_ok > 1 && t.image_ok < variants && t.mesh_ok > 1 &&
-                            t.mesh_ok < variants;
+                            t.mesh_ok < variants && t.net_ok > 1 && t.net_ok < variants;
   if (!both_outcomes) fprintf(stderr, "mutations did not reach both outcomes\n");
   for (int s = 0; s < NSEEDS; s++) free(seeds[s].data);
   return broken != 0 || !both_outcomes;

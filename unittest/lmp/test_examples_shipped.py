@@ -32,6 +32,8 @@ DECKS = [
      ["hopper.csv", "hopper_settled.dump"]),
     ("avalanche", "in.avalanche", {"nsteps": 40},
      ["avalanche.csv", "deposit.dump", "avalanche_end.data", "vtk/grains.pvd", "vtk/terrain.pvd"]),
+    ("net_drop", "in.net_drop", {"nsteps": 40, "vtk": 20},
+     ["net_drop.csv", "vtk/net_drop.pvd", "vtk/net_drop_net.pvd"]),
 ]
 
 

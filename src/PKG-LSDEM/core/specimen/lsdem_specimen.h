@@ -241,6 +241,94 @@ double lsdem_membrane_bond_force(const double xi[3], const double xj[3], const d
                                  double kn, double ks, double r0, const double rest[2],
                                  double fj[3]);
 
+
+/* ------------------------------------------------ nets (net.c, net_file.c) ---- */
+
+/* A net (report §4.4.2, Figure 4.6): balls of one radius on a plane lattice, joined by
+ * permanent axial springs, some boundary balls clamped (anchors, never integrated).
+ * Frame: the plane through `origin` spanned by e1 and e2 (e2 is made orthogonal to e1,
+ * both unit), normal n = e1 x e2; a ball's height is (x - origin) . n, positive on the
+ * normal's side. Lattices, with spacing a (the distance between bonded balls as built):
+ *  - LSDEM_NET_SQUARE: n1 x n2 balls at origin + i a e1 + j a e2, bonds along e1 and e2;
+ *  - LSDEM_NET_HEX: triangular lattice ("hexagonal pattern" of the report): rows j spaced
+ *    a sqrt(3)/2 along e2, odd rows shifted by a/2 along e1; each ball bonded to its
+ *    in-row neighbours and to the two nearest balls of the next row (6 bonds inside).
+ * n1 = round(extent[0] / a) + 1 balls per row, n2 = round(extent[1] / row spacing) + 1
+ * rows (extent[1] = 0: one row, a 1-D chain). Balls are numbered row by row, i fastest.
+ * Clamp bits per ball: LSDEM_NET_EDGE_U0 (i = 0), _U1 (i = n1 - 1), _V0 (j = 0),
+ * _V1 (j = n2 - 1); a ball is clamped when its bits meet the params' clamp mask.
+ * Pretension: every bond's rest length is `rest` (< a pulls the net taut). */
+enum { LSDEM_NET_SQUARE = 0, LSDEM_NET_HEX = 1 };
+enum {
+  LSDEM_NET_EDGE_U0 = 1, LSDEM_NET_EDGE_U1 = 2, LSDEM_NET_EDGE_V0 = 4, LSDEM_NET_EDGE_V1 = 8
+};
+
+typedef struct {
+  int lattice;         /* LSDEM_NET_SQUARE or LSDEM_NET_HEX */
+  double origin[3];    /* ball (0, 0) */
+  double e1[3], e2[3]; /* in-plane directions (any length, not parallel) */
+  double extent[2];    /* lengths along e1 and e2 to cover (>= 0) */
+  double spacing;      /* a > 0 */
+  double rest;         /* bond rest length r0 > 0 (pretension when r0 < a) */
+  int clamp;           /* mask of LSDEM_NET_EDGE_* bits: boundary balls to clamp */
+} lsdem_net_params;
+
+typedef struct {
+  int lattice, n1, n2, nballs, nbonds;
+  double origin[3], e1[3], e2[3], normal[3]; /* unit e1, e2, n */
+  double size[2];  /* footprint: ball in-plane coordinates lie in [0, size[0]] x [0, size[1]] */
+  double spacing, rest;
+  double *x;       /* 3 * nballs positions as built (NULL when read from a file) */
+  long *id;        /* nballs atom IDs (set by the caller or read from a file; 0 = unset) */
+  int *clamp;      /* nballs: 1 clamped, 0 free */
+  int *bond;       /* 2 * nbonds ball indices (not IDs) */
+} lsdem_net;
+
+/* Generate the lattice (ids left 0). Allocates (free with lsdem_net_free). LSDEM_ERR_ARG
+ * for a non-positive spacing or rest length, negative extents, parallel directions, or
+ * more than 10^8 balls. */
+lsdem_status lsdem_net_build(const lsdem_net_params *p, lsdem_net *net, lsdem_error *err);
+void lsdem_net_free(lsdem_net *net);
+
+/* Height of x over the net's initial plane, (x - origin) . n, and in-plane coordinates
+ * uv = ((x - origin) . e1, (x - origin) . e2). */
+double lsdem_net_height(const lsdem_net *net, const double x[3], double uv[2]);
+
+/* Net bond force (bond_style lsdem/net), an axial spring with axial viscous damping:
+ * with d = xj - xi, L = |d|, u = d / L, v = vj - vi,
+ *   f_j = -(k (L - r0) + c (v . u)) u,   f_i = -f_j,
+ * k a stiffness (force / length), c a damping coefficient (force time / length). Writes
+ * fj, the stretch L - r0 into *stretch, and returns the spring energy 0.5 k (L - r0)^2
+ * (zero force when L = 0). */
+double lsdem_net_bond_force(const double xi[3], const double xj[3], const double vi[3],
+                            const double vj[3], double k, double r0, double c, double fj[3],
+                            double *stretch);
+
+/* Rupture criteria (bond_style lsdem/net ... break): by strain, (L - r0) / r0 > limit; by
+ * force, the spring's tension k (L - r0) > limit (damping not counted). limit > 0. */
+enum { LSDEM_NET_BREAK_NONE = 0, LSDEM_NET_BREAK_STRAIN = 1, LSDEM_NET_BREAK_FORCE = 2 };
+int lsdem_net_bond_breaks(int mode, double limit, double k, double r0, double stretch);
+
+/* Net files (net_file.c): the one text format lsdem-shape net writes and fix net/lsdem
+ * reads (doc/fix_net_lsdem.rst):
+ *   lsdem-net 1
+ *   # comments anywhere (to the end of the line)
+ *   lattice hex|square
+ *   counts N1 N2
+ *   origin X Y Z
+ *   e1 X Y Z
+ *   e2 X Y Z
+ *   size U V
+ *   spacing A
+ *   rest R0
+ *   balls N        then N lines: atom-ID clamp(0|1)
+ *   bonds M        then M lines: atom-ID atom-ID
+ * The normal is recomputed as e1 x e2. Reading checks the header, every count, unique
+ * ball IDs, and that every bond joins two distinct balls of the file (LSDEM_ERR_FORMAT
+ * naming the line). */
+lsdem_status lsdem_net_write(const char *path, const lsdem_net *net, lsdem_error *err);
+lsdem_status lsdem_net_read(const char *path, lsdem_net *net, lsdem_error *err);
+
 #ifdef __cplusplus
 }
 #endif

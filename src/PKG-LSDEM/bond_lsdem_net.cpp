@@ -1,0 +1,284 @@
+// clang-format off
+/* ----------------------------------------------------------------------
+   LSDEM package: level-set discrete element method for LAMMPS.
+
+   bond_style lsdem/net
+   bond_coeff N K r0 [damp C] [break strain S | break force F]
+
+   Net springs of report §4.4.2 (Figure 4.6); the formula and the rupture criteria live in
+   the core (lsdem_net_bond_force, lsdem_net_bond_breaks). doc/bond_lsdem_net.rst.
+------------------------------------------------------------------------- */
+
+#include "bond_lsdem_net.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "force.h"
+#include "lsdem_input.h"
+#include "memory.h"
+#include "neighbor.h"
+#include "pair.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+
+/* ---------------------------------------------------------------------- */
+
+BondLsdemNet::BondLsdemNet(LAMMPS *lmp) :
+    Bond(lmp), k(nullptr), r0(nullptr), damp(nullptr), limit(nullptr), mode(nullptr)
+{
+  quantum.q = quantum.inv_q = 0.0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+BondLsdemNet::~BondLsdemNet()
+{
+  if (allocated && !copymode) {
+    memory->destroy(setflag);
+    memory->destroy(k);
+    memory->destroy(r0);
+    memory->destroy(damp);
+    memory->destroy(limit);
+    memory->destroy(mode);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   switch bond n off: type 0 in the bond list and in the atoms' bond_type (both atoms'
+   entries when this rank owns both; the owner of a ghost atom 2 breaks its own entry, as
+   bond_style quartic does)
+------------------------------------------------------------------------- */
+
+void BondLsdemNet::break_bond(int n)
+{
+  int **bondlist = neighbor->bondlist;
+  const int i1 = bondlist[n][0], i2 = bondlist[n][1];
+  bondlist[n][2] = 0;
+  for (int m = 0; m < atom->num_bond[i1]; m++)
+    if (atom->bond_atom[i1][m] == atom->tag[i2]) atom->bond_type[i1][m] = 0;
+  if (i2 < atom->nlocal)
+    for (int m = 0; m < atom->num_bond[i2]; m++)
+      if (atom->bond_atom[i2][m] == atom->tag[i1]) atom->bond_type[i2][m] = 0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void BondLsdemNet::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+
+  double **x = atom->x, **v = atom->v, **f = atom->f;
+  int **bondlist = neighbor->bondlist;
+  const int nbondlist = neighbor->nbondlist;
+  const int nlocal = atom->nlocal;
+  const int newton_bond = force->newton_bond;
+
+  for (int n = 0; n < nbondlist; n++) {
+    const int type = bondlist[n][2];
+    if (type <= 0) continue;    // broken
+    const int i1 = bondlist[n][0], i2 = bondlist[n][1];
+    double f2[3], stretch;
+    const double e = lsdem_net_bond_force(x[i1], x[i2], v[i1], v[i2], k[type], r0[type],
+                                          damp[type], f2, &stretch);
+    if (lsdem_net_bond_breaks(mode[type], limit[type], k[type], r0[type], stretch)) {
+      break_bond(n);
+      continue;
+    }
+    lsdem_quantize3(f2, quantum, f2);
+    if (newton_bond || i1 < nlocal)
+      for (int d = 0; d < 3; d++) f[i1][d] -= f2[d];
+    if (newton_bond || i2 < nlocal)
+      for (int d = 0; d < 3; d++) f[i2][d] += f2[d];
+    if (evflag) {
+      const double del[3] = {x[i1][0] - x[i2][0], x[i1][1] - x[i2][1], x[i1][2] - x[i2][2]};
+      const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+      // f on atom 1 = fbond * del (the force is axial)
+      const double fbond = rsq > 0.0 ? -(f2[0] * del[0] + f2[1] * del[1] + f2[2] * del[2]) / rsq
+                                     : 0.0;
+      ev_tally(i1, i2, nlocal, newton_bond, e, fbond, del[0], del[1], del[2]);
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   the quantum: the stiffest type's force at 100 % strain or its break force, and at
+   least pair_style lsdem's (its contact terms on the balls are in the same sums)
+------------------------------------------------------------------------- */
+
+void BondLsdemNet::init_style()
+{
+  double scale = 0.0;
+  for (int i = 1; i <= atom->nbondtypes; i++) {
+    scale = std::max(scale, k[i] * r0[i]);
+    if (mode[i] == LSDEM_NET_BREAK_FORCE) scale = std::max(scale, limit[i]);
+    if (damp[i] > 0.0 && !comm->ghost_velocity)
+      error->all(FLERR, "Bond lsdem/net: bond type {} has damping, which needs the ghost atoms' "
+                 "velocities: add 'comm_modify vel yes'", i);
+  }
+  quantum = lsdem_quantum_for(scale);
+  int dim;
+  const double *pair_q = force->pair
+                             ? (const double *) force->pair->extract("force_quantum", dim)
+                             : nullptr;
+  if (pair_q && *pair_q > quantum.q) {
+    quantum.q = *pair_q;
+    quantum.inv_q = 1.0 / *pair_q;    // a power of two: exact
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void BondLsdemNet::allocate()
+{
+  allocated = 1;
+  const int n = atom->nbondtypes;
+  memory->create(k, n + 1, "bond:k");
+  memory->create(r0, n + 1, "bond:r0");
+  memory->create(damp, n + 1, "bond:damp");
+  memory->create(limit, n + 1, "bond:limit");
+  memory->create(mode, n + 1, "bond:mode");
+  memory->create(setflag, n + 1, "bond:setflag");
+  for (int i = 1; i <= n; i++) setflag[i] = 0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void BondLsdemNet::settings(int narg, char ** /*arg*/)
+{
+  if (narg != 0)
+    error->all(FLERR, "Illegal bond_style lsdem/net command: it takes no arguments");
+}
+
+/* ----------------------------------------------------------------------
+   bond_coeff N K r0 [damp C] [break strain S | break force F]
+------------------------------------------------------------------------- */
+
+void BondLsdemNet::coeff(int narg, char **arg)
+{
+  const char *usage = "'bond_coeff N K r0 [damp C] [break strain S | break force F]'";
+  if (narg < 3) error->all(FLERR, "Incorrect args for bond coefficients: bond_style lsdem/net "
+                           "needs {} (lsdem-shape net writes it)", usage);
+  if (!allocated) allocate();
+
+  int ilo, ihi;
+  utils::bounds(FLERR, arg[0], 1, atom->nbondtypes, ilo, ihi, error);
+  const double k_one = LsdemInput::number(FLERR, arg[1], "bond_coeff lsdem/net", "K", lmp);
+  const double r0_one = LsdemInput::number(FLERR, arg[2], "bond_coeff lsdem/net", "r0", lmp);
+  if (k_one <= 0.0) error->all(FLERR, "Bond lsdem/net: K ({}) must be > 0", k_one);
+  if (r0_one <= 0.0) error->all(FLERR, "Bond lsdem/net: r0 ({}) must be > 0", r0_one);
+  double damp_one = 0.0, limit_one = 0.0;
+  int mode_one = LSDEM_NET_BREAK_NONE;
+  for (int a = 3; a < narg;) {
+    if (strcmp(arg[a], "damp") == 0 && a + 1 < narg) {
+      damp_one = LsdemInput::number(FLERR, arg[a + 1], "bond_coeff lsdem/net", "damp", lmp);
+      if (damp_one < 0.0)
+        error->all(FLERR, "Bond lsdem/net: damp ({}) must be >= 0 (0: no damping)", damp_one);
+      a += 2;
+    } else if (strcmp(arg[a], "break") == 0 && a + 2 < narg &&
+               (strcmp(arg[a + 1], "strain") == 0 || strcmp(arg[a + 1], "force") == 0)) {
+      mode_one = strcmp(arg[a + 1], "strain") == 0 ? LSDEM_NET_BREAK_STRAIN
+                                                   : LSDEM_NET_BREAK_FORCE;
+      limit_one = LsdemInput::number(FLERR, arg[a + 2], "bond_coeff lsdem/net", "break", lmp);
+      if (limit_one <= 0.0)
+        error->all(FLERR, "Bond lsdem/net: break {} limit ({}) must be > 0: a bond breaks when "
+                   "its {} exceeds it (leave 'break' out for bonds that never break)",
+                   arg[a + 1], limit_one,
+                   mode_one == LSDEM_NET_BREAK_STRAIN ? "strain (L - r0) / r0"
+                                                      : "tension K (L - r0)");
+      a += 3;
+    } else {
+      error->all(FLERR, "Incorrect args for bond coefficients: unknown or incomplete keyword "
+                 "'{}' of bond_style lsdem/net; expected {}", arg[a], usage);
+    }
+  }
+
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++) {
+    k[i] = k_one;
+    r0[i] = r0_one;
+    damp[i] = damp_one;
+    limit[i] = limit_one;
+    mode[i] = mode_one;
+    setflag[i] = 1;
+    count++;
+  }
+  if (count == 0) error->all(FLERR, "Incorrect args for bond coefficients");
+}
+
+/* ---------------------------------------------------------------------- */
+
+double BondLsdemNet::equilibrium_distance(int i)
+{
+  return r0[i];
+}
+
+/* ---------------------------------------------------------------------- */
+
+void BondLsdemNet::write_restart(FILE *fp)
+{
+  const int n = atom->nbondtypes;
+  fwrite(&k[1], sizeof(double), n, fp);
+  fwrite(&r0[1], sizeof(double), n, fp);
+  fwrite(&damp[1], sizeof(double), n, fp);
+  fwrite(&limit[1], sizeof(double), n, fp);
+  fwrite(&mode[1], sizeof(int), n, fp);
+}
+
+void BondLsdemNet::read_restart(FILE *fp)
+{
+  allocate();
+  const int n = atom->nbondtypes;
+  if (comm->me == 0) {
+    utils::sfread(FLERR, &k[1], sizeof(double), n, fp, nullptr, error);
+    utils::sfread(FLERR, &r0[1], sizeof(double), n, fp, nullptr, error);
+    utils::sfread(FLERR, &damp[1], sizeof(double), n, fp, nullptr, error);
+    utils::sfread(FLERR, &limit[1], sizeof(double), n, fp, nullptr, error);
+    utils::sfread(FLERR, &mode[1], sizeof(int), n, fp, nullptr, error);
+  }
+  MPI_Bcast(&k[1], n, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&r0[1], n, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&damp[1], n, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&limit[1], n, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&mode[1], n, MPI_INT, 0, world);
+  for (int i = 1; i <= n; i++) setflag[i] = 1;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void BondLsdemNet::write_data(FILE *fp)
+{
+  for (int i = 1; i <= atom->nbondtypes; i++) {
+    fprintf(fp, "%d %.15g %.15g", i, k[i], r0[i]);
+    if (damp[i] > 0.0) fprintf(fp, " damp %.15g", damp[i]);
+    if (mode[i] != LSDEM_NET_BREAK_NONE)
+      fprintf(fp, " break %s %.15g", mode[i] == LSDEM_NET_BREAK_STRAIN ? "strain" : "force",
+              limit[i]);
+    fprintf(fp, "\n");
+  }
+}
+
+/* ----------------------------------------------------------------------
+   compute bond/local: the spring alone (no velocities here: no damping)
+------------------------------------------------------------------------- */
+
+double BondLsdemNet::single(int type, double rsq, int /*i*/, int /*j*/, double &fforce)
+{
+  const double r = sqrt(rsq), dr = r - r0[type];
+  fforce = r > 0.0 ? -k[type] * dr / r : 0.0;
+  return 0.5 * k[type] * dr * dr;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void *BondLsdemNet::extract(const char *str, int &dim)
+{
+  dim = 1;
+  if (strcmp(str, "k") == 0) return (void *) k;
+  if (strcmp(str, "r0") == 0) return (void *) r0;
+  return nullptr;
+}

@@ -1,0 +1,46 @@
+/* shape_grains.h -- a grain data file (atom_style lsdem, as lsdem-shape pack and
+ * from-labels write it) read by the subcommands that add bonded balls around or under the
+ * grains (membrane, net) and write both into one data file. */
+#ifndef LSDEM_SHAPE_GRAINS_H
+#define LSDEM_SHAPE_GRAINS_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+typedef struct {
+  long id;
+  int type, shape;
+  double density, x[3], q[4];
+} shape_grain;
+
+typedef struct {
+  int n, ntypes;
+  double lo[3], hi[3];
+  shape_grain *g;
+  char **vel; /* Velocities lines (copied verbatim), n or NULL */
+  int nvel;
+} shape_grain_file;
+
+/* Read PATH: header counts and box, Atoms (id type shape density x y z qw qx qy qz),
+ * optional Velocities (kept verbatim). 0, or 1 after a message naming the line. */
+int shape_read_grains(const char *path, shape_grain_file *gf);
+void shape_free_grains(shape_grain_file *gf);
+/* The first atom ID after the file's largest (1 for an empty file). */
+long shape_next_id(const shape_grain_file *gf);
+
+/* Check that shape-ID `shape` (1-based) of LIBRARY is an analytic sphere of `radius`, the
+ * ball shape of `what`; 0, or 1 after a message saying how to make it ("lsdem-shape CMD:"). */
+int shape_check_sphere(const char *cmd, const char *library, int shape, double radius,
+                       const char *what);
+/* PREFIX + EXT opened for writing (its name in path), or NULL after a message. */
+FILE *shape_open_out(const char *cmd, const char *prefix, const char *ext, char *path,
+                     size_t size);
+/* fclose; 0, or 1 after a message. */
+int shape_close_out(const char *cmd, FILE *f, const char *path);
+/* The grains as Atoms lines of atom_style hybrid lsdem bond (molecule 0):
+ * id type x y z shape-ID density qw qx qy qz molecule-ID. */
+void shape_write_grain_atoms(FILE *f, const shape_grain_file *gf);
+/* The grains' Velocities section, when the file had one. */
+void shape_write_velocities(FILE *f, const shape_grain_file *gf);
+
+#endif

@@ -1,0 +1,169 @@
+/* test_net.c -- nets of bonded balls (core/specimen/net.c, net_file.c): the lattices
+ * against their construction rules (counts by closed form, every bond one spacing long,
+ * clamp flags on the chosen edges, an orthonormal frame for a tilted plane), the bond force
+ * against a central difference of its energy and the damping against its definition, the
+ * rupture criteria on either side of the limit, and the net file codec (round trip; a bond
+ * to a missing ball, a repeated ball and a bad header refused with the line named). */
+#include "lsdem.h"
+#include "lsdem_test.h"
+
+#include <stdio.h>
+#include <string.h>
+
+static double dist(const double *a, const double *b)
+{
+  double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+  return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
+
+static double dot(const double *a, const double *b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Bonds counted per ball against the lattice's coordination: square 2 n1 n2 - n1 - n2;
+ * hexagonal: n2 (n1 - 1) in rows + (n2 - 1)(2 n1 - 1) between rows. */
+static void test_counts(int lattice, int n1, int n2)
+{
+  double a = 0.5;
+  lsdem_net_params p = {lattice, {1, 2, 3}, {1, 0, 0}, {0, 1, 0},
+                        {(n1 - 1) * a, (n2 - 1) * a * (lattice ? sqrt(3.0) / 2 : 1.0)},
+                        a, 0.9 * a, LSDEM_NET_EDGE_U0 | LSDEM_NET_EDGE_V1};
+  lsdem_net net;
+  lsdem_error err;
+  CHECK(lsdem_net_build(&p, &net, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(net.n1 == n1 && net.n2 == n2, "%d x %d, expected %d x %d", net.n1, net.n2, n1, n2);
+  int expect = lattice == LSDEM_NET_SQUARE ? 2 * n1 * n2 - n1 - n2
+                                           : n2 * (n1 - 1) + (n2 - 1) * (2 * n1 - 1);
+  CHECK(net.nbonds == expect, "lattice %d: %d bonds, expected %d", lattice, net.nbonds, expect);
+  for (int b = 0; b < net.nbonds; b++)
+    CHECK_NEAR(dist(net.x + 3 * net.bond[2 * b], net.x + 3 * net.bond[2 * b + 1]), a, 1e-12);
+  for (int j = 0; j < n2; j++)
+    for (int i = 0; i < n1; i++) {
+      int b = j * n1 + i;
+      CHECK(net.clamp[b] == (i == 0 || j == n2 - 1), "ball (%d, %d) clamp %d", i, j,
+            net.clamp[b]);
+    }
+  lsdem_net_free(&net);
+}
+
+static void test_frame(void)
+{
+  lsdem_net_params p = {LSDEM_NET_HEX, {0, 0, 5}, {2, 0, 2}, {1, 3, 0}, {4, 3}, 1.0, 1.0, 15};
+  lsdem_net net;
+  lsdem_error err;
+  CHECK(lsdem_net_build(&p, &net, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK_NEAR(dot(net.e1, net.e1), 1.0, 1e-14);
+  CHECK_NEAR(dot(net.e2, net.e2), 1.0, 1e-14);
+  CHECK_NEAR(dot(net.e1, net.e2), 0.0, 1e-14);
+  CHECK_NEAR(dot(net.normal, net.e1), 0.0, 1e-14);
+  CHECK_NEAR(dot(net.normal, net.e2), 0.0, 1e-14);
+  for (int b = 0; b < net.nballs; b++) {
+    double uv[2];
+    CHECK_NEAR(lsdem_net_height(&net, net.x + 3 * b, uv), 0.0, 1e-12);
+    CHECK(uv[0] > -1e-12 && uv[0] < net.size[0] + 1e-12 && uv[1] > -1e-12 &&
+              uv[1] < net.size[1] + 1e-12,
+          "ball %d at (%g, %g) outside the footprint %g x %g", b, uv[0], uv[1], net.size[0],
+          net.size[1]);
+  }
+  double above[3] = {net.origin[0] + 2 * net.normal[0], net.origin[1] + 2 * net.normal[1],
+                     net.origin[2] + 2 * net.normal[2]}, uv[2];
+  CHECK_NEAR(lsdem_net_height(&net, above, uv), 2.0, 1e-12);
+  lsdem_net_free(&net);
+  p.e2[0] = 4, p.e2[1] = 0, p.e2[2] = 4; /* parallel to e1 */
+  CHECK(lsdem_net_build(&p, &net, &err) == LSDEM_ERR_ARG, "parallel directions accepted");
+  p.e2[0] = 0, p.e2[1] = 1, p.e2[2] = 0;
+  p.rest = 0.0;
+  CHECK(lsdem_net_build(&p, &net, &err) == LSDEM_ERR_ARG, "zero rest length accepted");
+}
+
+/* f_j = -dE/dx_j (central difference of the returned energy); damping along the bond */
+static void test_force(void)
+{
+  double xi[3] = {0.1, -0.2, 0.3}, xj[3] = {1.2, 0.4, -0.1}, v0[3] = {0, 0, 0}, fj[3], s;
+  double k = 3.0, r0 = 0.8, h = 1e-6;
+  lsdem_net_bond_force(xi, xj, v0, v0, k, r0, 0.0, fj, &s);
+  CHECK_NEAR(s, dist(xi, xj) - r0, 1e-15);
+  for (int d = 0; d < 3; d++) {
+    double xp[3] = {xj[0], xj[1], xj[2]}, xm[3] = {xj[0], xj[1], xj[2]}, f[3];
+    xp[d] += h;
+    xm[d] -= h;
+    double ep = lsdem_net_bond_force(xi, xp, v0, v0, k, r0, 0.0, f, &s);
+    double em = lsdem_net_bond_force(xi, xm, v0, v0, k, r0, 0.0, f, &s);
+    CHECK_NEAR(fj[d], -(ep - em) / (2 * h), 1e-8);
+  }
+  /* damping: the force changes by -c (v.u) u; a transverse velocity changes nothing */
+  double u[3], vj[3], fd[3], c = 0.7;
+  for (int d = 0; d < 3; d++) u[d] = (xj[d] - xi[d]) / dist(xi, xj);
+  for (int d = 0; d < 3; d++) vj[d] = 2.0 * u[d];
+  lsdem_net_bond_force(xi, xj, v0, vj, k, r0, c, fd, &s);
+  for (int d = 0; d < 3; d++) CHECK_NEAR(fd[d] - fj[d], -c * 2.0 * u[d], 1e-14);
+  double t[3] = {u[1], -u[0], 0.0};
+  lsdem_net_bond_force(xi, xj, v0, t, k, r0, c, fd, &s);
+  for (int d = 0; d < 3; d++) CHECK_NEAR(fd[d], fj[d], 1e-14);
+}
+
+static void test_breaks(void)
+{
+  CHECK(!lsdem_net_bond_breaks(LSDEM_NET_BREAK_STRAIN, 0.2, 5.0, 1.0, 0.19), "strain below");
+  CHECK(lsdem_net_bond_breaks(LSDEM_NET_BREAK_STRAIN, 0.2, 5.0, 1.0, 0.21), "strain above");
+  CHECK(!lsdem_net_bond_breaks(LSDEM_NET_BREAK_FORCE, 1.0, 5.0, 1.0, 0.19), "force below");
+  CHECK(lsdem_net_bond_breaks(LSDEM_NET_BREAK_FORCE, 1.0, 5.0, 1.0, 0.21), "force above");
+  CHECK(!lsdem_net_bond_breaks(LSDEM_NET_BREAK_NONE, 0.0, 5.0, 1.0, 100.0), "none");
+}
+
+static void write_text(const char *path, const char *text)
+{
+  FILE *f = fopen(path, "w");
+  fputs(text, f);
+  fclose(f);
+}
+
+static void test_file(void)
+{
+  lsdem_net_params p = {LSDEM_NET_SQUARE, {0, 0, 1}, {1, 0, 0}, {0, 0, 1}, {2, 1}, 1.0, 0.9,
+                        LSDEM_NET_EDGE_U0 | LSDEM_NET_EDGE_U1};
+  lsdem_net net, back;
+  lsdem_error err;
+  CHECK(lsdem_net_build(&p, &net, &err) == LSDEM_OK, "%s", err.msg);
+  for (int b = 0; b < net.nballs; b++) net.id[b] = 100 + 7 * b;
+  CHECK(lsdem_net_write("net_rt.net", &net, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(lsdem_net_read("net_rt.net", &back, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(back.nballs == net.nballs && back.nbonds == net.nbonds && back.lattice == net.lattice,
+        "counts after the round trip");
+  for (int b = 0; b < net.nballs; b++)
+    CHECK(back.id[b] == net.id[b] && back.clamp[b] == net.clamp[b], "ball %d", b);
+  for (int b = 0; b < 2 * net.nbonds; b++) CHECK(back.bond[b] == net.bond[b], "bond end %d", b);
+  for (int d = 0; d < 3; d++) CHECK(back.normal[d] == net.normal[d], "normal %d", d);
+  CHECK(back.size[0] == net.size[0] && back.size[1] == net.size[1], "size");
+  lsdem_net_free(&back);
+  lsdem_net_free(&net);
+
+  const char *head = "lsdem-net 1\nlattice square\ncounts 2 1\norigin 0 0 0\ne1 1 0 0\n"
+                     "e2 0 1 0\nsize 1 0\nspacing 1\nrest 1\nballs 2\n5 1\n6 0\n";
+  char text[1024];
+  snprintf(text, sizeof text, "%sbonds 1\n5 7\n", head);
+  write_text("net_missing.net", text);
+  CHECK(lsdem_net_read("net_missing.net", &back, &err) == LSDEM_ERR_FORMAT, "missing ball");
+  CHECK(strstr(err.msg, "line 14") && strstr(err.msg, "atom ID 7"), "message: %s", err.msg);
+  snprintf(text, sizeof text, "%s", head);
+  strcpy(strstr(text, "6 0\n"), "5 0\nbonds 0\n");
+  write_text("net_twice.net", text);
+  CHECK(lsdem_net_read("net_twice.net", &back, &err) == LSDEM_ERR_FORMAT, "repeated ball");
+  CHECK(strstr(err.msg, "ball ID 5 is listed twice") != NULL, "message: %s", err.msg);
+  write_text("net_header.net", "lsdem-membrane-triangles 1\n");
+  CHECK(lsdem_net_read("net_header.net", &back, &err) == LSDEM_ERR_FORMAT, "bad header");
+  CHECK(strstr(err.msg, "line 1") != NULL, "message: %s", err.msg);
+}
+
+int main(void)
+{
+  test_counts(LSDEM_NET_SQUARE, 5, 4);
+  test_counts(LSDEM_NET_HEX, 6, 5);
+  test_counts(LSDEM_NET_HEX, 7, 1);
+  test_frame();
+  test_force();
+  test_breaks();
+  test_file();
+  return lsdem_test_summary();
+}
