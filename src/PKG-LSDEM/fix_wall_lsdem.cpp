@@ -49,8 +49,8 @@ static constexpr tagint WALL_POINTS_PARTNER = -2;
 
 FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), nlanes(1), ncand(0), fix_history(nullptr), avec(nullptr),
-  band_file(nullptr), twoway(false), point_cap(0), map_every(0), map_restart_steps(0), map_booked(-1),
-  fall_valid(0), moving(false), passive(false), contact_step(-1), cand(nullptr), maxcand(0),
+  band_file(nullptr), twoway(false), point_cap(0), map_every(0), map_restart_steps(0),
+  map_booked(-1), fall_valid(0), moving(false), passive(false), contact_step(-1), cand(nullptr), maxcand(0),
   cand_nlocal(0), cand_built(-1)
 {
   for (int d = 0; d < 6; d++) {
@@ -121,7 +121,8 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
       if (!band) error->all(FLERR, "fix wall/lsdem: keyword exact is for mesh and terrain walls");
       exact = val == "yes";
     } else if (key == "twoway") {
-      if (val != "yes" && val != "no") error->all(FLERR, "fix wall/lsdem: twoway must be yes or no");
+      if (val != "yes" && val != "no")
+        error->all(FLERR, "fix wall/lsdem: twoway must be yes or no");
       if (!band)
         error->all(FLERR, "fix wall/lsdem: keyword twoway is for mesh and terrain walls (a {} "
                    "wall has no sharp features to test)", arg[3]);
@@ -239,6 +240,9 @@ void FixWallLsdem::make_points(const char *path)
   lsdem_error err;
   if (lsdem_band_points_make(b, b->h, &points, &err) != LSDEM_OK)
     error->all(FLERR, "fix wall/lsdem {}: {}", path, err.msg);
+  if (comm->me == 0)
+    utils::logmesg(lmp, "fix wall/lsdem {}: twoway: {} points on {} sharp edges\n", id,
+                   points.n, points.nedges);
 }
 
 /* ----------------------------------------------------------------------

@@ -17,7 +17,8 @@ import math
 import os
 
 from lsdemtest import run_lmp, thermo, check, near, finish, shape_tool
-from contact_decks import Grain, box_library, write_data, head, THERMO_FULL, GRAIN1, write_cube_stl
+from contact_decks import (Grain, box_library, write_data, head, THERMO_FULL, GRAIN1,
+                           write_cube_stl, write_ridges_stl)
 
 HALF = 0.5           # the cube's half-side; density 1
 H = 0.1              # band spacing (and the points' spacing along an edge)
@@ -27,41 +28,9 @@ RIDGE_Y = 0.4        # ridges from y = -0.4 to 0.4: wholly under the cube's face
 lib = box_library("cube.lslib", HALF, 0.05, 600)
 
 
-def write_ridges_stl(path):
-    """Two closed triangular prisms along y: apex edge at (xc, z = 0), base 0.6 wide at
-    z = -0.5, ends at y = +-RIDGE_Y; triangles oriented outwards."""
-    tris = []
-    for xc in RIDGE_X:
-        ends = []
-        for y in (-RIDGE_Y, RIDGE_Y):
-            ends.append([(xc - 0.3, y, -0.5), (xc + 0.3, y, -0.5), (xc, y, 0.0)])
-        a, b = ends
-        quads = [(a[0], a[1], b[1], b[0]), (a[1], a[2], b[2], b[1]), (a[2], a[0], b[0], b[2])]
-        for q in quads:
-            tris += [(q[0], q[1], q[2]), (q[0], q[2], q[3])]
-        tris += [tuple(a), tuple(b)]
-        centre = (xc, 0.0, -0.5 / 3)
-        for k, t in enumerate(tris[-8:]):
-            e1 = [t[1][i] - t[0][i] for i in range(3)]
-            e2 = [t[2][i] - t[0][i] for i in range(3)]
-            n = (e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                 e1[0] * e2[1] - e1[1] * e2[0])
-            out = sum(n[i] * (t[0][i] - centre[i]) for i in range(3))
-            if out < 0:
-                tris[len(tris) - 8 + k] = (t[0], t[2], t[1])
-    lines = ["solid ridges"]
-    for t in tris:
-        lines.append(" facet normal 0 0 0\n  outer loop")
-        lines += ["   vertex %r %r %r" % v for v in t]
-        lines.append("  endloop\n endfacet")
-    lines.append("endsolid ridges")
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    return path
-
-
 ridges = os.path.abspath("ridges.band")
-shape_tool("wall", write_ridges_stl("ridges.stl"), ridges, "--spacing", H, "--width", 2 * H)
+shape_tool("wall", write_ridges_stl("ridges.stl", RIDGE_X, RIDGE_Y), ridges, "--spacing", H,
+           "--width", 2 * H)
 stl = write_cube_stl("block.stl", (-3.0, -3.0, -2.0), (3.0, 3.0, 0.0))
 block = os.path.abspath("block.band")
 shape_tool("wall", stl, block, "--spacing", H, "--width", 2 * H)

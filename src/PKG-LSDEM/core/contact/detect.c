@@ -340,7 +340,8 @@ int lsdem_detect_band_points(const lsdem_band *band, const lsdem_band_points *pt
   for (int z = lo[2]; z <= hi[2]; z++)
     for (int y = lo[1]; y <= hi[1]; y++)
       for (int x = lo[0]; x <= hi[0]; x++) {
-        const int32_t brick = band->index[x + (int64_t)band->nb[0] * (y + (int64_t)band->nb[1] * z)];
+        const int64_t slot = x + (int64_t)band->nb[0] * (y + (int64_t)band->nb[1] * z);
+        const int32_t brick = band->index[slot];
         if (brick >= 0) detect_brick_points(pts, brick, cb, rb2, M, t, B, pa, pb, &pm, m);
       }
   return m->n;

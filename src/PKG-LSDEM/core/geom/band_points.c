@@ -149,7 +149,8 @@ lsdem_status lsdem_band_points_make(const lsdem_band *b, double spacing, lsdem_b
   lsdem_status st = LSDEM_OK;
   if (n > INT32_MAX) st = lsdem_fail(err, LSDEM_ERR_ARG, "band points: %lld points (numbered "
                                      "as 32-bit nodes); a coarser spacing", (long long)n);
-  else if (!tmp) st = lsdem_fail(err, LSDEM_ERR_NOMEM, "band points: no memory for %lld", (long long)n);
+  else if (!tmp)
+    st = lsdem_fail(err, LSDEM_ERR_NOMEM, "band points: no memory for %lld", (long long)n);
   if (st == LSDEM_OK) {
     memset(seen, 0, (size_t)b->nverts + 1);
     edge_points(b, spacing, seen, tmp);
