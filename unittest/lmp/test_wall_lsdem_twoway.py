@@ -10,8 +10,11 @@ Against independent expectations:
   - on the flat top face of an STL block twoway changes nothing (no sharp edge there: the
     same bits as without);
   - the cube sliding along the ridges with friction (history per wall point) gives the same
-    bits on 1 and 2 ranks (split across its path: the history migrates with the grain), and
-    a run restarted mid-way ends with the uninterrupted run's bits;
+    bits on 1 and 2 ranks (split across its path: the history migrates with the grain) and
+    with fix wall/lsdem/omp on 2 threads;
+  - under gravity tilted along the ridges (0.1 < mu) the points' shear springs hold the cube
+    (it moves < 1e-3 from t = 0.5 to 2; without their history it would creep 7.9e-3),
+    and a run restarted mid-way ends with the uninterrupted run's bits;
   - twoway on a terrain kept as heights, or on a plane wall, stops with a named error."""
 import math
 import os
@@ -37,7 +40,7 @@ shape_tool("wall", stl, block, "--spacing", H, "--width", 2 * H)
 
 
 def drop(name, wall, keys="", np=1, steps=2000, every=100, v=(0.0, 0.0, 0.0), y0=0.0,
-         read=None, tail="", procs=""):
+         read=None, tail="", procs="", args=None, gy=0.0):
     """The cube above `wall` (fix wall/lsdem geometry) under gravity 1; thermo rows."""
     folder = os.path.abspath(name)
     if read:
@@ -48,7 +51,8 @@ def drop(name, wall, keys="", np=1, steps=2000, every=100, v=(0.0, 0.0, 0.0), y0
     deck = top + """
 pair_style zero 2.0
 pair_coeff * *
-fix grav all gravity 1.0 vector 0 0 -1
+neighbor 0.02 bin
+fix grav all gravity 1.0 vector 0 %(gy)r -1
 fix 1 all nve/lsdem
 fix w all wall/lsdem %(wall)s %(kn)r %(kn)r 0.3 cn 1.0 %(keys)s
 %(grain1)svariable m equal mass[1]
@@ -59,8 +63,10 @@ timestep 5e-4
 %(tail)s
 run %(steps)d
 """ % dict(wall=wall, kn=KN, keys=keys, grain1=GRAIN1, thermo=THERMO_FULL, every=every,
-           steps=steps, tail=tail)
-    rc, log = run_lmp(deck, np=np, cwd=folder)
+           steps=steps, tail=tail, gy=gy)
+    rc, log = run_lmp(deck, np=np, cwd=folder, args=args)
+    if args:
+        check("style = wall/lsdem/omp" in log, "%s: the threaded wall did not run" % name)
     return thermo(log)
 
 
@@ -98,8 +104,7 @@ if flat_two:
 # the cube slides along the ridges from y = -0.1 at 0.3 and stops by friction (mu g = 0.3,
 # after 0.15 in y); 2 ranks split the box at y = 0, which it crosses
 slide_keys = "twoway yes"
-ref = drop("slide_np1", "mesh " + ridges, slide_keys, steps=1200, v=(0.0, 0.3, 0.0), y0=-0.1,
-           tail="restart 600 mid.*")
+ref = drop("slide_np1", "mesh " + ridges, slide_keys, steps=1200, v=(0.0, 0.3, 0.0), y0=-0.1)
 ranks = drop("slide_np2", "mesh " + ridges, slide_keys, np=2, steps=1200, v=(0.0, 0.3, 0.0),
              y0=-0.1, procs="processors 1 2 1")
 if check(len(ref) > 10, "slide: no thermo output"):
@@ -108,14 +113,37 @@ if check(len(ref) > 10, "slide: no thermo output"):
           "slide: the cube travelled %g (friction did not act?)" % travel)
     check(len(ranks) == len(ref) and all(a[k] == b[k] for a, b in zip(ref, ranks) for k in a),
           "slide: 2 ranks differ from 1 rank")
-    # (Time restarts from 0 after read_restart: compared are the step and the state)
-    again = drop("slide_restart", "mesh " + ridges, slide_keys, steps=600,
-                 read=os.path.join(os.path.abspath("slide_np1"), "mid.600"))
-    check(len(again) > 2 and again[-1]["Step"] == ref[-1]["Step"] and
-          all(again[-1][k] == ref[-1][k] for k in again[-1] if k != "Time"),
-          "slide: the run restarted at step 600 ends off the uninterrupted run")
-    print("slide: travelled %.4g along the ridges; 2 ranks and the restart give the same bits"
+    threads = drop("slide_omp2", "mesh " + ridges, slide_keys, steps=1200, v=(0.0, 0.3, 0.0),
+                   y0=-0.1, tail="info fixes out log", args=["-sf", "omp", "-pk", "omp", 2])
+    check(len(threads) == len(ref) and all(a[k] == b[k] for a, b in zip(ref, threads) for k in a),
+          "slide: fix wall/lsdem/omp on 2 threads differs from the plain style")
+    print("slide: travelled %.4g along the ridges; 2 ranks and 2 threads give the same bits"
           % travel)
+
+# ---- static friction: the points' shear springs hold the cube ---------------------------------
+# gravity tilted along the ridges by g_y / g_z = 0.1 < mu, tangential damping ct: the cube
+# lands (slipping a little while the normal forces build up) and sticks, held by the
+# points' springs, about which it sways (by ~1e-4, the springs' stretch m g_y / (ks N) is
+# 5.5e-5): from t = 0.5 to 2 it moves by less than 1e-3. Without the points' shear history
+# each step's spring would start from zero and the cube would creep at
+# m g_y / (N (ks dt + ct)) = 5.3e-3 per time, 7.9e-3 in that time. A run restarted mid-way
+# must end with the uninterrupted run's bits.
+GY = 0.1
+STICK = "twoway yes ct 1.0"
+stick = drop("stick", "mesh " + ridges, STICK, steps=4000, gy=GY, tail="restart 1000 mid.*")
+if check(len(stick) > 10, "stick: no thermo output"):
+    half_way = next(r for r in stick if r["Step"] == 1000)
+    creep = stick[-1]["v_py"] - half_way["v_py"]
+    check(abs(creep) < 1e-3, "stick: the cube creeps %.3g along the ridges from t = 0.5 to 2"
+          % creep)
+    # (Time restarts from 0 after read_restart: compared are the step and the state)
+    again = drop("stick_restart", "mesh " + ridges, STICK, steps=3000, gy=GY,
+                 read=os.path.join(os.path.abspath("stick"), "mid.1000"))
+    check(len(again) > 2 and again[-1]["Step"] == stick[-1]["Step"] and
+          all(again[-1][k] == stick[-1][k] for k in again[-1] if k != "Time"),
+          "stick: the run restarted at step 1000 ends off the uninterrupted run")
+    print("stick: moved %.3g along the ridges from t = 0.5 to 2 (limit 1e-3); the restart "
+          "gives the same bits" % creep)
 
 # ---- refused -----------------------------------------------------------------------------
 
