@@ -5,8 +5,8 @@ Against independent expectations:
   - a cube (flat face down) dropped on two knife-edge ridges (two triangular prisms whose
     sharp top edges run along y at height 0) rests at 0.5 - m g / (kn N): N the ridges'
     points under its face (the edges' vertices and samples at most h apart), each a spring
-    kn, within 2 % of that static overlap; without twoway its nodes miss the edges and it
-    sinks several times deeper;
+    kn, within 0.5 % of that static overlap (mu = 0); without twoway its nodes miss the edges
+    and it sinks 100 times deeper;
   - on the flat top face of an STL block twoway changes nothing (no sharp edge there: the
     same bits as without);
   - the cube sliding along the ridges with friction (history per wall point) gives the same
@@ -40,7 +40,7 @@ shape_tool("wall", stl, block, "--spacing", H, "--width", 2 * H)
 
 
 def drop(name, wall, keys="", np=1, steps=2000, every=100, v=(0.0, 0.0, 0.0), y0=0.0,
-         read=None, tail="", procs="", args=None, gy=0.0):
+         read=None, tail="", procs="", args=None, gy=0.0, mu=0.3):
     """The cube above `wall` (fix wall/lsdem geometry) under gravity 1; thermo rows."""
     folder = os.path.abspath(name)
     if read:
@@ -54,7 +54,7 @@ pair_coeff * *
 neighbor 0.02 bin
 fix grav all gravity 1.0 vector 0 %(gy)r -1
 fix 1 all nve/lsdem
-fix w all wall/lsdem %(wall)s %(kn)r %(kn)r 0.3 cn 1.0 %(keys)s
+fix w all wall/lsdem %(wall)s %(kn)r %(kn)r %(mu)r cn 1.0 %(keys)s
 %(grain1)svariable m equal mass[1]
 thermo_style custom step time v_px v_py v_pz v_vx v_vy v_vz v_m f_w[1] f_w[2] f_w[3]
 %(thermo)s
@@ -63,7 +63,7 @@ timestep 5e-4
 %(tail)s
 run %(steps)d
 """ % dict(wall=wall, kn=KN, keys=keys, grain1=GRAIN1, thermo=THERMO_FULL, every=every,
-           steps=steps, tail=tail, gy=gy)
+           steps=steps, tail=tail, gy=gy, mu=mu)
     rc, log = run_lmp(deck, np=np, cwd=folder, args=args)
     if args:
         check("style = wall/lsdem/omp" in log, "%s: the threaded wall did not run" % name)
@@ -75,14 +75,16 @@ run %(steps)d
 # edge (length 2 RIDGE_Y) cut into ceil(length / h) pieces
 pieces = math.ceil((RIDGE_Y - (-RIDGE_Y)) / H)
 N = 2 * (pieces + 1)
-two = drop("ridges_twoway", "mesh " + ridges, "twoway yes")
-one = drop("ridges_oneway", "mesh " + ridges)
+# without friction: the normal law alone (with mu = 0.3 the landing leaves the shear springs
+# holding a little of the load: 1.4 % less deep)
+two = drop("ridges_twoway", "mesh " + ridges, "twoway yes", mu=0.0)
+one = drop("ridges_oneway", "mesh " + ridges, mu=0.0)
 if check(len(two) > 10 and len(one) > 10, "ridges: no thermo output"):
     m = two[-1]["v_m"]
     overlap = m * 1.0 / (KN * N)            # the static overlap m g / (kn N)
     sink_two = HALF - two[-1]["v_pz"]
     sink_one = HALF - one[-1]["v_pz"]
-    near(sink_two, overlap, rtol=0.02, msg="ridges, twoway: the static overlap")
+    near(sink_two, overlap, rtol=0.005, msg="ridges, twoway: the static overlap")
     near(-two[-1]["f_w[3]"], m, rtol=1e-3, msg="ridges, twoway: the wall carries the weight")
     check(abs(two[-1]["v_vz"]) < 1e-4, "ridges, twoway: not at rest (vz %g)" % two[-1]["v_vz"])
     check(sink_one > 5 * overlap, "ridges, one way: sinks %.3g, not past the edges (static "
