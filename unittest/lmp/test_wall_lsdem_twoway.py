@@ -57,9 +57,9 @@ fix grav all gravity 1.0 vector 0 %(gy)r -1
 fix 1 all nve/lsdem
 fix w all wall/lsdem %(wall)s %(kn)r %(kn)r %(mu)r cn 1.0 %(keys)s
 %(grain1)svariable m equal mass[1]
-compute owner all property/atom proc
-variable owner equal c_owner[1]
-thermo_style custom step time v_px v_py v_pz v_vx v_vy v_vz v_m f_w[1] f_w[2] f_w[3] v_owner
+compute proc all property/atom proc
+compute owner all reduce max c_proc
+thermo_style custom step time v_px v_py v_pz v_vx v_vy v_vz v_m f_w[1] f_w[2] f_w[3] c_owner
 %(thermo)s
 thermo %(every)d
 timestep 5e-4
@@ -117,9 +117,9 @@ if check(len(ref) > 10, "slide: no thermo output"):
     check(0.05 < travel < 0.3 and abs(ref[-1]["v_vy"]) < 0.3,
           "slide: the cube travelled %g (friction did not act?)" % travel)
     check(len(ranks) == len(ref) and all(a[k] == b[k] for a, b in zip(ref, ranks)
-                                         for k in a if k != "v_owner"),
+                                         for k in a if k != "c_owner"),
           "slide: 2 ranks differ from 1 rank")
-    check(ranks and ranks[0]["v_owner"] == 0 and ranks[-1]["v_owner"] == 1,
+    check(ranks and ranks[0]["c_owner"] == 0 and ranks[-1]["c_owner"] == 1,
           "slide: the cube did not move from rank 0 to rank 1")
     threads = drop("slide_omp2", "mesh " + ridges, slide_keys, steps=1200, v=(0.0, 0.3, 0.0),
                    y0=-0.1, tail="info fixes out log", args=["-sf", "omp", "-pk", "omp", 2])
