@@ -32,6 +32,7 @@
 #include <algorithm>
 #include <functional>
 #include <cfloat>
+#include <climits>
 #include <cmath>
 #include <cstring>
 
@@ -39,15 +40,17 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 using MathConst::MY_PI;
 
-// history partner tag of a wall (grain tags are >= 1)
+// history partner tags of a wall (grain tags are >= 1): the grain's nodes in the wall's
+// level set, and the wall's sharp points in the grain's (twoway)
 static constexpr tagint WALL_PARTNER = -1;
+static constexpr tagint WALL_POINTS_PARTNER = -2;
 
 /* ---------------------------------------------------------------------- */
 
 FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), nlanes(1), ncand(0), fix_history(nullptr), avec(nullptr),
-  band_file(nullptr), map_every(0), map_restart_steps(0), map_booked(-1),
-  fall_valid(0), moving(false), passive(false), contact_step(-1), cand(nullptr), maxcand(0),
+  band_file(nullptr), twoway(false), point_cap(0), map_every(0), map_restart_steps(0),
+  map_booked(-1), fall_valid(0), moving(false), passive(false), contact_step(-1), cand(nullptr), maxcand(0),
   cand_nlocal(0), cand_built(-1)
 {
   for (int d = 0; d < 6; d++) {
@@ -69,6 +72,7 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   restart_global = 1;
   dynamic_group_allow = 1;
   memset(&prm, 0, sizeof(prm));
+  memset(&points, 0, sizeof(points));
 
   int iarg;
   double geom[6];
@@ -116,6 +120,13 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
       if (val != "yes" && val != "no") error->all(FLERR, "fix wall/lsdem: exact must be yes or no");
       if (!band) error->all(FLERR, "fix wall/lsdem: keyword exact is for mesh and terrain walls");
       exact = val == "yes";
+    } else if (key == "twoway") {
+      if (val != "yes" && val != "no")
+        error->all(FLERR, "fix wall/lsdem: twoway must be yes or no");
+      if (!band)
+        error->all(FLERR, "fix wall/lsdem: keyword twoway is for mesh and terrain walls (a {} "
+                   "wall has no sharp features to test)", arg[3]);
+      twoway = val == "yes";
     } else if (key == "map") {
       map_every = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
       map_prefix = arg[iarg + 2];
@@ -163,6 +174,7 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   if (map_every > 0) map_series.reset(new LsdemVtkSeries(map_prefix));
   memset(&exact_pn, 0, sizeof(exact_pn));
   if (exact) use_exact_band(arg[4]);
+  if (twoway) make_points(arg[4]);
   flocal[0] = flocal[1] = flocal[2] = 0.0;
   fall[0] = fall[1] = fall[2] = 0.0;
 }
@@ -208,6 +220,32 @@ void FixWallLsdem::use_exact_band(const char *path)
 }
 
 /* ----------------------------------------------------------------------
+   twoway yes: the band's sharp convex edges as points at about the band's spacing (core:
+   lsdem_band_points), from the triangles the band file keeps
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::make_points(const char *path)
+{
+  const lsdem_band *b = bnd.shape.sdf.band;
+  if (b->heights)
+    error->all(FLERR, "fix wall/lsdem {}: twoway needs the terrain's triangles, which a terrain "
+               "kept as heights does not store: make it with lsdem-shape terrain without "
+               "--heights", path);
+  if (b->ntris == 0)
+    error->all(FLERR, "fix wall/lsdem {}: twoway needs the triangles in the band file; make it "
+               "again with this version of lsdem-shape", path);
+  if (opts.law.normal == LSDEM_NORMAL_TRACTION)
+    error->all(FLERR, "fix wall/lsdem: twoway tests the wall's points with a spring per point; "
+               "it does not take normal traction (a point has no area)");
+  lsdem_error err;
+  if (lsdem_band_points_make(b, b->h, &points, &err) != LSDEM_OK)
+    error->all(FLERR, "fix wall/lsdem {}: {}", path, err.msg);
+  if (comm->me == 0)
+    utils::logmesg(lmp, "fix wall/lsdem {}: twoway: {} points on {} sharp edges\n", id,
+                   points.n, points.nedges);
+}
+
+/* ----------------------------------------------------------------------
    pivot h I [c] into p = (h, I, c), c optional (default 0), checked by the core when
    the platen is made; returns the number of values read
 ------------------------------------------------------------------------- */
@@ -233,6 +271,7 @@ FixWallLsdem::~FixWallLsdem()
   memory->destroy(cand);
   lsdem_wall_map_free(&map);
   lsdem_pseudonormals_free(&exact_pn);
+  lsdem_band_points_free(&points);
   lsdem_band_close(band_file);
   if (fix_history && modify) {
     int ifix = modify->find_fix(history_id);
@@ -271,6 +310,11 @@ void FixWallLsdem::init()
   prm.dt = update->dt;
   prm.detect = opts.detect(avec);
   if (!fix_history) prm.detect.node_skin = 0.0;
+  if (twoway) {
+    const int64_t cap = lsdem_band_points_within(bnd.shape.sdf.band, &points,
+                                                 avec->max_shape_radius());
+    point_cap = (int) std::min<int64_t>(cap, INT_MAX);
+  }
   set_lanes(1);
   LsdemContactOptions::sum_quanta(
       LsdemContactOptions::node_spring(opts.law.kn, opts.law.normal, opts.stride, avec), avec,
@@ -491,7 +535,8 @@ void FixWallLsdem::find_candidates()
 void FixWallLsdem::set_lanes(int n)
 {
   while ((int) lanes.size() < n) lanes.emplace_back(new Lane);
-  for (int l = 0; l < (int) lanes.size(); l++) lanes[l]->path.setup(fix_history, avec, l);
+  for (int l = 0; l < (int) lanes.size(); l++)
+    lanes[l]->path.setup(fix_history, avec, l, point_cap);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -647,7 +692,6 @@ void FixWallLsdem::begin_force_call(int n, lsdem_pose &w)
 
 void FixWallLsdem::visit_candidates(Lane &lane, int from, int to, const lsdem_pose &w)
 {
-  double **f = atom->f, **torque = atom->torque;
   const int *mask = atom->mask;
   const bigint step = update->ntimestep;
   for (int c = from; c < to; c++) {
@@ -661,25 +705,60 @@ void FixWallLsdem::visit_candidates(Lane &lane, int from, int to, const lsdem_po
       LsdemContactPath::pose_of(atom, avec, i, p);
       lsdem_contact_result res;
       lane.path.test(i, WALL_PARTNER, avec->shape_of(i), p, &bnd.shape, w, prm, step, res);
-      if (res.npen > 0) {
-        double fk[3], ta[3], tb[3];
-        lsdem_quantize3(res.force, force_q, fk);
-        lsdem_quantize3(res.torque_a, torque_q, ta);
-        lsdem_quantize3(res.torque_b, torque_q, tb);
-        for (int d = 0; d < 3; d++) {
-          f[i][d] += fk[d];
-          torque[i][d] += ta[d];
-          lane.f[d] -= fk[d];
-          lane.t[d] += tb[d];
-        }
-        add_contact(lane, i, res, w, began);
-        if (lane.crossing.empty() && lsdem_boundary_tunnelled(&bnd, res.max_depth))
-          lane.crossing = tunnelled(i, res.max_depth);
-      }
+      if (res.npen > 0) apply_contact(lane, i, res, w, began, true);
+      if (twoway) test_points(lane, i, p, w);
     }
     if ((mask[i] & groupbit) && lane.crossing.empty()) lane.crossing = crossing(i, w);
     lane.path.end_atom(i);
   }
+}
+
+/* ----------------------------------------------------------------------
+   a contact of grain i (res: force and torque on the grain, torque_b on the wall about
+   its point) applied: rounded to the quanta, added to the grain and to the lane's totals
+   on the wall; kept for output; a contact through the band checked for tunnelling
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::apply_contact(Lane &lane, int i, const lsdem_contact_result &res,
+                                 const lsdem_pose &w, bool began, bool through_band)
+{
+  double fk[3], ta[3], tb[3];
+  lsdem_quantize3(res.force, force_q, fk);
+  lsdem_quantize3(res.torque_a, torque_q, ta);
+  lsdem_quantize3(res.torque_b, torque_q, tb);
+  for (int d = 0; d < 3; d++) {
+    atom->f[i][d] += fk[d];
+    atom->torque[i][d] += ta[d];
+    lane.f[d] -= fk[d];
+    lane.t[d] += tb[d];
+  }
+  add_contact(lane, i, res, w, began);
+  if (through_band && lane.crossing.empty() && lsdem_boundary_tunnelled(&bnd, res.max_depth))
+    lane.crossing = tunnelled(i, res.max_depth);
+}
+
+/* ----------------------------------------------------------------------
+   twoway: the wall's sharp points in grain i's level set (the wall is the master there),
+   turned into the grain's view (force and torque on the grain, the torque on the wall)
+   and applied with the same weight as the grain's nodes: the points lie only on sharp
+   convex edges, where the grain's nodes find (almost) nothing, so a contact is counted
+   once (doc/fix_wall_lsdem.rst)
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::test_points(Lane &lane, int i, const lsdem_pose &p, const lsdem_pose &w)
+{
+  const bool began = map_every > 0 && !lane.path.touched(i, WALL_POINTS_PARTNER);
+  lsdem_contact_result res;
+  if (lane.path.test_points(i, WALL_POINTS_PARTNER, bnd.shape.sdf.band, points, w,
+                            avec->shape_of(i), p, prm, update->ntimestep, res) == 0)
+    return;
+  for (int d = 0; d < 3; d++) {
+    const double t_wall = res.torque_a[d];
+    res.force[d] = -res.force[d];
+    res.torque_a[d] = res.torque_b[d];
+    res.torque_b[d] = t_wall;
+  }
+  apply_contact(lane, i, res, w, began, false);
 }
 
 /* ----------------------------------------------------------------------

@@ -103,6 +103,11 @@ class FixWallLsdem : public Fix {
   lsdem_band_file *band_file;  // mesh and terrain walls: the mapped band (else nullptr)
   lsdem_band exact_band;       // keyword exact yes: the band with its pseudonormals (the
   lsdem_pseudonormals exact_pn;   // wall's level set then), else unused
+  // keyword twoway yes: the band's sharp points (made once here) tested against the grains'
+  // level sets too, and the most of them a grain can hold (manifold room)
+  bool twoway;
+  lsdem_band_points points;
+  int point_cap;
   LsdemContactOptions opts;    // the contact law and detection keywords
   lsdem_contact_params prm;    // what the core gets (node skin and dt set at init)
   lsdem_quantum force_q, torque_q;  // order-free sums of the wall's force and torque
@@ -129,6 +134,10 @@ class FixWallLsdem : public Fix {
   bigint cand_built;           // neighbor->lastcall when cand was built; -1: stale
   double cand_wall_x[3];       // the wall's point then
   void add_contact(Lane &, int, const lsdem_contact_result &, const lsdem_pose &w, bool began);
+  void apply_contact(Lane &, int, const lsdem_contact_result &, const lsdem_pose &w, bool began,
+                     bool through_band);
+  void test_points(Lane &, int, const lsdem_pose &p, const lsdem_pose &w);
+  void make_points(const char *path);
   bool candidates_can_last() const;
   bool candidates_hold() const;
   void find_candidates();

@@ -28,11 +28,12 @@ LsdemContactPath::~LsdemContactPath()
 
 /* ---------------------------------------------------------------------- */
 
-void LsdemContactPath::setup(FixLsdemHistory *history, const AtomVecLsdem *avec, int lane_id)
+void LsdemContactPath::setup(FixLsdemHistory *history, const AtomVecLsdem *avec, int lane_id,
+                             int min_points)
 {
   store = history;
   lane = lane_id;
-  int need = 1;
+  int need = std::max(1, min_points);
   for (int s = 0; s < avec->nshapes(); s++)
     need = std::max(need, lsdem_manifold_capacity(lsdem_library_shape(avec->library(), s)));
   if (need > cap) {
@@ -120,6 +121,29 @@ int LsdemContactPath::test(int i, tagint partner, const lsdem_shape *A, const ls
   lsdem_penalty_apply(&m, &prm.law, prm.dt, step, found ? in.shear : nullptr,
                       found ? in.nshear : 0, out.shear, &out.nshear, &res);
   store->commit(lane, partner, out);
+  return res.npen;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int LsdemContactPath::test_points(int i, tagint partner, const lsdem_band *band,
+                                  const lsdem_band_points &pts, const lsdem_pose &pw,
+                                  const lsdem_shape *B, const lsdem_pose &pb,
+                                  const lsdem_contact_params &prm, bigint step,
+                                  lsdem_contact_result &res)
+{
+  lsdem_detect_band_points(band, &pts, &pw, B, &pb, &m);
+  lsdem_pair_state in;
+  const bool keep = store && prm.law.mu > 0.0, found = keep && store->find(i, partner, in);
+  lsdem_pair_state out;
+  if (keep) {
+    out = store->reserve(lane, 0, m.n);
+    FixLsdemHistory::place_shear(out);
+  }
+  lsdem_penalty_apply(&m, &prm.law, prm.dt, step, found ? in.shear : nullptr,
+                      found ? in.nshear : 0, keep ? out.shear : nullptr,
+                      keep ? &out.nshear : nullptr, &res);
+  if (keep) store->commit(lane, partner, out);
   return res.npen;
 }
 

@@ -27,8 +27,9 @@ class LsdemContactPath {
 
   // where pair states are kept (nullptr: nowhere) and in which of its lanes this path
   // writes (one per thread), and manifold storage for the largest shape of the atom
-  // style's library; at each init
-  void setup(class FixLsdemHistory *, const class AtomVecLsdem *, int lane = 0);
+  // style's library and at least min_points points; at each init
+  void setup(class FixLsdemHistory *, const class AtomVecLsdem *, int lane = 0,
+             int min_points = 1);
   // the world-frame pose of atom i (local or ghost); an analytic sphere's R is the identity
   // (its level set does not turn with it)
   static void pose_of(const class Atom *, const class AtomVecLsdem *, int i, lsdem_pose &);
@@ -51,6 +52,12 @@ class LsdemContactPath {
   int test(int i, tagint partner, const lsdem_shape *A, const lsdem_pose &pa,
            const lsdem_shape *B, const lsdem_pose &pb, const lsdem_contact_params &prm,
            bigint step, lsdem_contact_result &res);
+  // the other way round for a band wall (fix wall/lsdem twoway): the wall's sharp points
+  // (pts, at pw; the master) against grain i's level set (B at pb), the law with the
+  // points' shear history kept under `partner` in i's store. Returns the penetrating points.
+  int test_points(int i, tagint partner, const lsdem_band *band, const lsdem_band_points &pts,
+                  const lsdem_pose &pw, const lsdem_shape *B, const lsdem_pose &pb,
+                  const lsdem_contact_params &prm, bigint step, lsdem_contact_result &res);
   // detection alone (no law, no shear history): grain i's manifold against its partner,
   // with the pair's node list kept when the store is set and det.node_skin > 0 (impulse
   // mode, pair_style lsdem/impulse). Returns the manifold's points.

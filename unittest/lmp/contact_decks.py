@@ -94,3 +94,33 @@ def write_cube_stl(path, lo, hi):
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
     return path
+
+
+def write_ridges_stl(path, xs, half_y, half_base=0.3, height=0.5):
+    """Closed triangular prisms along y as ASCII STL, one per x in xs: the sharp top edge
+    at (x, z = 0) from y = -half_y to half_y, the base 2 half_base wide at z = -height;
+    triangles oriented outwards."""
+    tris = []
+    for xc in xs:
+        a, b = ([(xc - half_base, y, -height), (xc + half_base, y, -height), (xc, y, 0.0)]
+                for y in (-half_y, half_y))
+        quads = [(a[0], a[1], b[1], b[0]), (a[1], a[2], b[2], b[1]), (a[2], a[0], b[0], b[2])]
+        prism = [t for q in quads for t in ((q[0], q[1], q[2]), (q[0], q[2], q[3]))]
+        prism += [tuple(a), tuple(b)]
+        centre = (xc, 0.0, -height / 3)
+        for t in prism:
+            e1 = [t[1][i] - t[0][i] for i in range(3)]
+            e2 = [t[2][i] - t[0][i] for i in range(3)]
+            n = (e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                 e1[0] * e2[1] - e1[1] * e2[0])
+            outward = sum(n[i] * (t[0][i] - centre[i]) for i in range(3)) > 0
+            tris.append(t if outward else (t[0], t[2], t[1]))
+    lines = ["solid ridges"]
+    for t in tris:
+        lines.append(" facet normal 0 0 0\n  outer loop")
+        lines += ["   vertex %r %r %r" % v for v in t]
+        lines.append("  endloop\n endfacet")
+    lines.append("endsolid ridges")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return path

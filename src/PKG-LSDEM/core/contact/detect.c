@@ -293,6 +293,60 @@ int lsdem_detect_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_s
   return m->n;
 }
 
+/* ------------------------------------------------ a wall's sharp points ---- */
+
+/* The points of one stored brick (wall frame) within B's bounding sphere (cb: B's centre,
+ * wall frame) looked up in B's level set, the penetrating ones added. */
+static void detect_brick_points(const lsdem_band_points *pts, int32_t brick,
+                                const double cb[3], double rb2, const double M[9],
+                                const double t[3], const lsdem_shape *B,
+                                const lsdem_pose *pa, const lsdem_pose *pb,
+                                const pair_motion *pm, lsdem_manifold *m)
+{
+  for (int64_t k = pts->brick_start[brick]; k < pts->brick_start[brick + 1]; k++) {
+    const double *x = &pts->x[3 * k];
+    const double d0 = x[0] - cb[0], d1 = x[1] - cb[1], d2 = x[2] - cb[2];
+    if (d0 * d0 + d1 * d1 + d2 * d2 > rb2 || m->n == m->cap) continue;
+    double q[3], g[3], p[3], n[3];
+    lsdem_affine3(M, t, x, q);
+    const double phi = lsdem_sdf_eval(&B->sdf, q, g);
+    m->ntested++;
+    if (!(phi < 0.0)) continue;
+    lsdem_affine3(pa->R, pa->x, x, p); /* the point in the world */
+    lsdem_mat_vec(pb->R, g, n);        /* B's outward normal: from B towards the wall */
+    add_point(m, pm, (int)k, p, n, -phi, 1.0);
+  }
+}
+
+int lsdem_detect_band_points(const lsdem_band *band, const lsdem_band_points *pts,
+                             const lsdem_pose *pa, const lsdem_shape *B,
+                             const lsdem_pose *pb, lsdem_manifold *m)
+{
+  /* cb: B's centre in the wall's frame; the wall's frame -> B's: q = M x + t with
+   * M = RB^T RA, t = RB^T (xA - xB) */
+  double dx[3], cb[3], mdx[3], M[9], t[3];
+  pair_motion pm;
+  lsdem_sub3(pb->x, pa->x, dx);
+  for (int a = 0; a < 3; a++) mdx[a] = -dx[a];
+  lsdem_matT_vec(pa->R, dx, cb);
+  lsdem_matT_mul(pb->R, pa->R, M);
+  lsdem_matT_vec(pb->R, mdx, t);
+  pair_motion_of(pa, pb, &pm);
+  manifold_begin(m, &pm, 1);
+  int lo[3], hi[3];
+  lsdem_band_slot_range(band, cb, B->radius, lo, hi);
+  const double rb2 = B->radius * B->radius;
+  /* slots in increasing order: bricks, and so points, in increasing number */
+  for (int z = lo[2]; z <= hi[2]; z++)
+    for (int y = lo[1]; y <= hi[1]; y++)
+      for (int x = lo[0]; x <= hi[0]; x++) {
+        const int64_t slot = x + (int64_t)band->nb[0] * (y + (int64_t)band->nb[1] * z);
+        const int32_t brick = band->index[slot];
+        if (brick >= 0) detect_brick_points(pts, brick, cb, rb2, M, t, B, pa, pb, &pm, m);
+      }
+  return m->n;
+}
+
 /* ----------------------------------------------------------- sphere paths ---- */
 
 /* One sphere contact (sphere A against B) given B's outward normal n and the depth d, at

@@ -177,6 +177,18 @@ int lsdem_detect_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_s
                        const lsdem_nodelist *list_in, lsdem_nodelist *list_out,
                        lsdem_manifold *m);
 
+/* The other way round for a band wall A (fix wall/lsdem twoway): A's sharp points (pts,
+ * lsdem_band_points of band; A at pa is the master) inside grain B's level set (B at pb,
+ * B->radius bounding it). Only the stored bricks that B's bounding sphere reaches are
+ * visited and only their points within it are looked up, one lookup each in B's frame.
+ * The manifold's points are the wall's points in increasing number (node = point
+ * number), normal B's outward normal (from the grain towards the wall), depth -phi_B,
+ * area 1, stride 1, relative velocity the wall's point's against B's. m->cap bounds the
+ * points kept (lsdem_band_points_within B's radius suffices). Returns m->n. */
+int lsdem_detect_band_points(const lsdem_band *band, const lsdem_band_points *pts,
+                             const lsdem_pose *pa, const lsdem_shape *B,
+                             const lsdem_pose *pb, lsdem_manifold *m);
+
 /* The sphere path's tributary area under the traction law: the cross-section pi r^2. */
 double lsdem_sphere_contact_area(double radius);
 

@@ -263,6 +263,36 @@ lsdem_status lsdem_heights_check(const lsdem_band *b, lsdem_error *err);
  * squared distance in *d2: exact when p is nearer than width to the surface; -1 when p's
  * brick is background or the band keeps no surface. */
 int64_t lsdem_band_closest_triangle(const lsdem_band *b, const double p[3], double *d2);
+/* A band's sharp convex features as points (band_points.c), for testing a wall against a
+ * grain's level set the other way round (fix wall/lsdem twoway): a flat grain face on a
+ * knife edge or a box corner holds no node inside the wall. An edge of the kept surface
+ * is sharp when it is convex (the neighbour's far vertex lies on the solid side of the
+ * triangle's plane) and its triangles' normals differ by LSDEM_BAND_SHARP_DEG or more;
+ * its points are its two vertices (each once) and samples at most `spacing` apart along
+ * it. Points are numbered brick by brick in brick order (stored bricks are numbered in
+ * slot order, x fastest), so a visit of slots in increasing order meets them in
+ * increasing number. Wall frame. */
+#define LSDEM_BAND_SHARP_DEG 30.0
+typedef struct {
+  int64_t n;            /* points */
+  double *x;            /* 3 n */
+  int64_t *brick_start; /* nbricks + 1: brick k's points are [brick_start[k], [k + 1]) */
+  int64_t nedges;       /* sharp edges */
+} lsdem_band_points;
+/* The points of b's sharp edges (b keeps its surface and its triangles' neighbours).
+ * LSDEM_ERR_ARG for a band without surface (heights, or ntris = 0), a point whose brick
+ * is not stored (a band narrower than a cell's diagonal), spacing <= 0; LSDEM_ERR_NOMEM.
+ * Allocates p->x and p->brick_start (lsdem_band_points_free). */
+lsdem_status lsdem_band_points_make(const lsdem_band *b, double spacing, lsdem_band_points *p,
+                                    lsdem_error *err);
+void lsdem_band_points_free(lsdem_band_points *p);
+/* The slots (brick coordinates, inclusive) that a ball of radius r about c (wall frame)
+ * reaches, clamped to the box. */
+void lsdem_band_slot_range(const lsdem_band *b, const double c[3], double r, int lo[3],
+                           int hi[3]);
+/* A bound on the points any ball of radius r holds: the most points in the slots such a
+ * ball can reach, over the stored bricks that hold points (setup only). */
+int64_t lsdem_band_points_within(const lsdem_band *b, const lsdem_band_points *p, double r);
 /* Whether a penetration depth (-phi of a node) means the node read the solid-side
  * background: it went through the band. */
 int lsdem_band_tunnelled(const lsdem_band *b, double depth);
