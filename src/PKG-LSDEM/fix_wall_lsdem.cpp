@@ -73,6 +73,9 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   dynamic_group_allow = 1;
   memset(&prm, 0, sizeof(prm));
   memset(&points, 0, sizeof(points));
+  memset(&thinnest, 0, sizeof(thinnest));
+  thinnest.thinnest = HUGE_VAL;
+  thin_searched = false;
 
   int iarg;
   double geom[6];
@@ -328,7 +331,10 @@ void FixWallLsdem::init()
       error->all(FLERR, "fix wall/lsdem: {} variable {} is not equal-style", what, vstr[d]);
   }
   if (bnd.shape.sdf.kind == LSDEM_SDF_PLANE) check_plane_in_box();
-  if (bnd.shape.sdf.kind == LSDEM_SDF_BAND) check_band_width();
+  if (bnd.shape.sdf.kind == LSDEM_SDF_BAND) {
+    check_band_width();
+    find_thinnest();
+  }
   if (map_every > 0 && !map.sum) {
     // forces in the wall's own quanta; work for sliding up to the band's width per step
     lsdem_error err;
@@ -396,6 +402,50 @@ void FixWallLsdem::check_band_width() const
                  "lsdem-shape ... --width above {:.6g}", id, width, k + 1, s->sdf.a[0],
                  s->sdf.a[0]);
   }
+}
+
+/* ----------------------------------------------------------------------
+   the time-step bound for thin walls: a grain touching the wall may move its nodes (by at
+   most (|v| + |omega| R) dt) less than the wall's thinnest ridge in a step, else a node
+   could step over it without ever being inside; ridges up to half the largest grain's
+   radius count (a faster grain stops fix nve/lsdem anyway), found once from the band's
+   triangles (core lsdem_band_thin_features)
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::find_thinnest()
+{
+  const lsdem_band *b = bnd.shape.sdf.band;
+  if (thin_searched || b->ntris == 0) return;  // done already, or no triangles kept
+  thin_searched = true;
+  lsdem_thin_feature *f = nullptr;
+  int n = 0;
+  lsdem_error err;
+  const double limit = std::max(2.0 * b->h, 0.5 * avec->max_shape_radius());
+  if (lsdem_band_thin_features(b, limit, &f, &n, &err) != LSDEM_OK)
+    error->all(FLERR, "fix wall/lsdem {}: {}", id, err.msg);
+  for (int k = 0; k < n; k++)
+    if (f[k].ridge && f[k].thinnest < thinnest.thinnest) thinnest = f[k];
+  free(f);
+  if (thinnest.thinnest < HUGE_VAL && comm->me == 0)
+    utils::logmesg(lmp, "fix wall/lsdem {}: thinnest ridge {:.6g} across at ({:.6g}, {:.6g}, "
+                   "{:.6g}): a grain touching the wall may move its nodes less than that in "
+                   "a step\n", id, thinnest.thinnest, thinnest.at[0], thinnest.at[1],
+                   thinnest.at[2]);
+}
+
+std::string FixWallLsdem::too_fast_for_thin(int i) const
+{
+  const double *v = atom->v[i], *om = atom->omega[i], dt = update->dt, R = atom->radius[i];
+  const double step = (std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) +
+                       std::sqrt(om[0] * om[0] + om[1] * om[1] + om[2] * om[2]) * R) * dt;
+  if (!(step > thinnest.thinnest)) return std::string();
+  return fmt::format(
+      "fix wall/lsdem {}: grain {} touches the wall at step {} moving its nodes up to {:.6g} "
+      "a step, more than the wall's thinnest ridge, {:.6g} across at ({:.6g}, {:.6g}, {:.6g}): "
+      "a node could step over it; a time step below {:.6g} would hold it ((|v| + |omega| R) "
+      "dt below the ridge), or a thicker wall", id, atom->tag[i], update->ntimestep, step,
+      thinnest.thinnest, thinnest.at[0], thinnest.at[1], thinnest.at[2],
+      dt * thinnest.thinnest / step);
 }
 
 /* ----------------------------------------------------------------------
@@ -735,6 +785,7 @@ void FixWallLsdem::apply_contact(Lane &lane, int i, const lsdem_contact_result &
   add_contact(lane, i, res, w, began);
   if (through_band && lane.crossing.empty() && lsdem_boundary_tunnelled(&bnd, res.max_depth))
     lane.crossing = tunnelled(i, res.max_depth);
+  if (lane.crossing.empty() && thinnest.thinnest < HUGE_VAL) lane.crossing = too_fast_for_thin(i);
 }
 
 /* ----------------------------------------------------------------------

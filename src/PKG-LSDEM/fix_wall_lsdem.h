@@ -108,6 +108,10 @@ class FixWallLsdem : public Fix {
   bool twoway;
   lsdem_band_points points;
   int point_cap;
+  // a band wall's thinnest ridge (width across, where) found at init, HUGE_VAL when none
+  // thinner than half the largest grain radius: the time-step bound for thin walls
+  lsdem_thin_feature thinnest;
+  bool thin_searched;
   LsdemContactOptions opts;    // the contact law and detection keywords
   lsdem_contact_params prm;    // what the core gets (node skin and dt set at init)
   lsdem_quantum force_q, torque_q;  // order-free sums of the wall's force and torque
@@ -150,6 +154,8 @@ class FixWallLsdem : public Fix {
   bool may_touch(int, double margin) const;
   std::string crossing(int, const lsdem_pose &wall) const;
   std::string tunnelled(int, double depth) const;
+  void find_thinnest();
+  std::string too_fast_for_thin(int) const;
 
   // per-triangle force maps of a mesh or terrain wall (keyword map N PREFIX)
   bigint map_every;               // 0: no map

@@ -9,6 +9,8 @@ Against independent expectations:
   - a cube dropped on the top face of an STL cube lands as on the plane of that face, also
     at the block's edge with exact yes (the grid path rounds the edge by about h);
   - 1 and 2 ranks give the same bits;
+  - a plate half a band spacing thick (exact yes) stops a cube moving within the thin-wall
+    time-step bound, and a cube beyond it stops the run naming grain, wall and step;
   - a grain driven deeper than the band is wide stops the run naming it; a file made from
     the other source, a damaged file and a missing one stop with named errors."""
 import math
@@ -265,6 +267,37 @@ flat_band = terrain_band("flat", lambda x, y: 0.0)
 refuses("tunnel", deck_with("terrain " + flat_band, v=(0.0, 0.0, -30.0), z=HALF + 0.01,
                             steps=400, law="100 0 0.0"),
         "grain 1", "tunnelled", "--width")
+
+# a plate half a band spacing thick (0.05 at h = 0.1; exact yes holds it): a cube dropped
+# on it within the thin-wall bound ((|v| + |omega| R) dt below the plate's 0.05) bounces
+# off without entering it deeper than its static overlap; beyond the bound (0.075 a step)
+# the run stops naming the grain, the wall, the step and the plate
+plate = os.path.abspath("plate.band")
+shape_tool("wall", write_cube_stl("plate.stl", (-3.0, -3.0, -0.05), (3.0, 3.0, 0.0)), plate,
+           "--spacing", 0.1, "--width", 0.2)
+write_data("plate.data", (-12, 12, -5, 5, -12, 12), [Grain((0.0, 0.0, HALF + 0.01), v=(0, 0, -2.0))])
+rc, log = run_lmp(head(lib, "plate.data", boundary="f f f") + """
+pair_style zero 2.0
+pair_coeff * *
+fix 1 all nve/lsdem
+fix w all wall/lsdem mesh %s 5000 0 0.0 exact yes
+%s
+thermo_style custom step v_pz v_vz
+thermo_modify format float %%.10g
+thermo 10
+timestep 5e-4
+run 1000
+""" % (plate, GRAIN1), cwd=os.path.abspath("plate_ok"))
+rows = thermo(log)
+if check(len(rows) > 5 and "thinnest ridge 0.05 across" in log, "thin plate: no run or no "
+         "thinnest ridge in the log:\n%s" % log[-1500:]):
+    lowest = min(r["v_pz"] for r in rows)
+    check(lowest > HALF - 0.01 and rows[-1]["v_vz"] > 0.0, "thin plate: the cube went %.4g "
+          "deep into the 0.05 plate (centre lowest %.6g), or did not bounce (vz %.3g)"
+          % (HALF - lowest, lowest, rows[-1]["v_vz"]))
+refuses("thin_fast", deck_with("mesh " + plate, v=(0.0, 0.0, -150.0), z=HALF + 0.01, steps=20,
+                               law="5000 0 0.0 exact yes"),
+        "grain 1 touches the wall at step", "thinnest ridge, 0.05 across", "a time step below")
 
 # beyond its border the terrain continues flat (lsdem-shape terrain pads the raster with
 # the edge heights): cubes resting 0.5 and 1.5 beyond the edge of the flat terrain rest as

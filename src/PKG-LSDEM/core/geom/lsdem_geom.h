@@ -306,6 +306,22 @@ lsdem_status lsdem_band_check(const lsdem_band *b, lsdem_error *err);
 /* Bytes of the index, the coarse level, the stored bricks and the surface. */
 size_t lsdem_band_bytes(const lsdem_band *b);
 
+/* A ridge or slot of a wall narrower than a limit (lsdem_band_thin_features). */
+typedef struct {
+  int ridge;       /* 1: solid thinner than the limit; 0: a slot, a gap narrower than it */
+  int ntris;       /* its triangles: those joined by edges whose width across is below it */
+  double thinnest; /* the least width across, along a triangle's normal from its centroid */
+  double at[3];    /* the centroid of that triangle */
+  int32_t tri;     /* that triangle */
+} lsdem_thin_feature;
+/* The ridges and slots of a band's kept surface narrower than limit (e.g. 2 h, below which
+ * trilinear interpolation cannot hold them): from each triangle's centroid a ray along its
+ * inward and one along its outward normal; one that meets another triangle within limit
+ * marks the triangle (width across = that distance); marked triangles joined by edges or
+ * facing each other across make one feature. Ridges first, each kind in order of its first triangle. Allocates *out
+ * (free()); LSDEM_ERR_ARG when the band keeps no surface. */
+lsdem_status lsdem_band_thin_features(const lsdem_band *b, double limit,
+                                      lsdem_thin_feature **out, int *nout, lsdem_error *err);
 /* A band file (format in doc/wall_band.rst; written by lsdem-shape wall/terrain through
  * lsdem_band_write, lsdem_prep.h): memory-mapped read-only, so ranks on one machine share
  * one copy through the page cache. Open checks the header, the checksums, the sizes and

@@ -343,22 +343,6 @@ lsdem_status lsdem_band_from_heights(const lsdem_heightmap *hm, double width, ls
                                      lsdem_error *err);
 /* Frees what lsdem_band_from_mesh or _from_heights allocated (not a mapped file's band). */
 void lsdem_band_free(lsdem_band *b);
-/* A ridge or slot of a wall narrower than a limit (lsdem_band_thin_features). */
-typedef struct {
-  int ridge;       /* 1: solid thinner than the limit; 0: a slot, a gap narrower than it */
-  int ntris;       /* its triangles: those joined by edges whose width across is below it */
-  double thinnest; /* the least width across, along a triangle's normal from its centroid */
-  double at[3];    /* the centroid of that triangle */
-  int32_t tri;     /* that triangle */
-} lsdem_thin_feature;
-/* The ridges and slots of a band's kept surface narrower than limit (e.g. 2 h, below which
- * trilinear interpolation cannot hold them): from each triangle's centroid a ray along its
- * inward and one along its outward normal; one that meets another triangle within limit
- * marks the triangle (width across = that distance); marked triangles joined by edges or
- * facing each other across make one feature. Ridges first, each kind in order of its first triangle. Allocates *out
- * (free()); LSDEM_ERR_ARG when the band keeps no surface. */
-lsdem_status lsdem_band_thin_features(const lsdem_band *b, double limit,
-                                      lsdem_thin_feature **out, int *nout, lsdem_error *err);
 /* Write a band file (format in doc/wall_band.rst, geom/bandfile_format.h; read by
  * lsdem_band_open) after lsdem_band_check; to a temporary file renamed onto path, so a
  * failure leaves no file and readers that map the old one keep it whole. */

@@ -1,11 +1,12 @@
 /* thin_features.c -- ridges and slots of a wall narrower than a band can hold (lsdem-shape
- * wall/terrain's report): from each triangle's centroid a ray along the inward normal
- * (into the solid) and one along the outward normal (into the open side); a ray that meets
- * the surface again within `limit` marks the triangle as part of a ridge (solid thinner
- * than limit) or a slot (a gap narrower than limit). Marked triangles joined by edges, or
- * facing each other across the feature, are one feature. Rays meet triangles found through the band's brick lists (every triangle
- * through a point of a brick is listed for it). */
-#include "lsdem_prep.h"
+ * wall/terrain's report; fix wall/lsdem's time-step bound for thin walls): from each
+ * triangle's centroid a ray along the inward normal (into the solid) and one along the
+ * outward normal (into the open side); a ray that meets the surface again within `limit`
+ * marks the triangle as part of a ridge (solid thinner than limit) or a slot (a gap
+ * narrower than limit). Marked triangles joined by edges, or facing each other across the
+ * feature, are one feature. Rays meet triangles found through the band's brick lists
+ * (every triangle through a point of a brick is listed for it). */
+#include "lsdem_geom.h"
 
 #include <math.h>
 #include <stdlib.h>
