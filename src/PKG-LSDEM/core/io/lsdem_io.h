@@ -83,6 +83,16 @@ typedef struct {
 } lsdem_tiff_georef;
 lsdem_status lsdem_tiff_read_georef(const char *path, lsdem_tiff_georef *g, lsdem_error *err);
 
+/* --------------------------------------------- triangle meshes (mesh_read.c) ---- */
+
+#define LSDEM_MESH_MAX_TRIS 16777216 /* triangles per mesh */
+
+/* STL (ASCII or binary, detected from the content: a binary file's size is
+ * 84 + 50 * count) or Wavefront OBJ (v and f lines; polygons fan-triangulated,
+ * negative indices relative). The format comes from the extension (.stl / .obj, any
+ * case), otherwise from the content. Errors name the file and the line or triangle. */
+lsdem_status lsdem_mesh_read(const char *path, lsdem_mesh *m, lsdem_error *err);
+
 /* ------------------------------------------------------------ height maps ---- */
 
 /* A terrain's heights on a square raster: z[j nx + i] at (x0 + i cell, y0 + j cell), row

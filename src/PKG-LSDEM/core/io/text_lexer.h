@@ -1,5 +1,5 @@
 /* text_lexer.h -- whitespace-separated tokens of a NUL-terminated text, with line numbers,
- * for the core's text readers (STL and OBJ meshes: prep/mesh_import.c; ESRI ASCII grids:
+ * for the core's text readers (STL and OBJ meshes: io/mesh_read.c; ESRI ASCII grids:
  * io/heightmap.c). Private to the core. */
 #ifndef LSDEM_IO_TEXT_LEXER_H
 #define LSDEM_IO_TEXT_LEXER_H

@@ -254,16 +254,8 @@ lsdem_status lsdem_voxel_grains(const lsdem_label_image *img, const lsdem_voxel_
 void lsdem_voxel_grains_free(lsdem_voxel_grain *grains, int count);
 
 
-/* ---------------------------------------------------- triangle meshes (import) ---- */
-
-#define LSDEM_MESH_MAX_TRIS 16777216 /* triangles per mesh */
-
-
-/* STL (ASCII or binary, detected from the content: a binary file's size is
- * 84 + 50 * count) or Wavefront OBJ (v and f lines; polygons fan-triangulated,
- * negative indices relative). The format comes from the extension (.stl / .obj, any
- * case), otherwise from the content. Errors name the file and the line or triangle. */
-lsdem_status lsdem_mesh_read(const char *path, lsdem_mesh *m, lsdem_error *err);
+/* ------------------------------------- triangle meshes: checks (mesh_check.c) ---- */
+/* (reading: lsdem_mesh_read, lsdem_io.h) */
 
 typedef struct {
   int boundary_edges;     /* edges used by one triangle */

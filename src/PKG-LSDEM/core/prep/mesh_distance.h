@@ -1,5 +1,5 @@
 /* mesh_distance.h -- exact signed distance to a triangle mesh, shared by the mesh's dense
- * grid (mesh_import.c, lsdem_mesh_sdf_grid) and the narrow band of a wall (band_build.c).
+ * grid (mesh_sdf.c, lsdem_mesh_sdf_grid) and the narrow band of a wall (band_build.c).
  * Private to core/prep.
  *
  * The unsigned distance to the closest triangle (Ericson, Real-Time Collision Detection,
@@ -31,7 +31,7 @@ void mesh_tri_normal(const lsdem_mesh *m, int t, double n[3]);
  * in magnitude where the holes' mouths, spanned, would enclose p. O(triangles). */
 double mesh_winding_number(const lsdem_mesh *m, const double p[3]);
 
-/* Edge analysis (mesh_import.c): counts into topo, and nbr[3t+e] = the triangle across
+/* Edge analysis (mesh_check.c): counts into topo, and nbr[3t+e] = the triangle across
  * edge e of t (corner e to corner e+1) when the edge is shared by exactly two triangles
  * (else -1). nbr may be NULL. */
 lsdem_status mesh_edges(const lsdem_mesh *m, lsdem_mesh_topology *topo, int *nbr,
