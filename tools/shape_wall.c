@@ -109,22 +109,6 @@ static void report_surface(const char *name, const lsdem_mesh *m, const lsdem_me
   printf("\n");
 }
 
-/* Largest |phi| of the band at the mesh's vertices and triangle centroids: the distance
- * the band's zero level set can be from the surface there (0 up to interpolation). */
-static double surface_misfit(const lsdem_band *b, const lsdem_mesh *m)
-{
-  double worst = 0.0, g[3];
-  for (int v = 0; v < m->nverts; v++)
-    worst = fmax(worst, fabs(lsdem_band_eval(b, m->verts + 3 * v, g)));
-  for (int t = 0; t < m->ntris; t++) {
-    double c[3] = {0.0, 0.0, 0.0};
-    for (int k = 0; k < 3; k++)
-      for (int a = 0; a < 3; a++) c[a] += m->verts[3 * m->tris[3 * t + k] + a] / 3.0;
-    worst = fmax(worst, fabs(lsdem_band_eval(b, c, g)));
-  }
-  return worst;
-}
-
 /* Largest |phi| of a band kept as heights at its columns' vertices (0 up to rounding:
  * its lookups are exact). */
 static double heights_misfit(const lsdem_band *b)
@@ -215,9 +199,14 @@ static int write_and_check(const char *cmd, lsdem_band *b, lsdem_band_source src
   if (!rc) {
     const lsdem_band *r = lsdem_band_file_band(f);
     if (m) {
-      const double misfit = surface_misfit(r, m);
+      lsdem_band_distance dist;
+      lsdem_band_misfit(r, m, &dist);
       printf("surface check: max |phi| at the %d vertices and %d triangle centroids %.3g h "
-             "(%.3g)\n", m->nverts, m->ntris, misfit / r->h, misfit);
+             "(%.3g)\n", m->nverts, m->ntris, dist.mesh_to_zero / r->h, dist.mesh_to_zero);
+      printf("Hausdorff distance between the band's zero level set and the mesh: %.3g h "
+             "(%.3g; from the zero level set at %lld grid-edge crossings: %.3g h)\n",
+             dist.hausdorff / r->h, dist.hausdorff, (long long)dist.crossings,
+             dist.zero_to_mesh / r->h);
       rc = report_thin_features(cmd, r);
     } else {
       const double misfit = heights_misfit(r);

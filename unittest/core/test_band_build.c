@@ -945,6 +945,52 @@ static void test_open_mesh(void)
   free(s.t);
 }
 
+/* ---------------------------------------------- the band against its mesh ---- */
+
+/* lsdem_band_misfit: a flat terrain's band is its plane (both distances ~float rounding);
+ * a turned cube's band cuts its corners by about half a spacing (mesh to zero level set:
+ * 0.48 h measured) and rounds its edges by about a quarter (zero level set to mesh: 0.27 h,
+ * the trilinear error near edges measured in test_cube), at more crossings than its faces'
+ * area over h^2. */
+static void test_misfit(void)
+{
+  float z[100];
+  for (int k = 0; k < 100; k++) z[k] = 1.25f;
+  const lsdem_heightmap hm = {10, 10, 0.0, 0.0, 0.5, z};
+  lsdem_mesh m;
+  lsdem_band b;
+  lsdem_band_distance d;
+  lsdem_error err;
+  CHECK(lsdem_heightmap_mesh(&hm, &m, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(lsdem_band_from_mesh(&m, 0.1, 0.2, LSDEM_BAND_TERRAIN, &b, &err) == LSDEM_OK, "%s",
+        err.msg);
+  lsdem_band_misfit(&b, &m, &d);
+  CHECK(d.hausdorff < 1e-6 && d.crossings > 2000, "flat terrain: Hausdorff %g over %lld "
+        "crossings", d.hausdorff, (long long)d.crossings);
+  lsdem_band_free(&b);
+  lsdem_mesh_free(&m);
+  /* the cube turned by 30 deg about z and 20 deg about x: its faces off the grid's planes
+   * (unturned they lie on them and the band is exact) */
+  const double c[3] = {0.0, 0.0, 0.0}, cz = cos(M_PI / 6), sz = sin(M_PI / 6);
+  const double cx = cos(M_PI / 9), sx = sin(M_PI / 9);
+  CHECK(cube_mesh(&m, c, -1, 0) == LSDEM_OK, "cube");
+  for (int v = 0; v < m.nverts; v++) {
+    double *p = m.verts + 3 * v;
+    const double x = cz * p[0] - sz * p[1], y = sz * p[0] + cz * p[1];
+    p[0] = x, p[1] = cx * y - sx * p[2], p[2] = sx * y + cx * p[2];
+  }
+  CHECK(lsdem_band_from_mesh(&m, 0.1, 0.2, LSDEM_BAND_MESH, &b, &err) == LSDEM_OK, "%s", err.msg);
+  lsdem_band_misfit(&b, &m, &d);
+  CHECK(d.mesh_to_zero > 0.3 * 0.1 && d.mesh_to_zero < 0.6 * 0.1 && d.zero_to_mesh > 0.2 * 0.1 &&
+        d.zero_to_mesh < 0.35 * 0.1 && d.hausdorff == fmax(d.mesh_to_zero, d.zero_to_mesh) &&
+        d.crossings > 6 * 4 * 100, "cube: mesh to zero %g, zero to mesh %g over %lld crossings",
+        d.mesh_to_zero, d.zero_to_mesh, (long long)d.crossings);
+  printf("misfit: cube at h = 0.1: mesh to zero %.3g h, zero to mesh %.3g h (%lld crossings)\n",
+         d.mesh_to_zero / 0.1, d.zero_to_mesh / 0.1, (long long)d.crossings);
+  lsdem_band_free(&b);
+  lsdem_mesh_free(&m);
+}
+
 int main(void)
 {
   test_flat_terrain();
@@ -958,5 +1004,6 @@ int main(void)
   test_heights();
   test_thin_features();
   test_open_mesh();
+  test_misfit();
   return lsdem_test_summary();
 }

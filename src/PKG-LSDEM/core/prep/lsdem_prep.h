@@ -335,6 +335,17 @@ lsdem_status lsdem_band_from_heights(const lsdem_heightmap *hm, double width, ls
                                      lsdem_error *err);
 /* Frees what lsdem_band_from_mesh or _from_heights allocated (not a mapped file's band). */
 void lsdem_band_free(lsdem_band *b);
+/* How far a band's zero level set is from the mesh m it was made from (band_check.c):
+ * mesh_to_zero, the largest |phi| at m's vertices and triangle centroids; zero_to_mesh,
+ * the largest distance from a zero crossing of a stored brick's grid edge (linear along the
+ * edge, as the interpolation) to the closest kept triangle, over `crossings` of them (0
+ * when the band keeps no triangles); hausdorff, the larger, the Hausdorff distance between
+ * the two surfaces as sampled there (lengths). */
+typedef struct {
+  double mesh_to_zero, zero_to_mesh, hausdorff;
+  int64_t crossings;
+} lsdem_band_distance;
+void lsdem_band_misfit(const lsdem_band *b, const lsdem_mesh *m, lsdem_band_distance *out);
 /* Write a band file (format in doc/wall_band.rst, geom/bandfile_format.h; read by
  * lsdem_band_open) after lsdem_band_check; to a temporary file renamed onto path, so a
  * failure leaves no file and readers that map the old one keep it whole. */
