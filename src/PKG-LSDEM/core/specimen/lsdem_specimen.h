@@ -83,6 +83,10 @@ typedef struct {
  * or det F <= 0 (the neighbourhood turned inside out). */
 lsdem_status lsdem_local_strain_fit(int n, const double *d0, const double *d,
                                     lsdem_strain_kind kind, lsdem_local_strain *out);
+/* The measures of a deformation gradient F: out->F = F, strain of the kind, volumetric,
+ * shear, rotation, angle (d2min untouched). LSDEM_ERR_NUMERIC with them NaN if det F <= 0. */
+lsdem_status lsdem_strain_measures(const double F[9], lsdem_strain_kind kind,
+                                   lsdem_local_strain *out);
 /* Rotation angle in [0, pi] of a grain relative to its continuum: the angle of
  * (q qref^-1) qcont^-1, i.e. the grain's rotation since its reference orientation qref
  * with the local continuum's rotation qcont (lsdem_local_strain.rotation) taken out. */
