@@ -58,11 +58,13 @@ void lsdem_field_kernel(const lsdem_field_grid *g, double width, double *kernel)
 
 /* ---------------------------------------------------------- smooth (smooth.c) ---- */
 
-/* Every channel convolved with the normalised kernel, in place. The FFT's cost is
- * independent of the kernel width; the direct sum costs (2 reach + 1)^3 per node (for
- * tests and the benchmark). Both give the linear convolution (grid from
- * lsdem_field_grid_cover). FFTW plans with FFTW_ESTIMATE on fftw_malloc'd buffers: the
- * same bits on every call with the same grid. LSDEM_ERR_NOMEM. */
+/* Every channel convolved with the normalised kernel, in place. The FFT's cost is the
+ * grid's, whatever the kernel width; the direct sum (for tests and the benchmark) scatters
+ * each occupied node over the (2 reach + 1)^3 nodes within reach, as a sum over grains
+ * would. Both give the linear convolution of deposits made by lsdem_field_deposit on a grid
+ * from lsdem_field_grid_cover (the direct sum needs them there: it writes within reach of
+ * each). FFTW plans with FFTW_ESTIMATE on fftw_malloc'd buffers: the same bits on every
+ * call with the same grid. LSDEM_ERR_NOMEM. */
 lsdem_status lsdem_field_smooth_fft(const lsdem_field_grid *g, double width, int nchan,
                                     double *channels, lsdem_error *err);
 lsdem_status lsdem_field_smooth_direct(const lsdem_field_grid *g, double width, int nchan,

@@ -78,33 +78,29 @@ lsdem_status lsdem_field_smooth_fft(const lsdem_field_grid *g, double width, int
   return LSDEM_OK;
 }
 
-/* out[i] = sum over offsets o within reach of kernel[o] in[i - o] (zero outside the grid) */
+/* out[j + o] += kernel[o] in[j] for every node j holding a deposit and every offset o
+ * within reach (the grid's padding keeps j + o inside): the cost is the occupied nodes
+ * times the kernel's (2 reach + 1)^3, the way a direct sum over grains goes */
 static void convolve_direct(const lsdem_field_grid *g, int reach, const double *kernel,
                             const double *in, double *out)
 {
   const int *n = g->n;
+  const size_t nodes = lsdem_field_grid_nodes(g);
+  memset(out, 0, nodes * sizeof(double));
   size_t node = 0;
-  for (int i2 = 0; i2 < n[2]; i2++)
-    for (int i1 = 0; i1 < n[1]; i1++)
-      for (int i0 = 0; i0 < n[0]; i0++, node++) {
-        double sum = 0.0;
-        for (int o2 = -reach; o2 <= reach; o2++) {
-          const int j2 = i2 - o2;
-          if (j2 < 0 || j2 >= n[2]) continue;
+  for (int j2 = 0; j2 < n[2]; j2++)
+    for (int j1 = 0; j1 < n[1]; j1++)
+      for (int j0 = 0; j0 < n[0]; j0++, node++) {
+        if (in[node] == 0.0) continue;
+        for (int o2 = -reach; o2 <= reach; o2++)
           for (int o1 = -reach; o1 <= reach; o1++) {
-            const int j1 = i1 - o1;
-            if (j1 < 0 || j1 >= n[1]) continue;
-            for (int o0 = -reach; o0 <= reach; o0++) {
-              const int j0 = i0 - o0;
-              if (j0 < 0 || j0 >= n[0]) continue;
-              const size_t ko = (size_t)(o0 < 0 ? o0 + n[0] : o0) +
-                                (size_t)n[0] * ((size_t)(o1 < 0 ? o1 + n[1] : o1) +
+            const size_t row = (size_t)n[0] * ((size_t)(j1 + o1) + (size_t)n[1] * (j2 + o2));
+            const size_t krow = (size_t)n[0] * ((size_t)(o1 < 0 ? o1 + n[1] : o1) +
                                                 (size_t)n[1] * (size_t)(o2 < 0 ? o2 + n[2] : o2));
-              sum += kernel[ko] * in[(size_t)j0 + (size_t)n[0] * ((size_t)j1 + (size_t)n[1] * j2)];
-            }
+            for (int o0 = -reach; o0 <= reach; o0++)
+              out[row + (size_t)(j0 + o0)] +=
+                  kernel[krow + (size_t)(o0 < 0 ? o0 + n[0] : o0)] * in[node];
           }
-        }
-        out[node] = sum;
       }
 }
 
