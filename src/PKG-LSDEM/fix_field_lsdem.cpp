@@ -24,7 +24,6 @@
 #include "domain.h"
 #include "error.h"
 #include "fix_wall_lsdem.h"
-#include "force.h"
 #include "group.h"
 #include "lsdem_input.h"
 #include "modify.h"
@@ -48,7 +47,7 @@ static const char *USAGE = "fix ID group field/lsdem N prefix kernel W spacing H
 
 FixFieldLsdem::FixFieldLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), masked(false), mask_centre{0.0, 0.0}, mask_radius(0.0), mask_zlo(0.0),
-  mask_zhi(0.0), pair(nullptr), avec(nullptr), store(nullptr), have_reference(false),
+  mask_zhi(0.0), avec(nullptr), store(nullptr), have_reference(false),
   series(narg > 4 ? arg[4] : "", "vti")
 {
   if (narg < 9) error->all(FLERR, "Illegal fix field/lsdem command: {}", USAGE);
@@ -124,14 +123,7 @@ void FixFieldLsdem::init()
   store = LsdemCompat::find_peratom_store(modify, id_store.c_str());
   if (!store) error->all(FLERR, "Could not find fix field/lsdem's store {}", id_store);
   avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
-  pair = PairLsdem::of(force);
-  walls.clear();
-  for (const auto &wid : wall_ids) {
-    const int ifix = modify->find_fix(wid);
-    FixWallLsdem *w = ifix < 0 ? nullptr : dynamic_cast<FixWallLsdem *>(modify->fix[ifix]);
-    if (!w) error->all(FLERR, "Fix field/lsdem: {} is not a fix wall/lsdem", wid);
-    walls.push_back(w);
-  }
+  sources.find(lmp, wall_ids, "Fix field/lsdem");
 }
 
 /* ---------------------------------------------------------------------- */
@@ -158,36 +150,6 @@ void FixFieldLsdem::store_reference()
   for (int i = 0; i < atom->nlocal; i++)
     if (atom->mask[i] & groupbit) domain->unmap(x[i], image[i], store->astore[i]);
   have_reference = true;
-}
-
-/* ----------------------------------------------------------------------
-   every rank's rows (width doubles each) on rank 0, in lexicographic order: the order,
-   and so the sums built from it, do not depend on how the atoms are spread over ranks
-------------------------------------------------------------------------- */
-
-std::vector<double> FixFieldLsdem::gather_rows(const std::vector<double> &mine, int width) const
-{
-  const int n = (int) mine.size();
-  std::vector<int> counts(comm->nprocs), displs(comm->nprocs, 0);
-  MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, world);
-  int total = 0;
-  for (int p = 0; p < comm->nprocs; p++) displs[p] = total, total += counts[p];
-  std::vector<double> all(comm->me == 0 ? total : 0);
-  MPI_Gatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE,
-              0, world);
-  if (comm->me != 0) return all;
-  const int rows = total / width;
-  std::vector<int> order(rows);
-  for (int r = 0; r < rows; r++) order[r] = r;
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    return std::lexicographical_compare(&all[(size_t) a * width], &all[(size_t) (a + 1) * width],
-                                        &all[(size_t) b * width], &all[(size_t) (b + 1) * width]);
-  });
-  std::vector<double> sorted;
-  sorted.reserve(all.size());
-  for (int r : order) sorted.insert(sorted.end(), &all[(size_t) r * width],
-                                    &all[(size_t) (r + 1) * width]);
-  return sorted;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -229,25 +191,19 @@ std::vector<double> FixFieldLsdem::branch_rows() const
                                     x[i][0], x[i][1], x[i][2]};
     rows.insert(rows.end(), row, row + BRANCH_ROW);
   };
-  if (pair) {
-    if (pair->contacts_step() != update->ntimestep)
-      error->all(FLERR, "Fix field/lsdem needs pair lsdem forces of step {} (it has {})",
-                 update->ntimestep, pair->contacts_step());
-    pair->each_contact([&](const PairLsdem::Contact &c) {
+  sources.check_current(lmp, "Fix field/lsdem");
+  if (sources.pair) {
+    sources.pair->each_contact([&](const PairLsdem::Contact &c) {
       const double f[3] = {c.scale * c.res.force[0], c.scale * c.res.force[1],
                            c.scale * c.res.force[2]};
       add(c.i, (double) tag[c.j], f, c.res.point, 1.0);
       add(c.j, (double) tag[c.i], f, c.res.point, -1.0);
     });
   }
-  for (int k = 0; k < (int) walls.size(); k++) {
-    if (walls[k]->contacts_step() != update->ntimestep)
-      error->all(FLERR, "Fix field/lsdem needs wall forces of step {} from fix {}: define "
-                 "fix field/lsdem after the walls", update->ntimestep, walls[k]->id);
-    walls[k]->each_contact([&](const FixWallLsdem::Contact &c) {
+  for (int k = 0; k < (int) sources.walls.size(); k++)
+    sources.walls[k]->each_contact([&](const FixWallLsdem::Contact &c) {
       add(c.i, -(double) (k + 1), c.force, c.point, 1.0);
     });
-  }
   return rows;
 }
 
@@ -255,8 +211,8 @@ std::vector<double> FixFieldLsdem::branch_rows() const
 
 void FixFieldLsdem::write_fields()
 {
-  const std::vector<double> grains = gather_rows(grain_rows(), GRAIN_ROW);
-  const std::vector<double> branches = gather_rows(branch_rows(), BRANCH_ROW);
+  const std::vector<double> grains = lsdem_gather_sorted(world, grain_rows(), GRAIN_ROW);
+  const std::vector<double> branches = lsdem_gather_sorted(world, branch_rows(), BRANCH_ROW);
   if (comm->me != 0) return;
   const int n = (int) (grains.size() / GRAIN_ROW), nb = (int) (branches.size() / BRANCH_ROW);
   if (n == 0) error->one(FLERR, "Fix field/lsdem: no grains in group {}", group->names[igroup]);

@@ -17,6 +17,7 @@ FixStyle(field/lsdem,FixFieldLsdem);
 
 #include "fix.h"
 #include "fields/lsdem_fields.h"
+#include "lsdem_contact_sources.h"
 #include "lsdem_lammps_compat.h"
 #include "lsdem_vtk_series.h"
 
@@ -40,8 +41,7 @@ class FixFieldLsdem : public Fix {
   bool masked;                        // keyword mask cylinder cx cy R zlo zhi
   double mask_centre[2], mask_radius, mask_zlo, mask_zhi;
   std::vector<std::string> wall_ids;  // keyword wall: whose contacts enter the stress
-  std::vector<class FixWallLsdem *> walls;
-  class PairLsdem *pair;
+  LsdemContactSources sources;
   class AtomVecLsdem *avec;
   std::string id_store;               // fix STORE: each grain's unwrapped reference x
   LsdemCompat::FixStorePeratom *store;
@@ -49,7 +49,6 @@ class FixFieldLsdem : public Fix {
   LsdemVtkSeries series;
 
   void store_reference();
-  std::vector<double> gather_rows(const std::vector<double> &mine, int width) const;
   std::vector<double> grain_rows() const;
   std::vector<double> branch_rows() const;
   void write_fields();

@@ -94,6 +94,18 @@ double lsdem_rotation_from_continuum(const double q[4], const double qref[4],
                                      const double qcont[4]);
 
 
+/* ------------------------------------------- force chains (chains.c) ---- */
+
+/* Strong and weak contact networks (Radjai et al. 1998, PRL 80, 61; report §3.5.5): a
+ * contact is STRONG when its normal force exceeds the mean over all n contacts. Returns the
+ * count n, the mean, the strong count, their fraction of the contacts and their share of the
+ * total normal force (sum over strong / sum over all; 0 when that sum is 0). */
+typedef struct {
+  int contacts, strong;
+  double mean, strong_fraction, strong_share;
+} lsdem_chain_stats;
+void lsdem_strong_chains(int n, const double *fn, lsdem_chain_stats *out);
+
 /* ------------------------------------------- shear bands (shearband.c) ---- */
 
 /* Shear-band measurement (report §3.5.3): points (grain centres, world frame, length units)
