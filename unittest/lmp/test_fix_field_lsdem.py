@@ -3,7 +3,9 @@
 A: a spread-out random set of 216 grains is mapped affinely (displace_atoms, x -> (I + H) x,
    simple shear of 1 %): at every regular node the displacement gradient is H and the Green
    strain (H + H^T + H^T H) / 2 to 1e-10 relative; integrated density and solid fraction are
-   the total mass and solid volume to 1e-12; 1 and 2 ranks write the same bytes.
+   the total mass and solid volume to 1e-12; 1 and 2 ranks write the same bytes; a run
+   restarted from a file written after the map (the fix defined again with its ID) keeps
+   the reference and writes the same bytes.
 B: three cubes settled on a floor wall: the integrated contact stress over the specimen
    volume V equals compute stress/lsdem's with the same V and wall to 1e-10; 1, 2 and 4
    ranks write the same bytes; the mask leaves nodes outside the cylinder NaN."""
@@ -87,6 +89,22 @@ for np_ in (1, 2):
     if os.path.exists(os.path.join(wd, "field_1.vti")):
         outs[np_] = check_affine(wd)[0]
 check(len(outs) == 2 and outs[1] == outs[2], "A: 1 and 2 ranks write different fields")
+
+# the reference survives a restart: map the grains, write the file, read it, define the fix
+# again and run (a reference taken anew would see no displacement)
+mapped = DECK_A[:DECK_A.rindex("run 1\n")]
+run_lmp(mapped + "write_restart mapped.restart\n", cwd="restart")
+run_lmp("""atom_style lsdem library %s
+read_restart mapped.restart
+comm_modify vel yes
+pair_style lsdem
+pair_coeff * * 1000 1000 0.5
+fix f all field/lsdem 1 field kernel 2.5 spacing 1.0
+run 1
+""" % LIB, cwd="restart")
+path = os.path.join("restart", "field_1.vti")
+check(os.path.exists(path) and open(path, "rb").read() == outs.get(1),
+      "A: the restarted run lost the reference")
 
 # ---- B: contact stress of a little settled pile -------------------------------------
 lib = box_library("cube.lslib", 0.5, 0.05, 600)
