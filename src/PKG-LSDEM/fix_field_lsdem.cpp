@@ -2,8 +2,8 @@
 /* ----------------------------------------------------------------------
    LSDEM package: level-set discrete element method for LAMMPS.
 
-   fix ID group field/lsdem N prefix kernel W spacing H [mask cylinder cx cy R zlo zhi]
-       [wall fixID ...]
+   fix ID group field/lsdem N prefix kernel W spacing H [regular V S]
+       [mask cylinder cx cy R zlo zhi] [wall fixID ...]
    (doc/fix_field_lsdem.rst). Every N steps (and at a run's setup when the step is a
    multiple of N): each grain of the group (mass, solid volume, centre, displacement since
    the reference) and each contact branch of pair_style lsdem and the listed wall/lsdem
@@ -41,7 +41,15 @@ using namespace FixConst;
 static constexpr int GRAIN_ROW = 9, BRANCH_ROW = 11;
 
 static const char *USAGE = "fix ID group field/lsdem N prefix kernel W spacing H "
-                           "[mask cylinder cx cy R zlo zhi] [wall fixID ...]";
+                           "[regular V S] [mask cylinder cx cy R zlo zhi] [wall fixID ...]";
+
+// the keywords after which a list of wall IDs ends
+static bool is_keyword(const char *word)
+{
+  for (const char *k : {"kernel", "spacing", "regular", "mask", "wall"})
+    if (strcmp(word, k) == 0) return true;
+  return false;
+}
 
 /* ---------------------------------------------------------------------- */
 
@@ -67,6 +75,14 @@ FixFieldLsdem::FixFieldLsdem(LAMMPS *lmp, int narg, char **arg) :
       v = LsdemInput::number(FLERR, arg[iarg + 1], "fix field/lsdem", key.c_str(), lmp);
       if (!(v > 0.0)) error->all(FLERR, "Fix field/lsdem: {} must be > 0, got {}", key, v);
       iarg += 2;
+    } else if (key == "regular" && iarg + 2 < narg) {
+      params.min_variance = LsdemInput::number(FLERR, arg[iarg + 1], "fix field/lsdem",
+                                               "regular", lmp);
+      params.min_weight = LsdemInput::number(FLERR, arg[iarg + 2], "fix field/lsdem",
+                                             "regular", lmp);
+      if (!(params.min_variance >= 0.0) || !(params.min_weight >= 0.0))
+        error->all(FLERR, "Fix field/lsdem: regular values must be >= 0");
+      iarg += 3;
     } else if (key == "mask" && iarg + 6 < narg && strcmp(arg[iarg + 1], "cylinder") == 0) {
       double *v[5] = {&mask_centre[0], &mask_centre[1], &mask_radius, &mask_zlo, &mask_zhi};
       for (int k = 0; k < 5; k++)
@@ -77,9 +93,7 @@ FixFieldLsdem::FixFieldLsdem(LAMMPS *lmp, int narg, char **arg) :
       iarg += 7;
     } else if (key == "wall" && iarg + 1 < narg) {
       iarg++;
-      while (iarg < narg && strcmp(arg[iarg], "kernel") != 0 && strcmp(arg[iarg], "spacing") != 0 &&
-             strcmp(arg[iarg], "mask") != 0)
-        wall_ids.emplace_back(arg[iarg++]);
+      while (iarg < narg && !is_keyword(arg[iarg])) wall_ids.emplace_back(arg[iarg++]);
     } else {
       error->all(FLERR, "Illegal fix field/lsdem keyword {}: {}", key, USAGE);
     }

@@ -44,6 +44,7 @@ read_data %s
 pair_style lsdem
 pair_coeff * * 1000 1000 0.5
 fix f all field/lsdem 1 field kernel 2.5 spacing 1.0
+fix strict all field/lsdem 1 strict kernel 2.5 spacing 1.0 regular 0.5 0.2
 variable mt equal mass(all)
 thermo_style custom step v_mt
 %s
@@ -68,6 +69,14 @@ def check_affine(wd):
     check(err_h <= 1e-10 * 0.01, "A: gradient off by %g" % err_h)
     check(err_e <= 1e-10 * np.abs(E).max(), "A: Green strain off by %g" % err_e)
     check(np.isnan(f["displacement_gradient"][~reg]).all(), "A: irregular nodes are NaN")
+    # stricter thresholds (keyword regular): fewer regular nodes, all of them regular by the
+    # default thresholds too, with the same values
+    s = read_vti(os.path.join(wd, "strict_1.vti"))
+    sreg = s["regular"][:, 0] == 1
+    check(0 < sreg.sum() < reg.sum() and not (sreg & ~reg).any(),
+          "A: regular 0.5 0.2 gives %d regular nodes, the default %d" % (sreg.sum(), reg.sum()))
+    check((s["displacement_gradient"][sreg] == f["displacement_gradient"][sreg]).all(),
+          "A: the thresholds changed values")
     dv = f["h"] ** 3
     mass = thermo(open(os.path.join(wd, "log.lammps")).read())[-1]["v_mt"]
     volume = sum(gd.closed_form(g["shape"])[0] for g in grains)
