@@ -16,11 +16,9 @@
 #include "atom.h"
 #include "error.h"
 #include "fix_wall_lsdem.h"
-#include "force.h"
 #include "input.h"
 #include "lsdem_input.h"
 #include "math_const.h"
-#include "modify.h"
 #include "pair_lsdem.h"
 #include "update.h"
 #include "variable.h"
@@ -36,7 +34,7 @@ static constexpr int NVALUES = 11;
 /* ---------------------------------------------------------------------- */
 
 ComputeStressLsdem::ComputeStressLsdem(LAMMPS *lmp, int narg, char **arg) :
-  Compute(lmp, narg, arg), volume_value(0.0), ivar(-1), pair(nullptr)
+  Compute(lmp, narg, arg), volume_value(0.0), ivar(-1)
 {
   const char *usage = "compute ID group stress/lsdem volume V|v_name [wall fixID ...]";
   if (narg < 5 || strcmp(arg[3], "volume") != 0)
@@ -71,15 +69,8 @@ ComputeStressLsdem::~ComputeStressLsdem()
 
 void ComputeStressLsdem::init()
 {
-  pair = PairLsdem::of(force);
-  walls.clear();
-  for (const auto &wid : wall_ids) {
-    int ifix = modify->find_fix(wid);
-    FixWallLsdem *w = ifix < 0 ? nullptr : dynamic_cast<FixWallLsdem *>(modify->fix[ifix]);
-    if (!w) error->all(FLERR, "compute stress/lsdem: {} is not a fix wall/lsdem", wid);
-    walls.push_back(w);
-  }
-  if (!pair && walls.empty())
+  sources.find(lmp, wall_ids, "compute stress/lsdem");
+  if (!sources.pair && sources.walls.empty())
     error->all(FLERR, "compute stress/lsdem needs pair_style lsdem or a wall/lsdem fix");
   if (!volume_var.empty()) {
     ivar = input->variable->find(volume_var.c_str());
@@ -107,12 +98,9 @@ double ComputeStressLsdem::specimen_volume()
 
 void ComputeStressLsdem::add_pair_contacts(double M[9]) const
 {
-  if (pair->contacts_step() != update->ntimestep)
-    error->all(FLERR, "compute stress/lsdem needs pair lsdem forces of step {} (it has {})",
-               update->ntimestep, pair->contacts_step());
   const int *mask = atom->mask;
   double **x = atom->x;
-  pair->each_contact([&](const PairLsdem::Contact &c) {
+  sources.pair->each_contact([&](const PairLsdem::Contact &c) {
     const double s = c.scale;
     const double fi[3] = {s * c.res.force[0], s * c.res.force[1], s * c.res.force[2]};
     const double fj[3] = {-fi[0], -fi[1], -fi[2]};
@@ -127,14 +115,10 @@ void ComputeStressLsdem::add_wall_contacts(double M[9]) const
 {
   const int *mask = atom->mask;
   double **x = atom->x;
-  for (const FixWallLsdem *w : walls) {
-    if (w->contacts_step() != update->ntimestep)
-      error->all(FLERR, "compute stress/lsdem needs wall forces of step {} from fix {}",
-                 update->ntimestep, w->id);
+  for (const FixWallLsdem *w : sources.walls)
     w->each_contact([&](const FixWallLsdem::Contact &c) {
       if (mask[c.i] & groupbit) lsdem_love_weber_add(M, c.force, c.point, x[c.i]);
     });
-  }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -144,7 +128,8 @@ void ComputeStressLsdem::compute_vector()
   invoked_vector = update->ntimestep;
 
   double Mlocal[9] = {0.0}, M[9], sigma[9], s[3];
-  if (pair) add_pair_contacts(Mlocal);
+  sources.check_current(lmp, "compute stress/lsdem");
+  if (sources.pair) add_pair_contacts(Mlocal);
   add_wall_contacts(Mlocal);
   MPI_Allreduce(Mlocal, M, 9, MPI_DOUBLE, MPI_SUM, world);
 

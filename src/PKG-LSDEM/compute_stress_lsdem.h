@@ -16,6 +16,7 @@ ComputeStyle(stress/lsdem,ComputeStressLsdem);
 #define LMP_COMPUTE_STRESS_LSDEM_H
 
 #include "compute.h"
+#include "lsdem_contact_sources.h"
 
 #include <string>
 #include <vector>
@@ -34,8 +35,7 @@ class ComputeStressLsdem : public Compute {
   std::string volume_var;  // an equal-style variable giving it
   int ivar;
   std::vector<std::string> wall_ids;
-  std::vector<class FixWallLsdem *> walls;
-  class PairLsdem *pair;
+  LsdemContactSources sources;  // pair_style lsdem (if any) and the named walls
 
   double specimen_volume();
   void add_pair_contacts(double M[9]) const;

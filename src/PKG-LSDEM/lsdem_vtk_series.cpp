@@ -14,14 +14,14 @@ using namespace LAMMPS_NS;
 
 std::string LsdemVtkSeries::step_file(long long step) const
 {
-  return fmt::format("{}_{}.vtp", prefix, step);
+  return fmt::format("{}_{}.{}", prefix, step, extension);
 }
 
 bool LsdemVtkSeries::add(long long step, double time)
 {
-  const std::string vtp = step_file(step);
-  const size_t slash = vtp.find_last_of('/');
-  const std::string rel = slash == std::string::npos ? vtp : vtp.substr(slash + 1);
+  const std::string file = step_file(step);
+  const size_t slash = file.find_last_of('/');
+  const std::string rel = slash == std::string::npos ? file : file.substr(slash + 1);
   bool replaced = false;
   for (auto &entry : entries)
     if (entry.second == rel) entry.first = time, replaced = true;

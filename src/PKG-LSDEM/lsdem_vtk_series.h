@@ -1,8 +1,8 @@
 /* -*- c++ -*- ----------------------------------------------------------
    LSDEM package: level-set discrete element method for LAMMPS.
 
-   LsdemVtkSeries: a ParaView time-series index (prefix.pvd) of the .vtp files written so
-   far, for dump lsdem/vtk and fix wall/lsdem's force maps. A step written again replaces
+   LsdemVtkSeries: a ParaView time-series index (prefix.pvd) of the VTK files written so
+   far (.vtp for dump lsdem/vtk and fix wall/lsdem's force maps, .vti for fix field/lsdem). A step written again replaces
    its entry; the index is written to a temporary file and renamed, so a reader never
    sees half of it.
 ------------------------------------------------------------------------- */
@@ -18,8 +18,9 @@ namespace LAMMPS_NS {
 
 class LsdemVtkSeries {
  public:
-  explicit LsdemVtkSeries(const std::string &prefix) : prefix(prefix) {}
-  // prefix_<step>.vtp
+  explicit LsdemVtkSeries(const std::string &prefix, const std::string &extension = "vtp") :
+    prefix(prefix), extension(extension) {}
+  // prefix_<step>.<extension>
   std::string step_file(long long step) const;
   // add (or replace) the entry of step's file at simulation time `time` and rewrite
   // prefix.pvd; returns false (errno set) when it cannot be written
@@ -27,8 +28,8 @@ class LsdemVtkSeries {
   const std::string &index_file() const { return pvd; }
 
  private:
-  std::string prefix, pvd;
-  std::vector<std::pair<double, std::string>> entries;  // (time, vtp name relative to .pvd)
+  std::string prefix, extension, pvd;
+  std::vector<std::pair<double, std::string>> entries;  // (time, file name relative to .pvd)
 };
 
 }    // namespace LAMMPS_NS

@@ -99,20 +99,16 @@ static void fill_nan(lsdem_local_strain *out)
   out->volumetric = out->shear = out->d2min = out->angle = NAN;
 }
 
-lsdem_status lsdem_local_strain_fit(int n, const double *d0, const double *d,
-                                    lsdem_strain_kind kind, lsdem_local_strain *out)
+lsdem_status lsdem_strain_measures(const double F[9], lsdem_strain_kind kind,
+                                   lsdem_local_strain *out)
 {
-  double Yinv[9], C[9], R[9];
-  if (n < 3 || !inverse_moment(n, d0, Yinv)) {
+  double C[9], R[9];
+  if (!(determinant(F) > 0.0)) {
     fill_nan(out);
     return LSDEM_ERR_NUMERIC;
   }
-  best_fit_gradient(n, d0, d, Yinv, out->F);
-  if (!(determinant(out->F) > 0.0)) {
-    fill_nan(out);
-    return LSDEM_ERR_NUMERIC;
-  }
-  const double *F = out->F;
+  if (out->F != F)
+    for (int k = 0; k < 9; k++) out->F[k] = F[k];
   lsdem_matT_mul(F, F, C);
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) {
@@ -123,12 +119,25 @@ lsdem_status lsdem_local_strain_fit(int n, const double *d0, const double *d,
     }
   out->volumetric = out->strain[0] + out->strain[4] + out->strain[8];
   out->shear = shear_invariant(out->strain, out->volumetric);
-  out->d2min = nonaffine_residual(n, d0, d, F);
   polar_rotation(F, C, R);
   lsdem_matrix_to_quat(R, out->rotation);
   const double identity[4] = {1.0, 0.0, 0.0, 0.0};
   out->angle = lsdem_rotation_angle(out->rotation, identity);
   return LSDEM_OK;
+}
+
+lsdem_status lsdem_local_strain_fit(int n, const double *d0, const double *d,
+                                    lsdem_strain_kind kind, lsdem_local_strain *out)
+{
+  double Yinv[9];
+  if (n < 3 || !inverse_moment(n, d0, Yinv)) {
+    fill_nan(out);
+    return LSDEM_ERR_NUMERIC;
+  }
+  best_fit_gradient(n, d0, d, Yinv, out->F);
+  const lsdem_status s = lsdem_strain_measures(out->F, kind, out);
+  if (s == LSDEM_OK) out->d2min = nonaffine_residual(n, d0, d, out->F);
+  return s;
 }
 
 double lsdem_rotation_from_continuum(const double q[4], const double qref[4],

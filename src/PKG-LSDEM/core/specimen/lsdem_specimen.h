@@ -83,12 +83,28 @@ typedef struct {
  * or det F <= 0 (the neighbourhood turned inside out). */
 lsdem_status lsdem_local_strain_fit(int n, const double *d0, const double *d,
                                     lsdem_strain_kind kind, lsdem_local_strain *out);
+/* The measures of a deformation gradient F: out->F = F, strain of the kind, volumetric,
+ * shear, rotation, angle (d2min untouched). LSDEM_ERR_NUMERIC with them NaN if det F <= 0. */
+lsdem_status lsdem_strain_measures(const double F[9], lsdem_strain_kind kind,
+                                   lsdem_local_strain *out);
 /* Rotation angle in [0, pi] of a grain relative to its continuum: the angle of
  * (q qref^-1) qcont^-1, i.e. the grain's rotation since its reference orientation qref
  * with the local continuum's rotation qcont (lsdem_local_strain.rotation) taken out. */
 double lsdem_rotation_from_continuum(const double q[4], const double qref[4],
                                      const double qcont[4]);
 
+
+/* ------------------------------------------- force chains (chains.c) ---- */
+
+/* Strong and weak contact networks (Radjai et al. 1998, PRL 80, 61; report §3.5.5): a
+ * contact is STRONG when its normal force exceeds the mean over all n contacts. Returns the
+ * count n, the mean, the strong count, their fraction of the contacts and their share of the
+ * total normal force (sum over strong / sum over all; 0 when that sum is 0). */
+typedef struct {
+  int contacts, strong;
+  double mean, strong_fraction, strong_share;
+} lsdem_chain_stats;
+void lsdem_strong_chains(int n, const double *fn, lsdem_chain_stats *out);
 
 /* ------------------------------------------- shear bands (shearband.c) ---- */
 

@@ -1,0 +1,149 @@
+/* lsdem_fields.h -- continuum fields of a granular assembly on a regular grid (library
+ * lsdem_fields: the kernel plus FFTW3; linked by lmp and the tests, never by the tools).
+ * Report §3.5.3-3.5.5 (strain localisation); doc/fix_field_lsdem.rst has the method.
+ *
+ *   grid.c    the grid: cover a box with padding, trilinear deposit, the Gaussian kernel
+ *   smooth.c  convolution with the kernel: FFTW (r2c/c2r) and direct summation
+ *   fields.c  the moments of a local-linear Gaussian fit and the per-voxel solve:
+ *             density, solid fraction, displacement gradient, strains, rotation, contact
+ *             stress (Goldhirsch)
+ *   vti.c     VTK XML ImageData (.vti) writer
+ *
+ * Every field is EULERIAN: a voxel at x describes the grains now near x (kernel weights
+ * from current centres). Strains are TENSION POSITIVE (as lsdem_local_strain), the contact
+ * stress COMPRESSION POSITIVE (as lsdem_love_weber_stress). */
+#ifndef LSDEM_FIELDS_H
+#define LSDEM_FIELDS_H
+
+#include "../lsdem_kernel.h"
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------------- grid (grid.c) ---- */
+
+/* Nodes i = (i0, i1, i2), 0 <= ik < n[k], at origin + h i; stored with i0 (x) fastest:
+ * index i0 + n0 (i1 + n1 i2). */
+typedef struct {
+  int n[3];
+  double origin[3];
+  double h;
+} lsdem_field_grid;
+
+/* The Gaussian kernel exp(-r^2 / (2 w^2)) is cut at LSDEM_FIELD_KERNEL_CUT w. */
+#define LSDEM_FIELD_KERNEL_CUT 3.0
+
+size_t lsdem_field_grid_nodes(const lsdem_field_grid *g);
+/* The kernel's reach in nodes: ceil(LSDEM_FIELD_KERNEL_CUT w / h). */
+int lsdem_field_kernel_reach(double width, double h);
+/* The grid over the box [lo, hi] (every point that will be deposited) with spacing h,
+ * padded by reach + 1 nodes of zeros on each side, each axis then lengthened to a size
+ * FFTW transforms fast (factors 2, 3, 5, 7; the extra nodes are more zero padding at the
+ * high end). A circular convolution on it equals the linear one on every node: nothing
+ * deposited comes within reach of a node across the periodic seam.
+ * LSDEM_ERR_ARG for h, width <= 0 or an empty box; LSDEM_ERR_NOMEM beyond 2^31 nodes. */
+lsdem_status lsdem_field_grid_cover(const double lo[3], const double hi[3], double h,
+                                    double width, lsdem_field_grid *g, lsdem_error *err);
+/* Adds value[c] times the trilinear weights of x to channel c (channels: nchan arrays of
+ * lsdem_field_grid_nodes(g) doubles, one after the other). The weights are >= 0 and sum to
+ * 1, so a deposit keeps every total. x must lie inside the grid's padded interior. */
+void lsdem_field_deposit(const lsdem_field_grid *g, const double x[3], int nchan,
+                         const double *value, double *channels);
+/* The discrete kernel on the grid, periodic offsets (node i holds G at the offset
+ * min(i, n - i) h per axis), normalised to sum 1: smoothing keeps totals. */
+void lsdem_field_kernel(const lsdem_field_grid *g, double width, double *kernel);
+
+/* ---------------------------------------------------------- smooth (smooth.c) ---- */
+
+/* Every channel convolved with the normalised kernel, in place. The FFT's cost is the
+ * grid's, whatever the kernel width; the direct sum (for tests and the benchmark) scatters
+ * each occupied node over the (2 reach + 1)^3 nodes within reach, as a sum over grains
+ * would. Both give the linear convolution of deposits made by lsdem_field_deposit on a grid
+ * from lsdem_field_grid_cover (the direct sum needs them there: it writes within reach of
+ * each). FFTW plans with FFTW_ESTIMATE on fftw_malloc'd buffers: the same bits on every
+ * call with the same grid. LSDEM_ERR_NOMEM. */
+lsdem_status lsdem_field_smooth_fft(const lsdem_field_grid *g, double width, int nchan,
+                                    double *channels, lsdem_error *err);
+lsdem_status lsdem_field_smooth_direct(const lsdem_field_grid *g, double width, int nchan,
+                                       double *channels, lsdem_error *err);
+
+/* ---------------------------------------------------------- fields (fields.c) ---- */
+
+/* A grain now: mass, solid volume, centre x, displacement u since the reference. */
+typedef struct {
+  double mass, volume, x[3], u[3];
+} lsdem_field_grain;
+/* One side of a contact: the force ON a grain at the contact point, and that grain's
+ * centre (the image nearest the point). A grain-grain contact gives two branches, a wall
+ * contact one; the moment f (x) (point - centre) is lsdem_love_weber_add's. */
+typedef struct {
+  double force[3], point[3], centre[3];
+} lsdem_field_branch;
+
+typedef struct {
+  double width;      /* Gaussian standard deviation w (length) */
+  double h;          /* grid spacing (length) */
+  double min_variance; /* a node is regular when the smallest eigenvalue of its weighted
+                          position covariance is >= min_variance w^2 (the grains around it
+                          spread in every direction) ... */
+  double min_weight;   /* ... and its kernel mass is >= min_weight times the largest.
+                          Below these the fit is ill-posed, and the FFT's round-off (relative
+                          to each channel's largest value) would show */
+} lsdem_field_params;
+/* defaults: on random packings an affine field comes out exact to ~1e-12 relative, a
+ * rigid rotation strain-free to ~1e-13, at every regular node (unittest/core/test_fields.c) */
+#define LSDEM_FIELD_MIN_VARIANCE 0.1
+#define LSDEM_FIELD_MIN_WEIGHT 0.03
+
+/* Per-node fields, each an array over the grid's nodes (tensors row-major, 9 per node).
+ * Kinematic fields (grad .. shear) are NaN where the node is not regular. */
+typedef struct {
+  lsdem_field_grid grid;
+  double *density;       /* mass per volume */
+  double *solid_fraction;
+  double *grad;          /* displacement gradient H = F - I (9) */
+  double *strain_small;  /* (F + F^T) / 2 - I (9) */
+  double *strain_green;  /* (F^T F - I) / 2 (9) */
+  double *rotation;      /* rotation vector of R in F = R U: angle (radians) times axis (3) */
+  double *volumetric;    /* tr E (Green) */
+  double *shear;         /* von Mises shear of E: sqrt(E':E' / 2) */
+  double *stress;        /* contact stress, compression positive (9, symmetric) */
+  unsigned char *regular;
+  unsigned char *inside; /* 1 unless masked (lsdem_fields_mask_cylinder) */
+} lsdem_fields;
+
+/* The fields of n grains and nb contact branches (in their given order: the result's bits
+ * depend on it). Each grain deposits its moments m, m y, m y y^T, m u, m u y^T (y = x - the
+ * grid's centre) and V; each branch deposits -sym(f (x) b) spread uniformly along
+ * b = point - centre (Goldhirsch 2010: ceil(|b| / h) equal pieces, each at its midpoint).
+ * After smoothing, a node's moments are those of a Gaussian-weighted least-squares fit
+ * u(x) = a + L (x - xbar) over the grains, F = (I - L)^-1; an affine displacement is
+ * recovered exactly. Integrals over the grid: sum density h^3 = total mass, sum stress h^3 =
+ * -sum sym(f (x) b) (the Love-Weber sum). Allocates out (lsdem_fields_free).
+ * LSDEM_ERR_ARG (bad params, n < 1), LSDEM_ERR_NOMEM. */
+lsdem_status lsdem_fields_compute(const lsdem_field_params *p, int n,
+                                  const lsdem_field_grain *grains, int nb,
+                                  const lsdem_field_branch *branches, lsdem_fields *out,
+                                  lsdem_error *err);
+void lsdem_fields_free(lsdem_fields *f);
+/* Nodes outside the cylinder |(x, y) - centre| <= radius, zlo <= z <= zhi (axis z): inside
+ * = 0 and every field NaN (a membrane's outline: nothing outside is granular material). */
+void lsdem_fields_mask_cylinder(lsdem_fields *f, const double centre[2], double radius,
+                                double zlo, double zhi);
+
+/* ---------------------------------------------------------------- vti (vti.c) ---- */
+
+/* VTK XML ImageData, point data, raw appended Float64 (UInt8 for regular and inside);
+ * ParaView reads it. Names: density solid_fraction displacement_gradient strain_small
+ * strain_green rotation volumetric_strain shear_strain stress regular inside.
+ * LSDEM_ERR_IO. */
+lsdem_status lsdem_fields_write_vti(const char *path, const lsdem_fields *f,
+                                    lsdem_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* LSDEM_FIELDS_H */

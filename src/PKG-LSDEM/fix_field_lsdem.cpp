@@ -1,0 +1,261 @@
+// clang-format off
+/* ----------------------------------------------------------------------
+   LSDEM package: level-set discrete element method for LAMMPS.
+
+   fix ID group field/lsdem N prefix kernel W spacing H [regular V S]
+       [mask cylinder cx cy R zlo zhi] [wall fixID ...]
+   (doc/fix_field_lsdem.rst). Every N steps (and at a run's setup when the step is a
+   multiple of N): each grain of the group (mass, solid volume, centre, displacement since
+   the reference) and each contact branch of pair_style lsdem and the listed wall/lsdem
+   fixes (force on a grain of the group, contact point, grain centre: what compute
+   stress/lsdem sums) travel to rank 0, sorted (grains by tag, branches by their values),
+   so the fields are the same bits on any number of ranks; rank 0 calls the core
+   (lsdem_fields_compute) and writes prefix_<step>.vti and prefix.pvd.
+
+   The reference is the configuration at the first setup: each grain's unwrapped centre in
+   a fix STORE row (it migrates with the grain and survives a restart).
+------------------------------------------------------------------------- */
+
+#include "fix_field_lsdem.h"
+
+#include "atom.h"
+#include "atom_vec_lsdem.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "fix_wall_lsdem.h"
+#include "group.h"
+#include "lsdem_input.h"
+#include "modify.h"
+#include "pair_lsdem.h"
+#include "update.h"
+
+#include <algorithm>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+// gathered rows: a grain is tag mass volume x[3] u[3]; a branch is tag_grain tag_other
+// (a wall: -(its index among the listed walls + 1)) force[3] point[3] centre[3]
+static constexpr int GRAIN_ROW = 9, BRANCH_ROW = 11;
+
+static const char *USAGE = "fix ID group field/lsdem N prefix kernel W spacing H "
+                           "[regular V S] [mask cylinder cx cy R zlo zhi] [wall fixID ...]";
+
+// the keywords after which a list of wall IDs ends
+static bool is_keyword(const char *word)
+{
+  for (const char *k : {"kernel", "spacing", "regular", "mask", "wall"})
+    if (strcmp(word, k) == 0) return true;
+  return false;
+}
+
+/* ---------------------------------------------------------------------- */
+
+FixFieldLsdem::FixFieldLsdem(LAMMPS *lmp, int narg, char **arg) :
+  Fix(lmp, narg, arg), masked(false), mask_centre{0.0, 0.0}, mask_radius(0.0), mask_zlo(0.0),
+  mask_zhi(0.0), avec(nullptr), store(nullptr), have_reference(false),
+  series(narg > 4 ? arg[4] : "", "vti")
+{
+  if (narg < 9) error->all(FLERR, "Illegal fix field/lsdem command: {}", USAGE);
+  nevery = utils::inumeric(FLERR, arg[3], false, lmp);
+  if (nevery <= 0) error->all(FLERR, "Fix field/lsdem: N must be > 0, got {}", arg[3]);
+  if (std::string(arg[4]).find_first_of("*%") != std::string::npos)
+    error->all(FLERR, "Fix field/lsdem takes a file prefix without * or %: it writes "
+               "prefix_<step>.vti and prefix.pvd");
+  params.width = params.h = 0.0;
+  params.min_variance = LSDEM_FIELD_MIN_VARIANCE;
+  params.min_weight = LSDEM_FIELD_MIN_WEIGHT;
+  int iarg = 5;
+  while (iarg < narg) {
+    const std::string key = arg[iarg];
+    if ((key == "kernel" || key == "spacing") && iarg + 1 < narg) {
+      double &v = key == "kernel" ? params.width : params.h;
+      v = LsdemInput::number(FLERR, arg[iarg + 1], "fix field/lsdem", key.c_str(), lmp);
+      if (!(v > 0.0)) error->all(FLERR, "Fix field/lsdem: {} must be > 0, got {}", key, v);
+      iarg += 2;
+    } else if (key == "regular" && iarg + 2 < narg) {
+      params.min_variance = LsdemInput::number(FLERR, arg[iarg + 1], "fix field/lsdem",
+                                               "regular", lmp);
+      params.min_weight = LsdemInput::number(FLERR, arg[iarg + 2], "fix field/lsdem",
+                                             "regular", lmp);
+      if (!(params.min_variance >= 0.0) || !(params.min_weight >= 0.0))
+        error->all(FLERR, "Fix field/lsdem: regular values must be >= 0");
+      iarg += 3;
+    } else if (key == "mask" && iarg + 6 < narg && strcmp(arg[iarg + 1], "cylinder") == 0) {
+      double *v[5] = {&mask_centre[0], &mask_centre[1], &mask_radius, &mask_zlo, &mask_zhi};
+      for (int k = 0; k < 5; k++)
+        *v[k] = LsdemInput::number(FLERR, arg[iarg + 2 + k], "fix field/lsdem", "mask", lmp);
+      if (!(mask_radius > 0.0) || !(mask_zhi > mask_zlo))
+        error->all(FLERR, "Fix field/lsdem: mask cylinder needs R > 0 and zhi > zlo");
+      masked = true;
+      iarg += 7;
+    } else if (key == "wall" && iarg + 1 < narg) {
+      iarg++;
+      while (iarg < narg && !is_keyword(arg[iarg])) wall_ids.emplace_back(arg[iarg++]);
+    } else {
+      error->all(FLERR, "Illegal fix field/lsdem keyword {}: {}", key, USAGE);
+    }
+  }
+  if (!(params.width > 0.0) || !(params.h > 0.0))
+    error->all(FLERR, "Fix field/lsdem needs kernel W and spacing H: {}", USAGE);
+  if (!dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem")))
+    error->all(FLERR, "Fix field/lsdem requires atom_style lsdem");
+}
+
+/* ---------------------------------------------------------------------- */
+
+FixFieldLsdem::~FixFieldLsdem()
+{
+  if (modify->nfix && !id_store.empty()) modify->delete_fix(id_store);
+}
+
+/* ----------------------------------------------------------------------
+   the reference store is a fix of its own, added once this fix exists
+------------------------------------------------------------------------- */
+
+void FixFieldLsdem::post_constructor()
+{
+  id_store = std::string(id) + "_FIELD_STORE";
+  store = LsdemCompat::add_peratom_store(modify, id_store, group->names[igroup], 3);
+  have_reference = store->restart_reset;
+  store->restart_reset = 0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixFieldLsdem::setmask()
+{
+  return END_OF_STEP;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixFieldLsdem::init()
+{
+  store = LsdemCompat::find_peratom_store(modify, id_store.c_str());
+  if (!store) error->all(FLERR, "Could not find fix field/lsdem's store {}", id_store);
+  avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
+  sources.find(lmp, wall_ids, "Fix field/lsdem");
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixFieldLsdem::setup(int /*vflag*/)
+{
+  if (!have_reference) store_reference();
+  if (update->ntimestep % nevery == 0) write_fields();
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixFieldLsdem::end_of_step()
+{
+  write_fields();
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixFieldLsdem::store_reference()
+{
+  double **x = atom->x;
+  const imageint *image = atom->image;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (atom->mask[i] & groupbit) domain->unmap(x[i], image[i], store->astore[i]);
+  have_reference = true;
+}
+
+/* ---------------------------------------------------------------------- */
+
+std::vector<double> FixFieldLsdem::grain_rows() const
+{
+  std::vector<double> rows;
+  double **x = atom->x;
+  const imageint *image = atom->image;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(atom->mask[i] & groupbit)) continue;
+    const lsdem_shape *shape = lsdem_library_shape(avec->library(), avec->shape[i]);
+    double xu[3];
+    domain->unmap(x[i], image[i], xu);
+    const double row[GRAIN_ROW] = {(double) atom->tag[i], atom->rmass[i], shape->volume,
+                                   x[i][0], x[i][1], x[i][2],
+                                   xu[0] - store->astore[i][0], xu[1] - store->astore[i][1],
+                                   xu[2] - store->astore[i][2]};
+    rows.insert(rows.end(), row, row + GRAIN_ROW);
+  }
+  return rows;
+}
+
+/* ----------------------------------------------------------------------
+   the branches compute stress/lsdem sums: each pair test (listed once, on the rank owning
+   its master) gives the master's side and the slave's side, a wall contact its grain's
+------------------------------------------------------------------------- */
+
+std::vector<double> FixFieldLsdem::branch_rows() const
+{
+  std::vector<double> rows;
+  const int *mask = atom->mask;
+  const tagint *tag = atom->tag;
+  double **x = atom->x;
+  auto add = [&](int i, double other, const double *f, const double *point, double sign) {
+    if (!(mask[i] & groupbit)) return;
+    const double row[BRANCH_ROW] = {(double) tag[i], other, sign * f[0], sign * f[1],
+                                    sign * f[2], point[0], point[1], point[2],
+                                    x[i][0], x[i][1], x[i][2]};
+    rows.insert(rows.end(), row, row + BRANCH_ROW);
+  };
+  sources.check_current(lmp, "Fix field/lsdem");
+  if (sources.pair) {
+    sources.pair->each_contact([&](const PairLsdem::Contact &c) {
+      const double f[3] = {c.scale * c.res.force[0], c.scale * c.res.force[1],
+                           c.scale * c.res.force[2]};
+      add(c.i, (double) tag[c.j], f, c.res.point, 1.0);
+      add(c.j, (double) tag[c.i], f, c.res.point, -1.0);
+    });
+  }
+  for (int k = 0; k < (int) sources.walls.size(); k++)
+    sources.walls[k]->each_contact([&](const FixWallLsdem::Contact &c) {
+      add(c.i, -(double) (k + 1), c.force, c.point, 1.0);
+    });
+  return rows;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixFieldLsdem::write_fields()
+{
+  const std::vector<double> grains = lsdem_gather_sorted(world, grain_rows(), GRAIN_ROW);
+  const std::vector<double> branches = lsdem_gather_sorted(world, branch_rows(), BRANCH_ROW);
+  if (comm->me != 0) return;
+  const int n = (int) (grains.size() / GRAIN_ROW), nb = (int) (branches.size() / BRANCH_ROW);
+  if (n == 0) error->one(FLERR, "Fix field/lsdem: no grains in group {}", group->names[igroup]);
+  std::vector<lsdem_field_grain> g(n);
+  for (int i = 0; i < n; i++) {
+    const double *r = &grains[(size_t) i * GRAIN_ROW];
+    g[i].mass = r[1];
+    g[i].volume = r[2];
+    std::copy(r + 3, r + 6, g[i].x);
+    std::copy(r + 6, r + 9, g[i].u);
+  }
+  std::vector<lsdem_field_branch> b(nb);
+  for (int i = 0; i < nb; i++) {
+    const double *r = &branches[(size_t) i * BRANCH_ROW];
+    std::copy(r + 2, r + 5, b[i].force);
+    std::copy(r + 5, r + 8, b[i].point);
+    std::copy(r + 8, r + 11, b[i].centre);
+  }
+  lsdem_fields f;
+  lsdem_error err;
+  if (lsdem_fields_compute(&params, n, g.data(), nb, b.data(), &f, &err) != LSDEM_OK)
+    error->one(FLERR, "Fix field/lsdem: {}", err.msg);
+  if (masked) lsdem_fields_mask_cylinder(&f, mask_centre, mask_radius, mask_zlo, mask_zhi);
+  const std::string file = series.step_file(update->ntimestep);
+  const lsdem_status s = lsdem_fields_write_vti(file.c_str(), &f, &err);
+  lsdem_fields_free(&f);
+  if (s != LSDEM_OK) error->one(FLERR, "Fix field/lsdem: {}", err.msg);
+  const double time = update->atime + (update->ntimestep - update->atimestep) * update->dt;
+  if (!series.add(update->ntimestep, time))
+    error->one(FLERR, "Fix field/lsdem: writing {} failed: {}", series.index_file(),
+               utils::getsyserror());
+}

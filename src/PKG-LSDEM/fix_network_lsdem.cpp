@@ -1,0 +1,271 @@
+// clang-format off
+/* ----------------------------------------------------------------------
+   LSDEM package: level-set discrete element method for LAMMPS.
+
+   fix ID group network/lsdem N prefix [wall fixID ...]   (doc/fix_network_lsdem.rst)
+   Every N steps (and at a run's setup when the step is a multiple of N): each contact
+   between two grains of the group (pair_style lsdem's tests, two-way halves merged) and
+   each contact of a grain of the group with a listed fix wall/lsdem travels to rank 0,
+   sorted, with its normal force: the force on the grain along the partner's outward
+   normal at the contact point (the slave's level-set gradient, the wall's normal).
+   Rank 0 writes prefix_<step>.vtp (a polyline centre - contact point - centre, or centre -
+   point for a wall) and prefix.pvd, and the strong-chain statistics (core
+   lsdem_strong_chains) reach every rank as the fix's global vector.
+------------------------------------------------------------------------- */
+
+#include "fix_network_lsdem.h"
+
+#include "atom.h"
+#include "atom_vec_lsdem.h"
+#include "comm.h"
+#include "error.h"
+#include "fix_wall_lsdem.h"
+#include "lsdem_input.h"
+#include "pair_lsdem.h"
+#include "update.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+// a gathered contact: tag_a tag_b (a wall: -(its index among the listed walls + 1), tag_a
+// < tag_b for grains) force_on_a[3] point[3] x_a[3] x_b[3] (a wall: the point) fn
+static constexpr int ROW = 15, FORCE = 2, POINT = 5, XA = 8, XB = 11, FN = 14;
+
+/* ---------------------------------------------------------------------- */
+
+FixNetworkLsdem::FixNetworkLsdem(LAMMPS *lmp, int narg, char **arg) :
+  Fix(lmp, narg, arg), avec(nullptr), series(narg > 4 ? arg[4] : "", "vtp"),
+  stats{0.0, 0.0, 0.0, 0.0}
+{
+  const char *usage = "fix ID group network/lsdem N prefix [wall fixID ...]";
+  if (narg < 5) error->all(FLERR, "Illegal fix network/lsdem command: {}", usage);
+  nevery = utils::inumeric(FLERR, arg[3], false, lmp);
+  if (nevery <= 0) error->all(FLERR, "Fix network/lsdem: N must be > 0, got {}", arg[3]);
+  if (std::string(arg[4]).find_first_of("*%") != std::string::npos)
+    error->all(FLERR, "Fix network/lsdem takes a file prefix without * or %: it writes "
+               "prefix_<step>.vtp and prefix.pvd");
+  if (narg > 5 && (strcmp(arg[5], "wall") != 0 || narg == 6))
+    error->all(FLERR, "Illegal fix network/lsdem command: {}", usage);
+  for (int iarg = 6; iarg < narg; iarg++) wall_ids.emplace_back(arg[iarg]);
+  if (!dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem")))
+    error->all(FLERR, "Fix network/lsdem requires atom_style lsdem");
+  vector_flag = 1;
+  size_vector = 4;
+  global_freq = nevery;
+  extvector = 0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixNetworkLsdem::setmask()
+{
+  return END_OF_STEP;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNetworkLsdem::init()
+{
+  avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
+  sources.find(lmp, wall_ids, "Fix network/lsdem");
+  if (!sources.pair && sources.walls.empty())
+    error->all(FLERR, "Fix network/lsdem needs pair_style lsdem or a wall");
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNetworkLsdem::setup(int /*vflag*/)
+{
+  if (update->ntimestep % nevery == 0) write_network();
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNetworkLsdem::end_of_step()
+{
+  write_network();
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixNetworkLsdem::compute_vector(int n)
+{
+  return stats[n];
+}
+
+/* ----------------------------------------------------------------------
+   f . n, n the unit outward normal of grain j's level set at the point (world frame):
+   positive when f pushes the grain away from j
+------------------------------------------------------------------------- */
+
+double FixNetworkLsdem::pair_normal_force(int j, const double *force_on_i,
+                                          const double *point) const
+{
+  const lsdem_shape *shape = lsdem_library_shape(avec->library(), avec->shape[j]);
+  double rel[3], body[3], grad[3], n[3];
+  lsdem_sub3(point, atom->x[j], rel);
+  lsdem_quat_rotate_inv(avec->quat[j], rel, body);
+  lsdem_sdf_eval(&shape->sdf, body, grad);
+  lsdem_quat_rotate(avec->quat[j], grad, n);
+  const double len = std::sqrt(lsdem_dot3(n, n));
+  return len > 0.0 ? lsdem_dot3(force_on_i, n) / len : 0.0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+std::vector<double> FixNetworkLsdem::contact_rows() const
+{
+  std::vector<double> rows;
+  const int *mask = atom->mask;
+  const tagint *tag = atom->tag;
+  double **x = atom->x;
+  auto add = [&](double ta, double tb, const double *f, double sign, const double *point,
+                 const double *xa, const double *xb, double fn) {
+    const double row[ROW] = {ta, tb, sign * f[0], sign * f[1], sign * f[2],
+                             point[0], point[1], point[2], xa[0], xa[1], xa[2],
+                             xb[0], xb[1], xb[2], fn};
+    rows.insert(rows.end(), row, row + ROW);
+  };
+  sources.check_current(lmp, "Fix network/lsdem");
+  if (sources.pair)
+    sources.pair->each_contact([&](const PairLsdem::Contact &c) {
+      if (!(mask[c.i] & groupbit) || !(mask[c.j] & groupbit)) return;
+      const double f[3] = {c.scale * c.res.force[0], c.scale * c.res.force[1],
+                           c.scale * c.res.force[2]};
+      const double fn = pair_normal_force(c.j, f, c.res.point);
+      if (tag[c.i] < tag[c.j])
+        add((double) tag[c.i], (double) tag[c.j], f, 1.0, c.res.point, x[c.i], x[c.j], fn);
+      else
+        add((double) tag[c.j], (double) tag[c.i], f, -1.0, c.res.point, x[c.j], x[c.i], fn);
+    });
+  for (int k = 0; k < (int) sources.walls.size(); k++) {
+    const lsdem_boundary &wall = sources.walls[k]->boundary();
+    sources.walls[k]->each_contact([&](const FixWallLsdem::Contact &c) {
+      if (!(mask[c.i] & groupbit)) return;
+      double n[3];
+      lsdem_boundary_distance(&wall, &wall.pose, c.point, n);
+      const double len = std::sqrt(lsdem_dot3(n, n));
+      const double fn = len > 0.0 ? lsdem_dot3(c.force, n) / len : 0.0;
+      add((double) tag[c.i], -(double) (k + 1), c.force, 1.0, c.point, x[c.i], c.point, fn);
+    });
+  }
+  return rows;
+}
+
+/* ----------------------------------------------------------------------
+   the sorted rows with the tests of one pair (two-way mode: one per side) merged: forces
+   and normal forces summed, contact points averaged
+------------------------------------------------------------------------- */
+
+static std::vector<double> merge_pairs(const std::vector<double> &rows)
+{
+  std::vector<double> out;
+  const size_t n = rows.size() / ROW;
+  for (size_t r = 0; r < n;) {
+    const double *first = &rows[r * ROW];
+    size_t s = r + 1;
+    while (s < n && rows[s * ROW] == first[0] && rows[s * ROW + 1] == first[1]) s++;
+    std::vector<double> line(first, first + ROW);
+    for (size_t t = r + 1; t < s; t++) {
+      for (int d = 0; d < 3; d++) {
+        line[FORCE + d] += rows[t * ROW + FORCE + d];
+        line[POINT + d] += rows[t * ROW + POINT + d];
+      }
+      line[FN] += rows[t * ROW + FN];
+    }
+    for (int d = 0; d < 3; d++) line[POINT + d] /= (double) (s - r);
+    out.insert(out.end(), line.begin(), line.end());
+    r = s;
+  }
+  return out;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixNetworkLsdem::write_network()
+{
+  const std::vector<double> rows = lsdem_gather_sorted(world, contact_rows(), ROW);
+  if (comm->me == 0) {
+    const std::vector<double> lines = merge_pairs(rows);
+    const int n = (int) (lines.size() / ROW);
+    std::vector<double> fn(n);
+    for (int l = 0; l < n; l++) fn[l] = lines[(size_t) l * ROW + FN];
+    lsdem_chain_stats cs;
+    lsdem_strong_chains(n, fn.data(), &cs);
+    stats[0] = cs.contacts;
+    stats[1] = cs.mean;
+    stats[2] = cs.strong_fraction;
+    stats[3] = cs.strong_share;
+    write_vtp(lines, fn);
+  }
+  MPI_Bcast(stats, 4, MPI_DOUBLE, 0, world);
+}
+
+/* ----------------------------------------------------------------------
+   one polyline per contact: x_a, point, x_b (a wall contact: x_a, point); cell data
+   id_a, id_b (a wall: -(index + 1)), normal_force, force (on grain a), strong (1/0)
+------------------------------------------------------------------------- */
+
+void FixNetworkLsdem::write_vtp(const std::vector<double> &lines, const std::vector<double> &fn)
+{
+  const int n = (int) fn.size();
+  const double mean = stats[1];
+  auto is_wall = [&](int l) { return lines[(size_t) l * ROW + 1] < 0.0; };
+  int npoints = 0;
+  for (int l = 0; l < n; l++) npoints += is_wall(l) ? 2 : 3;
+  const std::string file = series.step_file(update->ntimestep);
+  FILE *fp = fopen(file.c_str(), "w");
+  if (!fp)
+    error->one(FLERR, "Fix network/lsdem cannot open {}: {}", file, utils::getsyserror());
+  fmt::print(fp, "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" "
+             "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<PolyData>\n"
+             "<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" "
+             "NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n<Points>\n"
+             "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
+             npoints, n);
+  for (int l = 0; l < n; l++) {
+    const double *r = &lines[(size_t) l * ROW];
+    const int ends[3] = {XA, POINT, XB};
+    for (int e = 0; e < (is_wall(l) ? 2 : 3); e++)
+      fmt::print(fp, "{:.17g} {:.17g} {:.17g}\n", r[ends[e]], r[ends[e] + 1], r[ends[e] + 2]);
+  }
+  fputs("</DataArray>\n</Points>\n<Lines>\n"
+        "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n", fp);
+  int point = 0;
+  std::string offsets;
+  for (int l = 0; l < n; l++) {
+    const int m = is_wall(l) ? 2 : 3;
+    for (int e = 0; e < m; e++) fmt::print(fp, "{}\n", point + e);
+    point += m;
+    offsets += fmt::format("{}\n", point);
+  }
+  fmt::print(fp, "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n"
+             "{}</DataArray>\n</Lines>\n<CellData Scalars=\"normal_force\">\n", offsets);
+  const char *idname[2] = {"id_a", "id_b"};
+  for (int k = 0; k < 2; k++) {
+    fmt::print(fp, "<DataArray type=\"Int64\" Name=\"{}\" format=\"ascii\">\n", idname[k]);
+    for (int l = 0; l < n; l++) fmt::print(fp, "{}\n", (long long) lines[(size_t) l * ROW + k]);
+    fputs("</DataArray>\n", fp);
+  }
+  fputs("<DataArray type=\"Float64\" Name=\"normal_force\" format=\"ascii\">\n", fp);
+  for (int l = 0; l < n; l++) fmt::print(fp, "{:.17g}\n", fn[l]);
+  fputs("</DataArray>\n<DataArray type=\"Float64\" Name=\"force\" NumberOfComponents=\"3\" "
+        "format=\"ascii\">\n", fp);
+  for (int l = 0; l < n; l++) {
+    const double *f = &lines[(size_t) l * ROW + FORCE];
+    fmt::print(fp, "{:.17g} {:.17g} {:.17g}\n", f[0], f[1], f[2]);
+  }
+  fputs("</DataArray>\n<DataArray type=\"UInt8\" Name=\"strong\" format=\"ascii\">\n", fp);
+  for (int l = 0; l < n; l++) fmt::print(fp, "{}\n", fn[l] > mean ? 1 : 0);
+  fputs("</DataArray>\n</CellData>\n</Piece>\n</PolyData>\n</VTKFile>\n", fp);
+  const bool bad = ferror(fp) != 0;
+  if (fclose(fp) != 0 || bad) error->one(FLERR, "Fix network/lsdem: writing {} failed", file);
+  const double time = update->atime + (update->ntimestep - update->atimestep) * update->dt;
+  if (!series.add(update->ntimestep, time))
+    error->one(FLERR, "Fix network/lsdem: writing {} failed: {}", series.index_file(),
+               utils::getsyserror());
+}
