@@ -80,20 +80,25 @@ variable vz equal vz[1]
 """
 
 
+def write_stl(path, tris, name="mesh"):
+    """Triangles (three (x, y, z) corners each, in their orientation) as ASCII STL."""
+    lines = ["solid %s" % name]
+    for t in tris:
+        lines.append(" facet normal 0 0 0\n  outer loop")
+        lines += ["   vertex %r %r %r" % tuple(v) for v in t]
+        lines.append("  endloop\n endfacet")
+    lines.append("endsolid %s" % name)
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return path
+
+
 def write_cube_stl(path, lo, hi):
     """A closed, outward-oriented box as ASCII STL."""
     c = [(x, y, z) for z in (lo[2], hi[2]) for y in (lo[1], hi[1]) for x in (lo[0], hi[0])]
     quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
-    lines = ["solid box"]
-    for a, b, cc, d in quads:
-        for tri in ((a, b, cc), (a, cc, d)):
-            lines.append(" facet normal 0 0 0\n  outer loop")
-            lines += ["   vertex %r %r %r" % c[v] for v in tri]
-            lines.append("  endloop\n endfacet")
-    lines.append("endsolid box")
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    return path
+    return write_stl(path, [(c[a], c[t1], c[t2]) for a, b, cc, d in quads
+                            for t1, t2 in ((b, cc), (cc, d))], "box")
 
 
 def write_ridges_stl(path, xs, half_y, half_base=0.3, height=0.5):
@@ -115,12 +120,4 @@ def write_ridges_stl(path, xs, half_y, half_base=0.3, height=0.5):
                  e1[0] * e2[1] - e1[1] * e2[0])
             outward = sum(n[i] * (t[0][i] - centre[i]) for i in range(3)) > 0
             tris.append(t if outward else (t[0], t[2], t[1]))
-    lines = ["solid ridges"]
-    for t in tris:
-        lines.append(" facet normal 0 0 0\n  outer loop")
-        lines += ["   vertex %r %r %r" % v for v in t]
-        lines.append("  endloop\n endfacet")
-    lines.append("endsolid ridges")
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    return path
+    return write_stl(path, tris, "ridges")

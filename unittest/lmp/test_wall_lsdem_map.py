@@ -16,7 +16,8 @@ import os
 import re
 
 from lsdemtest import run_lmp, check, near, finish, shape_tool, thermo
-from contact_decks import Grain, box_library, write_data, head, THERMO_FULL, write_cube_stl
+from contact_decks import (Grain, box_library, write_data, head, THERMO_FULL, write_cube_stl,
+                           write_stl)
 
 HALF = 0.25
 lib = box_library("cube.lslib", HALF, 0.025, 300)
@@ -118,15 +119,7 @@ def write_drum_stl(path, radius, y0, y1, segments=24):
         a0, b0, a1, b1 = (xa, y0, za), (xb, y0, zb), (xa, y1, za), (xb, y1, zb)
         tris += [(a0, b1, a1), (a0, b0, b1)]                    # the mantle, facing the axis
         tris += [((0.0, y0, 0.0), b0, a0), ((0.0, y1, 0.0), a1, b1)]  # the end caps, inwards
-    lines = ["solid drum"]
-    for tri in tris:
-        lines.append(" facet normal 0 0 0\n  outer loop")
-        lines += ["   vertex %r %r %r" % v for v in tri]
-        lines.append("  endloop\n endfacet")
-    lines.append("endsolid drum")
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    return path
+    return write_stl(path, tris, "drum")
 
 
 drum_band = os.path.abspath("drum.band")
