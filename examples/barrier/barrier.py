@@ -10,7 +10,8 @@ Impact direction: -z, the net's normal is +z (deflections are positive downward)
   braking time    from first contact until vz first reaches 0 (linear between samples)
   max elongation  largest bond strain (fix net/lsdem output 4) and largest deflection of the
                   net from its state at release, the fall of its lowest ball (output 5)
-  residual        the net's deflection at the last sample, from its state at release
+  residual        the net's deflection at the last sample (after the deck's quieting down,
+                  phase 1, if it ran one), from its state at release
 Times are from the release of the cube (the first sample); the work W from there too.
   anchor force    |R| of the anchors' reaction (outputs 1-3), peak and last
 Energy: E(t) = kinetic (translation + rotation of the cube and the free balls) + bond energy
@@ -52,7 +53,11 @@ def first_contact(rows):
     return None
 
 
-def figures(rows):
+def figures(all_rows):
+    """the figures of the impact (phase 0) and the residual ones of the last sample (after
+    the quieting down, phase 1, if the deck ran one)"""
+    rows = [r for r in all_rows if r.get("phase", 0) == 0]
+    last = all_rows[-1]
     out = {}
     n0 = first_contact(rows)
     out["t_contact"] = rows[n0]["time"] if n0 is not None else None
@@ -71,14 +76,16 @@ def figures(rows):
     out["sag_before"] = -rows[0]["height"]
     out["max_deflection"] = rows[0]["height"] - low["height"]
     out["t_max_deflection"] = low["time"]
-    out["residual_deflection"] = rows[0]["height"] - rows[-1]["height"]
+    out["residual_deflection"] = rows[0]["height"] - last["height"]
+    out["quieted"] = last.get("phase", 0) == 1
+    out["ke_last"] = last["ke_block"] + last["ke_net"]
     mag = lambda r: (r["rx"] ** 2 + r["ry"] ** 2 + r["rz"] ** 2) ** 0.5
     peak = max(rows, key=mag)
     out["anchor_peak"] = mag(peak)
     out["t_anchor_peak"] = peak["time"]
-    out["anchor_final"] = [rows[-1]["rx"], rows[-1]["ry"], rows[-1]["rz"]]
-    out["bonds_broken"] = rows[-1]["bonds_broken"]
-    out["vz_final"] = rows[-1]["vz"]
+    out["anchor_final"] = [last["rx"], last["ry"], last["rz"]]
+    out["bonds_broken"] = last["bonds_broken"]
+    out["vz_final"] = last["vz"]
     e0, e1 = energy(rows[0]), energy(rows[-1])
     out["energy"] = {
         "E0": e0, "kinetic_end": rows[-1]["ke_block"] + rows[-1]["ke_net"],
@@ -106,20 +113,22 @@ def report(f):
         if f["braking_time"] is not None else "braking time         - (vz never reached 0)",
         "max elongation       bond strain %.4f; net deflection %.4f (t = %.4f)"
         % (f["max_strain"], f["max_deflection"], f["t_max_deflection"]),
-        "residual deflection  %.4f (last sample; the net sagged %.4f under its weight before)"
-        % (f["residual_deflection"], f["sag_before"]),
+        "residual deflection  %.4f (last sample%s, kinetic energy then %.2g; the net sagged %.4f "
+        "under its weight before)" % (f["residual_deflection"], ", after quieting down"
+                                      if f["quieted"] else "", f["ke_last"], f["sag_before"]),
         "anchor force         peak |R| %.4g (t = %.4f); last R = (%.3g, %.3g, %.4g)"
         % ((f["anchor_peak"], f["t_anchor_peak"]) + tuple(f["anchor_final"])),
         "bonds broken         %d" % f["bonds_broken"],
-        "energy (of E(0) = %.5g): kinetic left %.4g, bond %.4g (start %.4g, peak rise %.4g), "
+        "energy over the impact (of E(0) = %.5g): kinetic left %.4g, bond %.4g (start %.4g, peak rise %.4g), "
         "gravity change %.4g, bond damping work %.4g, other dissipation (residual) %.4g"
         % (e["E0"], e["kinetic_end"], e["bond_end"], e["bond_start"], e["peak_bond"],
            e["gravity_change"], e["bond_damping_work"], e["other_dissipated_residual"]),
     ]
     if "balance_no_contact_worst" in e:
-        lines.append("balance without contact: worst |E + W - E(0)| = %.3g %% of the impact "
-                     "energy over %d samples" % (100 * abs(e["balance_no_contact_worst"]),
-                                                 e["balance_no_contact_samples"]))
+        lines.append("without contact: worst |E + W - E(0)| = %.3g %% of the impact energy "
+                     "over %d samples (what the contacts took so far; 0 if they are elastic)"
+                     % (100 * abs(e["balance_no_contact_worst"]),
+                        e["balance_no_contact_samples"]))
     return "\n".join(lines)
 
 

@@ -3,7 +3,7 @@
 # 2000 surface nodes, mass M) above a horizontal hexagonal net (balls of radius 0.08, mass
 # 1e-4, spacing 0.2, rest length 0.19: 5 % pretension, K, axial damping C) of L x L whose
 # four edges are clamped; the net lies in z = 0, the cube's centre above its middle.
-#   make_scene.sh OUTDIR [L] [M] [K] [C] [H]    (defaults 3 0.1 5 0.01 0.3)
+#   make_scene.sh OUTDIR [L] [M] [K] [C] [H]    (defaults 3 0.1 5 0.03 0.3)
 # lsdem-shape from LSDEM_SHAPE_TOOL. Writes OUTDIR/all.lslib (shape 1 the cube, 2 the
 # ball), net.data (the cube is atom 1, group grains), net.in, net.net and cube.in (the
 # cube's half-size, for the deck).
@@ -12,7 +12,7 @@ out=$1
 size=${2:-3}
 mass=${3:-0.1}
 k=${4:-5}
-damp=${5:-0.01}
+damp=${5:-0.03}
 half=${6:-0.3}
 shape=${LSDEM_SHAPE_TOOL:-$(cd "$(dirname "$0")" && pwd)/../../build/lsdem-shape}
 mkdir -p "$out"
