@@ -26,6 +26,7 @@ inputs() {
     hopper) echo hopper.stl hopper.band hopper.txt sphere.lslib hopper.data ;;
     avalanche) echo grains.lslib source.data valley.asc valley.band ;;
     net_drop) echo all.lslib net.data net.in net.net ;;
+    barrier) echo all.lslib net.data net.in net.net cube.in ;;
   esac
 }
 
@@ -43,7 +44,7 @@ EOF
 }
 
 names=("$@")
-[ ${#names[@]} -gt 0 ] || names=(settle avatars ct_scan container_release triaxial c_driver drum hopper avalanche net_drop)
+[ ${#names[@]} -gt 0 ] || names=(settle avatars ct_scan container_release triaxial c_driver drum hopper avalanche net_drop barrier)
 for name in "${names[@]}"; do
   files=$(inputs "$name")
   [ -n "$files" ] || { echo "make_inputs.sh: no example '$name'" >&2; exit 2; }

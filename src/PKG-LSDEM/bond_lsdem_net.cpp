@@ -19,6 +19,7 @@
 #include "memory.h"
 #include "neighbor.h"
 #include "pair.h"
+#include "update.h"
 
 #include <algorithm>
 #include <cmath>
@@ -29,7 +30,8 @@ using namespace LAMMPS_NS;
 /* ---------------------------------------------------------------------- */
 
 BondLsdemNet::BondLsdemNet(LAMMPS *lmp) :
-    Bond(lmp), k(nullptr), r0(nullptr), damp(nullptr), limit(nullptr), mode(nullptr)
+    Bond(lmp), k(nullptr), r0(nullptr), damp(nullptr), limit(nullptr), mode(nullptr),
+    damping_work(0.0)
 {
   quantum.q = quantum.inv_q = 0.0;
 }
@@ -88,6 +90,12 @@ void BondLsdemNet::compute(int eflag, int vflag)
     if (lsdem_net_bond_breaks(mode[type], limit[type], k[type], r0[type], stretch)) {
       break_bond(n);
       continue;
+    }
+    if (damp[type] > 0.0 && !update->setupflag) {
+      // work of the damping force over this step (a bond seen by two ranks counts half on each)
+      const double share = newton_bond || (i1 < nlocal && i2 < nlocal) ? 1.0 : 0.5;
+      damping_work += share * update->dt *
+          lsdem_net_bond_damping_power(x[i1], x[i2], v[i1], v[i2], damp[type]);
     }
     lsdem_quantize3(f2, quantum, f2);
     if (newton_bond || i1 < nlocal)
@@ -280,5 +288,7 @@ void *BondLsdemNet::extract(const char *str, int &dim)
   dim = 1;
   if (strcmp(str, "k") == 0) return (void *) k;
   if (strcmp(str, "r0") == 0) return (void *) r0;
+  dim = 0;
+  if (strcmp(str, "damping_work") == 0) return (void *) &damping_work;    // this rank's part
   return nullptr;
 }

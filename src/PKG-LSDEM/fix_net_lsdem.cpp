@@ -11,6 +11,7 @@
      5    residual height: lowest ball height over the net's initial plane (along n)
      6    bonds broken (bond type 0 among the net's bonds)
      7    grains through the net: grain centres in the footprint below the nearest ball
+     8    work of the bonds' damping forces (energy dissipated by them), summed over ranks
 ------------------------------------------------------------------------- */
 
 #include "fix_net_lsdem.h"
@@ -64,7 +65,7 @@ FixNetLsdem::FixNetLsdem(LAMMPS *lmp, int narg, char **arg) :
   xball.resize(3 * (size_t) net.nballs);
 
   vector_flag = 1;
-  size_vector = 7;
+  size_vector = 8;
   global_freq = 1;
   extvector = 0;
 }
@@ -214,6 +215,17 @@ double FixNetLsdem::grains_through()
   return (double) all;
 }
 
+/* the bond style's work of the damping forces, this rank's part summed over ranks (in rank
+   order: the same to round-off, not to the bit, on another rank count) */
+double FixNetLsdem::damping_work()
+{
+  int dim;
+  const double *mine = (const double *) force->bond->extract("damping_work", dim);
+  double all = 0.0;
+  MPI_Allreduce(mine, &all, 1, MPI_DOUBLE, MPI_SUM, world);
+  return all;
+}
+
 /* ---------------------------------------------------------------------- */
 
 void FixNetLsdem::compute_outputs()
@@ -223,6 +235,7 @@ void FixNetLsdem::compute_outputs()
   out[4] = lowest_height();
   out[5] = bonds_broken();
   out[6] = grains_through();
+  out[7] = damping_work();
   out_step = update->ntimestep;
 }
 

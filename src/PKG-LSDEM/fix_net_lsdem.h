@@ -40,7 +40,7 @@ class FixNetLsdem : public Fix {
   std::unordered_map<tagint, int> index;  // atom ID -> ball index of the file
   int clamp_group, clamp_bit, grain_group, grain_bit;
   std::vector<double> xball;              // every ball's position (gathered)
-  double out[7];
+  double out[8];
   bigint out_step;
 
   void check_balls();
@@ -50,6 +50,7 @@ class FixNetLsdem : public Fix {
   double lowest_height();
   double bonds_broken();
   double grains_through();
+  double damping_work();
 };
 
 }    // namespace LAMMPS_NS

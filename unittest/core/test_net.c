@@ -101,6 +101,17 @@ static void test_force(void)
   double t[3] = {u[1], -u[0], 0.0};
   lsdem_net_bond_force(xi, xj, v0, t, k, r0, c, fd, &s);
   for (int d = 0; d < 3; d++) CHECK_NEAR(fd[d], fj[d], 1e-14);
+  /* the damping power is minus the damping force's power on the relative motion,
+   * -(fd - fj) . (vj - vi) = c (v.u)^2; a transverse velocity withdraws nothing */
+  double vi[3] = {0.3, -0.1, 0.2}, vk[3] = {2.0 * u[0] + t[0], 2.0 * u[1] + t[1],
+                                            2.0 * u[2] + t[2]};
+  lsdem_net_bond_force(xi, xj, vi, vk, k, r0, c, fd, &s);
+  double pw = 0.0;
+  for (int d = 0; d < 3; d++) pw -= (fd[d] - fj[d]) * (vk[d] - vi[d]);
+  CHECK_NEAR(lsdem_net_bond_damping_power(xi, xj, vi, vk, c), pw, 1e-14);
+  CHECK(pw > 0.0, "damping power %g not positive", pw);
+  CHECK_NEAR(lsdem_net_bond_damping_power(xi, xj, v0, t, c), 0.0, 1e-15);
+  CHECK(lsdem_net_bond_damping_power(xi, xi, v0, vj, c) == 0.0, "zero length");
 }
 
 static void test_breaks(void)

@@ -34,6 +34,7 @@ DECKS = [
      ["avalanche.csv", "deposit.dump", "avalanche_end.data", "vtk/grains.pvd", "vtk/terrain.pvd"]),
     ("net_drop", "in.net_drop", {"nsteps": 40, "vtk": 20},
      ["net_drop.csv", "vtk/net_drop.pvd", "vtk/net_drop_net.pvd"]),
+    ("barrier", "in.barrier", {"settle": 20, "nsteps": 40, "nrest": 20}, ["barrier.csv"]),
 ]
 
 

@@ -320,6 +320,12 @@ double lsdem_net_bond_force(const double xi[3], const double xj[3], const double
                             const double vj[3], double k, double r0, double c, double fj[3],
                             double *stretch);
 
+/* Power withdrawn by the net bond's damping force (lsdem_net_bond_force with this c):
+ * c (v . u)^2 >= 0 (force times velocity; zero when L = 0). bond_style lsdem/net sums it
+ * over the steps to the work of the damping forces (fix net/lsdem output 8). */
+double lsdem_net_bond_damping_power(const double xi[3], const double xj[3], const double vi[3],
+                                    const double vj[3], double c);
+
 /* Rupture criteria (bond_style lsdem/net ... break): by strain, (L - r0) / r0 > limit; by
  * force, the spring's tension k (L - r0) > limit (damping not counted). limit > 0. */
 enum { LSDEM_NET_BREAK_NONE = 0, LSDEM_NET_BREAK_STRAIN = 1, LSDEM_NET_BREAK_FORCE = 2 };

@@ -173,6 +173,17 @@ double lsdem_net_bond_force(const double xi[3], const double xj[3], const double
   return 0.5 * k * (*stretch) * (*stretch);
 }
 
+double lsdem_net_bond_damping_power(const double xi[3], const double xj[3], const double vi[3],
+                                    const double vj[3], double c)
+{
+  double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
+  double len = sqrt(lsdem_dot3(d, d));
+  if (!(len > 0.0) || c == 0.0) return 0.0;
+  double v[3] = {vj[0] - vi[0], vj[1] - vi[1], vj[2] - vi[2]};
+  double w = lsdem_dot3(v, d) / len;
+  return c * w * w;
+}
+
 int lsdem_net_bond_breaks(int mode, double limit, double k, double r0, double stretch)
 {
   if (mode == LSDEM_NET_BREAK_STRAIN) return stretch / r0 > limit;
