@@ -33,13 +33,15 @@ using namespace FixConst;
 
 // a gathered contact: tag_a tag_b (a wall: -(its index among the listed walls + 1), tag_a
 // < tag_b for grains) force_on_a[3] point[3] x_a[3] x_b[3] (a wall: the point) fn
-static constexpr int ROW = 15, FORCE = 2, POINT = 5, XA = 8, XB = 11, FN = 14;
+// normal[3] (unit, the partner's outward normal at the point, towards a)
+static constexpr int ROW = 18, FORCE = 2, POINT = 5, XA = 8, XB = 11, FN = 14, NORMAL = 15;
+static constexpr int NSTATS = 11;
 
 /* ---------------------------------------------------------------------- */
 
 FixNetworkLsdem::FixNetworkLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), avec(nullptr), series(narg > 4 ? arg[4] : "", "vtp"),
-  stats{0.0, 0.0, 0.0, 0.0}
+  stats{}
 {
   const char *usage = "fix ID group network/lsdem N prefix [wall fixID ...]";
   if (narg < 5) error->all(FLERR, "Illegal fix network/lsdem command: {}", usage);
@@ -54,7 +56,7 @@ FixNetworkLsdem::FixNetworkLsdem(LAMMPS *lmp, int narg, char **arg) :
   if (!dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem")))
     error->all(FLERR, "Fix network/lsdem requires atom_style lsdem");
   vector_flag = 1;
-  size_vector = 4;
+  size_vector = NSTATS;
   global_freq = nevery;
   extvector = 0;
 }
@@ -98,12 +100,12 @@ double FixNetworkLsdem::compute_vector(int n)
 }
 
 /* ----------------------------------------------------------------------
-   f . n, n the unit outward normal of grain j's level set at the point (world frame):
-   positive when f pushes the grain away from j
+   f . n, n the unit outward normal of grain j's level set at the point (world frame, into
+   normal): positive when f pushes the grain away from j
 ------------------------------------------------------------------------- */
 
 double FixNetworkLsdem::pair_normal_force(int j, const double *force_on_i,
-                                          const double *point) const
+                                          const double *point, double normal[3]) const
 {
   const lsdem_shape *shape = lsdem_library_shape(avec->library(), avec->shape[j]);
   double rel[3], body[3], grad[3], n[3];
@@ -112,7 +114,8 @@ double FixNetworkLsdem::pair_normal_force(int j, const double *force_on_i,
   lsdem_sdf_eval(&shape->sdf, body, grad);
   lsdem_quat_rotate(avec->quat[j], grad, n);
   const double len = std::sqrt(lsdem_dot3(n, n));
-  return len > 0.0 ? lsdem_dot3(force_on_i, n) / len : 0.0;
+  for (int d = 0; d < 3; d++) normal[d] = len > 0.0 ? n[d] / len : 0.0;
+  return lsdem_dot3(force_on_i, normal);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -124,10 +127,10 @@ std::vector<double> FixNetworkLsdem::contact_rows() const
   const tagint *tag = atom->tag;
   double **x = atom->x;
   auto add = [&](double ta, double tb, const double *f, double sign, const double *point,
-                 const double *xa, const double *xb, double fn) {
+                 const double *xa, const double *xb, double fn, const double *n) {
     const double row[ROW] = {ta, tb, sign * f[0], sign * f[1], sign * f[2],
                              point[0], point[1], point[2], xa[0], xa[1], xa[2],
-                             xb[0], xb[1], xb[2], fn};
+                             xb[0], xb[1], xb[2], fn, sign * n[0], sign * n[1], sign * n[2]};
     rows.insert(rows.end(), row, row + ROW);
   };
   sources.check_current(lmp, "Fix network/lsdem");
@@ -136,11 +139,12 @@ std::vector<double> FixNetworkLsdem::contact_rows() const
       if (!(mask[c.i] & groupbit) || !(mask[c.j] & groupbit)) return;
       const double f[3] = {c.scale * c.res.force[0], c.scale * c.res.force[1],
                            c.scale * c.res.force[2]};
-      const double fn = pair_normal_force(c.j, f, c.res.point);
+      double n[3];
+      const double fn = pair_normal_force(c.j, f, c.res.point, n);
       if (tag[c.i] < tag[c.j])
-        add((double) tag[c.i], (double) tag[c.j], f, 1.0, c.res.point, x[c.i], x[c.j], fn);
+        add((double) tag[c.i], (double) tag[c.j], f, 1.0, c.res.point, x[c.i], x[c.j], fn, n);
       else
-        add((double) tag[c.j], (double) tag[c.i], f, -1.0, c.res.point, x[c.j], x[c.i], fn);
+        add((double) tag[c.j], (double) tag[c.i], f, -1.0, c.res.point, x[c.j], x[c.i], fn, n);
     });
   for (int k = 0; k < (int) sources.walls.size(); k++) {
     const lsdem_boundary &wall = sources.walls[k]->boundary();
@@ -149,8 +153,9 @@ std::vector<double> FixNetworkLsdem::contact_rows() const
       double n[3];
       lsdem_boundary_distance(&wall, &wall.pose, c.point, n);
       const double len = std::sqrt(lsdem_dot3(n, n));
-      const double fn = len > 0.0 ? lsdem_dot3(c.force, n) / len : 0.0;
-      add((double) tag[c.i], -(double) (k + 1), c.force, 1.0, c.point, x[c.i], c.point, fn);
+      for (int d = 0; d < 3; d++) n[d] = len > 0.0 ? n[d] / len : 0.0;
+      const double fn = lsdem_dot3(c.force, n);
+      add((double) tag[c.i], -(double) (k + 1), c.force, 1.0, c.point, x[c.i], c.point, fn, n);
     });
   }
   return rows;
@@ -200,9 +205,36 @@ void FixNetworkLsdem::write_network()
     stats[1] = cs.mean;
     stats[2] = cs.strong_fraction;
     stats[3] = cs.strong_share;
+    normal_fabric(lines, stats + 4);
     write_vtp(lines, fn);
   }
-  MPI_Bcast(stats, 4, MPI_DOUBLE, 0, world);
+  MPI_Bcast(stats, NSTATS, MPI_DOUBLE, 0, world);
+}
+
+/* ----------------------------------------------------------------------
+   the contact-normal fabric of the grain-grain lines (walls left out; report §3.5.4's
+   measure, as compute fabric/lsdem's of long axes): the deviator D (xx yy zz xy xz yz) of
+   F = <n n> and the anisotropy a; a merged two-way line keeps its first test's normal
+------------------------------------------------------------------------- */
+
+void FixNetworkLsdem::normal_fabric(const std::vector<double> &lines, double *out)
+{
+  double F[9] = {0.0}, D[9];
+  int count = 0;
+  for (size_t l = 0; l < lines.size() / ROW; l++) {
+    const double *line = &lines[l * ROW];
+    if (line[1] < 0.0) continue;  // a wall
+    lsdem_fabric_add(F, line + NORMAL);
+    count++;
+  }
+  if (count == 0) {
+    for (int k = 0; k < 7; k++) out[k] = 0.0;
+    return;
+  }
+  lsdem_fabric_deviator(F, (double) count, D);
+  const int ij[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
+  for (int k = 0; k < 6; k++) out[k] = D[3 * ij[k][0] + ij[k][1]];
+  out[6] = lsdem_fabric_anisotropy(D);
 }
 
 /* ----------------------------------------------------------------------

@@ -39,9 +39,13 @@ class FixNetworkLsdem : public Fix {
   LsdemContactSources sources;
   class AtomVecLsdem *avec;
   LsdemVtkSeries series;
-  double stats[4];                    // contacts, mean normal force, strong fraction, share
+  // contacts, mean normal force, strong fraction, share; the grain contacts' normal fabric
+  // (deviator Dxx Dyy Dzz Dxy Dxz Dyz, anisotropy)
+  double stats[11];
 
-  double pair_normal_force(int j, const double *force_on_i, const double *point) const;
+  double pair_normal_force(int j, const double *force_on_i, const double *point,
+                           double normal[3]) const;
+  static void normal_fabric(const std::vector<double> &lines, double *out);
   std::vector<double> contact_rows() const;
   void write_network();
   void write_vtp(const std::vector<double> &lines, const std::vector<double> &fn);

@@ -4,8 +4,9 @@ across cubes 1 and 2; g = 1, unit masses).
 Expected from statics: four lines, (1,3) and (2,3) carrying normal forces that sum to
 cube 3's weight 1 (about 1/2 each: how it splits depends on the cubes' small tilts),
 (1,floor) and (2,floor) each 1 plus what that cube carries (about 3/2); mean normal force 1, so the two floor
-contacts are strong: strong fraction 1/2, their share of the load 3/4. Cubes 1 and 2 do not
-touch. The same in two-way mode (two tests per pair merged into one line). The .vtp holds
+contacts are strong: strong fraction 1/2, their share of the load 3/4; the grain contacts'
+normals are vertical, so their fabric deviator has Dzz = 5, Dxx = -5/2 and anisotropy 7.5
+(Kanatani's, as compute fabric/lsdem's). Cubes 1 and 2 do not touch. The same in two-way mode (two tests per pair merged into one line). The .vtp holds
 polylines centre - point - centre (3 points) and centre - point (2 for a wall); 1 and 2
 ranks write the same bytes."""
 import os
@@ -27,7 +28,7 @@ fix grav all gravity 1.0 vector 0 0 -1
 fix 1 all nve/lsdem damping 4.0
 fix floor all wall/lsdem plane 0 0 0 0 0 1 1000 1000 0.5 cn 2.0
 fix net all network/lsdem 2000 net wall floor
-thermo_style custom step f_net[1] f_net[2] f_net[3] f_net[4]
+thermo_style custom step f_net[1] f_net[2] f_net[3] f_net[4] f_net[5] f_net[7] f_net[11]
 %s
 thermo 2000
 timestep 1e-3
@@ -49,6 +50,11 @@ def check_network(name, wd, log):
     near(row.get("f_net[2]", 0), 1.0, rtol=1e-6, msg=name + " mean normal force")
     near(row.get("f_net[3]", 0), 0.5, atol=1e-12, msg=name + " strong fraction")
     near(row.get("f_net[4]", 0), 0.75, rtol=1e-6, msg=name + " strong share")
+    # both grain contacts are cube 3's flat face on the top faces of 1 and 2: vertical
+    # normals, F = e_z e_z, D = 15/2 (F - I/3): Dzz = 5, Dxx = -5/2, anisotropy 7.5
+    near(row.get("f_net[7]", 0), 5.0, rtol=1e-3, msg=name + " contact-normal fabric Dzz")
+    near(row.get("f_net[5]", 0), -2.5, rtol=1e-3, msg=name + " contact-normal fabric Dxx")
+    near(row.get("f_net[11]", 0), 7.5, rtol=1e-3, msg=name + " contact-normal anisotropy")
     path = os.path.join(wd, "net_4000.vtp")
     if not os.path.exists(path):
         check(False, name + ": no net_4000.vtp")
