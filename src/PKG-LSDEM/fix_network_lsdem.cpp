@@ -19,6 +19,8 @@
 #include "atom_vec_lsdem.h"
 #include "comm.h"
 #include "error.h"
+#include "input.h"
+#include "variable.h"
 #include "fix_wall_lsdem.h"
 #include "lsdem_input.h"
 #include "pair_lsdem.h"
@@ -35,28 +37,36 @@ using namespace FixConst;
 // < tag_b for grains) force_on_a[3] point[3] x_a[3] x_b[3] (a wall: the point) fn
 // normal[3] (unit, the partner's outward normal at the point, towards a)
 static constexpr int ROW = 18, FORCE = 2, POINT = 5, XA = 8, XB = 11, FN = 14, NORMAL = 15;
-static constexpr int NSTATS = 11;
 
 /* ---------------------------------------------------------------------- */
 
 FixNetworkLsdem::FixNetworkLsdem(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), avec(nullptr), series(narg > 4 ? arg[4] : "", "vtp"),
-  stats{}
+  Fix(lmp, narg, arg), avec(nullptr), series(narg > 4 ? arg[4] : "", "vtp"), band_ivar(-1),
+  stats{}, nstats(11)
 {
-  const char *usage = "fix ID group network/lsdem N prefix [wall fixID ...]";
+  const char *usage = "fix ID group network/lsdem N prefix [band v_name] [wall fixID ...]";
   if (narg < 5) error->all(FLERR, "Illegal fix network/lsdem command: {}", usage);
   nevery = utils::inumeric(FLERR, arg[3], false, lmp);
   if (nevery <= 0) error->all(FLERR, "Fix network/lsdem: N must be > 0, got {}", arg[3]);
   if (std::string(arg[4]).find_first_of("*%") != std::string::npos)
     error->all(FLERR, "Fix network/lsdem takes a file prefix without * or %: it writes "
                "prefix_<step>.vtp and prefix.pvd");
-  if (narg > 5 && (strcmp(arg[5], "wall") != 0 || narg == 6))
+  int iarg = 5;
+  if (iarg + 1 < narg && strcmp(arg[iarg], "band") == 0) {
+    if (strncmp(arg[iarg + 1], "v_", 2) != 0)
+      error->all(FLERR, "Fix network/lsdem: band takes an atom-style variable v_name (e.g. "
+                 "of compute shearband/lsdem's flag), not {}", arg[iarg + 1]);
+    band_var = arg[iarg + 1] + 2;
+    nstats = 27;
+    iarg += 2;
+  }
+  if (iarg < narg && (strcmp(arg[iarg], "wall") != 0 || iarg + 1 == narg))
     error->all(FLERR, "Illegal fix network/lsdem command: {}", usage);
-  for (int iarg = 6; iarg < narg; iarg++) wall_ids.emplace_back(arg[iarg]);
+  for (iarg++; iarg < narg; iarg++) wall_ids.emplace_back(arg[iarg]);
   if (!dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem")))
     error->all(FLERR, "Fix network/lsdem requires atom_style lsdem");
   vector_flag = 1;
-  size_vector = NSTATS;
+  size_vector = nstats;
   global_freq = nevery;
   extvector = 0;
 }
@@ -76,6 +86,12 @@ void FixNetworkLsdem::init()
   sources.find(lmp, wall_ids, "Fix network/lsdem");
   if (!sources.pair && sources.walls.empty())
     error->all(FLERR, "Fix network/lsdem needs pair_style lsdem or a wall");
+  if (!band_var.empty()) {
+    band_ivar = input->variable->find(band_var.c_str());
+    if (band_ivar < 0 || !input->variable->atomstyle(band_ivar))
+      error->all(FLERR, "Fix network/lsdem: band variable {} is not an atom-style variable",
+                 band_var);
+  }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -205,36 +221,79 @@ void FixNetworkLsdem::write_network()
     stats[1] = cs.mean;
     stats[2] = cs.strong_fraction;
     stats[3] = cs.strong_share;
-    normal_fabric(lines, stats + 4);
+    std::vector<char> keep(lines.size() / ROW);
+    for (size_t l = 0; l < keep.size(); l++) keep[l] = lines[l * ROW + 1] > 0.0;  // grains
+    normal_fabric(lines, keep, stats + 4);
+    if (band_ivar >= 0) {  // inside: both grains in the band; outside: the other grain lines
+      const std::vector<char> in = lines_in_band(lines);
+      for (size_t l = 0; l < keep.size(); l++) keep[l] = keep[l] && in[l];
+      stats[11] = normal_fabric(lines, keep, stats + 12);
+      for (size_t l = 0; l < keep.size(); l++) keep[l] = lines[l * ROW + 1] > 0.0 && !in[l];
+      stats[19] = normal_fabric(lines, keep, stats + 20);
+    }
     write_vtp(lines, fn);
+  } else if (band_ivar >= 0) {
+    lines_in_band(std::vector<double>());  // the gather is collective
   }
-  MPI_Bcast(stats, NSTATS, MPI_DOUBLE, 0, world);
+  MPI_Bcast(stats, nstats, MPI_DOUBLE, 0, world);
 }
 
 /* ----------------------------------------------------------------------
-   the contact-normal fabric of the grain-grain lines (walls left out; report §3.5.4's
-   measure, as compute fabric/lsdem's of long axes): the deviator D (xx yy zz xy xz yz) of
-   F = <n n> and the anisotropy a; a merged two-way line keeps its first test's normal
+   the contact-normal fabric of the lines kept (report §3.5.4's measure, as compute
+   fabric/lsdem's of long axes): the deviator D (xx yy zz xy xz yz) of F = <n n> and the
+   anisotropy a (0 for no line); a merged two-way line keeps its first test's normal.
+   Returns the lines counted.
 ------------------------------------------------------------------------- */
 
-void FixNetworkLsdem::normal_fabric(const std::vector<double> &lines, double *out)
+int FixNetworkLsdem::normal_fabric(const std::vector<double> &lines,
+                                   const std::vector<char> &keep, double *out)
 {
   double F[9] = {0.0}, D[9];
   int count = 0;
-  for (size_t l = 0; l < lines.size() / ROW; l++) {
-    const double *line = &lines[l * ROW];
-    if (line[1] < 0.0) continue;  // a wall
-    lsdem_fabric_add(F, line + NORMAL);
+  for (size_t l = 0; l < keep.size(); l++) {
+    if (!keep[l]) continue;
+    lsdem_fabric_add(F, &lines[l * ROW + NORMAL]);
     count++;
   }
   if (count == 0) {
     for (int k = 0; k < 7; k++) out[k] = 0.0;
-    return;
+    return 0;
   }
   lsdem_fabric_deviator(F, (double) count, D);
   const int ij[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
   for (int k = 0; k < 6; k++) out[k] = D[3 * ij[k][0] + ij[k][1]];
   out[6] = lsdem_fabric_anisotropy(D);
+  return count;
+}
+
+/* ----------------------------------------------------------------------
+   which lines join two grains both flagged by the band variable (collective: every rank
+   gathers its grains' tag and flag to rank 0, which classifies the lines)
+------------------------------------------------------------------------- */
+
+std::vector<char> FixNetworkLsdem::lines_in_band(const std::vector<double> &lines)
+{
+  const int nlocal = atom->nlocal;
+  std::vector<double> flag(nlocal > 0 ? nlocal : 1), mine;
+  input->variable->compute_atom(band_ivar, 0, flag.data(), 1, 0);
+  for (int i = 0; i < nlocal; i++) {
+    mine.push_back((double) atom->tag[i]);
+    mine.push_back(flag[i] != 0.0 ? 1.0 : 0.0);
+  }
+  const std::vector<double> all = lsdem_gather_sorted(world, mine, 2);
+  std::vector<char> in(lines.size() / ROW, 0);
+  auto flagged = [&](double tag) {  // all is sorted by tag
+    size_t lo = 0, hi = all.size() / 2;
+    while (lo < hi) {
+      const size_t mid = (lo + hi) / 2;
+      if (all[2 * mid] < tag) lo = mid + 1;
+      else hi = mid;
+    }
+    return lo < all.size() / 2 && all[2 * lo] == tag && all[2 * lo + 1] != 0.0;
+  };
+  for (size_t l = 0; l < in.size(); l++)
+    in[l] = flagged(lines[l * ROW]) && flagged(lines[l * ROW + 1]);
+  return in;
 }
 
 /* ----------------------------------------------------------------------

@@ -39,13 +39,20 @@ class FixNetworkLsdem : public Fix {
   LsdemContactSources sources;
   class AtomVecLsdem *avec;
   LsdemVtkSeries series;
+  // keyword band v_name: an atom-style variable flagging grains in a shear band (non-zero)
+  std::string band_var;
+  int band_ivar;
   // contacts, mean normal force, strong fraction, share; the grain contacts' normal fabric
-  // (deviator Dxx Dyy Dzz Dxy Dxz Dyz, anisotropy)
-  double stats[11];
+  // (deviator Dxx Dyy Dzz Dxy Dxz Dyz, anisotropy); with band: inside's count and fabric,
+  // outside's count and fabric
+  double stats[27];
+  int nstats;
 
   double pair_normal_force(int j, const double *force_on_i, const double *point,
                            double normal[3]) const;
-  static void normal_fabric(const std::vector<double> &lines, double *out);
+  static int normal_fabric(const std::vector<double> &lines, const std::vector<char> &keep,
+                           double *out);
+  std::vector<char> lines_in_band(const std::vector<double> &lines);
   std::vector<double> contact_rows() const;
   void write_network();
   void write_vtp(const std::vector<double> &lines, const std::vector<double> &fn);

@@ -8,7 +8,8 @@ contacts are strong: strong fraction 1/2, their share of the load 3/4; the grain
 normals are vertical, so their fabric deviator has Dzz = 5, Dxx = -5/2 and anisotropy 7.5
 (Kanatani's, as compute fabric/lsdem's). Cubes 1 and 2 do not touch. The same in two-way mode (two tests per pair merged into one line). The .vtp holds
 polylines centre - point - centre (3 points) and centre - point (2 for a wall); 1 and 2
-ranks write the same bytes."""
+ranks write the same bytes. With band v_name the grain lines split into inside (both grains
+flagged) and outside, each with its count and fabric, on 1 and 2 ranks."""
 import os
 import re
 
@@ -89,4 +90,30 @@ for name, args, np_ in (("oneway", "", 1), ("oneway", "", 2), ("twoway", "mode t
         outs[(name, np_)] = check_network("%s np=%d" % (name, np_), wd, log)
 check(outs.get(("oneway", 1)) and outs.get(("oneway", 1)) == outs.get(("oneway", 2)),
       "1 and 2 ranks write different networks")
+
+# band v_name: a line is inside when both its grains are flagged. Cubes 2 and 3 flagged:
+# (2,3) inside, (1,3) outside; cube 3 alone: both outside. Each side's fabric is vertical.
+for flag, inside, outside in (("id>=2", 1, 1), ("id==3", 0, 2)):
+    for np_ in (1, 2):
+        band = deck("").replace("fix net all network/lsdem 2000 net wall floor",
+                                "variable inband atom %s\nfix net all network/lsdem 2000 net band "
+                                "v_inband wall floor" % flag)
+        band = band.replace("f_net[5] f_net[7] f_net[11]", "f_net[12] f_net[15] f_net[19] "
+                            "f_net[20] f_net[23] f_net[27]")
+        rc, log = run_lmp(band, np=np_, cwd=os.path.abspath("band_%s_np%d" % (inside, np_)))
+        row = thermo(log)[-1] if rc == 0 else {}
+        what = "band %s on %d rank(s)" % (flag, np_)
+        check(row.get("f_net[12]") == inside and row.get("f_net[20]") == outside,
+              "%s: %r lines inside, %r outside (expected %d, %d)"
+              % (what, row.get("f_net[12]"), row.get("f_net[20]"), inside, outside))
+        for count, dzz, a in (("f_net[12]", "f_net[15]", "f_net[19]"),
+                              ("f_net[20]", "f_net[23]", "f_net[27]")):
+            if row.get(count):
+                near(row.get(dzz, 0), 5.0, rtol=1e-3, msg="%s: %s" % (what, dzz))
+                near(row.get(a, 0), 7.5, rtol=1e-3, msg="%s: %s" % (what, a))
+            else:
+                check(row.get(a) == 0.0, "%s: no line, anisotropy %r" % (what, row.get(a)))
+rc, log = run_lmp(deck("").replace("network/lsdem 2000 net wall", "network/lsdem 2000 net band "
+                                   "c_x wall"), cwd=os.path.abspath("band_bad"), expect_fail=True)
+check(rc != 0 and "band takes an atom-style variable" in log, "band c_x: %s" % log[-600:])
 finish()
