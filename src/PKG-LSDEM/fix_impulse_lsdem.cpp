@@ -303,6 +303,10 @@ void FixImpulseLsdem::find_walls()
     if (w->boundary().pivots)
       error->all(FLERR, "Fix impulse/lsdem: fix wall/lsdem {} pivots (keyword pivot), which "
                  "impulse mode does not support; use a fixed or moving wall", w->id);
+    if (w->tests_points())
+      error->all(FLERR, "Fix impulse/lsdem: fix wall/lsdem {} has twoway yes, whose sharp-edge "
+                 "points impulse mode does not test (only the grains' nodes meet the wall "
+                 "there); drop twoway, or use the penalty method", w->id);
     w->set_passive(true);
     walls.push_back(w);
   }

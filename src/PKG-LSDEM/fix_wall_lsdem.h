@@ -70,6 +70,7 @@ class FixWallLsdem : public Fix {
   double wall_friction() const { return opts.law.mu; }
   const lsdem_detect_params &wall_detect() const { return prm.detect; }
   void set_passive(bool on) { passive = on; }
+  bool tests_points() const { return twoway; }  // keyword twoway yes
   // fix impulse/lsdem: the force its contacts put on this wall this step (added to the
   // wall's force output; passive walls start each step from zero)
   void add_reaction(const double force[3])

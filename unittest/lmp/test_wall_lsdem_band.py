@@ -210,6 +210,17 @@ def impulse_incline(name, wall, theta_deg, steps, dt):
     return thermo(log)
 
 
+# impulse mode does not test a wall's twoway points: refused, not ignored
+with open("imp_twoway.data", "w") as f:
+    f.write("grain\n\n1 atoms\n1 atom types\n\n-3 3 xlo xhi\n-3 3 ylo yhi\n-1 4 zlo zhi\n\n"
+            "Atoms # lsdem\n\n1 1 1 1.0 0 0 0.25 1 0 0 0\n")
+rc, log = run_lmp(impulse_header(BLOCK, "imp_twoway.data")
+                  + "fix floor all wall/lsdem mesh %s 1.0e4 0 0.5 twoway yes\n" % block
+                  + "fix imp all impulse/lsdem 0.5 0.0\ntimestep 1e-3\nrun 1\n",
+                  cwd=os.path.abspath("impulse_twoway"), expect_fail=True)
+check(rc != 0 and "has twoway yes" in log and "impulse mode does not test" in log,
+      "impulse with twoway: expected a named error:\n%s" % log[-800:])
+
 for wall, tag in (("plane 0 0 0 0 0 1", "plane"), ("terrain " + flat_imp, "terrain")):
     stick = impulse_incline("impulse_stick_" + tag, wall, 20.0, 300, 16e-3)
     if check(len(stick) > 3, "impulse %s: no output" % tag):
