@@ -7,31 +7,18 @@
  * feature, are one feature. Rays meet triangles found through the band's brick lists
  * (every triangle through a point of a brick is listed for it). */
 #include "lsdem_geom.h"
+#include "ray_triangle.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* Distance along unit d from o to triangle t, or HUGE_VAL when the ray misses it
- * (Moller-Trumbore). */
+/* Distance along unit d from o to triangle t, or HUGE_VAL when the ray misses it. */
 static double ray_triangle(const lsdem_band *b, int32_t t, const double o[3], const double d[3])
 {
   const int32_t *v = &b->tris[3 * (int64_t)t];
-  const double *a = &b->verts[3 * (int64_t)v[0]], *p1 = &b->verts[3 * (int64_t)v[1]],
-               *p2 = &b->verts[3 * (int64_t)v[2]];
-  double e1[3], e2[3], pv[3], tv[3], qv[3];
-  lsdem_sub3(p1, a, e1), lsdem_sub3(p2, a, e2);
-  lsdem_cross3(d, e2, pv);
-  const double det = lsdem_dot3(e1, pv);
-  if (fabs(det) < 1e-300) return HUGE_VAL;
-  const double inv = 1.0 / det;
-  lsdem_sub3(o, a, tv);
-  const double u = lsdem_dot3(tv, pv) * inv;
-  if (u < 0.0 || u > 1.0) return HUGE_VAL;
-  lsdem_cross3(tv, e1, qv);
-  const double w = lsdem_dot3(d, qv) * inv;
-  if (w < 0.0 || u + w > 1.0) return HUGE_VAL;
-  const double s = lsdem_dot3(e2, qv) * inv;
+  const double s = lsdem_ray_triangle(o, d, &b->verts[3 * (int64_t)v[0]],
+                                      &b->verts[3 * (int64_t)v[1]], &b->verts[3 * (int64_t)v[2]]);
   return s > 0.0 ? s : HUGE_VAL;
 }
 

@@ -4,6 +4,7 @@
  * (lsdem_mesh_check_self_intersection), and its enclosed volume. */
 #include "lsdem_prep.h"
 #include "mesh_distance.h"
+#include "../geom/ray_triangle.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -191,24 +192,13 @@ static lsdem_status tri_grid_build(const lsdem_mesh *m, tri_grid *g, lsdem_error
 
 /* ------------------------------------------------------- self-intersection ---- */
 
-/* Does segment pq cross triangle abc (Moller-Trumbore, closed segment and triangle)? */
+/* Whether segment pq crosses triangle abc (closed segment and triangle, not coplanar). */
 static int segment_hits_triangle(const double *p, const double *q, const double *a,
                                  const double *b, const double *c)
 {
-  double d[3], e1[3], e2[3], pv[3], tv[3], qv[3];
-  lsdem_sub3(q, p, d), lsdem_sub3(b, a, e1), lsdem_sub3(c, a, e2);
-  lsdem_cross3(d, e2, pv);
-  const double det = lsdem_dot3(e1, pv);
-  const double scale = sqrt(lsdem_dot3(e1, e1) * lsdem_dot3(e2, e2) * lsdem_dot3(d, d));
-  if (fabs(det) <= 1e-12 * scale) return 0; /* parallel: coplanar contacts are not tested */
-  const double inv = 1.0 / det;
-  lsdem_sub3(p, a, tv);
-  const double u = lsdem_dot3(tv, pv) * inv;
-  if (u < 0.0 || u > 1.0) return 0;
-  lsdem_cross3(tv, e1, qv);
-  const double v = lsdem_dot3(d, qv) * inv;
-  if (v < 0.0 || u + v > 1.0) return 0;
-  const double t = lsdem_dot3(e2, qv) * inv;
+  double d[3];
+  lsdem_sub3(q, p, d);
+  const double t = lsdem_ray_triangle(p, d, a, b, c);
   return t >= 0.0 && t <= 1.0;
 }
 
