@@ -42,6 +42,7 @@
 #include "math_const.h"
 #include "memory.h"
 #include "modify.h"
+#include "neigh_list.h"
 #include "pair_lsdem_impulse.h"
 #include "update.h"
 
@@ -53,13 +54,21 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 using MathConst::MY_PI;
 
+/* a body with zero velocity and angular velocity (a sleeping grain, a still wall) */
+
+static bool still(const double v[3], const double omega[3])
+{
+  return v[0] == 0.0 && v[1] == 0.0 && v[2] == 0.0 && omega[0] == 0.0 && omega[1] == 0.0 &&
+      omega[2] == 0.0;
+}
+
 // output vector (f_ID[1..N]); see compute_vector and doc/fix_impulse_lsdem.rst
 enum {
   V_ISLANDS, V_LARGEST, V_CROSS, V_ITERATIONS, V_PASSES, V_CORRECTIONS, V_COLLISIONS,
   V_ROUNDS, V_KE, V_ABSORBED, V_DISSIPATED, V_RELEASED, V_TOTAL_DISSIPATED, V_TOTAL_DAMPED,
   V_T_DETECT, V_T_ISLANDS, V_T_ETM, V_T_WALLS, V_T_COMM, V_DEPTH, V_WALL_DEPTH,
   V_RESTING, V_SWEEPS, V_ETM_ISLANDS, V_CONTACTS, V_PAIRS, V_PER_PAIR, V_RESTING_WORK,
-  V_CONTACT_WORK, V_ETM_ROUNDS, V_T_REST, V_SIZE
+  V_CONTACT_WORK, V_ETM_ROUNDS, V_T_REST, V_SLEEPING, V_WOKEN, V_SIZE
 };
 
 static const char USAGE[] = "fix ID group impulse/lsdem e mu [keyword value ...]";
@@ -70,10 +79,11 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), method(SPLIT), restitution(0.0), friction(0.0), xi(0.0), max_points(-1),
   max_passes(10),
   rest_setting(-1.0), glue_setting(-1.0), glue_angle(15.0 * MY_PI / 180.0), cfl(0.5),
-  cfl_stop(0), wall_etm(0), avec(nullptr), pair(nullptr), islands(nullptr), total_dissipated(0.0),
+  cfl_stop(0), wall_etm(0), sleep_speed(0.0), sleep_after(-1.0), avec(nullptr), pair(nullptr), islands(nullptr), total_dissipated(0.0),
   total_damped(0.0), total_truncated(0.0), t_detect(0.0), t_islands(0.0), t_etm(0.0),
   t_rest(0.0),
-  t_walls(0.0), t_comm(0.0), pair_seconds0(0.0), reduced_step(-1), cfl_warned(false)
+  t_walls(0.0), t_comm(0.0), pair_seconds0(0.0), reduced_step(-1), cfl_warned(false),
+  sleep_clock(nullptr), sleep_label(nullptr), sending_sleep(false), woken_pending(0)
 {
   if (narg < 5) error->all(FLERR, "Illegal fix impulse/lsdem command: {}", USAGE);
   time_integrate = 1;
@@ -87,7 +97,7 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
   restart_peratom = 1;
   create_attribute = 1;
   maxexchange_dynamic = 1;
-  maxexchange = 1;
+  maxexchange = 3;
   memset(&now, 0, sizeof(now));
   lsdem_resting_params_default(&resting);
   resting.max_sweeps = 10;
@@ -109,7 +119,8 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
 
   for (int iarg = 5; iarg < narg; iarg += 2) {
     const std::string key = arg[iarg];
-    const int nval = key == "cfl" ? 2 : 1;
+    const int nval = (key == "cfl" || (key == "sleep" && iarg + 1 < narg &&
+                                       strcmp(arg[iarg + 1], "no") != 0)) ? 2 : 1;
     if (iarg + nval >= narg)
       error->all(FLERR, "fix impulse/lsdem: keyword {} needs {} value{}", key, nval,
                  nval > 1 ? "s" : "");
@@ -196,6 +207,19 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
       rest_setting = strcmp(val, "auto") == 0 ? -1.0 : number();
       if (strcmp(val, "auto") != 0 && !(rest_setting >= 0.0))
         error->all(FLERR, "fix impulse/lsdem: rest = {} must be auto or a speed >= 0", val);
+    } else if (key == "sleep") {
+      if (strcmp(val, "no") == 0) {
+        sleep_after = -1.0;
+      } else {
+        sleep_speed = number();
+        sleep_after = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+        if (!(sleep_speed > 0.0) || !std::isfinite(sleep_speed) || !(sleep_after >= 0.0) ||
+            !std::isfinite(sleep_after))
+          error->all(FLERR, "fix impulse/lsdem: sleep {} {}: needs no, or a speed > 0 "
+                     "(velocity units: a grain is slow when |v| and |omega| r are below "
+                     "it) and a time >= 0 (an island sleeps when all its grains were slow "
+                     "this long)", val, arg[iarg + 2]);
+      }
     } else if (key == "cfl") {
       cfl = number();
       if (!(cfl > 0.0) || !std::isfinite(cfl))
@@ -225,6 +249,12 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
 FixImpulseLsdem::~FixImpulseLsdem()
 {
   delete islands;
+  memory->destroy(sleep_clock);
+  memory->destroy(sleep_label);
+  if (force) {  // the pair style outlives the fix: it must not read freed flags
+    auto *p = dynamic_cast<PairLsdemImpulse *>(force->pair_match("lsdem/impulse", 1));
+    if (p) p->set_sleeping(nullptr);
+  }
   if (atom) {
     atom->delete_callback(id, Atom::GROW);
     atom->delete_callback(id, Atom::RESTART);
@@ -235,7 +265,7 @@ FixImpulseLsdem::~FixImpulseLsdem()
 
 int FixImpulseLsdem::setmask()
 {
-  return FINAL_INTEGRATE;
+  return FINAL_INTEGRATE | (sleep_after >= 0.0 ? PRE_FORCE : 0);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -256,6 +286,7 @@ void FixImpulseLsdem::init()
   if (xi * update->dt > 1.0)
     error->all(FLERR, "Fix impulse/lsdem: damping xi * timestep = {} * {} = {} must be <= 1 "
                "(report eq 4.46)", xi, update->dt, xi * update->dt);
+  if (sleep_after < 0.0) pair->set_sleeping(nullptr);
   check_integrators();
   find_walls();
   set_glue();
@@ -353,6 +384,8 @@ void FixImpulseLsdem::final_integrate()
                "{} (its last call was at step {}); the pair style must run every step",
                update->ntimestep, pair->touches_step());
   memset(&now, 0, sizeof(now));
+  now.woken = woken_pending;
+  woken_pending = 0;
   make_bodies();
   kick();
   forward_velocities();
@@ -390,6 +423,7 @@ void FixImpulseLsdem::final_integrate()
   total_dissipated -= contact_work;
   check_cfl();
   damp_and_drift();
+  if (sleep_after >= 0.0) fall_asleep();
 }
 
 /* ----------------------------------------------------------------------
@@ -461,7 +495,7 @@ void FixImpulseLsdem::make_bodies()
   lsdem_error err;
   LsdemImpulseIslands::Item it;
   for (int i = 0; i < nall; i++) {
-    moving[i] = (atom->mask[i] & groupbit) ? 1 : 0;
+    moving[i] = ((atom->mask[i] & groupbit) && !asleep(i)) ? 1 : 0;  // sleeping: at rest
     if (moving[i]) {
       islands->body_item(i, it);
       if (LsdemImpulseIslands::grain_body(it, body[i], &err) != LSDEM_OK && bad.empty() &&
@@ -649,6 +683,18 @@ void FixImpulseLsdem::report_wall_resting()
 {
   for (const LsdemImpulseContact &c : contacts)
     if (c.j < 0 && c.resting) push_on_wall(-1 - c.j, c.P);
+  if (sleep_after >= 0.0) report_sleeping_walls();
+}
+
+/* a sleeping grain pushes on its walls with the resting impulses of its last awake step */
+
+void FixImpulseLsdem::report_sleeping_walls()
+{
+  for (int i = 0; i < atom->nlocal; i++)
+    if (asleep(i))
+      warm.each(i, [&](tagint partner, const double P[3]) {
+        if (partner < 0) push_on_wall((int) (-1 - partner), P);
+      });
 }
 
 /* ----------------------------------------------------------------------
@@ -659,14 +705,15 @@ void FixImpulseLsdem::report_wall_resting()
 void FixImpulseLsdem::remember_contacts()
 {
   if (method != SPLIT) return;
-  for (int i = 0; i < atom->nlocal; i++) warm.clear(i);
+  for (int i = 0; i < atom->nlocal; i++)
+    if (!asleep(i)) warm.clear(i);  // a sleeping grain keeps its last impulses
   const double zero[3] = {0.0, 0.0, 0.0};
   for (const LsdemImpulseContact &c : contacts) {
     double xb[3];
     body_frame_point(c, xb);
     warm.add(c.i, c.tb, xb, c.resting ? c.P : zero);
   }
-  maxexchange = 1 + LsdemImpulseWarm::DOUBLES * warm.largest();
+  maxexchange = 3 + LsdemImpulseWarm::DOUBLES * warm.largest();
 }
 
 void FixImpulseLsdem::add_pair_contacts()
@@ -880,6 +927,178 @@ void FixImpulseLsdem::damp_and_drift()
   }
 }
 
+/* ----------------------------------------------------------------------
+   sleeping islands (keyword sleep). Before the pair style detects contacts: the sleep
+   labels to the ghosts, then every sleeping island within reach of an awake body wakes,
+   whole: an awake grain of the group, an atom outside it that moves or a moving wall
+   whose bounding test (the pair style's, or the wall's may-touch test) meets one of its
+   grains. Repeated until no island wakes (a woken island may reach another), so the
+   pair style, which skips pairs of two sleeping grains, meets no pair of an awake and a
+   sleeping grain. Decisions use labels gathered from all ranks: the same on any rank
+   count.
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::setup_pre_force(int vflag)
+{
+  pre_force(vflag);
+}
+
+void FixImpulseLsdem::pre_force(int /*vflag*/)
+{
+  const double t0 = MPI_Wtime();
+  send_sleep_labels();
+  pair->set_sleeping(sleep_label);
+  woken_pending = 0;
+  for (;;) {
+    collect_wakers();
+    if (gather_labels(wake_mine, wake_all) == 0) break;
+    woken_pending += wake_labels();
+  }
+  t_islands += MPI_Wtime() - t0;
+}
+
+/* the owners' sleep labels to their ghost copies */
+
+void FixImpulseLsdem::send_sleep_labels()
+{
+  sending_sleep = true;
+  LsdemCompat::forward_comm(comm, this, 1);
+  sending_sleep = false;
+}
+
+/* every rank's labels in all, sorted, each once; returns how many */
+
+int FixImpulseLsdem::gather_labels(std::vector<int64_t> &mine, std::vector<int64_t> &all)
+{
+  std::sort(mine.begin(), mine.end());
+  mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
+  const int n = (int) mine.size();
+  counts.resize(comm->nprocs);
+  displs.resize(comm->nprocs);
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
+  int total = 0;
+  for (int r = 0; r < comm->nprocs; r++) {
+    displs[r] = total;
+    total += counts[r];
+  }
+  all.resize(total);
+  MPI_Allgatherv(mine.data(), n, MPI_INT64_T, all.data(), counts.data(), displs.data(),
+                 MPI_INT64_T, world);
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  return (int) all.size();
+}
+
+/* the labels of the sleeping islands that an awake body reaches now, into wake_mine */
+
+void FixImpulseLsdem::collect_wakers()
+{
+  wake_mine.clear();
+  // an awake grain wakes what it reaches; an atom outside the group (never asleep) when
+  // it moves
+  auto moves = [&](int i) {
+    return (atom->mask[i] & groupbit) || !still(atom->v[i], atom->omega[i]);
+  };
+  const NeighList *list = pair->list;
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    const int *js = list->firstneigh[i];
+    for (int k = 0; k < list->numneigh[i]; k++) {
+      const int j = js[k] & NEIGHMASK;
+      if (asleep(i) == asleep(j)) continue;
+      const int s = asleep(i) ? i : j, o = asleep(i) ? j : i;
+      if (moves(o) && pair->near(i, j)) wake_mine.push_back((int64_t) sleep_label[s]);
+    }
+  }
+  for (FixWallLsdem *w : walls) {
+    const lsdem_boundary &b = w->boundary();
+    lsdem_pose wp;
+    lsdem_boundary_pose_at(&b, 0.0, &wp);
+    if (still(wp.v, wp.omega)) continue;
+    for (int i = 0; i < atom->nlocal; i++)
+      if (asleep(i) && (atom->mask[i] & w->groupbit) &&
+          lsdem_boundary_may_touch(&b, &wp, atom->x[i], atom->radius[i]))
+        wake_mine.push_back((int64_t) sleep_label[i]);
+  }
+}
+
+/* the grains (local and ghost) of the islands in wake_all wake; returns the owned ones */
+
+int FixImpulseLsdem::wake_labels()
+{
+  int woken = 0;
+  const int nall = atom->nlocal + atom->nghost;
+  for (int i = 0; i < nall; i++) {
+    if (!asleep(i) ||
+        !std::binary_search(wake_all.begin(), wake_all.end(), (int64_t) sleep_label[i]))
+      continue;
+    sleep_label[i] = 0.0;
+    if (i < atom->nlocal) {
+      sleep_clock[i] = 0.0;
+      woken++;
+    }
+  }
+  return woken;
+}
+
+/* ----------------------------------------------------------------------
+   after the step: the sleep clocks of the awake grains (lsdem_sleep_clock), then every
+   island of the step's contacts whose grains have all been slow for the sleep time, and
+   none of which touches a moving wall or a moving atom outside the group, falls asleep:
+   its grains stop (their kinetic energy counts as damped, output 14) and keep their
+   warm-start impulses (their walls read them as forces while they sleep). An island is
+   labelled by its smallest tag; a grain with no contact is an island of its own.
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::fall_asleep()
+{
+  const double t0 = MPI_Wtime();
+  const double dt = update->dt;
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++)
+    if (moving[i])
+      sleep_clock[i] = lsdem_sleep_clock(sleep_clock[i], atom->v[i], atom->omega[i],
+                                         atom->radius[i], sleep_speed, dt);
+  LsdemIslandStats st;
+  st.clear();
+  const int64_t *label = islands->island_labels(contacts.data(), (int) contacts.size(),
+                                                moving.data(), st);
+  t_comm += st.t_comm;
+  // islands with a grain ready to sleep (on any rank), then those of them with a grain
+  // that is not, or that touches a moving body (on any rank)
+  ready_mine.clear();
+  for (int i = 0; i < nlocal; i++)
+    if (moving[i] && sleep_clock[i] >= sleep_after) ready_mine.push_back(label[i]);
+  if (gather_labels(ready_mine, ready_all) == 0) {
+    t_islands += MPI_Wtime() - t0;
+    return;
+  }
+  blocked.assign(ready_all.size(), 0);
+  auto block = [&](int64_t l) {
+    auto it = std::lower_bound(ready_all.begin(), ready_all.end(), l);
+    if (it != ready_all.end() && *it == l) blocked[it - ready_all.begin()] = 1;
+  };
+  for (int i = 0; i < nlocal; i++)
+    if (moving[i] && sleep_clock[i] < sleep_after) block(label[i]);
+  for (const LsdemImpulseContact &c : contacts) {  // against a prescribed body that moves
+    const lsdem_impulse_body &a = body[c.c.a], &b = body[c.c.b];
+    if (!moving[c.i] && c.j >= 0 && !still(a.v, a.omega)) block(label[c.j]);
+    if ((c.j < 0 || !moving[c.j]) && !still(b.v, b.omega)) block(label[c.i]);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, blocked.data(), (int) blocked.size(), MPI_SIGNED_CHAR, MPI_MAX,
+                world);
+  for (int i = 0; i < nlocal; i++) {
+    if (!moving[i] || sleep_clock[i] < sleep_after) continue;
+    const auto it = std::lower_bound(ready_all.begin(), ready_all.end(), label[i]);
+    if (blocked[it - ready_all.begin()]) continue;
+    total_damped += kinetic_energy(i);
+    sleep_label[i] = (double) label[i];
+    for (int d = 0; d < 3; d++) atom->v[i][d] = atom->omega[i][d] = 0.0;
+    now.fell_asleep++;
+  }
+  t_islands += MPI_Wtime() - t0;
+}
+
 /* the kinetic energy of this rank's grains of the group */
 
 double FixImpulseLsdem::group_kinetic_energy() const
@@ -931,7 +1150,11 @@ void FixImpulseLsdem::reduce_output()
   sum[15] = now.pairs;
   sum[16] = now.resting_work;
   sum[17] = now.contact_work;
-  sum[18] = sum[19] = sum[20] = 0.0;
+  int sleeping = 0;
+  for (int i = 0; i < atom->nlocal; i++) sleeping += asleep(i);
+  sum[18] = sleeping;
+  sum[19] = now.woken;
+  sum[20] = 0.0;
   max[0] = now.largest;
   max[1] = now.passes;
   max[2] = now.rounds;
@@ -979,6 +1202,8 @@ void FixImpulseLsdem::reduce_output()
   reduced[V_CONTACT_WORK] = s[17];
   reduced[V_ETM_ROUNDS] = m[11];
   reduced[V_T_REST] = m[12];
+  reduced[V_SLEEPING] = s[18];
+  reduced[V_WOKEN] = s[19];
   reduced_step = update->ntimestep;
 }
 
@@ -1040,31 +1265,44 @@ void FixImpulseLsdem::restart(char *buf)
 void FixImpulseLsdem::grow_arrays(int nmax)
 {
   warm.grow(nmax);
+  memory->grow(sleep_clock, nmax, "impulse/lsdem:sleep_clock");
+  memory->grow(sleep_label, nmax, "impulse/lsdem:sleep_label");
 }
 
 void FixImpulseLsdem::copy_arrays(int i, int j, int /*delflag*/)
 {
   warm.copy(i, j);
+  sleep_clock[j] = sleep_clock[i];
+  sleep_label[j] = sleep_label[i];
 }
 
 void FixImpulseLsdem::set_arrays(int i)
 {
   warm.clear(i);
+  sleep_clock[i] = sleep_label[i] = 0.0;
 }
 
 int FixImpulseLsdem::pack_exchange(int i, double *buf)
 {
-  return warm.pack(i, buf);
+  buf[0] = sleep_clock[i];
+  buf[1] = sleep_label[i];
+  return 2 + warm.pack(i, buf + 2);
 }
 
 int FixImpulseLsdem::unpack_exchange(int nlocal, double *buf)
 {
-  return warm.unpack(nlocal, buf);
+  sleep_clock[nlocal] = buf[0];
+  sleep_label[nlocal] = buf[1];
+  return 2 + warm.unpack(nlocal, buf + 2);
 }
 
+// restart: the count, the warm-start entries, then (since the sleep keyword) the sleep
+// clock and label; a file without them reads as awake
 int FixImpulseLsdem::pack_restart(int i, double *buf)
 {
-  const int m = 1 + warm.pack(i, buf + 1);
+  int m = 1 + warm.pack(i, buf + 1);
+  buf[m++] = sleep_clock[i];
+  buf[m++] = sleep_label[i];
   buf[0] = m;
   return m;
 }
@@ -1074,12 +1312,17 @@ void FixImpulseLsdem::unpack_restart(int nlocal, int nth)
   double **extra = atom->extra;
   int m = 0;
   for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
-  warm.unpack(nlocal, &extra[nlocal][m + 1]);
+  const double *buf = &extra[nlocal][m];
+  const int n = static_cast<int>(buf[0]);
+  const int r = 1 + warm.unpack(nlocal, buf + 1);
+  const bool has_sleep = n >= r + 2;
+  sleep_clock[nlocal] = has_sleep ? buf[r] : 0.0;
+  sleep_label[nlocal] = has_sleep ? buf[r + 1] : 0.0;
 }
 
 int FixImpulseLsdem::size_restart(int nlocal)
 {
-  return 2 + LsdemImpulseWarm::DOUBLES * warm.count(nlocal);
+  return 4 + LsdemImpulseWarm::DOUBLES * warm.count(nlocal);
 }
 
 int FixImpulseLsdem::maxsize_restart()
@@ -1087,7 +1330,7 @@ int FixImpulseLsdem::maxsize_restart()
   int mine = 0, all = 0;
   for (int i = 0; i < atom->nlocal; i++) mine = std::max(mine, warm.count(i));
   MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MAX, world);
-  return 2 + LsdemImpulseWarm::DOUBLES * all;
+  return 4 + LsdemImpulseWarm::DOUBLES * all;
 }
 
 /* ----------------------------------------------------------------------
@@ -1097,6 +1340,10 @@ int FixImpulseLsdem::maxsize_restart()
 int FixImpulseLsdem::pack_forward_comm(int n, int *list, double *buf, int, int *)
 {
   if (islands->exchanging()) return islands->pack_forward(n, list, buf);
+  if (sending_sleep) {
+    for (int k = 0; k < n; k++) buf[k] = sleep_label[list[k]];
+    return n;
+  }
   int m = 0;
   for (int k = 0; k < n; k++) {
     const int j = list[k];
@@ -1109,6 +1356,10 @@ int FixImpulseLsdem::pack_forward_comm(int n, int *list, double *buf, int, int *
 void FixImpulseLsdem::unpack_forward_comm(int n, int first, double *buf)
 {
   if (islands->exchanging()) return islands->unpack_forward(n, first, buf);
+  if (sending_sleep) {
+    for (int k = 0; k < n; k++) sleep_label[first + k] = buf[k];
+    return;
+  }
   int m = 0;
   for (int i = first; i < first + n; i++) {
     for (int d = 0; d < 3; d++) atom->v[i][d] = buf[m++];
@@ -1134,6 +1385,6 @@ double FixImpulseLsdem::memory_usage()
   bytes += (double) (contacts.capacity() + coll.capacity()) * sizeof(LsdemImpulseContact);
   bytes += (double) wpoints.capacity() * sizeof(lsdem_contact_point);
   bytes += (double) wall_seen.capacity() * sizeof(WallSeen);
-  bytes += warm.memory_usage();
+  bytes += warm.memory_usage() + 2.0 * atom->nmax * sizeof(double);
   return bytes + islands->memory_usage();
 }

@@ -37,6 +37,8 @@ class FixImpulseLsdem : public Fix {
   int setmask() override;
   void init() override;
   void setup(int) override;
+  void setup_pre_force(int) override;
+  void pre_force(int) override;
   void final_integrate() override;
   double compute_vector(int) override;
   void write_restart(FILE *) override;
@@ -71,6 +73,9 @@ class FixImpulseLsdem : public Fix {
   double cfl;                // largest |v| dt per bounding radius
   int cfl_stop;              // 1: stop, 0: warn
   int wall_etm;              // 1: resting wall contacts also in ETM (inelastic)
+  double sleep_speed;        // keyword sleep: a grain is slow below this surface speed
+  double sleep_after;        // ... and an island sleeps when all its grains were slow this
+                             // long (time units); < 0: no sleeping (the default)
 
   // what it works with (found at init)
   class AtomVecLsdem *avec;
@@ -79,6 +84,13 @@ class FixImpulseLsdem : public Fix {
   LsdemImpulseIslands *islands;
   std::vector<double> glue_of_shape;
   LsdemImpulseWarm warm;     // per owned grain: its contacts' impulses at the last step
+  // per atom (sleep keyword): time slow (owned grains); the label of the island it sleeps
+  // in (its smallest tag when it fell asleep; 0: awake), ghosts' sent in pre_force
+  double *sleep_clock, *sleep_label;
+  bool sending_sleep;        // forward communication carries sleep_label
+  std::vector<int64_t> wake_mine, wake_all, ready_mine, ready_all;
+  std::vector<int> counts, displs;
+  std::vector<char> blocked;
 
   // per-step storage, grown only
   std::vector<lsdem_impulse_body> body;    // atoms (local, ghost), then the walls
@@ -104,8 +116,11 @@ class FixImpulseLsdem : public Fix {
     int resting, contacts, pairs;  // resting contacts, contacts (capped), touching pairs
     double absorbed, dissipated, released, resting_work, contact_work;
     double depth, wall_depth;  // deepest grain-grain and grain-wall penetration
+    int woken, fell_asleep;    // grains woken (pre_force) and put to sleep this step
   } now;
-  double total_dissipated, total_damped, total_truncated;  // this rank's share since start
+  int woken_pending;           // grains woken in this step's pre_force (now is reset later)
+  // this rank's share since start; damped: by global damping and by putting grains to sleep
+  double total_dissipated, total_damped, total_truncated;
   double ke_after_kick;      // this rank's grains' kinetic energy before the contacts act
   double t_detect, t_islands, t_etm, t_walls, t_comm;      // seconds since setup
   double t_rest;                                           // of t_etm: resting stages
@@ -115,6 +130,13 @@ class FixImpulseLsdem : public Fix {
   bool cfl_warned;
 
   void check_integrators();
+  bool asleep(int i) const { return sleep_after >= 0.0 && sleep_label[i] != 0.0; }
+  void send_sleep_labels();
+  int gather_labels(std::vector<int64_t> &mine, std::vector<int64_t> &all);
+  void collect_wakers();
+  int wake_labels();
+  void fall_asleep();
+  void report_sleeping_walls();
   void find_walls();
   void set_glue();
   void make_bodies();

@@ -169,7 +169,7 @@ std::string LsdemImpulseIslands::resolve(LsdemImpulseContact *coll, int n,
 {
   double t0 = MPI_Wtime();
   const double c0 = st.t_comm;
-  const int ncross = label_islands(coll, n, moving, st);
+  const int ncross = label_islands(coll, n, moving, st) ? flag_cross(st) : 0;
   make_items(coll, n, body, moving);
   st.t_islands += MPI_Wtime() - t0 - (st.t_comm - c0);
   if (ncross > 0) {
@@ -184,11 +184,11 @@ std::string LsdemImpulseIslands::resolve(LsdemImpulseContact *coll, int n,
 }
 
 /* ----------------------------------------------------------------------
-   labels of the pass's islands on all atoms (local and ghost); returns the number of
-   islands spanning ranks seen from all ranks (0: none anywhere)
+   labels of the pass's islands on all atoms (local and ghost); false when every island
+   lies on one rank (no label was exchanged)
 ------------------------------------------------------------------------- */
 
-int LsdemImpulseIslands::label_islands(const LsdemImpulseContact *coll, int n,
+bool LsdemImpulseIslands::label_islands(const LsdemImpulseContact *coll, int n,
                                        const char *moving, LsdemIslandStats &st)
 {
   const int nlocal = atom->nlocal;
@@ -215,7 +215,7 @@ int LsdemImpulseIslands::label_islands(const LsdemImpulseContact *coll, int n,
   int any = 0;
   MPI_Allreduce(&ghost_ends, &any, 1, MPI_INT, MPI_MAX, world);
   st.t_comm += MPI_Wtime() - t0;
-  if (!any) return 0;  // every island lies on one rank: nothing to exchange
+  if (!any) return false;  // every island lies on one rank: nothing to exchange
 
   int rounds = 0, changed = 1;
   while (changed) {
@@ -238,7 +238,16 @@ int LsdemImpulseIslands::label_islands(const LsdemImpulseContact *coll, int n,
   }
   what = NONE;
   st.rounds = std::max(st.rounds, rounds);
-  return flag_cross(st);
+  return true;
+}
+
+/* ---------------------------------------------------------------------- */
+
+const int64_t *LsdemImpulseIslands::island_labels(const LsdemImpulseContact *coll, int n,
+                                          const char *moving, LsdemIslandStats &st)
+{
+  label_islands(coll, n, moving, st);
+  return label;
 }
 
 /* atoms v in [lo, hi) take the smaller label they received (core: lsdem_islands_merge) */

@@ -77,6 +77,12 @@ class LsdemImpulseIslands : protected Pointers {
                       const char *moving, const lsdem_island_params &prm, int warm_start,
                       LsdemIslandStats &st);
 
+  // The island label (the smallest tag of its grains) of every atom, local and ghost, for
+  // the contacts coll[0..n) between grains with moving[i] set (the same on every rank;
+  // valid until the next call). Collective.
+  const int64_t *island_labels(const LsdemImpulseContact *coll, int n, const char *moving,
+                       LsdemIslandStats &st);
+
   // ghost communication of labels and flags, through the fix's pack/unpack methods
   bool exchanging() const { return what != NONE; }
   int pack_forward(int n, int *list, double *buf);
@@ -149,7 +155,7 @@ class LsdemImpulseIslands : protected Pointers {
 
   void grow(int);
   void destroy_per_atom();
-  int label_islands(const LsdemImpulseContact *, int, const char *, LsdemIslandStats &);
+  bool label_islands(const LsdemImpulseContact *, int, const char *, LsdemIslandStats &);
   int merge_received(int lo, int hi);
   int flag_cross(LsdemIslandStats &);
   void make_items(const LsdemImpulseContact *, int, const lsdem_impulse_body *, const char *);

@@ -36,6 +36,12 @@ class LsdemImpulseWarm {
   // The step's contacts of grain i replace its entries: clear(i), then add(...) per contact.
   void add(int i, tagint partner, const double xb[3], const double P[3]);
 
+  // f(partner, P) for each of grain i's entries
+  template <class F> void each(int i, F f) const
+  {
+    for (const Entry &e : entries[i]) f(e.partner, e.P);
+  }
+
   int pack(int i, double *buf) const;    // returns the doubles written: 1 + DOUBLES n
   int unpack(int i, const double *buf);  // returns the doubles read
   double memory_usage() const;

@@ -24,7 +24,8 @@ using namespace LAMMPS_NS;
 
 /* ---------------------------------------------------------------------- */
 
-PairLsdemImpulse::PairLsdemImpulse(LAMMPS *lmp) : PairLsdem(lmp), touch_step(-1), seconds(0.0)
+PairLsdemImpulse::PairLsdemImpulse(LAMMPS *lmp) : PairLsdem(lmp), touch_step(-1), seconds(0.0),
+  sleeping(nullptr)
 {
   comm_forward = comm_reverse = 0;
 }
@@ -71,11 +72,13 @@ void PairLsdemImpulse::coeff(int narg, char **arg)
   if (count == 0) error->all(FLERR, "Incorrect args for pair coefficients");
 }
 
-/* bounding-sphere rejection (report eq 2.1) */
+/* bounding-sphere rejection (report eq 2.1), at the atoms' positions (the poses' centres) */
 
-static inline bool spheres_overlap(const lsdem_pose &a, const lsdem_pose &b, double rsum)
+bool PairLsdemImpulse::near(int i, int j) const
 {
-  const double d[3] = {a.x[0] - b.x[0], a.x[1] - b.x[1], a.x[2] - b.x[2]};
+  const double *a = atom->x[i], *b = atom->x[j];
+  const double rsum = atom->radius[i] + atom->radius[j];
+  const double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
   return d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < rsum * rsum;
 }
 
@@ -103,7 +106,7 @@ void PairLsdemImpulse::compute(int eflag, int vflag)
     const int *js = master_j + master_first[i];
     for (int k = 0; k < master_num[i]; k++) {
       const int j = js[k];
-      if (!spheres_overlap(pose[i], pose[j], atom->radius[i] + atom->radius[j])) continue;
+      if (!near(i, j) || (sleeping && sleeping[i] != 0.0 && sleeping[j] != 0.0)) continue;
       const lsdem_contact_params &p = params[atom->type[i]][atom->type[j]];
       if (path.detect(i, atom->tag[j], shape[i], pose[i], shape[j], pose[j], p.detect,
                       touch_step) > 0)

@@ -45,12 +45,18 @@ class PairLsdemImpulse : public PairLsdem {
   lsdem_manifold manifold(int k);
   bigint touches_step() const { return touch_step; }
   double detect_seconds() const { return seconds; }  // wall time in compute, cumulative
+  // per atom (local and ghost; nonzero: asleep, fix impulse/lsdem keyword sleep): a pair
+  // of two sleeping grains is not tested. nullptr: every pair is tested
+  void set_sleeping(const double *flag) { sleeping = flag; }
+  // the bounding spheres of atoms i and j overlap (report eq 2.1): the pair is tested
+  bool near(int i, int j) const;
 
  private:
   std::vector<Touch> touch;
   std::vector<lsdem_contact_point> points;
   bigint touch_step;
   double seconds;
+  const double *sleeping;
 
   void keep(int i, int j, const lsdem_manifold &m);
 };

@@ -119,6 +119,23 @@ static void test_predict_pose(void)
   for (int i = 0; i < 9; i++) CHECK_NEAR(pose.R[i], R[i], 1e-15);
 }
 
+/* The sleep clock: counts dt while both the speed and the surface speed |omega| r stay
+ * below the threshold, and restarts from 0 as soon as either reaches it (or is NaN). */
+static void test_sleep_clock(void)
+{
+  const double slow_v[3] = {0.03, 0.0, -0.04}, slow_w[3] = {0.0, 0.2, 0.0}; /* 0.05, 0.04 */
+  const double r = 0.2, speed = 0.05 + 1e-12, dt = 1e-3;
+  double c = 0.0;
+  for (int k = 0; k < 3; k++) c = lsdem_sleep_clock(c, slow_v, slow_w, r, speed, dt);
+  CHECK_REL(c, 3e-3, 1e-15);
+  const double fast_v[3] = {0.0, 0.0, 0.0501};
+  CHECK(lsdem_sleep_clock(c, fast_v, slow_w, r, speed, dt) == 0.0, "fast translation slept");
+  const double fast_w[3] = {0.0, 0.0, 0.251}; /* |omega| r = 0.0502 */
+  CHECK(lsdem_sleep_clock(c, slow_v, fast_w, r, speed, dt) == 0.0, "fast spin slept");
+  const double nan_v[3] = {NAN, 0.0, 0.0};
+  CHECK(lsdem_sleep_clock(c, nan_v, slow_w, r, speed, dt) == 0.0, "NaN speed slept");
+}
+
 int main(void)
 {
   test_gravity_closed_form();
@@ -126,5 +143,6 @@ int main(void)
   test_free_top();
   test_damping();
   test_predict_pose();
+  test_sleep_clock();
   return lsdem_test_summary();
 }

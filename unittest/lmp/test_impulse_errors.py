@@ -43,6 +43,10 @@ refuses("method", "fix imp all impulse/lsdem 0.5 0.3 method penalty\n",
         ["method must be split", "or etm", "not penalty"])
 refuses("points", "fix imp all impulse/lsdem 0.5 0.3 points 0\n", ["points = 0", "all or >= 1"])
 refuses("sweeps", "fix imp all impulse/lsdem 0.5 0.3 sweeps 0\n", ["sweeps = 0", ">= 1"])
+refuses("sleep_speed", "fix imp all impulse/lsdem 0.5 0.3 sleep 0 0.1\n",
+        ["sleep 0 0.1", "speed > 0"])
+refuses("sleep_time", "fix imp all impulse/lsdem 0.5 0.3 sleep 0.1\n",
+        ["keyword sleep needs 2 values"])
 refuses("bias", "fix imp all impulse/lsdem 0.5 0.3 bias 1.5\n", ["bias = 1.5", "[0, 1]"])
 refuses("twice", "fix imp all impulse/lsdem 0.5 0.3\n",
         ["fix nve (nve/lsdem, group all) also integrates 2 of its grains", "one time integrator"],

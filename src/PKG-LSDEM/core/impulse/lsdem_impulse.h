@@ -543,6 +543,17 @@ lsdem_status lsdem_island_solve(lsdem_impulse_body *bodies, int nbodies,
                                 const lsdem_island_params *p, void *ws, size_t wsize,
                                 lsdem_island_result *res, lsdem_error *err);
 
+/* ------------------------------------------------------------ sleeping ---- */
+
+/* Sleeping islands (Box2D's and Bullet's rule, an option of fix impulse/lsdem): an island
+ * falls asleep when every grain of it has been slow for a time; a sleeping island skips
+ * detection and the solve until an awake body comes within reach. A grain is slow when
+ * |v| < speed and |omega| radius < speed (radius: its bounding radius, so both terms are
+ * surface speeds). Returns the grain's new sleep clock: clock + dt when slow, else 0.
+ * Units: speed length/time, radius length, dt and the clock time. */
+double lsdem_sleep_clock(double clock, const double v[3], const double omega[3],
+                         double radius, double speed, double dt);
+
 /* ------------------------------------------------------------ islands ---- */
 
 /* Contact islands (report §4.5) as connected components of the contact graph, by
