@@ -252,7 +252,7 @@ FixImpulseLsdem::~FixImpulseLsdem()
   memory->destroy(sleep_clock);
   memory->destroy(sleep_label);
   if (force) {  // the pair style outlives the fix: it must not read freed flags
-    auto *p = dynamic_cast<PairLsdemImpulse *>(force->pair_match("lsdem/impulse", 1));
+    auto *p = dynamic_cast<PairLsdemImpulse *>(force->pair_match("^lsdem/impulse", 0));
     if (p) p->set_sleeping(nullptr);
   }
   if (atom) {
@@ -274,7 +274,7 @@ void FixImpulseLsdem::init()
 {
   if (utils::strmatch(update->integrate_style, "^respa"))
     error->all(FLERR, "Fix impulse/lsdem does not support run_style respa");
-  pair = dynamic_cast<PairLsdemImpulse *>(force->pair_match("lsdem/impulse", 1));
+  pair = dynamic_cast<PairLsdemImpulse *>(force->pair_match("^lsdem/impulse", 0));
   if (!pair)
     error->all(FLERR, "Fix impulse/lsdem requires pair_style lsdem/impulse (contact detection "
                "without penalty forces){}", force->pair_style
@@ -1007,7 +1007,8 @@ void FixImpulseLsdem::collect_wakers()
       const int j = js[k] & NEIGHMASK;
       if (asleep(i) == asleep(j)) continue;
       const int s = asleep(i) ? i : j, o = asleep(i) ? j : i;
-      if (moves(o) && pair->near(i, j)) wake_mine.push_back((int64_t) sleep_label[s]);
+      if (moves(o) && pair->bounding_spheres_overlap(i, j))
+        wake_mine.push_back((int64_t) sleep_label[s]);
     }
   }
   for (FixWallLsdem *w : walls) {

@@ -291,16 +291,6 @@ void PairLsdem::reset_dt()
     for (int j = 1; j <= atom->ntypes; j++) params[i][j].dt = update->dt;
 }
 
-/* bounding-sphere rejection (report eq 2.1) */
-
-inline bool PairLsdem::bounding_spheres_overlap(int i, int j) const
-{
-  const double d[3] = {pose[i].x[0] - pose[j].x[0], pose[i].x[1] - pose[j].x[1],
-                       pose[i].x[2] - pose[j].x[2]};
-  const double rsum = atom->radius[i] + atom->radius[j];
-  return d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < rsum * rsum;
-}
-
 /* ---------------------------------------------------------------------- */
 
 void PairLsdem::compute(int eflag, int vflag)

@@ -18,6 +18,7 @@ PairStyle(lsdem,PairLsdem);
 #ifndef LMP_PAIR_LSDEM_H
 #define LMP_PAIR_LSDEM_H
 
+#include "atom.h"
 #include "pair.h"
 #include "lsdem_contact_options.h"
 #include "lsdem_contact_path.h"
@@ -30,6 +31,15 @@ namespace LAMMPS_NS {
 
 class PairLsdem : public Pair {
  public:
+  // the bounding spheres of atoms i and j (local or ghost) overlap at their positions now
+  // (report eq 2.1): the pair is tested
+  bool bounding_spheres_overlap(int i, int j) const
+  {
+    const double *a = atom->x[i], *b = atom->x[j];
+    const double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+    const double rsum = atom->radius[i] + atom->radius[j];
+    return d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < rsum * rsum;
+  }
   // one master-on-slave test that found penetrating nodes on the last force call
   struct Contact {
     int i, j;       // master (owned) and slave (owned or ghost) local indices
@@ -131,7 +141,6 @@ class PairLsdem : public Pair {
   void apply_contacts(Lane &, double **f, double **torque) const;
   void tally_workload();
   void check_periodic_length() const;
-  bool bounding_spheres_overlap(int, int) const;
   double reverse_depth(int, int);
   void report_overlaps();
   double stiffest_node_spring();

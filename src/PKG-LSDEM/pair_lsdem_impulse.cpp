@@ -25,7 +25,7 @@ using namespace LAMMPS_NS;
 /* ---------------------------------------------------------------------- */
 
 PairLsdemImpulse::PairLsdemImpulse(LAMMPS *lmp) : PairLsdem(lmp), touch_step(-1), seconds(0.0),
-  sleeping(nullptr)
+  t_start(0.0), sleeping(nullptr)
 {
   comm_forward = comm_reverse = 0;
 }
@@ -72,68 +72,99 @@ void PairLsdemImpulse::coeff(int narg, char **arg)
   if (count == 0) error->all(FLERR, "Incorrect args for pair coefficients");
 }
 
-/* bounding-sphere rejection (report eq 2.1), at the atoms' positions (the poses' centres) */
-
-bool PairLsdemImpulse::near(int i, int j) const
-{
-  const double *a = atom->x[i], *b = atom->x[j];
-  const double rsum = atom->radius[i] + atom->radius[j];
-  const double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-  return d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < rsum * rsum;
-}
-
 /* ----------------------------------------------------------------------
    every master pair whose bounding spheres overlap: its manifold, no force
 ------------------------------------------------------------------------- */
 
 void PairLsdemImpulse::compute(int eflag, int vflag)
 {
-  const double t0 = MPI_Wtime();
-  ev_init(eflag, vflag);
-  begin_force_call(1);
-  update_poses(0, atom->nlocal + atom->nghost);
-  touch.clear();
-  points.clear();
-  touch_step = update->ntimestep;
+  begin_detection(eflag, vflag, 1);
+  detect_range(0, 0, list->inum);
+  end_detection();
+}
 
+/* a force call's start: poses, master pairs, n lanes emptied */
+
+void PairLsdemImpulse::begin_detection(int eflag, int vflag, int n)
+{
+  t_start = MPI_Wtime();
+  ev_init(eflag, vflag);
+  begin_force_call(n);
+  update_poses(0, atom->nlocal + atom->nghost);
+  if ((int) found.size() < n) found.resize(n);
+  for (int l = 0; l < n; l++) {
+    found[l].touch.clear();
+    found[l].points.clear();
+  }
+  touch_step = update->ntimestep;
   if (neighbor->ago == 0 || !master_built) build_master_pairs();
-  const int inum = list->inum;
+}
+
+/* the master pairs of the neighbor list's grains iifrom..iito-1, into lane l (a thread's) */
+
+void PairLsdemImpulse::detect_range(int l, int iifrom, int iito)
+{
   const int *ilist = list->ilist;
-  LsdemContactPath &path = lanes[0]->path;
-  for (int ii = 0; ii < inum; ii++) {
+  LsdemContactPath &path = lanes[l]->path;
+  Found &out = found[l];
+  for (int ii = iifrom; ii < iito; ii++) {
     const int i = ilist[ii];
     path.begin_atom();
     const int *js = master_j + master_first[i];
     for (int k = 0; k < master_num[i]; k++) {
       const int j = js[k];
-      if (!near(i, j) || (sleeping && sleeping[i] != 0.0 && sleeping[j] != 0.0)) continue;
+      if (!bounding_spheres_overlap(i, j) ||
+          (sleeping && sleeping[i] != 0.0 && sleeping[j] != 0.0))
+        continue;
       const lsdem_contact_params &p = params[atom->type[i]][atom->type[j]];
       if (path.detect(i, atom->tag[j], shape[i], pose[i], shape[j], pose[j], p.detect,
                       touch_step) > 0)
-        keep(i, j, path.manifold());
+        keep(out, i, j, path.manifold());
     }
     path.end_atom(i);
   }
+}
+
+/* the lanes' manifolds one after the other (lanes hold consecutive runs of the neighbor
+   list: the serial order, whatever the thread count) */
+
+void PairLsdemImpulse::end_detection()
+{
   end_force_call();
-  seconds += MPI_Wtime() - t0;
+  if (nlanes == 1) {
+    touch.swap(found[0].touch);
+    points.swap(found[0].points);
+  } else {
+    touch.clear();
+    points.clear();
+    for (int l = 0; l < nlanes; l++) {
+      const int offset = (int) points.size();
+      for (Touch t : found[l].touch) {
+        t.first += offset;
+        touch.push_back(t);
+      }
+      points.insert(points.end(), found[l].points.begin(), found[l].points.end());
+    }
+  }
+  seconds += MPI_Wtime() - t_start;
 }
 
 /* ---------------------------------------------------------------------- */
 
-void PairLsdemImpulse::keep(int i, int j, const lsdem_manifold &m)
+void PairLsdemImpulse::keep(Found &out, int i, int j, const lsdem_manifold &m)
 {
   Touch t;
   t.i = i;
   t.j = j;
-  t.first = (int) points.size();
+  t.first = (int) out.points.size();
   t.n = m.n;
   t.stride = m.stride;
   for (int d = 0; d < 3; d++) {
     t.xa[d] = m.xa[d];
     t.dab[d] = m.dab[d];
   }
-  touch.push_back(t);
-  points.insert(points.end(), m.point, m.point + m.n);
+  out.touch.push_back(t);
+  out.points.insert(out.points.end(), m.point, m.point + m.n);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -156,6 +187,10 @@ lsdem_manifold PairLsdemImpulse::manifold(int k)
 
 double PairLsdemImpulse::memory_usage()
 {
-  return PairLsdem::memory_usage() + (double) touch.capacity() * sizeof(Touch) +
+  double bytes = PairLsdem::memory_usage() + (double) touch.capacity() * sizeof(Touch) +
       (double) points.capacity() * sizeof(lsdem_contact_point);
+  for (const Found &f : found)
+    bytes += (double) f.touch.capacity() * sizeof(Touch) +
+        (double) f.points.capacity() * sizeof(lsdem_contact_point);
+  return bytes;
 }

@@ -48,17 +48,26 @@ class PairLsdemImpulse : public PairLsdem {
   // per atom (local and ghost; nonzero: asleep, fix impulse/lsdem keyword sleep): a pair
   // of two sleeping grains is not tested. nullptr: every pair is tested
   void set_sleeping(const double *flag) { sleeping = flag; }
-  // the bounding spheres of atoms i and j overlap (report eq 2.1): the pair is tested
-  bool near(int i, int j) const;
+
+ protected:
+  // a lane's (thread's) finds during a force call, joined in lane order at its end
+  struct Found {
+    std::vector<Touch> touch;
+    std::vector<lsdem_contact_point> points;
+  };
+  void begin_detection(int eflag, int vflag, int nlanes);
+  void detect_range(int lane, int iifrom, int iito);
+  void end_detection();
 
  private:
   std::vector<Touch> touch;
   std::vector<lsdem_contact_point> points;
+  std::vector<Found> found;
   bigint touch_step;
-  double seconds;
+  double seconds, t_start;
   const double *sleeping;
 
-  void keep(int i, int j, const lsdem_manifold &m);
+  void keep(Found &, int i, int j, const lsdem_manifold &m);
 };
 
 }    // namespace LAMMPS_NS

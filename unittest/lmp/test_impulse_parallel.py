@@ -11,7 +11,9 @@ step (energies summed over ranks to round-off); with more than one rank some isl
 ranks and the label exchange takes rounds. A run stopped after 250 steps on 2 ranks and
 continued from its restart file on 3 is the uninterrupted run: the resting contacts'
 warm-start impulses (method split, the default) travel with their grains between ranks
-and through the restart file."""
+and through the restart file. Threads (-sf omp: pair_style lsdem/impulse/omp shares each
+rank's detection among them) give the same bits too: 1 rank with 2 and 3 threads, 2 ranks
+with 2 threads each (the log must name the threaded pair style)."""
 import os
 
 from grain_decks import pile
@@ -55,8 +57,8 @@ def continued(steps):
             + DUMP.format(steps=STEPS) + "run %d\n" % steps)
 
 
-def run(name, text, np):
-    _, log = run_lmp(text, np=np, cwd=os.path.abspath(name))
+def run(name, text, np, args=None):
+    _, log = run_lmp(text, np=np, cwd=os.path.abspath(name), args=args)
     dump = os.path.join(os.path.abspath(name), "final.dump")
     atoms = open(dump).read().split("ITEM: ATOMS")[-1] if os.path.exists(dump) else None
     return atoms, thermo(log)
@@ -87,6 +89,15 @@ for np in (2, 3, 4):
           % (np, cross, rounds))
     check(cross > 0 and rounds >= 2, "np=%d: islands span ranks (%d), labels exchanged in %d "
           "rounds" % (np, cross, rounds))
+
+for np, nthreads in ((1, 2), (1, 3), (2, 2)):
+    name = "np%d-omp%d" % (np, nthreads)
+    atoms, rows = run(name, deck(STEPS), np, args=["-sf", "omp", "-pk", "omp", nthreads])
+    log = open(os.path.join(os.path.abspath(name), "log.lammps")).read()
+    check("pair_style lsdem/impulse/omp" in log, "%s: the threaded pair style ran" % name)
+    check(atoms == ref_atoms, "%s: grains differ from the serial run" % name)
+    check(len(rows) == len(ref) and all(r[col] == s[col] for r, s in zip(rows, ref)
+                                        for col in EXACT), "%s: counters differ" % name)
 
 # stopped on 2 ranks, continued from the restart on 3
 run_lmp(deck(HALF, restart="half.restart"), np=2, cwd=os.path.abspath("restart"))

@@ -7,12 +7,10 @@
 
 #include "atom.h"
 #include "comm.h"
-#include "fix_omp.h"
+#include "lsdem_pair_threads.h"
 #include "neigh_list.h"
 #include "neighbor.h"
 #include "suffix.h"
-#include "thr_data.h"
-#include "timer.h"
 #include "update.h"
 
 #include "omp_compat.h"
@@ -49,17 +47,9 @@ void PairLsdemOMP::compute(int eflag, int vflag)
   update_poses(0, nall);
   if (neighbor->ago == 0 || !master_built) build_master_pairs();
 
-#if defined(_OPENMP)
-#pragma omp parallel LMP_DEFAULT_NONE
-#endif
-  {
-    int ifrom, ito, tid;
-    loop_setup_thr(ifrom, ito, tid, inum, nthreads);
-    ThrData *thr = fix->get_thr(tid);
-    thr->timer(Timer::START);
-    test_pairs(*lanes[tid], ifrom, ito);
-    thr->timer(Timer::PAIR);
-  }
+  lsdem_pair_threads(fix, inum, nthreads, [&](int tid, int from, int to, ThrData *) {
+    test_pairs(*lanes[tid], from, to);
+  });
   end_force_call();
   if (zcap > 0) coordination(1);
 
@@ -74,8 +64,9 @@ void PairLsdemOMP::compute(int eflag, int vflag)
     ev_setup_thr(eflag, vflag, nall, eatom, vatom, nullptr, thr);
     apply_contacts(*lanes[tid], thr->get_f(), thr->get_torque());
     thr->timer(Timer::PAIR);
-    reduce_thr(this, eflag, vflag, thr);
+    reduce_thr(this, eflag, vflag, thr);  // every thread, inside the region (it syncs them)
   }
+
   tally_workload();
   if (update->setupflag) report_overlaps();
 }
