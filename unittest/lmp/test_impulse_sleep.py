@@ -14,7 +14,7 @@ e = mu = 0.5, dt 1e-3, sleep 0.02 0.05 (a grain slow below 0.02, an island aslee
   without sleeping puts it (the second code path), to 1e-9;
 - the rising floor wakes every island at once, and the grains rise with it (0.05 x 0.05 s
   by step 1250);
-- 2 and 4 ranks give the serial run's grains bit for bit; a run stopped at step 700 on 2
+- 2, 3 and 4 ranks, and 2 and 4 threads (-sf omp), give the serial run's grains bit for bit; a run stopped at step 700 on 2
   ranks (the pair asleep, the ball falling) and continued from its restart file on 3 is the
   uninterrupted run (sleep clocks and labels travel in the restart file)."""
 import math
@@ -63,8 +63,8 @@ def deck(opts, steps=STEPS, restart=None):
     return text + dump(STEPS, "final.dump") + "run %d\n" % steps
 
 
-def run(name, text, np=1):
-    _, log = run_lmp(text, np=np, cwd=os.path.abspath(name))
+def run(name, text, np=1, args=None):
+    _, log = run_lmp(text, np=np, cwd=os.path.abspath(name), args=args)
     path = os.path.join(os.path.abspath(name), "final.dump")
     atoms = open(path).read().split("ITEM: ATOMS")[-1] if os.path.exists(path) else None
     return atoms, thermo(log)
@@ -104,11 +104,13 @@ if check(len(rows) == STEPS // 10 + 1 and len(plain) == len(rows), "the runs ran
     near(at[MOVE + 50]["v_z5"] - at[MOVE]["v_z5"], 0.05 * 0.05, rtol=0.02,
          msg="the pair rises with the floor")
 
-for np in (2, 4):
-    atoms, rows_np = run("np%d" % np, deck(SLEEP), np)
-    check(atoms == ref_atoms, "np=%d: grains differ from the serial run" % np)
+for np, threads in ((2, 1), (3, 1), (4, 1), (1, 2), (1, 4)):
+    name = "np%d-omp%d" % (np, threads)
+    args = ["-sf", "omp", "-pk", "omp", threads] if threads > 1 else None
+    atoms, rows_np = run(name, deck(SLEEP), np, args)
+    check(atoms == ref_atoms, "%s: grains differ from the serial run" % name)
     check([r["f_imp[32]"] for r in rows_np] == [r["f_imp[32]"] for r in rows],
-          "np=%d: grains asleep differ" % np)
+          "%s: grains asleep differ" % name)
 
 run_lmp(deck(SLEEP, HALF, "half.restart"), np=2, cwd=os.path.abspath("restart"))
 atoms, cont = run("restart", "read_restart half.restart\n" + AFTER_READ
