@@ -386,21 +386,42 @@ void FixImpulseLsdem::final_integrate()
   memset(&now, 0, sizeof(now));
   now.woken = woken_pending;
   woken_pending = 0;
+  // the step works on its bodies (atoms local and ghost, then walls): gathered here from
+  // the atom arrays, scattered back by damp_and_drift; ghosts' velocities follow their
+  // owners' through forward_velocities
   make_bodies();
-  kick();
+  kick();  // external forces (eqs 4.37, 4.39)
   forward_velocities();
   ke_after_kick = group_kinetic_energy();
   double t0 = MPI_Wtime();
-  gather_contacts();
+  gather_contacts();  // the pair style's and the walls' manifolds, glued, capped, classified
   t_detect += MPI_Wtime() - t0;
+  solve_contacts();  // islands: resting solve, collisions by ETM; the wall guard
+  remember_contacts();
+  report_wall_resting();
+  // what every stage of the contacts did to the kinetic energy (ETM's restitution and
+  // friction, the resting solve, the wall guard): measured, not summed from the parts
+  const double contact_work = group_kinetic_energy() - ke_after_kick;
+  now.contact_work = contact_work;
+  total_dissipated -= contact_work;
+  check_cfl();
+  damp_and_drift();  // global damping (eqs 4.44-4.46), positions (eqs 4.38, 4.40)
+  if (sleep_after >= 0.0) fall_asleep();
+}
 
+/* ----------------------------------------------------------------------
+   the islands' solves alternating with the wall guard (report §4.4.1) until no grain is
+   corrected or the passes' cap is reached
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::solve_contacts()
+{
   bool corrected = true;
   wall_seen.assign((size_t) atom->nlocal * walls.size(), WallSeen());
   for (int pass = 0; pass < max_passes && corrected; pass++) {
     resolve_islands(pass);
-    t0 = MPI_Wtime();
+    double t0 = MPI_Wtime();
     const int mine = correct_walls();
-
     t_walls += MPI_Wtime() - t0;
     int all = 0;
     t0 = MPI_Wtime();
@@ -414,16 +435,6 @@ void FixImpulseLsdem::final_integrate()
   // the cap reached with corrections in the last pass: the collisions they made are
   // resolved, so that no grain approaches another as the step ends
   if (corrected) resolve_islands(max_passes);
-  remember_contacts();
-  report_wall_resting();
-  // what every stage of the contacts did to the kinetic energy (ETM's restitution and
-  // friction, the resting solve, the wall guard): measured, not summed from the parts
-  const double contact_work = group_kinetic_energy() - ke_after_kick;
-  now.contact_work = contact_work;
-  total_dissipated -= contact_work;
-  check_cfl();
-  damp_and_drift();
-  if (sleep_after >= 0.0) fall_asleep();
 }
 
 /* ----------------------------------------------------------------------
@@ -541,10 +552,6 @@ void FixImpulseLsdem::kick()
     const double t[3] = {ftm2v * atom->torque[i][0], ftm2v * atom->torque[i][1],
                          ftm2v * atom->torque[i][2]};
     lsdem_impulse_kick(&body[i], f, t, dt);  // a sphere: no rotation (its body has none)
-    for (int d = 0; d < 3; d++) {
-      atom->v[i][d] = body[i].v[d];
-      atom->omega[i][d] = body[i].omega[d];
-    }
     amax = std::max(amax, std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) / atom->rmass[i]);
   }
   double rest = rest_setting;
@@ -569,7 +576,7 @@ void FixImpulseLsdem::kick()
 }
 
 /* ----------------------------------------------------------------------
-   owned grains' velocities to their ghost copies, then into the step's bodies
+   owned grains' velocities (their step bodies) to their ghost copies' bodies
 ------------------------------------------------------------------------- */
 
 void FixImpulseLsdem::forward_velocities()
@@ -577,12 +584,6 @@ void FixImpulseLsdem::forward_velocities()
   const double t0 = MPI_Wtime();
   LsdemCompat::forward_comm(comm, this, 6);
   t_comm += MPI_Wtime() - t0;
-  const int nall = atom->nlocal + atom->nghost;
-  for (int i = 0; i < nall; i++)
-    for (int d = 0; d < 3; d++) {
-      body[i].v[d] = atom->v[i][d];
-      body[i].omega[d] = atom->omega[i][d];
-    }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -821,7 +822,7 @@ int FixImpulseLsdem::correct_walls()
 }
 
 /* grain i against wall w (pose wp, detection det, correction prm) at the grain's predicted
-   pose; 1 when it was corrected (a resting contact), its new velocities in atom->v, omega */
+   pose; 1 when it was corrected (a resting contact), its new velocities in its body */
 
 int FixImpulseLsdem::correct_grain(int i, int w, const lsdem_pose &wp,
                                    const lsdem_detect_params &det, const lsdem_wall_params &prm)
@@ -847,10 +848,6 @@ int FixImpulseLsdem::correct_grain(int i, int w, const lsdem_pose &wp,
                update->ntimestep, atom->tag[i], walls[w]->id, err.msg);
   if (res.kind != LSDEM_WALL_RESTING) return 0;
   push_on_wall(w, res.impulse);
-  for (int d = 0; d < 3; d++) {
-    atom->v[i][d] = body[i].v[d];
-    atom->omega[i][d] = body[i].omega[d];
-  }
   return 1;
 }
 
@@ -869,7 +866,7 @@ void FixImpulseLsdem::check_cfl()
   const double dt = update->dt;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!moving[i]) continue;
-    const double *v = atom->v[i];
+    const double *v = body[i].v;
     const double speed = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     const double ratio = speed * dt / atom->radius[i];
     if (!(ratio <= mine.ratio)) {  // NaN counts as the worst
@@ -904,17 +901,13 @@ void FixImpulseLsdem::damp_and_drift()
   for (int i = 0; i < atom->nlocal; i++) {
     if (!moving[i]) continue;
     lsdem_impulse_body &b = body[i];
-    for (int d = 0; d < 3; d++) {
-      b.v[d] = atom->v[i][d];
-      b.omega[d] = atom->omega[i][d];
-    }
-    const double before = kinetic_energy(i);
+    const double before = kinetic_energy(i, b.v, b.omega);
     if (lsdem_impulse_damp(&b, xi, dt, &err) != LSDEM_OK) error->one(FLERR, err.msg);
-    for (int d = 0; d < 3; d++) {
+    for (int d = 0; d < 3; d++) {  // the step's velocities back into the atom arrays
       atom->v[i][d] = b.v[d];
       atom->omega[i][d] = b.omega[d];
     }
-    total_damped += before - kinetic_energy(i);
+    total_damped += before - kinetic_energy(i, b.v, b.omega);
     if (avec->shape_of(i)->sdf.kind == LSDEM_SDF_SPHERE) {
       for (int d = 0; d < 3; d++) {
         atom->x[i][d] += dt * atom->v[i][d];
@@ -1092,7 +1085,7 @@ void FixImpulseLsdem::fall_asleep()
     if (!moving[i] || sleep_clock[i] < sleep_after) continue;
     const auto it = std::lower_bound(ready_all.begin(), ready_all.end(), label[i]);
     if (blocked[it - ready_all.begin()]) continue;
-    total_damped += kinetic_energy(i);
+    total_damped += kinetic_energy(i, atom->v[i], atom->omega[i]);
     sleep_label[i] = (double) label[i];
     for (int d = 0; d < 3; d++) atom->v[i][d] = atom->omega[i][d] = 0.0;
     now.fell_asleep++;
@@ -1100,23 +1093,23 @@ void FixImpulseLsdem::fall_asleep()
   t_islands += MPI_Wtime() - t0;
 }
 
-/* the kinetic energy of this rank's grains of the group */
+/* the kinetic energy of this rank's moving grains at their step velocities */
 
 double FixImpulseLsdem::group_kinetic_energy() const
 {
   double ke = 0.0;
   for (int i = 0; i < atom->nlocal; i++)
-    if (moving[i]) ke += kinetic_energy(i);
+    if (moving[i]) ke += kinetic_energy(i, body[i].v, body[i].omega);
   return ke;
 }
 
-/* 1/2 m v^2 + 1/2 omega . I omega of atom i (I from its principal moments and quat) */
+/* 1/2 m v^2 + 1/2 omega . I omega of atom i at velocities v, omega (I from its principal
+   moments and quat) */
 
-double FixImpulseLsdem::kinetic_energy(int i) const
+double FixImpulseLsdem::kinetic_energy(int i, const double v[3], const double omega[3]) const
 {
-  const double *v = atom->v[i];
   double wb[3];
-  lsdem_quat_rotate_inv(avec->quat[i], atom->omega[i], wb);
+  lsdem_quat_rotate_inv(avec->quat[i], omega, wb);
   const double *I = avec->inertia[i];
   return 0.5 * atom->rmass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) +
       0.5 * (I[0] * wb[0] * wb[0] + I[1] * wb[1] * wb[1] + I[2] * wb[2] * wb[2]);
@@ -1132,7 +1125,7 @@ void FixImpulseLsdem::reduce_output()
   double sum[21], max[13];
   double ke = 0.0;
   for (int i = 0; i < atom->nlocal; i++)
-    if (atom->mask[i] & groupbit) ke += kinetic_energy(i);
+    if (atom->mask[i] & groupbit) ke += kinetic_energy(i, atom->v[i], atom->omega[i]);
   sum[0] = now.first.islands;
   sum[1] = now.first.cross;
   sum[2] = (double) now.iterations;
@@ -1335,7 +1328,8 @@ int FixImpulseLsdem::maxsize_restart()
 }
 
 /* ----------------------------------------------------------------------
-   ghost communication: velocities (6 values), or the islands' labels and flags
+   ghost communication: the step bodies' velocities (6 values), the sleep labels (1), or
+   the islands' labels and flags
 ------------------------------------------------------------------------- */
 
 int FixImpulseLsdem::pack_forward_comm(int n, int *list, double *buf, int, int *)
@@ -1348,8 +1342,8 @@ int FixImpulseLsdem::pack_forward_comm(int n, int *list, double *buf, int, int *
   int m = 0;
   for (int k = 0; k < n; k++) {
     const int j = list[k];
-    for (int d = 0; d < 3; d++) buf[m++] = atom->v[j][d];
-    for (int d = 0; d < 3; d++) buf[m++] = atom->omega[j][d];
+    for (int d = 0; d < 3; d++) buf[m++] = body[j].v[d];
+    for (int d = 0; d < 3; d++) buf[m++] = body[j].omega[d];
   }
   return m;
 }
@@ -1363,8 +1357,8 @@ void FixImpulseLsdem::unpack_forward_comm(int n, int first, double *buf)
   }
   int m = 0;
   for (int i = first; i < first + n; i++) {
-    for (int d = 0; d < 3; d++) atom->v[i][d] = buf[m++];
-    for (int d = 0; d < 3; d++) atom->omega[i][d] = buf[m++];
+    for (int d = 0; d < 3; d++) body[i].v[d] = buf[m++];
+    for (int d = 0; d < 3; d++) body[i].omega[d] = buf[m++];
   }
 }
 

@@ -153,6 +153,7 @@ class FixImpulseLsdem : public Fix {
   void push_on_wall(int w, const double impulse[3]) const;
   void body_frame_point(const LsdemImpulseContact &c, double xb[3]) const;
   double group_kinetic_energy() const;
+  void solve_contacts();
   void resolve_islands(int pass);
   int select_collisions(int pass);
   int correct_walls();
@@ -161,7 +162,7 @@ class FixImpulseLsdem : public Fix {
   void check_cfl();
   void damp_and_drift();
   lsdem_pose wall_pose_now(int w) const;
-  double kinetic_energy(int i) const;
+  double kinetic_energy(int i, const double v[3], const double omega[3]) const;
   void reduce_output();
 };
 

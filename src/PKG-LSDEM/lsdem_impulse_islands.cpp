@@ -101,7 +101,8 @@ lsdem_status LsdemImpulseIslands::grain_body(const Item &it, lsdem_impulse_body 
   return st;
 }
 
-/* the record of owned grain i (its state now, in the atom arrays) */
+/* the record of grain i (local or ghost) from the atom arrays: its state at the step's
+   start */
 
 void LsdemImpulseIslands::body_item(int i, Item &it) const
 {
@@ -163,7 +164,7 @@ void LsdemImpulseIslands::contact_item(const LsdemImpulseContact &c, int k,
 /* ---------------------------------------------------------------------- */
 
 std::string LsdemImpulseIslands::resolve(LsdemImpulseContact *coll, int n,
-                                         const lsdem_impulse_body *body, const char *moving,
+                                         lsdem_impulse_body *body, const char *moving,
                                          const lsdem_island_params &prm, int warm_start,
                                          LsdemIslandStats &st)
 {
@@ -179,7 +180,7 @@ std::string LsdemImpulseIslands::resolve(LsdemImpulseContact *coll, int n,
   t0 = MPI_Wtime();
   std::string mesg = solve_items(prm, warm_start, st);
   st.t_etm += MPI_Wtime() - t0;
-  scatter_results(ncross > 0, coll, st);
+  scatter_results(ncross > 0, coll, body, st);
   return mesg;
 }
 
@@ -311,6 +312,10 @@ void LsdemImpulseIslands::make_items(const LsdemImpulseContact *coll, int n,
   for (int v = 0; v < atom->nlocal; v++) {
     if (!involved[v]) continue;
     body_item(v, it);
+    for (int k = 0; k < 3; k++) {  // its velocities now: the step's body
+      it.d[11 + k] = body[v].v[k];
+      it.d[14 + k] = body[v].omega[k];
+    }
     it.label = label[v];
     it.spans = crossed[lsdem_islands_find(parent, v)];
     items.push_back(it);
@@ -543,7 +548,7 @@ std::string LsdemImpulseIslands::solve_island(const Item *it, int n,
 ------------------------------------------------------------------------- */
 
 void LsdemImpulseIslands::scatter_results(bool remote, LsdemImpulseContact *coll,
-                                          LsdemIslandStats &st)
+                                          lsdem_impulse_body *body, LsdemIslandStats &st)
 {
   auto apply = [&](const Result &r) {
     if (r.index < 0) {
@@ -555,8 +560,8 @@ void LsdemImpulseIslands::scatter_results(bool remote, LsdemImpulseContact *coll
       return;
     }
     for (int d = 0; d < 3; d++) {
-      atom->v[r.index][d] = r.v[d];
-      atom->omega[r.index][d] = r.omega[d];
+      body[r.index].v[d] = r.v[d];
+      body[r.index].omega[d] = r.omega[d];
     }
   };
   const double t0 = MPI_Wtime();

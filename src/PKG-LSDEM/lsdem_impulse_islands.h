@@ -69,11 +69,11 @@ class LsdemImpulseIslands : protected Pointers {
   // (approaching) by lsdem_island_solve (warm_start: apply the resting contacts' P first).
   // body: the step's bodies (atoms local and ghost, then walls), with current velocities;
   // moving[i]: atom i is integrated (in the group), else it acts as a wall of prescribed
-  // velocity. New velocities are written to atom->v, atom->omega of owned grains, the
-  // resting contacts' new impulses to coll[k].P, the collision impulses added to
-  // coll[k].J. Collective. Returns this rank's first
-  // island report ("" when all converged).
-  std::string resolve(LsdemImpulseContact *coll, int n, const lsdem_impulse_body *body,
+  // velocity. New velocities are written to the bodies of owned grains (the fix sends them
+  // to the ghosts' bodies), the resting contacts' new impulses to coll[k].P, the collision
+  // impulses added to coll[k].J. Collective. Returns this rank's first island report (""
+  // when all converged).
+  std::string resolve(LsdemImpulseContact *coll, int n, lsdem_impulse_body *body,
                       const char *moving, const lsdem_island_params &prm, int warm_start,
                       LsdemIslandStats &st);
 
@@ -110,7 +110,7 @@ class LsdemImpulseIslands : protected Pointers {
   enum { LOCKED = 1, A_FIXED = 1, B_FIXED = 2, APPROACHING = 4, RESTING = 8 };
   // a grain's body in the solver (also the fix's step bodies): spheres keep no rotation
   static lsdem_status grain_body(const Item &, lsdem_impulse_body &, lsdem_error *);
-  // the record of owned or ghost grain i, its state now (atom arrays)
+  // the record of owned or ghost grain i from the atom arrays (its state at the step's start)
   void body_item(int i, Item &) const;
 
  private:
@@ -166,7 +166,8 @@ class LsdemImpulseIslands : protected Pointers {
   std::string solve_items(const lsdem_island_params &, int warm, LsdemIslandStats &);
   std::string solve_island(const Item *, int, const lsdem_island_params &, int warm,
                            LsdemIslandStats &);
-  void scatter_results(bool remote, LsdemImpulseContact *, LsdemIslandStats &);
+  void scatter_results(bool remote, LsdemImpulseContact *, lsdem_impulse_body *,
+                       LsdemIslandStats &);
   template <class T> int exchange(const std::vector<T> &, std::vector<T> &);
 };
 
