@@ -3,14 +3,16 @@
    LSDEM package: level-set discrete element method for LAMMPS.
 
    compute ID group shearband/lsdem c_ID[N] threshold d [k K] [planes 1|2] [seed S]
-           [phi v_phi psi v_psi]
+           [phi v_phi psi v_psi] [kernel W] [bin B]
    (doc/compute_shearband_lsdem.rst). The group's grains whose indicator (column N of a
    per-atom compute, e.g. D2min or the von Mises shear of compute strain/lsdem) exceeds
    mean + K sd; up to two planes fitted to them (core lsdem_shearband_fit: RANSAC, then least
    squares). Global vector, per plane: dip, azimuth (degrees), inlier fraction, thickness
    (length), unit normal x y z (NaN for a plane not found); then, with phi and psi, the
-   Coulomb, Roscoe and Arthur inclinations (degrees). Per-atom vector: 0, or the band 1 or 2
-   the grain lies in.
+   Coulomb, Roscoe and Arthur inclinations (degrees); then the group's D50 and, per plane,
+   the thickness in D50, the indicator profile's width across the plane (core
+   lsdem_shearband_profile), that width with the kernel's taken out, and it in D50.
+   Per-atom vector: 0, or the band 1 or 2 the grain lies in.
 
    Every rank gathers every group grain (tag, position, indicator) and sorts them by tag, so
    every rank fits the same input in the same order: the results do not depend on the number
@@ -21,6 +23,7 @@
 
 #include "arg_info.h"
 #include "atom.h"
+#include "atom_vec_lsdem.h"
 #include "comm.h"
 #include "error.h"
 #include "input.h"
@@ -37,13 +40,15 @@
 using namespace LAMMPS_NS;
 
 static constexpr int PLANE_VALUES = 7;   // dip, azimuth, inlier fraction, thickness, normal
-static constexpr int ROW = 5;            // tag, x, y, z, indicator
+static constexpr int PROFILE_VALUES = 4; // thickness / D50, profile width, corrected, / D50
+static constexpr int ROW = 6;            // tag, x, y, z, indicator, volume
 static constexpr int RANSAC_SAMPLES = 500;
 
 /* ---------------------------------------------------------------------- */
 
 ComputeShearbandLsdem::ComputeShearbandLsdem(LAMMPS *lmp, int narg, char **arg) :
-  Compute(lmp, narg, arg), column(0), source(nullptr), ivar{-1, -1}, nmax(0), flag(nullptr)
+  Compute(lmp, narg, arg), column(0), source(nullptr), ivar{-1, -1}, kernel(0.0), bin(0.0),
+  nmax(0), flag(nullptr)
 {
   if (narg < 4) error->all(FLERR, "Illegal compute shearband/lsdem command: "
                            "compute ID group shearband/lsdem c_ID[N] threshold d ...");
@@ -69,6 +74,15 @@ ComputeShearbandLsdem::ComputeShearbandLsdem(LAMMPS *lmp, int narg, char **arg) 
       params.planes = utils::inumeric(FLERR, v, false, lmp);
     } else if (strcmp(arg[iarg], "seed") == 0) {
       params.seed = (uint64_t) utils::bnumeric(FLERR, v, false, lmp);
+    } else if (strcmp(arg[iarg], "kernel") == 0) {
+      kernel = utils::numeric(FLERR, v, false, lmp);
+      if (!(kernel >= 0.0))
+        error->all(FLERR, "Compute shearband/lsdem: kernel {}: expected a width >= 0 (the FWHM "
+                   "of the indicator's smoothing, length units)", v);
+    } else if (strcmp(arg[iarg], "bin") == 0) {
+      bin = utils::numeric(FLERR, v, false, lmp);
+      if (!(bin > 0.0))
+        error->all(FLERR, "Compute shearband/lsdem: bin {}: expected a length > 0", v);
     } else if (strcmp(arg[iarg], "phi") == 0 || strcmp(arg[iarg], "psi") == 0) {
       if (strncmp(v, "v_", 2) != 0)
         error->all(FLERR, "Compute shearband/lsdem: {} {}: expected v_name", arg[iarg], v);
@@ -85,7 +99,8 @@ ComputeShearbandLsdem::ComputeShearbandLsdem(LAMMPS *lmp, int narg, char **arg) 
     error->all(FLERR, "Compute shearband/lsdem: phi and psi go together");
 
   vector_flag = 1;
-  size_vector = PLANE_VALUES * params.planes + (theory_var[0].empty() ? 0 : 3);
+  size_vector = PLANE_VALUES * params.planes + (theory_var[0].empty() ? 0 : 3) + 1 +
+      PROFILE_VALUES * params.planes;
   extvector = 0;
   vector = new double[size_vector];
   peratom_flag = 1;
@@ -104,6 +119,8 @@ ComputeShearbandLsdem::~ComputeShearbandLsdem()
 
 void ComputeShearbandLsdem::init()
 {
+  avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
+  if (!avec) error->all(FLERR, "Compute shearband/lsdem requires atom_style lsdem");
   const int ic = modify->find_compute(id_source);
   if (ic < 0) error->all(FLERR, "Compute shearband/lsdem: no compute {}", id_source);
   source = modify->compute[ic];
@@ -135,7 +152,7 @@ int ComputeShearbandLsdem::gather_rows(std::vector<int> &count)
     if (atom->mask[i] & groupbit) {
       const double value = column ? source->array_atom[i][column - 1] : source->vector_atom[i];
       const double row[ROW] = {(double) atom->tag[i], atom->x[i][0], atom->x[i][1],
-                               atom->x[i][2], value};
+                               atom->x[i][2], value, avec->shape_of(i)->volume};
       mine.insert(mine.end(), row, row + ROW);
     }
   const int nmine = (int) mine.size();
@@ -180,11 +197,12 @@ void ComputeShearbandLsdem::measure()
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(),
             [this](int a, int b) { return rows[(size_t) ROW * a] < rows[(size_t) ROW * b]; });
-  std::vector<double> x(3 * (size_t) n), value(n);
+  std::vector<double> x(3 * (size_t) n), value(n), volume(n);
   for (int s = 0; s < n; s++) {
     const double *r = &rows[(size_t) ROW * order[s]];
     std::copy(r + 1, r + 4, &x[3 * (size_t) s]);
     value[s] = r[4];
+    volume[s] = r[5];
   }
   std::vector<int> band(n);
   lsdem_shearband_plane plane[2];
@@ -199,11 +217,41 @@ void ComputeShearbandLsdem::measure()
                                     p.normal[0], p.normal[1], p.normal[2]};
     std::copy(v, v + PLANE_VALUES, vector + PLANE_VALUES * q);
   }
-  if (!theory_var[0].empty())
+  double *out = vector + PLANE_VALUES * params.planes;
+  if (!theory_var[0].empty()) {
     lsdem_shearband_theory(input->variable->compute_equal(ivar[0]),
-                           input->variable->compute_equal(ivar[1]),
-                           vector + PLANE_VALUES * params.planes);
+                           input->variable->compute_equal(ivar[1]), out);
+    out += 3;
+  }
+  measure_widths(n, x.data(), value.data(), volume.data(), plane, nplanes, out);
   store_flags(band, order, count);
+}
+
+/* ----------------------------------------------------------------------
+   the group's D50 (core lsdem_median_diameter, volume-equivalent diameters by volume), then
+   per plane: thickness / D50, the indicator profile's width (bins of `bin`, or D50 / 2; the
+   peak within the inlier threshold), that width with the kernel's removed, and it / D50
+------------------------------------------------------------------------- */
+
+void ComputeShearbandLsdem::measure_widths(int n, const double *x, const double *value,
+                                           const double *volume,
+                                           const lsdem_shearband_plane *plane, int nplanes,
+                                           double *out)
+{
+  const double d50 = lsdem_median_diameter(n, volume);
+  out[0] = d50;
+  std::fill(out + 1, out + 1 + PROFILE_VALUES * params.planes, NAN);
+  const double b = bin > 0.0 ? bin : 0.5 * d50;
+  for (int q = 0; q < nplanes && b > 0.0; q++) {
+    double *o = out + 1 + PROFILE_VALUES * q, width, corrected;
+    if (lsdem_shearband_profile(n, x, value, &plane[q], b, params.threshold, kernel, &width,
+                                &corrected) != LSDEM_OK)
+      error->all(FLERR, "Compute shearband/lsdem: out of memory for {} grains", n);
+    o[0] = plane[q].thickness / d50;
+    o[1] = width;
+    o[2] = corrected;
+    o[3] = corrected / d50;
+  }
 }
 
 /* ---------------------------------------------------------------------- */

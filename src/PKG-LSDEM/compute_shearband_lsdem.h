@@ -38,12 +38,17 @@ class ComputeShearbandLsdem : public Compute {
   lsdem_shearband_params params;
   std::string theory_var[2];    // phi, psi: equal-style variables (degrees), or empty
   int ivar[2];
+  double kernel;                // FWHM of the indicator's own smoothing (length), 0: none
+  double bin;                   // profile bins (length); 0: half the D50
   int nmax;
   double *flag;                 // per atom: 0, or the band (1, 2) the grain is in
-  std::vector<double> rows;     // every group grain: tag, x, y, z, value (sorted by tag)
+  std::vector<double> rows;     // every group grain: tag, x, y, z, value, volume
 
   void measure();
+  class AtomVecLsdem *avec;
   int gather_rows(std::vector<int> &count);
+  void measure_widths(int n, const double *x, const double *value, const double *volume,
+                      const lsdem_shearband_plane *plane, int nplanes, double *out);
   void store_flags(const std::vector<int> &band, const std::vector<int> &order,
                    const std::vector<int> &count);
 };

@@ -158,11 +158,60 @@ static void test_theory(void)
   CHECK_NEAR(a[2], 57.5, 1e-12); /* Arthur 45 + 50/4 */
 }
 
+/* The profile width: a Gaussian band of sigma 1 (FWHM 2 sqrt(2 ln 2) sigma) across the
+ * cylinder, noise 0.02; seen through a Gaussian kernel of sigma 0.75 (a profile of sigma
+ * sqrt(1 + 0.75^2)), the kernel's FWHM given back gives the band's own width. Within 5 %
+ * (bins of 0.25 against a width of 2.4; the band narrow against the cylinder, so that the
+ * median of all values is the background). */
+static void test_profile_width(void)
+{
+  const int n = cylinder_points(xs);
+  const double fwhm_of_sigma = 2.0 * sqrt(2.0 * log(2.0));
+  lsdem_shearband_plane pl;
+  memset(&pl, 0, sizeof pl);
+  normal_of(55.0, 30.0, pl.normal);
+  const double sk = 0.75, sb = 1.0, sseen = sqrt(sb * sb + sk * sk);
+  for (int i = 0; i < n; i++) {
+    const double s = lsdem_dot3(&xs[3 * i], pl.normal);
+    val[i] = exp(-0.5 * s * s / (sseen * sseen)) + 0.02 * srand1();
+  }
+  double w = 0.0, wc = 0.0;
+  CHECK(lsdem_shearband_profile(n, xs, val, &pl, 0.25, 3.0, 0.0, &w, &wc) == LSDEM_OK,
+        "profile");
+  CHECK_REL(w, fwhm_of_sigma * sseen, 0.05);
+  CHECK(wc == w, "no kernel: corrected %g = measured %g", wc, w);
+  CHECK(lsdem_shearband_profile(n, xs, val, &pl, 0.25, 3.0, fwhm_of_sigma * sk, &w, &wc) ==
+            LSDEM_OK, "profile with a kernel");
+  CHECK_REL(wc, fwhm_of_sigma * sb, 0.05);
+  /* a flat indicator has no band: NaN */
+  for (int i = 0; i < n; i++) val[i] = 1.0;
+  CHECK(lsdem_shearband_profile(n, xs, val, &pl, 0.25, 3.0, 0.0, &w, &wc) == LSDEM_OK &&
+            isnan(w) && isnan(wc), "flat: %g %g", w, wc);
+  CHECK(lsdem_shearband_profile(n, xs, val, &pl, 0.0, 3.0, 0.0, &w, &wc) == LSDEM_ERR_ARG,
+        "bin 0 accepted");
+}
+
+/* D50 by volume on hand-worked sieve curves: diameters 1 and 2 (volumes 1 : 8, midpoints
+ * of their shares at 1/18 and 5/9) cross one half at 1 + (0.5 - 1/18) / (5/9 - 1/18); two
+ * of each, 1 and 2 (points 1/36, 3/36, 6/18, 14/18): 2; equal grains: their diameter. */
+static void test_median_diameter(void)
+{
+  const double v1 = PI / 6.0, v2 = 8.0 * PI / 6.0;
+  const double a[2] = {v2, v1}, b[4] = {v1, v2, v1, v2}, c[3] = {v2, v2, v2};
+  CHECK_REL(lsdem_median_diameter(2, a), 1.0 + (0.5 - 1.0 / 18.0) / (5.0 / 9.0 - 1.0 / 18.0),
+            1e-12);
+  CHECK_REL(lsdem_median_diameter(4, b), 2.0, 1e-12);
+  CHECK_REL(lsdem_median_diameter(3, c), 2.0, 1e-12);
+  CHECK(lsdem_median_diameter(0, a) == 0.0, "no grains");
+}
+
 int main(void)
 {
   test_single_band();
   test_x_bands();
   test_degenerate();
   test_theory();
+  test_profile_width();
+  test_median_diameter();
   return lsdem_test_summary();
 }

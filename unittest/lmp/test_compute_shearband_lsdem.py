@@ -2,13 +2,17 @@
 across a plane of dip 55 deg and azimuth 30 deg through the origin (displace_atoms with
 atom-style variables; LAMMPS variables have no erf: an atan step); compute strain/lsdem's
 von Mises shear feeds compute shearband/lsdem, whose band must have that dip and azimuth
-(within 1 and 2 deg), with the per-grain flag set on the plane and not far from it; the numbers are bit-identical on 1 and 2 ranks."""
+(within 1 and 2 deg), with the per-grain flag set on the plane and not far from it; the numbers are bit-identical on 1 and 2 ranks.
+The width values: the D50 equals the sieve median computed here from the library's shape
+volumes (half balls, half boxes), the thickness in D50 is the thickness over it, and the
+indicator profile's width (core-tested against Gaussian bands) is finite, no wider than the
+specimen, and unchanged without a kernel; `kernel W` removes W in quadrature."""
 import math
 import os
 import random
 
 import grain_decks as gd
-from lsdemtest import check, finish, near, run_lmp
+from lsdemtest import check, finish, near, run_lmp, shape_tool
 
 DIP, AZIMUTH = 55.0, 30.0
 d, a = math.radians(DIP), math.radians(AZIMUTH)
@@ -25,6 +29,28 @@ for i in range(10):
                            "x": x, "q": gd.qnormalize([rng.gauss(0, 1) for _ in range(4)])})
 DATA = os.path.abspath(gd.write_data("grains.data", grains, box=(-14, 14, -14, 14, -14, 14)))
 LIB = os.path.abspath(gd.library())
+
+
+def sieve_d50(volumes):
+    """The diameter at which half the volume is finer, each grain at the middle of its
+    share, linear between grains (independent of the core's code)."""
+    v = sorted(volumes)
+    total, below, prev = sum(v), 0.0, None
+    for vol in v:
+        d = (6.0 * vol / math.pi) ** (1.0 / 3.0)
+        f = (below + 0.5 * vol) / total
+        below += vol
+        if f >= 0.5:
+            return d if prev is None else prev[1] + (d - prev[1]) * (0.5 - prev[0]) / (f - prev[0])
+        prev = (f, d)
+
+
+VOLUME = {}
+for line in shape_tool("list", LIB).splitlines()[2:]:
+    f = line.split()
+    if len(f) > 4 and f[0].isdigit():
+        VOLUME[int(f[0]) + 1] = float(f[-4])  # shape index 0.. -> type in the data file 1..
+D50 = sieve_d50([VOLUME[g["shape"]] for g in grains])
 
 DECK = """units lj
 atom_style lsdem library %s
@@ -75,7 +101,12 @@ for np in (1, 2):
     if vec is None:
         continue
     results[np] = (vec, flags)
-    check(len(vec) == 10, "np=%d: 7 plane values and 3 theory angles, got %d" % (np, len(vec)))
+    check(len(vec) == 15, "np=%d: 7 plane values, 3 theory angles, D50 and 4 widths, got %d"
+          % (np, len(vec)))
+    near(vec[10], D50, rtol=1e-12, msg="np=%d: D50" % np)
+    near(vec[11], vec[3] / D50, rtol=1e-12, msg="np=%d: thickness in D50" % np)
+    check(0.0 < vec[12] < 28.0 and vec[13] == vec[12] and vec[14] == vec[13] / vec[10],
+          "np=%d: profile width %r, corrected %r, in D50 %r" % (np, vec[12], vec[13], vec[14]))
     near(vec[0], DIP, atol=1.0, msg="np=%d dip" % np)
     gap = abs(vec[1] - AZIMUTH) % 360.0
     check(min(gap, 360.0 - gap) <= 2.0, "np=%d azimuth %r, expected %r" % (np, vec[1], AZIMUTH))
@@ -102,6 +133,15 @@ if len(results) == 2:
           "1 and 2 ranks: %r != %r" % (results[1][0], results[2][0]))
     check(all(results[1][1][i]["c_b"] == results[2][1][i]["c_b"] for i in results[1][1]),
           "1 and 2 ranks: the same flags")
+
+# kernel W: the profile width with W taken out in quadrature
+if 1 in results:
+    W = 0.5 * results[1][0][12]
+    rc, log = run_lmp(DECK.replace("planes 1", "planes 1 kernel %r" % W), cwd="kernel")
+    if check(rc == 0, "kernel run"):
+        vec = thermo_values(log)
+        near(vec[13], math.sqrt(vec[12] ** 2 - W * W), rtol=1e-12, msg="kernel removed")
+        near(vec[12], results[1][0][12], rtol=1e-12, msg="the measured width unchanged")
 
 # the indicator must be a per-atom column of the compute
 rc, log = run_lmp(DECK.replace("c_s[8]", "c_s[13]"), cwd="column", expect_fail=True)

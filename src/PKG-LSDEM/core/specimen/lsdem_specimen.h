@@ -106,6 +106,12 @@ typedef struct {
 } lsdem_chain_stats;
 void lsdem_strong_chains(int n, const double *fn, lsdem_chain_stats *out);
 
+/* D50 of n grains of the given volumes (length^3): the diameter of the sphere of equal
+ * volume at which half the grains' total volume (their mass, at one density) is finer, as a
+ * sieve curve does, linear between consecutive grains of the sorted curve (each grain's
+ * diameter at the middle of its share); 0 for n <= 0. Grains of zero volume count nothing. */
+double lsdem_median_diameter(int n, const double *volume);
+
 /* ------------------------------------------- shear bands (shearband.c) ---- */
 
 /* Shear-band measurement (report §3.5.3): points (grain centres, world frame, length units)
@@ -149,6 +155,20 @@ typedef struct {
 lsdem_status lsdem_shearband_fit(int n, const double *x, const double *value,
                                  const lsdem_shearband_params *p, lsdem_shearband_plane plane[2],
                                  int *nplanes, int *band);
+/* The band's width from the indicator's profile across a fitted plane (issue 35 item 3):
+ * the finite values averaged in bins of width `bin` of the points' signed distance to the
+ * plane (bins from the plane's centre outwards, one centred on it); the full width at half
+ * maximum above the median of all finite values, from the highest bin within `reach` of
+ * the plane outwards on both sides (each crossing interpolated linearly between bin
+ * centres; empty bins skipped), into *fwhm (length; NaN when no bin is above the median, or
+ * the profile does not fall to half on a side). *corrected = sqrt(fwhm^2 - kernel^2): the
+ * width of a Gaussian band seen through a Gaussian smoothing of FWHM `kernel` (the
+ * indicator's neighbourhood; 0: none), 0 when fwhm <= kernel. LSDEM_ERR_ARG for bin <= 0,
+ * reach <= 0 or kernel < 0; LSDEM_ERR_NOMEM. */
+lsdem_status lsdem_shearband_profile(int n, const double *x, const double *value,
+                                     const lsdem_shearband_plane *plane, double bin,
+                                     double reach, double kernel, double *fwhm,
+                                     double *corrected);
 /* Theoretical band inclinations from the horizontal in triaxial compression (sigma_1 axial:
  * the horizontal is the plane sigma_1 acts on; the band makes these angles with the sigma_3
  * direction), all in degrees from the friction angle phi and dilatancy angle psi in degrees:

@@ -7,6 +7,7 @@
 #include "lsdem_specimen.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 static double sym_contract(const double A[9], const double B[9])
 {
@@ -137,4 +138,37 @@ double lsdem_rotation_angle(const double q[4], const double qref[4])
   lsdem_quat_multiply(q, c, d);
   const double vlen = sqrt(d[1] * d[1] + d[2] * d[2] + d[3] * d[3]);
   return 2.0 * atan2(vlen, fabs(d[0]));
+}
+
+static int compare_doubles(const void *a, const void *b)
+{
+  const double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+double lsdem_median_diameter(int n, const double *volume)
+{
+  if (n <= 0) return 0.0;
+  double *v = malloc(sizeof(double) * (size_t)n);
+  if (!v) return NAN;
+  double total = 0.0;
+  for (int i = 0; i < n; i++) total += (v[i] = volume[i] > 0.0 ? volume[i] : 0.0);
+  qsort(v, (size_t)n, sizeof(double), compare_doubles); /* by volume = by diameter */
+  /* the sieve curve: grain i's diameter at the middle of its share of the volume; the last
+   * grain's point is at 1 - v/(2 total) >= 0.5, so the curve crosses 0.5 when total > 0 */
+  double below = 0.0, prev_f = -1.0, prev_d = 0.0, d50 = 0.0;
+  for (int i = 0; i < n; i++) {
+    if (v[i] == 0.0) continue;
+    const double d = cbrt(6.0 * v[i] / 3.14159265358979323846);
+    const double f = (below + 0.5 * v[i]) / total;
+    below += v[i];
+    if (f >= 0.5) {
+      d50 = prev_f < 0.0 ? d : prev_d + (d - prev_d) * (0.5 - prev_f) / (f - prev_f);
+      break;
+    }
+    prev_f = f;
+    prev_d = d;
+  }
+  free(v);
+  return d50;
 }

@@ -246,3 +246,94 @@ void lsdem_shearband_theory(double phi, double psi, double angle[3])
   angle[1] = 45.0 + 0.5 * psi;
   angle[2] = 45.0 + 0.25 * (phi + psi);
 }
+
+static int compare_values(const void *a, const void *b)
+{
+  const double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* where the profile (bin means m over bins [0, nb), centres at (k - centre) bin, empty
+ * bins cnt 0) first falls below half, walking from bin `peak` in direction `step`:
+ * interpolated between the last bin above and the first below; NaN when it never does */
+static double half_crossing(const double *m, const int *cnt, int nb, int peak, int step,
+                            double half, int centre, double bin)
+{
+  int last = peak;
+  for (int k = peak + step; k >= 0 && k < nb; k += step) {
+    if (cnt[k] == 0) continue;
+    if (m[k] < half) {
+      const double t = (m[last] - half) / (m[last] - m[k]);
+      return bin * ((double)(last - centre) + t * (double)(k - last));
+    }
+    last = k;
+  }
+  return NAN;
+}
+
+lsdem_status lsdem_shearband_profile(int n, const double *x, const double *value,
+                                     const lsdem_shearband_plane *plane, double bin,
+                                     double reach, double kernel, double *fwhm,
+                                     double *corrected)
+{
+  if (n < 0 || !plane || !fwhm || !corrected || !(bin > 0.0) || !(reach > 0.0) ||
+      !(kernel >= 0.0) || (n > 0 && (!x || !value)))
+    return LSDEM_ERR_ARG;
+  *fwhm = *corrected = NAN;
+  double *vals = malloc(sizeof(double) * (size_t)(n > 0 ? n : 1));
+  double *s = malloc(sizeof(double) * (size_t)(n > 0 ? n : 1));
+  if (!vals || !s) {
+    free(vals);
+    free(s);
+    return LSDEM_ERR_NOMEM;
+  }
+  int nf = 0;
+  double smax = 0.0;
+  for (int i = 0; i < n; i++) {
+    if (!isfinite(value[i])) continue;
+    double d[3];
+    lsdem_sub3(&x[3 * i], plane->centre, d);
+    s[nf] = lsdem_dot3(d, plane->normal);
+    vals[nf++] = value[i];
+    smax = fmax(smax, fabs(s[nf - 1]));
+  }
+  /* bins k = 0..nb-1 centred at (k - centre) bin: one on the plane */
+  const int centre = (int)ceil(smax / bin - 0.5), nb = 2 * centre + 1;
+  double *m = calloc((size_t)nb, sizeof(double));
+  int *cnt = calloc((size_t)nb, sizeof(int));
+  if (!m || !cnt) {
+    free(vals);
+    free(s);
+    free(m);
+    free(cnt);
+    return LSDEM_ERR_NOMEM;
+  }
+  for (int i = 0; i < nf; i++) {
+    int k = centre + (int)floor(s[i] / bin + 0.5);
+    k = k < 0 ? 0 : (k >= nb ? nb - 1 : k);
+    m[k] += vals[i];
+    cnt[k]++;
+  }
+  for (int k = 0; k < nb; k++)
+    if (cnt[k]) m[k] /= cnt[k];
+  qsort(vals, (size_t)nf, sizeof(double), compare_values);
+  const double median =
+      nf == 0 ? NAN : (nf % 2 ? vals[nf / 2] : 0.5 * (vals[nf / 2 - 1] + vals[nf / 2]));
+  int peak = -1;
+  for (int k = 0; k < nb; k++)
+    if (cnt[k] && fabs((double)(k - centre)) * bin <= reach && (peak < 0 || m[k] > m[peak]))
+      peak = k;
+  if (peak >= 0 && m[peak] > median) {
+    const double half = median + 0.5 * (m[peak] - median);
+    const double lo = half_crossing(m, cnt, nb, peak, -1, half, centre, bin);
+    const double hi = half_crossing(m, cnt, nb, peak, +1, half, centre, bin);
+    *fwhm = hi - lo;  /* NaN when either side is */
+    if (isfinite(*fwhm))
+      *corrected = *fwhm > kernel ? sqrt(*fwhm * *fwhm - kernel * kernel) : 0.0;
+  }
+  free(vals);
+  free(s);
+  free(m);
+  free(cnt);
+  return LSDEM_OK;
+}
