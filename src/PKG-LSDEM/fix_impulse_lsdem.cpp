@@ -925,7 +925,7 @@ void FixImpulseLsdem::damp_and_drift()
    labels to the ghosts, then every sleeping island within reach of an awake body wakes,
    whole: an awake grain of the group, an atom outside it that moves or a moving wall
    whose bounding test (the pair style's, or the wall's may-touch test) meets one of its
-   grains. Repeated until no island wakes (a woken island may reach another), so the
+   grains, or one of its grains was given a velocity. Repeated until no island wakes (a woken island may reach another), so the
    pair style, which skips pairs of two sleeping grains, meets no pair of an awake and a
    sleeping grain. Decisions use labels gathered from all ranks: the same on any rank
    count.
@@ -1004,6 +1004,10 @@ void FixImpulseLsdem::collect_wakers()
         wake_mine.push_back((int64_t) sleep_label[s]);
     }
   }
+  // a sleeping grain given a velocity (the velocity or set command between runs) wakes
+  for (int i = 0; i < atom->nlocal; i++)
+    if (asleep(i) && !still(atom->v[i], atom->omega[i]))
+      wake_mine.push_back((int64_t) sleep_label[i]);
   for (FixWallLsdem *w : walls) {
     const lsdem_boundary &b = w->boundary();
     lsdem_pose wp;

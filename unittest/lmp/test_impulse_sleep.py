@@ -13,7 +13,7 @@ e = mu = 0.5, dt 1e-3, sleep 0.02 0.05 (a grain slow below 0.02, an island aslee
   settled all seven sleep and the floor reads 7 m g; the ball rests where the same run
   without sleeping puts it (the second code path), to 1e-9;
 - the rising floor wakes every island at once, and the grains rise with it (0.05 x 0.05 s
-  by step 1250);
+  by step 1250); grains given a velocity between runs wake and move;
 - 2, 3 and 4 ranks, and 2 and 4 threads (-sf omp), give the serial run's grains bit for bit; a run stopped at step 700 on 2
   ranks (the pair asleep, the ball falling) and continued from its restart file on 3 is the
   uninterrupted run (sleep clocks and labels travel in the restart file)."""
@@ -111,6 +111,17 @@ for np, threads in ((2, 1), (3, 1), (4, 1), (1, 2), (1, 4)):
     check(atoms == ref_atoms, "%s: grains differ from the serial run" % name)
     check([r["f_imp[32]"] for r in rows_np] == [r["f_imp[32]"] for r in rows],
           "%s: grains asleep differ" % name)
+
+# a sleeping grain given a velocity between runs wakes (with its island) and moves
+_, log = run_lmp(header(BALL, DATA) + SETUP.format(opts=SLEEP) + "run 300\n"
+                 + "velocity all set 0.1 0 0\nrun 20\n", cwd=os.path.abspath("kicked"))
+before, after = thermo(log, 0), thermo(log)
+check(before and after and before[-1]["f_imp[32]"] == 6 and after[0]["f_imp[32]"] == 0 and
+      after[-1]["v_x5"] > before[-1]["v_x5"] + 0.25 * 0.1 * 0.02,
+      "grains asleep given a velocity: woken and moved (asleep %s, moved %.3g; a quarter of "
+      "v t expected at least, friction slowing it)"
+      % ([r["f_imp[32]"] for r in before[-1:] + after[:1]],
+         after[-1]["v_x5"] - before[-1]["v_x5"]))
 
 run_lmp(deck(SLEEP, HALF, "half.restart"), np=2, cwd=os.path.abspath("restart"))
 atoms, cont = run("restart", "read_restart half.restart\n" + AFTER_READ
