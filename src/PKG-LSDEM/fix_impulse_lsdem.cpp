@@ -78,7 +78,7 @@ static const char USAGE[] = "fix ID group impulse/lsdem e mu [keyword value ...]
 FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), method(SPLIT), restitution(0.0), friction(0.0), xi(0.0), max_points(-1),
   max_passes(10),
-  rest_setting(-1.0), glue_setting(-1.0), glue_angle(15.0 * MY_PI / 180.0), cfl(0.5),
+  rest_setting(-1.0), rest_steps(2.0), glue_setting(-1.0), glue_angle(15.0 * MY_PI / 180.0), cfl(0.5),
   cfl_stop(0), wall_etm(0), sleep_speed(0.0), sleep_after(-1.0), avec(nullptr), pair(nullptr), islands(nullptr), total_dissipated(0.0),
   total_damped(0.0), total_truncated(0.0), t_detect(0.0), t_islands(0.0), t_etm(0.0),
   t_rest(0.0),
@@ -190,6 +190,11 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
         error->all(FLERR, "fix impulse/lsdem: tolerance = {} must be in (0, 1) (relative "
                    "approach speed left)", val);
       etm.energy_tol = etm.velocity_tol * etm.velocity_tol;
+    } else if (key == "rest_steps") {
+      rest_steps = number();
+      if (!(rest_steps > 0.0) || !std::isfinite(rest_steps))
+        error->all(FLERR, "fix impulse/lsdem: rest_steps = {} must be > 0 (rest auto: the "
+                   "speed the largest external acceleration gives in this many steps)", val);
     } else if (key == "glue") {
       glue_setting = strcmp(val, "auto") == 0 ? -1.0 : number();
       if (strcmp(val, "auto") != 0 && !(glue_setting >= 0.0))
@@ -558,7 +563,7 @@ void FixImpulseLsdem::kick()
   if (rest < 0.0) {
     double all = 0.0;
     MPI_Allreduce(&amax, &all, 1, MPI_DOUBLE, MPI_MAX, world);
-    rest = 2.0 * all * dt;
+    rest = rest_steps * all * dt;
   }
   // lsdem_wall_params_default's rule in terms of the resting speed: depth_tol = 1 % of the
   // depth a resting grain sinks by in one step

@@ -67,7 +67,8 @@ class FixImpulseLsdem : public Fix {
   lsdem_resting_params resting;  // dt, ref_speed, slop, max_push set each step
   int max_points;            // contacts kept per pair after gluing (0: all)
   int max_passes;            // wall-correction passes per step (report: 10)
-  double rest_setting;       // resting speed with walls; < 0: auto, 2 |a| dt
+  double rest_setting;       // resting speed with walls; < 0: auto, rest_steps |a| dt
+  double rest_steps;         // keyword rest_steps
   double glue_setting;       // gluing distance; < 0: auto, twice a shape's node spacing
   double glue_angle;         // radians
   double cfl;                // largest |v| dt per bounding radius

@@ -100,12 +100,15 @@ for dt in (1e-3, 16e-3):
 
 
 # a drop onto the floor: faster than the resting speed 2 g dt it bounces, slower it does not
-def drop(v0, dt=1e-3):
-    name = "drop_v%g" % v0
+def drop(v0, dt=1e-3, rest=None):
+    """rest: fix keywords setting the resting speed (default: rest 2 g dt, given)."""
+    name = "drop_v%g%s" % (v0, "_" + rest.replace(" ", "") if rest else "")
+    rest = rest or "rest %r" % (2 * G * dt)
     deck = (header(BALL, data(name, [(1, 0.0, 0.0, R + 0.5 * v0 * dt)]))
             + "velocity all set 0 0 %r\n" % -v0
             + "fix floor all wall/lsdem plane 0 0 0 0 0 1 1.0e4 0 0\n"
-            + "fix imp all impulse/lsdem 0.65 0.0 rest %r\ntimestep %r\n" % (2 * G * dt, dt)
+            + ("fix grav all gravity %r vector 0 0 -1\n" % G if "rest_steps" in rest else "")
+            + "fix imp all impulse/lsdem 0.65 0.0 %s\ntimestep %r\n" % (rest, dt)
             + "variable z equal z[1]\nvariable vz equal vz[1]\n"
             + "thermo_style custom step v_z v_vz\nthermo_modify format float %.15g\n"
             + "thermo 1\nrun 20\n")
@@ -124,6 +127,16 @@ for factor, bounces in ((0.5, False), (3.0, True)):
             near(vmax, 0.65 * factor * vr, rtol=1e-6, msg="faster than the resting speed: e v0")
         else:
             check(abs(vmax) < 1e-12, "slower than the resting speed: no bounce (%g)" % vmax)
+
+# rest auto is rest_steps x g dt (gravity the largest external acceleration): arriving at
+# 3 g dt (4 g dt after the step's gravity kick) a ball bounces with rest_steps 2 and does not
+# with rest_steps 8
+for steps, bounces in ((2, True), (8, False)):
+    rows = drop(3.0 * G * 1e-3, rest="rest_steps %d" % steps)
+    if check(rows, "drop with rest_steps %d ran" % steps):
+        vmax = max(r["v_vz"] for r in rows)
+        check((vmax > 0.5 * 0.65 * 3.0 * G * 1e-3) == bounces,
+              "rest_steps %d: largest upward speed %g (bounce expected: %s)" % (steps, vmax, bounces))
 
 # Newton's cradle: sphere 1 at speed 1 hits four touching spheres at rest; the split method
 # gives the report's ETM result (method etm) bit for bit: the collision's impulse crosses
