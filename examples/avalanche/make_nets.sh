@@ -10,16 +10,17 @@
 # lightest grain's, so the grains' step holds for the balls' contacts) at spacing 0.35
 # (gaps of 0.15, below the smallest grain), bonds of stiffness K and axial damping C.
 #   make_nets.sh OUTDIR NETS [X1] [X2] [H1] [H2] [K] [C]
-# defaults: X1 -9, X2 -16 (the run-out), H1 1.5 (low: the flow may overtop it), H2 3, K
-# 5000, C 5. Reads OUTDIR/grains.lslib, source.data, valley.asc (make_scene.sh); writes
-# OUTDIR/nets.lslib (the grains' shapes and the ball), netK.data, netK.in, netK.net: the
-# deck (-var nets NETS) reads net${NETS}.data (the grains and every net) and includes
-# net1.in, net2.in. lsdem-shape from LSDEM_SHAPE_TOOL.
+# defaults: X1 -5 (in the fan), X2 -13 (on the run-out), H1 1 (low: the flow overtops it),
+# H2 2.5, K 5000, C 5 (the rows cover HK to the nearest row: 0.91 and 2.42 high). Reads
+# OUTDIR/grains.lslib, source.data, valley.asc (make_scene.sh); writes OUTDIR/nets.lslib
+# (the grains' shapes and the ball), netK.data, netK.in, netK.net: the deck (-var nets
+# NETS) reads net${NETS}.data (the grains and every net) and includes net1.in, net2.in.
+# lsdem-shape from LSDEM_SHAPE_TOOL.
 set -euo pipefail
 out=$1
 nets=$2
-xs=("${3:--9}" "${4:--16}")
-hs=("${5:-1.5}" "${6:-3}")
+xs=("${3:--5}" "${4:--13}")
+hs=("${5:-1}" "${6:-2.5}")
 k=${7:-5000}
 damp=${8:-5}
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)

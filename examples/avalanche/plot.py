@@ -14,8 +14,8 @@
   the terrain's contours beneath.
   nets.png, with nets (in.avalanche -var nets N: nets.csv beside avalanche.csv, and the net
   files net1.net, ... there): per net against time (a) the retained fraction (grains
-  upslope of it over all grains) and the grains through it, (b) the anchor force |R| and
-  its peak so far; the nets are drawn in (c) and on the deposit map.
+  upslope of it over all grains), (b) the anchor force |R| and its peak so far (over every
+  step); the nets are drawn in (c) and on the deposit map.
 
     /usr/bin/python3 plot.py [avalanche.csv] [deposit.dump] [valley.asc] [source.data]
                              [avalanche.png] [deposit.png] [nets.png]
