@@ -38,7 +38,7 @@ if [ ! -f source.data ]; then
   rm -f "${parts[@]}"
   "$shape" pack grains.lslib box.data --count 5000 --box 34 16 10.3 --density 2.65 \
     --weights 8,8,8,8,7,7,7,7,5,5,5,5 --seed 7 --max-tries 5000 --strict
-  "$py" "$ex/place_source.py" box.data source.data --x0 3.5 --yhalf 11 --box -64 44 -20 20 -6 40
+  "$py" "$ex/place_source.py" box.data source.data --x0 3.5 --yhalf 11 --box -64 44 -30 30 -6 40
   rm -f box.data
   LSDEM_SHAPE_TOOL=$shape bash "$ex/make_nets.sh" . 2 >/dev/null
 fi
