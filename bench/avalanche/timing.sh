@@ -17,29 +17,13 @@ top=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 ex=$top/examples/avalanche
 build=${LSDEM_BUILD_DIR:-$top/build}
 shape=$build/lsdem-shape
-py=/usr/bin/python3
 np=${NP:-2}
 mkdir -p "$out/scene"
 cd "$out/scene"
 if [ ! -f source.data ]; then
-  "$py" "$ex/make_terrain.py" valley.asc --x0 -60 --xtop 40 --ywidth 14 --yhalf 11
-  "$shape" terrain valley.asc valley.band --spacing 0.2 --width 0.5 > band.txt
-  parts=()
-  s=21
-  for d in 0.6 0.8 1.1; do
-    h=$("$py" -c "print($d / 20)")
-    "$shape" random "size$d.lslib" --count 4 --size "$d" --elongation 0.75 --flatness 0.75 \
-      --angularity 0.15 --roughness 0.02 --nodes 120 --spacing "$h" --seed "$s" \
-      --name "d$d" >/dev/null 2>&1
-    parts+=("size$d.lslib")
-    s=$((s + 1))
-  done
-  "$shape" merge grains.lslib "${parts[@]}" >/dev/null
-  rm -f "${parts[@]}"
-  "$shape" pack grains.lslib box.data --count 5000 --box 34 16 10.3 --density 2.65 \
-    --weights 8,8,8,8,7,7,7,7,5,5,5,5 --seed 7 --max-tries 5000 --strict
-  "$py" "$ex/place_source.py" box.data source.data --x0 3.5 --yhalf 11 --box -64 44 -30 30 -6 40
-  rm -f box.data
+  TERRAIN_ARGS="--x0 -60 --xtop 40 --ywidth 14 --yhalf 11" SLAB="34 16 10.3" \
+    PLACE_ARGS="--yhalf 11 --box -64 44 -30 30 -6 40" LSDEM_SHAPE_TOOL=$shape \
+    bash "$ex/make_scene.sh" . 5000
   LSDEM_SHAPE_TOOL=$shape bash "$ex/make_nets.sh" . 2 >/dev/null
 fi
 mpi=()
