@@ -71,7 +71,7 @@ static int usage(void)
           "                   [--lattice hex|square] [--origin X Y Z] [--e1 X Y Z] [--e2 X Y Z]\n"
           "                   [--rest R0] [--clamp all|none|u0,u1,v0,v1] [--density RHO | --mass M]\n"
           "                   [--k K] [--damp C] [--break strain S | --break force F]\n"
-          "                   [--types TFREE TCLAMP] [--grains GRAINS.data] [--margin D]\n"
+          "                   [--types TFREE TCLAMP] [--grains DATA] [--name NAME] [--margin D]\n"
           "       lsdem-shape voids LIB DATA (--cylinder R Z0 Z1 | --box X0 X1 Y0 Y1 Z0 Z1)\n"
           "                   [--centre X Y] [--inset D] [--spacing H]\n"
           "       lsdem-shape wall MESH.stl|MESH.obj OUT.band --spacing H [--width W] [--scale S]\n"

@@ -14,6 +14,9 @@ void shape_free_grains(shape_grain_file *gf)
 {
   for (int i = 0; i < gf->nvel; i++) free(gf->vel[i]);
   free(gf->vel);
+  for (int i = 0; i < gf->nbonds; i++) free(gf->bond[i]);
+  free(gf->bond);
+  for (int i = 0; gf->g && i < gf->n; i++) free(gf->g[i].line);
   free(gf->g);
 }
 
@@ -48,9 +51,58 @@ static int grains_error(const char *path, int line, const char *what)
   return 1;
 }
 
-/* A data file for atom_style lsdem (as written by lsdem-shape pack / from-labels):
- * header counts and box, Atoms (id type shape density x y z qw qx qy qz), optional
- * Velocities. */
+/* An Atoms line into g: atom_style lsdem (id type shape density x y z qw qx qy qz, and
+ * perhaps 3 image flags) as the line of atom_style hybrid lsdem bond it becomes (molecule
+ * 0); hybrid lsdem bond (id type x y z shape density qw qx qy qz molecule, perhaps image
+ * flags) as it is. 0 if it is neither, or out of memory. */
+static int read_atom(const char *buf, shape_grain *g)
+{
+  double v[16];
+  int n = 0, used;
+  for (const char *s = buf; n < 16 && sscanf(s, "%lf%n", v + n, &used) == 1; s += used) n++;
+  if (n != 11 && n != 14 && n != 12 && n != 15) return 0;
+  g->id = (long) v[0];
+  g->type = (int) v[1];
+  if (n == 11 || n == 14) {
+    const char *fmt = "%ld %d %.12g %.12g %.12g %d %.12g %.15g %.15g %.15g %.15g 0";
+    for (int k = 0; k < 3; k++) g->x[k] = v[4 + k];
+    g->molecule = 0;
+    int len = snprintf(NULL, 0, fmt, g->id, g->type, v[4], v[5], v[6], (int) v[2], v[3], v[7],
+                       v[8], v[9], v[10]);
+    if (!(g->line = malloc((size_t) len + 1))) return 0;
+    snprintf(g->line, (size_t) len + 1, fmt, g->id, g->type, v[4], v[5], v[6], (int) v[2], v[3],
+             v[7], v[8], v[9], v[10]);
+    return 1;
+  }
+  for (int k = 0; k < 3; k++) g->x[k] = v[2 + k];
+  g->molecule = (long) v[11];
+  if (!(g->line = strdup(buf))) return 0;
+  g->line[strcspn(g->line, "\r\n")] = '\0';
+  return 1;
+}
+
+/* NBONDS Bonds lines "id type atom1 atom2" (types 1 to nbondtypes), kept verbatim */
+static int read_bonds(FILE *f, const char *path, long nbonds, shape_grain_file *gf, int *line)
+{
+  char buf[1024];
+  if (!(gf->bond = calloc((size_t) (nbonds ? nbonds : 1), sizeof(char *))))
+    return grains_error(path, *line, "out of memory");
+  for (long i = 0; i < nbonds; i++) {
+    long id, a, b;
+    int type;
+    if (!next_line(f, buf, sizeof buf, line) ||
+        sscanf(buf, "%ld %d %ld %ld", &id, &type, &a, &b) != 4 || type < 1 ||
+        type > gf->nbondtypes)
+      return grains_error(path, *line, "expected a Bonds line 'id type atom1 atom2' with a "
+                                       "type from 1 to the bond types");
+    if (!(gf->bond[gf->nbonds++] = strdup(buf))) return grains_error(path, *line, "out of memory");
+  }
+  return 0;
+}
+
+/* A data file for atom_style lsdem (as written by lsdem-shape pack / from-labels) or
+ * hybrid lsdem bond (lsdem-shape net): header counts and box, Atoms, optional Velocities
+ * and Bonds. */
 int shape_read_grains(const char *path, shape_grain_file *gf)
 {
   memset(gf, 0, sizeof(*gf));
@@ -61,7 +113,7 @@ int shape_read_grains(const char *path, shape_grain_file *gf)
   }
   char buf[1024];
   int line = 0, rc = 0;
-  long natoms = -1;
+  long natoms = -1, nbonds = 0;
   gf->ntypes = 1;
   if (!fgets(buf, sizeof buf, f)) rc = grains_error(path, 1, "empty file");
   line = 1;
@@ -76,6 +128,11 @@ int shape_read_grains(const char *path, shape_grain_file *gf)
         rc = grains_error(path, line, "out of memory");
     } else if (header_count(buf, "atom types", &n)) {
       gf->ntypes = (int) n;
+    } else if (header_count(buf, "bonds", &n)) {
+      nbonds = n;
+      if (n < 0 || n > 1000000000) rc = grains_error(path, line, "bad bond count");
+    } else if (header_count(buf, "bond types", &n)) {
+      gf->nbondtypes = (int) n;
     } else if (sscanf(buf, "%lf %lf %63s %63s", &a, &b, w1, w2) == 4 && w1[1] == 'l' &&
                w1[0] >= 'x' && w1[0] <= 'z') {
       gf->lo[w1[0] - 'x'] = a;
@@ -85,28 +142,33 @@ int shape_read_grains(const char *path, shape_grain_file *gf)
         rc = grains_error(path, line, "Atoms before the atom count");
         break;
       }
+      gf->n = (int) natoms;
       for (long i = 0; i < natoms && !rc; i++) {
         shape_grain *g = gf->g + i;
-        if (!next_line(f, buf, sizeof buf, &line) ||
-            sscanf(buf, "%ld %d %d %lf %lf %lf %lf %lf %lf %lf %lf", &g->id, &g->type, &g->shape,
-                   &g->density, g->x, g->x + 1, g->x + 2, g->q, g->q + 1, g->q + 2, g->q + 3) != 11)
+        if (!next_line(f, buf, sizeof buf, &line) || !read_atom(buf, g))
           rc = grains_error(path, line, "expected 'id type shape density x y z qw qx qy qz' "
-                                        "(atom_style lsdem)");
+                                        "(atom_style lsdem) or 'id type x y z shape density qw "
+                                        "qx qy qz molecule' (hybrid lsdem bond)");
+        else if (g->molecule > gf->maxmol)
+          gf->maxmol = g->molecule;
       }
-      gf->n = (int) natoms;
     } else if (sscanf(buf, "%63s", w1) == 1 && !strcmp(w1, "Velocities")) {
       gf->vel = calloc((size_t) (natoms > 0 ? natoms : 1), sizeof(char *));
       for (long i = 0; i < natoms && !rc; i++) {
         if (!next_line(f, buf, sizeof buf, &line)) rc = grains_error(path, line, "short Velocities");
         else gf->vel[gf->nvel++] = strdup(buf);
       }
+    } else if (sscanf(buf, "%63s", w1) == 1 && !strcmp(w1, "Bonds")) {
+      rc = read_bonds(f, path, nbonds, gf, &line);
     } else if (isalpha((unsigned char) buf[strspn(buf, " \t")])) {
       rc = grains_error(path, line, "unsupported section or header line (expected a data "
-                                    "file of atom_style lsdem)");
+                                    "file of atom_style lsdem, or one lsdem-shape net wrote)");
     }
   }
   fclose(f);
   if (!rc && natoms < 0) rc = grains_error(path, line, "no atom count");
+  if (!rc && gf->nbonds != nbonds) rc = grains_error(path, line, "the header's bond count "
+                                                    "does not match the Bonds section");
   if (rc) shape_free_grains(gf);
   return rc;
 }
@@ -166,11 +228,54 @@ int shape_close_out(const char *cmd, FILE *f, const char *path)
 
 void shape_write_grain_atoms(FILE *f, const shape_grain_file *gf)
 {
-  for (int i = 0; i < gf->n; i++) {
-    const shape_grain *g = gf->g + i;
-    fprintf(f, "%ld %d %.12g %.12g %.12g %d %.12g %.15g %.15g %.15g %.15g 0\n", g->id, g->type,
-            g->x[0], g->x[1], g->x[2], g->shape, g->density, g->q[0], g->q[1], g->q[2], g->q[3]);
+  for (int i = 0; i < gf->n; i++) fprintf(f, "%s\n", gf->g[i].line);
+}
+
+void shape_write_bonds(FILE *f, const shape_grain_file *gf)
+{
+  for (int i = 0; i < gf->nbonds; i++) fputs(gf->bond[i], f);
+}
+
+typedef struct {
+  long id;
+  int index;
+} id_index;
+
+static int by_id(const void *a, const void *b)
+{
+  long x = ((const id_index *) a)->id, y = ((const id_index *) b)->id;
+  return (x > y) - (x < y);
+}
+
+double shape_longest_bond(const shape_grain_file *gf)
+{
+  if (!gf->nbonds) return 0.0;
+  id_index *map = malloc((size_t) gf->n * sizeof(id_index));
+  if (!map) return -1.0;
+  for (int i = 0; i < gf->n; i++) map[i] = (id_index){gf->g[i].id, i};
+  qsort(map, (size_t) gf->n, sizeof(id_index), by_id);
+  double longest = 0.0;
+  for (int b = 0; b < gf->nbonds && longest >= 0.0; b++) {
+    long id, at[2];
+    int type;
+    sscanf(gf->bond[b], "%ld %d %ld %ld", &id, &type, at, at + 1);
+    const id_index *end[2];
+    for (int k = 0; k < 2; k++) {
+      id_index key = {at[k], 0};
+      end[k] = bsearch(&key, map, (size_t) gf->n, sizeof(id_index), by_id);
+    }
+    if (!end[0] || !end[1]) {
+      fprintf(stderr, "lsdem-shape: bond %ld joins atom %ld, which the data file does not "
+              "have\n", id, end[0] ? at[1] : at[0]);
+      longest = -1.0;
+    } else {
+      const double *x = gf->g[end[0]->index].x, *y = gf->g[end[1]->index].x;
+      longest = fmax(longest, sqrt((x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) +
+                                   (x[2] - y[2]) * (x[2] - y[2])));
+    }
   }
+  free(map);
+  return longest;
 }
 
 void shape_write_velocities(FILE *f, const shape_grain_file *gf)

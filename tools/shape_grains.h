@@ -1,6 +1,7 @@
 /* shape_grains.h -- a grain data file (atom_style lsdem, as lsdem-shape pack and
- * from-labels write it) read by the subcommands that add bonded balls around or under the
- * grains (membrane, net) and write both into one data file. */
+ * from-labels write it), or a data file of atom_style hybrid lsdem bond that lsdem-shape
+ * net wrote (grains and nets), read by the subcommands that add bonded balls around or
+ * under the grains (membrane, net) and write everything into one data file. */
 #ifndef LSDEM_SHAPE_GRAINS_H
 #define LSDEM_SHAPE_GRAINS_H
 
@@ -8,9 +9,10 @@
 #include <stdio.h>
 
 typedef struct {
-  long id;
-  int type, shape;
-  double density, x[3], q[4];
+  long id, molecule;
+  int type;
+  double x[3];
+  char *line; /* the Atoms line of atom_style hybrid lsdem bond, as it will be written */
 } shape_grain;
 
 typedef struct {
@@ -19,10 +21,14 @@ typedef struct {
   shape_grain *g;
   char **vel; /* Velocities lines (copied verbatim), n or NULL */
   int nvel;
+  char **bond; /* Bonds lines (copied verbatim) */
+  int nbonds, nbondtypes;
+  long maxmol; /* the largest molecule ID (0: grains only) */
 } shape_grain_file;
 
-/* Read PATH: header counts and box, Atoms (id type shape density x y z qw qx qy qz),
- * optional Velocities (kept verbatim). 0, or 1 after a message naming the line. */
+/* Read PATH: header counts and box, Atoms (atom_style lsdem: id type shape density x y z
+ * qw qx qy qz; or hybrid lsdem bond: id type x y z shape density qw qx qy qz molecule),
+ * optional Velocities and Bonds (kept verbatim). 0, or 1 after a message naming the line. */
 int shape_read_grains(const char *path, shape_grain_file *gf);
 void shape_free_grains(shape_grain_file *gf);
 /* The first atom ID after the file's largest (1 for an empty file). */
@@ -37,9 +43,14 @@ FILE *shape_open_out(const char *cmd, const char *prefix, const char *ext, char 
                      size_t size);
 /* fclose; 0, or 1 after a message. */
 int shape_close_out(const char *cmd, FILE *f, const char *path);
-/* The grains as Atoms lines of atom_style hybrid lsdem bond (molecule 0):
- * id type x y z shape-ID density qw qx qy qz molecule-ID. */
+/* The file's atoms as Atoms lines of atom_style hybrid lsdem bond (grains of an lsdem file
+ * as molecule 0): id type x y z shape-ID density qw qx qy qz molecule-ID. */
 void shape_write_grain_atoms(FILE *f, const shape_grain_file *gf);
+/* The file's Bonds lines (numbered 1 to nbonds, as read). */
+void shape_write_bonds(FILE *f, const shape_grain_file *gf);
+/* The length of the file's longest bond (0 without bonds); -1 after a message when a bond
+ * joins an atom the file does not have. */
+double shape_longest_bond(const shape_grain_file *gf);
 /* The grains' Velocities section, when the file had one. */
 void shape_write_velocities(FILE *f, const shape_grain_file *gf);
 

@@ -262,6 +262,12 @@ int cmd_membrane(int argc, char **argv)
   shape_grain_file gf;
   memset(&gf, 0, sizeof gf);
   if (o.grains && shape_read_grains(o.grains, &gf)) return 1;
+  if (gf.nbonds) {
+    fprintf(stderr, "lsdem-shape membrane: %s has bonds; the membrane's bond style takes a "
+            "grain file without them\n", o.grains);
+    shape_free_grains(&gf);
+    return 1;
+  }
   long id0 = shape_next_id(&gf);
   if (o.type[0] == 0) {
     o.type[0] = gf.n ? gf.ntypes + 1 : 1;

@@ -1,9 +1,13 @@
 /* shape_net.c -- `lsdem-shape net`: a net of bonded balls (core lsdem_net_build) in any
- * plane, alone or added to a grain data file, as LAMMPS input:
- *   PREFIX.data  atom_style hybrid lsdem bond: grains (molecule 0) + net balls + Bonds
+ * plane, alone or added to a data file (grains, or grains and the nets this command put
+ * there before), as LAMMPS input:
+ *   PREFIX.data  atom_style hybrid lsdem bond: the given file's atoms and bonds + the net's
+ *                balls (molecule: one past the file's largest) + its bonds (bond type: one
+ *                past the file's bond types)
  *   PREFIX.net   the net file fix net/lsdem reads (core lsdem_net_write)
- *   PREFIX.in    bond_style lsdem/net, bond_coeff, groups net, net_free, net_clamp (and
- *                grains when a grain file was given): include after read_data
+ *   PREFIX.in    bond_style lsdem/net (the first net only), bond_coeff of the net's bond
+ *                type, groups NAME, NAME_free, NAME_clamp (and grains when the file had
+ *                grains): include after read_data, every net's in the order they were made
  * Free balls get type TFREE, clamped balls TCLAMP, both the one sphere shape. */
 #include "lsdem_shape_cmds.h"
 #include "shape_common.h"
@@ -15,7 +19,7 @@
 #include <string.h>
 
 typedef struct {
-  const char *prefix, *grains, *library, *brk;
+  const char *prefix, *grains, *library, *brk, *name;
   lsdem_net_params np;
   int shape, type[2];
   double rb, density, mass, k, damp, limit, margin;
@@ -29,8 +33,11 @@ static int net_usage(void)
           "         [--e2 X Y Z] [--rest R0] [--clamp all|none|EDGE[,EDGE...]]\n"
           "         [--density RHO | --mass M] [--k K] [--damp C]\n"
           "         [--break strain S | --break force F] [--types TFREE TCLAMP]\n"
-          "         [--grains GRAINS.data] [--margin D]\n"
+          "         [--grains DATA] [--name NAME] [--margin D]\n"
           "  EDGE: u0 u1 v0 v1 (the net's sides at e1 = 0, e1 = L1, e2 = 0, e2 = L2)\n"
+          "  DATA: grains (atom_style lsdem), or a PREFIX.data of this command: the net is\n"
+          "  added to it with the next atom IDs, types, molecule and bond type; NAME: its\n"
+          "  groups NAME, NAME_free, NAME_clamp (default net)\n"
           "  writes PREFIX.data, PREFIX.net, PREFIX.in (doc/fix_net_lsdem.rst)\n");
   return 2;
 }
@@ -81,6 +88,7 @@ static void defaults(net_opts *o)
   o->density = 1.0;
   o->k = 0.1;
   o->margin = -1.0;
+  o->name = "net";
 }
 
 static int parse_opt(int argc, char **argv, int *i, net_opts *o)
@@ -90,6 +98,12 @@ static int parse_opt(int argc, char **argv, int *i, net_opts *o)
   long k, l;
   if (!strcmp(a, "--library") && left >= 1) o->library = argv[++*i];
   else if (!strcmp(a, "--grains") && left >= 1) o->grains = argv[++*i];
+  else if (!strcmp(a, "--name") && left >= 1) {
+    o->name = argv[++*i];
+    if (!*o->name || strspn(o->name, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                      "0123456789_") != strlen(o->name))
+      return bad("name (letters, digits, underscores)", o->name);
+  }
   else if (!strcmp(a, "--shape") && left >= 1) {
     if (!parse_count(argv[++*i], 1, 16777216, &k)) return bad("shape", argv[*i]);
     o->shape = (int) k;
@@ -186,30 +200,35 @@ static void net_box(const net_opts *o, const shape_grain_file *gf, const lsdem_n
 static int write_data(const net_opts *o, const shape_grain_file *gf, const lsdem_net *net,
                       int ntypes)
 {
+  const int btype = gf->nbondtypes + 1;
   char path[4096];
   FILE *f = shape_open_out("net", o->prefix, ".data", path, sizeof path);
   if (!f) return 1;
   double lo[3], hi[3];
   net_box(o, gf, net, lo, hi);
   fprintf(f, "LSDEM grains + net (lsdem-shape net; atom_style hybrid lsdem bond)\n\n");
-  fprintf(f, "%ld atoms\n%d atom types\n%d bonds\n1 bond types\n\n",
-          (long) gf->n + net->nballs, ntypes, net->nbonds);
+  fprintf(f, "%ld atoms\n%d atom types\n%d bonds\n%d bond types\n\n",
+          (long) gf->n + net->nballs, ntypes, gf->nbonds + net->nbonds, btype);
   for (int k = 0; k < 3; k++) fprintf(f, "%.12g %.12g %clo %chi\n", lo[k], hi[k], 'x' + k, 'x' + k);
   fprintf(f, "\nAtoms # hybrid\n\n");
   shape_write_grain_atoms(f, gf);
   for (int b = 0; b < net->nballs; b++)
-    fprintf(f, "%ld %d %.17g %.17g %.17g %d %.17g 1 0 0 0 1\n", net->id[b],
+    fprintf(f, "%ld %d %.17g %.17g %.17g %d %.17g 1 0 0 0 %ld\n", net->id[b],
             o->type[net->clamp[b]], net->x[3 * b], net->x[3 * b + 1], net->x[3 * b + 2],
-            o->shape, o->density);
+            o->shape, o->density, gf->maxmol + 1);
   shape_write_velocities(f, gf);
   fprintf(f, "\nBonds\n\n");
+  shape_write_bonds(f, gf);
   for (int b = 0; b < net->nbonds; b++)
-    fprintf(f, "%d 1 %ld %ld\n", b + 1, net->id[net->bond[2 * b]], net->id[net->bond[2 * b + 1]]);
+    fprintf(f, "%d %d %ld %ld\n", gf->nbonds + b + 1, btype, net->id[net->bond[2 * b]],
+            net->id[net->bond[2 * b + 1]]);
   return shape_close_out("net", f, path);
 }
 
-static int write_include(const net_opts *o, const shape_grain_file *gf, const lsdem_net *net)
+static int write_include(const net_opts *o, const shape_grain_file *gf, const lsdem_net *net,
+                         double carried)
 {
+  const int btype = gf->nbondtypes + 1;
   char path[4096];
   FILE *f = shape_open_out("net", o->prefix, ".in", path, sizeof path);
   if (!f) return 1;
@@ -217,13 +236,17 @@ static int write_include(const net_opts *o, const shape_grain_file *gf, const ls
   fprintf(f, "# %s lattice, %d x %d balls of radius %.6g, spacing %.6g, rest length %.6g\n",
           net->lattice == LSDEM_NET_HEX ? "hexagonal" : "square", net->n1, net->n2, o->rb,
           net->spacing, net->rest);
-  /* ghosts out to two spacings: a bond's far ball stays a ghost up to 100 % strain */
-  fprintf(f, "comm_modify vel yes cutoff %.15g\n", 2.0 * net->spacing + 2.0 * o->rb);
-  fprintf(f, "bond_style lsdem/net\nbond_coeff 1 %.15g %.15g", o->k, net->rest);
+  /* ghosts out to two spacings: a bond's far ball stays a ghost up to 100 % strain; with
+     nets before this one in the file, out to two of their longest bonds too */
+  fprintf(f, "comm_modify vel yes cutoff %.15g\n",
+          2.0 * fmax(net->spacing, carried) + 2.0 * o->rb);
+  if (btype == 1) fprintf(f, "bond_style lsdem/net\n");
+  else fprintf(f, "# bond_style lsdem/net: in the .in of the file's first net (include it first)\n");
+  fprintf(f, "bond_coeff %d %.15g %.15g", btype, o->k, net->rest);
   if (o->damp > 0) fprintf(f, " damp %.15g", o->damp);
   if (o->brk) fprintf(f, " break %s %.15g", o->brk, o->limit);
-  fprintf(f, "\ngroup net type %d %d\ngroup net_free type %d\ngroup net_clamp type %d\n",
-          o->type[0], o->type[1], o->type[0], o->type[1]);
+  fprintf(f, "\ngroup %s type %d %d\ngroup %s_free type %d\ngroup %s_clamp type %d\n",
+          o->name, o->type[0], o->type[1], o->name, o->type[0], o->name, o->type[1]);
   if (gf->n) fprintf(f, "group grains molecule 0\n");
   return shape_close_out("net", f, path);
 }
@@ -256,6 +279,11 @@ int cmd_net(int argc, char **argv)
   shape_grain_file gf;
   memset(&gf, 0, sizeof gf);
   if (o.grains && shape_read_grains(o.grains, &gf)) return 1;
+  const double carried = shape_longest_bond(&gf);
+  if (carried < 0.0) {
+    shape_free_grains(&gf);
+    return 1;
+  }
   if (o.type[0] == 0) {
     o.type[0] = gf.n ? gf.ntypes + 1 : 1;
     o.type[1] = o.type[0] + 1;
@@ -275,13 +303,14 @@ int cmd_net(int argc, char **argv)
   for (int b = 0; b < net.nballs; b++) net.id[b] = id0 + b;
   rc = write_data(&o, &gf, &net, ntypes);
   if (!rc) rc = write_net(&o, &net);
-  if (!rc) rc = write_include(&o, &gf, &net);
+  if (!rc) rc = write_include(&o, &gf, &net, carried);
   if (!rc)
     printf("net: %d x %d balls (%d clamped), %d bonds, footprint %.12g x %.12g, normal "
-           "%.12g %.12g %.12g; atom IDs %ld-%ld, types %d (free) %d (clamped)\n",
+           "%.12g %.12g %.12g; atom IDs %ld-%ld, types %d (free) %d (clamped), molecule %ld, "
+           "bond type %d\n",
            net.n1, net.n2, count_clamped(&net), net.nbonds, net.size[0], net.size[1],
            net.normal[0], net.normal[1], net.normal[2], id0, id0 + net.nballs - 1, o.type[0],
-           o.type[1]);
+           o.type[1], gf.maxmol + 1, gf.nbondtypes + 1);
   lsdem_net_free(&net);
   shape_free_grains(&gf);
   return rc;

@@ -8,10 +8,14 @@
 # NGRAINS (default 400), RUNOUT (run-out plane's inclination, 0 or 3 degrees; default 0),
 # SEED (the packing's, default 7); the environment's VALLEY (U or V, default U) the valley's
 # cross-section; lsdem-shape from LSDEM_SHAPE_TOOL. The band's spacing is 0.2 (a quarter
-# of the mean grain size), its half-width 0.5 (2.5 spacings).
+# of the mean grain size), its half-width 0.5 (2.5 spacings). Other scenes (the timing
+# scene of bench/avalanche/timing.sh): TERRAIN_ARGS (more make_terrain.py options), SLAB
+# (the pack's box A B C instead of 11 7 and the thickness below), PLACE_ARGS (more
+# place_source.py options), each overriding what it repeats.
 # Writes OUTDIR/valley.asc, valley.band, grains.lslib, source.data; prints the
 # tools' reports (band.txt holds lsdem-shape terrain's).
 set -euo pipefail
+# shellcheck disable=SC2086 # TERRAIN_ARGS, SLAB, PLACE_ARGS: words on purpose
 out=$1
 n=${2:-400}
 runout=${3:-0}
@@ -26,7 +30,8 @@ cd "$out"
 # the valley: 52 x 22 (68 x 24 for an inclined run-out, on which the grains run farther and
 # spread wider), cell 0.5 (of the order of the grains), 25 deg slope onto the run-out
 read -r x0 yw < <("$py" -c "print('-38 11' if float('$runout') == 0 else '-54 12')")
-"$py" "$here/make_terrain.py" valley.asc --runout "$runout" --x0 "$x0" --ywidth "$yw" --shape "$valley"
+"$py" "$here/make_terrain.py" valley.asc --runout "$runout" --x0 "$x0" --ywidth "$yw" --shape "$valley" \
+  ${TERRAIN_ARGS:-}
 "$shape" terrain valley.asc valley.band --spacing 0.2 --width 0.5 > band.txt
 grep -E "surface:|band:|stored bricks|surface check" band.txt
 # the grains: grid spacing D/20, 120 surface nodes
@@ -46,10 +51,11 @@ rm -f "${parts[@]}"
 # the box (11 along the slope, 7 across, 5.8 thick) holds 400 grains at a solid fraction of
 # about 0.27: its thickness grows with NGRAINS
 thick=$("$py" -c "print(round(5.8 * $n / 400, 3))")
-"$shape" pack grains.lslib box.data --count "$n" --box 11 7 "$thick" --density 2.65 \
+"$shape" pack grains.lslib box.data --count "$n" --box ${SLAB:-11 7 $thick} --density 2.65 \
   --weights 8,8,8,8,7,7,7,7,5,5,5,5 --seed "$seed" --max-tries 5000 --strict
 # the slab on the slope: its downhill base edge at x = 3.5, its uphill end near the top
 # (14); the simulation box holds the terrain's extent and more (its faces stop no grain: a
 # grain that left it would be lost)
-"$py" "$here/place_source.py" box.data source.data --x0 3.5 --shape "$valley" --box $((x0 - 4)) 18 -16 16 -6 18
+"$py" "$here/place_source.py" box.data source.data --x0 3.5 --shape "$valley" --box $((x0 - 4)) 18 -16 16 -6 18 \
+  ${PLACE_ARGS:-}
 rm -f box.data

@@ -12,21 +12,29 @@
   r from the grain's mass) over the bin minus the ground's height at the bin's centre
   (valley.asc), as a field survey takes it (the surface after the event minus before);
   the terrain's contours beneath.
+  nets.png, with nets (in.avalanche -var nets N: nets.csv beside avalanche.csv, and the net
+  files net1.net, ... there): per net against time (a) the retained fraction (grains
+  upslope of it over all grains), (b) the anchor force |R| and its peak so far (over every
+  step); the nets are drawn in (c) and on the deposit map.
 
     /usr/bin/python3 plot.py [avalanche.csv] [deposit.dump] [valley.asc] [source.data]
-                             [avalanche.png] [deposit.png]
+                             [avalanche.png] [deposit.png] [nets.png]
 
 Prints the run's figures: the final front (the most advanced grain, and the front of the
 bulk: the 2 % most advanced grains left out) and centroid, H/L (front, bulk front and
-centroid), the deposit's volume, area, and largest and mean thickness; and a warning if
-grains came near the terrain's edges (avalanche.csv's near_edge)."""
+centroid), the deposit's volume, area, and largest and mean thickness; a warning if
+grains came near the terrain's edges (avalanche.csv's near_edge); with nets, each net's
+final retained fraction and peak anchor force."""
 import math
+import os
 import sys
 
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
+
+from terrain import read_asc
 
 RHO = 2.65                 # grain density (make_scene.sh: pack --density)
 MU_WALL = 0.2              # the terrain's friction (in.avalanche)
@@ -36,42 +44,45 @@ def arg(i, default):
     return sys.argv[i] if len(sys.argv) > i else default
 
 
-csv_path, dump_path, asc_path, src_path, png, dep_png = (
+csv_path, dump_path, asc_path, src_path, png, dep_png, nets_png = (
     arg(1, "avalanche.csv"), arg(2, "deposit.dump"), arg(3, "valley.asc"),
-    arg(4, "source.data"), arg(5, "avalanche.png"), arg(6, "deposit.png"))
+    arg(4, "source.data"), arg(5, "avalanche.png"), arg(6, "deposit.png"), arg(7, "nets.png"))
+
 
 # ---- inputs -------------------------------------------------------------------------
-with open(csv_path) as f:
-    head = None
-    rows = []
-    for line in f:
-        w = line.split()
-        if not w or w[0].startswith("#"):
-            continue
-        if w[0] == "time":
-            head = w
-            continue
-        rows.append([float(v) for v in w])
-col = {name: np.array([r[i] for r in rows]) for i, name in enumerate(head)}
-t = col["time"]
-
-
-def read_asc(path):
-    hdr, vals = {}, []
+def read_csv(path):
+    """{column: array} of a fix print file with a 'time ...' title"""
     with open(path) as f:
+        head = None
+        rows = []
         for line in f:
             w = line.split()
-            if not w:
+            if not w or w[0].startswith("#"):
                 continue
-            if w[0][0].isalpha():
-                hdr[w[0].lower()] = float(w[1])
-            else:
-                vals.extend(float(v) for v in w)
-    nx, ny, cell = int(hdr["ncols"]), int(hdr["nrows"]), hdr["cellsize"]
-    x0 = hdr["xllcenter"] if "xllcenter" in hdr else hdr["xllcorner"] + 0.5 * cell
-    y0 = hdr["yllcenter"] if "yllcenter" in hdr else hdr["yllcorner"] + 0.5 * cell
-    z = np.array(vals).reshape(ny, nx)[::-1]            # row 0 = south
-    return x0 + cell * np.arange(nx), y0 + cell * np.arange(ny), z, cell
+            if w[0] == "time":
+                head = w
+                continue
+            rows.append([float(v) for v in w])
+    return {name: np.array([r[i] for r in rows]) for i, name in enumerate(head)}
+
+
+def read_net(path):
+    """origin, e1, e2 and size of a net file (lsdem-shape net)"""
+    net = {}
+    for line in open(path):
+        w = line.split("#")[0].split()
+        if w and w[0] in ("origin", "e1", "e2", "size"):
+            net[w[0]] = np.array([float(v) for v in w[1:]])
+    return net
+
+
+col = read_csv(csv_path)
+t = col["time"]
+nets_csv = os.path.join(os.path.dirname(csv_path), "nets.csv")
+netcol = read_csv(nets_csv) if os.path.exists(nets_csv) else {}
+nnets = sum(1 for c in netcol if c.startswith("retained_"))
+nets = [read_net(os.path.join(os.path.dirname(csv_path), "net%d.net" % n))
+        for n in range(1, nnets + 1)]
 
 
 def read_dump(path):
@@ -101,16 +112,6 @@ dep = read_dump(dump_path)
 src = read_source(src_path)
 r_eq = (3.0 * dep["mass"] / (4.0 * math.pi * RHO)) ** (1.0 / 3.0)
 volume = float(np.sum(dep["mass"]) / RHO)
-
-
-def ground(x, y):
-    """Bilinear interpolation of the height map (clamped at its edges, as the band is)."""
-    fx = np.clip((np.asarray(x) - gx[0]) / cell, 0, len(gx) - 1.000001)
-    fy = np.clip((np.asarray(y) - gy[0]) / cell, 0, len(gy) - 1.000001)
-    i, j = fx.astype(int), fy.astype(int)
-    ax, ay = fx - i, fy - j
-    return ((1 - ax) * (1 - ay) * gz[j, i] + ax * (1 - ay) * gz[j, i + 1]
-            + (1 - ax) * ay * gz[j + 1, i] + ax * ay * gz[j + 1, i + 1])
 
 
 # crown (the source's highest grain centre, its uphill end) and the final front, as in.avalanche
@@ -156,6 +157,10 @@ a.plot(src[:, 0], src[:, 2], "o", ms=2, color="tab:orange", label="source (t = 0
 a.plot(dep["x"], dep["z"], "o", ms=2, color="tab:blue", label="deposit (end)")
 a.plot([x_crown, x_front], [z_crown, z_front], "r--", lw=1,
        label="crown to front: H/L = %.3f" % hl)
+for n, net in enumerate(nets):
+    ends = [net["origin"], net["origin"] + net["size"][1] * net["e2"]]
+    a.plot([e[0] for e in ends], [e[2] for e in ends], "-", color="tab:red", lw=2.5,
+           label="nets (as built)" if n == 0 else None)
 a.set_aspect("equal")
 a.set_xlabel("x")
 a.set_ylabel("z")
@@ -209,6 +214,10 @@ fig.colorbar(m, ax=a, shrink=0.75, label="deposit thickness (top of the grains -
 a.plot(src[:, 0], src[:, 1], ".", ms=1.5, color="tab:orange", label="source (grain centres)")
 a.plot([x_front], [dep["y"][k]], "r*", ms=10, label="front (most advanced grain)")
 a.plot([dep["x"][k2]], [dep["y"][k2]], "m^", ms=8, label="front of the bulk (2 % beyond)")
+for n, net in enumerate(nets):
+    ends = [net["origin"], net["origin"] + net["size"][0] * net["e1"]]
+    a.plot([e[0] for e in ends], [e[1] for e in ends], "-", color="tab:red", lw=2,
+           label="nets (as built)" if n == 0 else None)
 a.set_aspect("equal")
 a.set_xlabel("x (flow towards -x)")
 a.set_ylabel("y")
@@ -228,3 +237,34 @@ print("%s, %s: t = %.2f: front x = %.2f (of the bulk, 2 %% beyond: %.2f), centro
       % (png, dep_png, t[-1], x_front, dep["x"][k2], col["centroid_x"][-1],
          col["mean_speed"][-1], hl, hl_bulk, hl_cm, volume, area, np.nanmax(thick),
          np.nanmean(thick)))
+
+# ---- nets.png ----------------------------------------------------------------------------
+if nnets:
+    fig, ax = plt.subplots(1, 2, figsize=(12, 4.5))
+    tn = netcol["time"]
+    for n in range(1, nnets + 1):
+        c = "C%d" % (n - 1)
+        ax[0].plot(tn, netcol["retained_%d" % n], "-", color=c,
+                   label="net %d (x = %g): retained" % (n, nets[n - 1]["origin"][0]))
+        ax[1].plot(tn, netcol["anchor_%d" % n], "-", color=c, lw=0.8,
+                   label="net %d: anchor force |R|" % n)
+        ax[1].plot(tn, netcol["peak_anchor_%d" % n], "--", color=c,
+                   label="net %d: peak so far (every step)" % n)
+        print("%s: net %d at x = %g: retained fraction %.4f, grains through %d, peak anchor force "
+              "%.1f, at the end %.1f" % (nets_png, n, nets[n - 1]["origin"][0],
+                                         netcol["retained_%d" % n][-1],
+                                         netcol["through_%d" % n][-1],
+                                         netcol["peak_anchor_%d" % n][-1],
+                                         netcol["anchor_%d" % n][-1]))
+    ax[0].set_xlabel("time")
+    ax[0].set_ylabel("fraction of the grains upslope of the net")
+    ax[0].set_ylim(0, 1.05)
+    ax[0].legend(loc="lower left", fontsize=8)
+    ax[0].set_title("(a) retained fraction")
+    ax[1].set_xlabel("time")
+    ax[1].set_ylabel("anchor force (sum over the clamped balls)")
+    ax[1].legend(loc="upper left", fontsize=8)
+    ax[1].set_title("(b) anchor force")
+    fig.suptitle("Nets across the channel: %d net(s)" % nnets)
+    fig.tight_layout()
+    fig.savefig(nets_png, dpi=100)

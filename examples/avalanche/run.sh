@@ -6,7 +6,9 @@
 # VALLEY (the valley's cross-section, U or V; U), SEED (the packing's, 7), METHOD (penalty
 # or impulse: 16 times the penalty step), NP (2),
 # TIME (simulated time at most, 10: the run stops once the grains are at rest), VTK
-# (simulated time between ParaView frames of the grains, 1.0), OUT (output folder, out/).
+# (simulated time between ParaView frames of the grains, 1.0), OUT (output folder, out/),
+# NETS (0; 1 or 2: protection nets across the run-out, make_nets.sh, whose optional
+# arguments X1 X2 H1 H2 K C NET_ARGS passes on).
 #   run.sh [prepare]   (prepare: make valley.asc, valley.band, grains.lslib, source.data only)
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -14,12 +16,14 @@ lmp=${LSDEM_LMP:-$here/../../build/lmp}
 shape=${LSDEM_SHAPE_TOOL:-$here/../../build/lsdem-shape}
 py=/usr/bin/python3
 n=${NGRAINS:-400} runout=${RUNOUT:-0} seed=${SEED:-7} method=${METHOD:-penalty} np=${NP:-2}
-t_end=${TIME:-10} vtk=${VTK:-1.0}
+t_end=${TIME:-10} vtk=${VTK:-1.0} nets=${NETS:-0}
 out=${OUT:-$here/out}
 case "$method" in penalty|impulse) ;; *) echo "run.sh: METHOD must be penalty or impulse, not '$method'" >&2; exit 2 ;; esac
 mkdir -p "$out"
 cd "$out"
 LSDEM_SHAPE_TOOL=$shape bash "$here/make_scene.sh" . "$n" "$runout" "$seed"
+# shellcheck disable=SC2086 # NET_ARGS: words on purpose
+[ "$nets" != 0 ] && LSDEM_SHAPE_TOOL=$shape bash "$here/make_nets.sh" . "$nets" ${NET_ARGS:-}
 # the penalty step: 0.2 sqrt(m_min / (5 kn)), below fix nve/lsdem's bound for a flat contact
 # of five nodes (eq 4.47's 0.1 sqrt(m_min / kn) is just above it); kn = 3e4, density 2.65
 vmin=$("$shape" list grains.lslib | awk 'NR > 2 && NF { v = $(NF - 3); if (m == "" || v < m) m = v } END { print m }')
@@ -36,9 +40,11 @@ rm -rf vtk
 start=$SECONDS
 "${mpi[@]}" "$lmp" -in "$here/in.avalanche" -var method "$method" -var dt "$dt" \
   -var time "$t_end" -var vtkevery "$vtk" -var edge_x "$edge_x" -var edge_y "$edge_y" \
+  -var nets "$nets" \
   -log log.lammps -screen none
 echo "lmp took $((SECONDS - start)) s"
-grep -E "^Loop time|^end:" log.lammps
+grep -E "^Loop time|^end:|^net [12]:" log.lammps
 "$py" "$here/plot.py" avalanche.csv deposit.dump valley.asc source.data avalanche.png deposit.png
 echo "results: $out/log.lammps, avalanche.csv, avalanche.png, deposit.png, deposit.dump," \
-  "avalanche_end.data, vtk/grains.pvd, vtk/deposit.pvd, vtk/terrain.pvd (ParaView)"
+  "avalanche_end.data, vtk/grains.pvd, vtk/deposit.pvd, vtk/terrain.pvd (ParaView)" \
+  "$([ "$nets" != 0 ] && echo ", nets.csv, nets.png, nets_end.dump, vtk/nets.pvd, vtk/nets_end.pvd")"

@@ -31,7 +31,7 @@ using namespace LAMMPS_NS;
 
 BondLsdemNet::BondLsdemNet(LAMMPS *lmp) :
     Bond(lmp), k(nullptr), r0(nullptr), damp(nullptr), limit(nullptr), mode(nullptr),
-    damping_work(0.0)
+    damping_work(nullptr)
 {
   quantum.q = quantum.inv_q = 0.0;
 }
@@ -47,6 +47,7 @@ BondLsdemNet::~BondLsdemNet()
     memory->destroy(damp);
     memory->destroy(limit);
     memory->destroy(mode);
+    memory->destroy(damping_work);
   }
 }
 
@@ -94,7 +95,7 @@ void BondLsdemNet::compute(int eflag, int vflag)
     if (damp[type] > 0.0 && !update->setupflag) {
       // work of the damping force over this step (a bond seen by two ranks counts half on each)
       const double share = newton_bond || (i1 < nlocal && i2 < nlocal) ? 1.0 : 0.5;
-      damping_work += share * update->dt *
+      damping_work[type] += share * update->dt *
           lsdem_net_bond_damping_power(x[i1], x[i2], v[i1], v[i2], damp[type]);
     }
     lsdem_quantize3(f2, quantum, f2);
@@ -151,7 +152,8 @@ void BondLsdemNet::allocate()
   memory->create(limit, n + 1, "bond:limit");
   memory->create(mode, n + 1, "bond:mode");
   memory->create(setflag, n + 1, "bond:setflag");
-  for (int i = 1; i <= n; i++) setflag[i] = 0;
+  memory->create(damping_work, n + 1, "bond:damping_work");
+  for (int i = 0; i <= n; i++) setflag[i] = 0, damping_work[i] = 0.0;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -288,7 +290,6 @@ void *BondLsdemNet::extract(const char *str, int &dim)
   dim = 1;
   if (strcmp(str, "k") == 0) return (void *) k;
   if (strcmp(str, "r0") == 0) return (void *) r0;
-  dim = 0;
-  if (strcmp(str, "damping_work") == 0) return (void *) &damping_work;    // this rank's part
+  if (strcmp(str, "damping_work") == 0) return (void *) damping_work;    // this rank's, per type
   return nullptr;
 }

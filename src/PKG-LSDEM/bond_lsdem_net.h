@@ -43,7 +43,7 @@ class BondLsdemNet : public Bond {
   double *k, *r0, *damp, *limit;    // per type; limit of the rupture criterion
   int *mode;                        // per type: LSDEM_NET_BREAK_NONE / _STRAIN / _FORCE
   lsdem_quantum quantum;            // for the order-free sums of the bond forces
-  double damping_work;              // this rank's work of the damping forces since creation
+  double *damping_work;             // per type: this rank's damping work since creation
 
   void allocate();
   void break_bond(int n);           // entry n of neighbor->bondlist

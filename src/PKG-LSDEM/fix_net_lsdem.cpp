@@ -11,7 +11,10 @@
      5    residual height: lowest ball height over the net's initial plane (along n)
      6    bonds broken (bond type 0 among the net's bonds)
      7    grains through the net: grain centres in the footprint below the nearest ball
-     8    work of the bonds' damping forces (energy dissipated by them), summed over ranks
+     8    work of the damping forces of the net's bond types, summed over ranks
+     9    peak anchor force: the largest |R| (1-3) at the end of any step since the fix began
+     10   grains before the net (upslope of it when its normal points upslope): in the
+          footprint at or above the nearest ball, beside it on the normal's side
 ------------------------------------------------------------------------- */
 
 #include "fix_net_lsdem.h"
@@ -31,12 +34,13 @@
 #include <cstring>
 
 using namespace LAMMPS_NS;
+using namespace FixConst;
 
 /* ---------------------------------------------------------------------- */
 
 FixNetLsdem::FixNetLsdem(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), clamp_group(-1), clamp_bit(0), grain_group(-1), grain_bit(0),
-    out_step(-1)
+    peak(0.0), out_step(-1)
 {
   std::memset(&net, 0, sizeof(net));
   const char *usage = "'fix ID net net/lsdem FILE clamp CLAMP-GROUP [grains GRAIN-GROUP]'";
@@ -65,7 +69,7 @@ FixNetLsdem::FixNetLsdem(LAMMPS *lmp, int narg, char **arg) :
   xball.resize(3 * (size_t) net.nballs);
 
   vector_flag = 1;
-  size_vector = 8;
+  size_vector = 10;
   global_freq = 1;
   extvector = 0;
 }
@@ -81,7 +85,7 @@ FixNetLsdem::~FixNetLsdem()
 
 int FixNetLsdem::setmask()
 {
-  return 0;
+  return END_OF_STEP;
 }
 
 /* ----------------------------------------------------------------------
@@ -115,7 +119,34 @@ void FixNetLsdem::init()
   if (!force->bond || !force->bond_match("lsdem/net"))
     error->all(FLERR, "fix net/lsdem requires bond_style lsdem/net");
   check_balls();
+  find_bond_types();
   out_step = -1;
+}
+
+/* the bond types among the intact bonds of the net's balls (the damping work is booked by
+   type: a net made by lsdem-shape net has a bond type of its own) */
+void FixNetLsdem::find_bond_types()
+{
+  std::vector<int> mine(atom->nbondtypes + 1, 0);
+  net_types.assign(atom->nbondtypes + 1, 0);
+  for (int i = 0; i < atom->nlocal; i++)
+    if (atom->mask[i] & groupbit)
+      for (int m = 0; m < atom->num_bond[i]; m++)
+        if (atom->bond_type[i][m] > 0) mine[atom->bond_type[i][m]] = 1;
+  MPI_Allreduce(mine.data(), net_types.data(), (int) mine.size(), MPI_INT, MPI_MAX, world);
+}
+
+/* the peak anchor force, at the start of a run and after every step */
+void FixNetLsdem::setup(int /*vflag*/)
+{
+  end_of_step();
+}
+
+void FixNetLsdem::end_of_step()
+{
+  double r[3];
+  anchor_reaction(r);
+  peak = std::max(peak, std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]));
 }
 
 /* ----------------------------------------------------------------------
@@ -188,41 +219,34 @@ double FixNetLsdem::bonds_broken()
   return force->newton_bond ? (double) all : 0.5 * (double) all;
 }
 
-/* grain centres over the footprint (initial in-plane coordinates) below the ball nearest
-   to them in the plane; needs xball of this step. Cost: grains over the net x balls. */
-double FixNetLsdem::grains_through()
+/* grain centres through the net and before it (lsdem_net_side); needs xball of this
+   step. Cost: grains over the footprint x balls. */
+void FixNetLsdem::grain_sides(double *through, double *before)
 {
-  if (grain_group < 0) return 0.0;
-  bigint mine = 0, all;
-  for (int i = 0; i < atom->nlocal; i++) {
-    if (!(atom->mask[i] & grain_bit)) continue;
-    double uv[2];
-    const double h = lsdem_net_height(&net, atom->x[i], uv);
-    if (uv[0] < 0.0 || uv[0] > net.size[0] || uv[1] < 0.0 || uv[1] > net.size[1]) continue;
-    double best = DBL_MAX, hball = 0.0;
-    for (int b = 0; b < net.nballs; b++) {
-      double buv[2];
-      const double hb = lsdem_net_height(&net, &xball[3 * (size_t) b], buv);
-      const double d2 = (buv[0] - uv[0]) * (buv[0] - uv[0]) + (buv[1] - uv[1]) * (buv[1] - uv[1]);
-      if (d2 < best) {
-        best = d2;
-        hball = hb;
-      }
+  bigint mine[2] = {0, 0}, all[2] = {0, 0};
+  if (grain_group >= 0)
+    for (int i = 0; i < atom->nlocal; i++) {
+      if (!(atom->mask[i] & grain_bit)) continue;
+      const int side = lsdem_net_side(&net, xball.data(), atom->x[i]);
+      mine[0] += side == LSDEM_NET_THROUGH;
+      mine[1] += side == LSDEM_NET_BEFORE;
     }
-    mine += h < hball;
-  }
-  MPI_Allreduce(&mine, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
-  return (double) all;
+  MPI_Allreduce(mine, all, 2, MPI_LMP_BIGINT, MPI_SUM, world);
+  *through = (double) all[0];
+  *before = (double) all[1];
 }
 
-/* the bond style's work of the damping forces, this rank's part summed over ranks (in rank
-   order: the same to round-off, not to the bit, on another rank count) */
+/* the bond style's work of the damping forces of the net's bond types, this rank's part
+   summed over ranks (in rank order: the same to round-off, not to the bit, on another rank
+   count) */
 double FixNetLsdem::damping_work()
 {
   int dim;
-  const double *mine = (const double *) force->bond->extract("damping_work", dim);
-  double all = 0.0;
-  MPI_Allreduce(mine, &all, 1, MPI_DOUBLE, MPI_SUM, world);
+  const double *work = (const double *) force->bond->extract("damping_work", dim);
+  double mine = 0.0, all = 0.0;
+  for (int t = 1; t < (int) net_types.size(); t++)
+    if (net_types[t]) mine += work[t];
+  MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE, MPI_SUM, world);
   return all;
 }
 
@@ -234,8 +258,9 @@ void FixNetLsdem::compute_outputs()
   out[3] = largest_strain();
   out[4] = lowest_height();
   out[5] = bonds_broken();
-  out[6] = grains_through();
+  grain_sides(&out[6], &out[9]);
   out[7] = damping_work();
+  out[8] = peak;
   out_step = update->ntimestep;
 }
 

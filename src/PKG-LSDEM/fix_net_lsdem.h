@@ -2,10 +2,11 @@
    LSDEM package: level-set discrete element method for LAMMPS.
 
    fix net/lsdem: what a net of bonded balls (lsdem-shape net, bond_style lsdem/net) does,
-   as a global vector for thermo: the anchors' reaction force, the largest bond strain,
-   the residual height, the bonds broken and the grains through the net. It reads the net
-   file (core lsdem_net_read) and changes no atom; every output is recomputed from the
-   atoms when asked (nothing to carry over a restart).
+   as a global vector for thermo: the anchors' reaction force and its peak, the largest
+   bond strain, the residual height, the bonds broken, the grains through the net and
+   before it. It reads the net file (core lsdem_net_read) and changes no atom; every
+   output but the peak (kept from the end of every step, not in restart files) is
+   recomputed from the atoms when asked.
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -32,6 +33,8 @@ class FixNetLsdem : public Fix {
   ~FixNetLsdem() override;
   int setmask() override;
   void init() override;
+  void setup(int) override;
+  void end_of_step() override;
   double compute_vector(int) override;
 
  private:
@@ -40,16 +43,19 @@ class FixNetLsdem : public Fix {
   std::unordered_map<tagint, int> index;  // atom ID -> ball index of the file
   int clamp_group, clamp_bit, grain_group, grain_bit;
   std::vector<double> xball;              // every ball's position (gathered)
-  double out[8];
+  std::vector<int> net_types;             // per bond type: 1 if the net's bonds have it
+  double peak;                            // largest |anchor reaction| so far
+  double out[10];
   bigint out_step;
 
   void check_balls();
+  void find_bond_types();
   void compute_outputs();
   void anchor_reaction(double *r);
   double largest_strain();
   double lowest_height();
   double bonds_broken();
-  double grains_through();
+  void grain_sides(double *through, double *before);
   double damping_work();
 };
 

@@ -70,6 +70,14 @@ run(0 net x --library s.lslib --shape 1 --rb 2 --spacing 5 --clamp u2)
 expect_in("${err}" "bad clamp edges 'u2'")
 run(0 net x --library s.lslib --shape 1 --rb 2 --spacing 5 --e1 1 0 0 --e2 2 0 0)
 expect_in("${err}" "not parallel")
+# a second net added to the first's data file: IDs 16-30, types 3 4, molecule 2, bond
+# type 2; a group name LAMMPS could not take, and a membrane on a file with bonds, refused
+run(1 net n2 --library s.lslib --shape 1 --rb 2 --spacing 5 --size 20 10 --lattice square --grains n.data --name second)
+expect_in("${out}" "atom IDs 16-30, types 3 (free) 4 (clamped), molecule 2, bond type 2")
+run(0 net x --library s.lslib --shape 1 --rb 2 --spacing 5 --grains n.data --name "a b")
+expect_in("${err}" "bad name")
+run(0 membrane x --radius 20 --height 10 --rb 2 --library s.lslib --shapes 1 1 --grains n.data)
+expect_in("${err}" "has bonds")
 run(0 pack e.lslib q.data --count 40 --box 8 6 3 --seed 3 --max-tries 200 --strict)
 # morphology files a grain cannot use are refused naming the shape: 3 x 3 x 3 grids, one
 # with no negative value (no solid: said before any other check or warning, here the grid

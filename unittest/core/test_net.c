@@ -1,6 +1,7 @@
 /* test_net.c -- nets of bonded balls (core/specimen/net.c, net_file.c): the lattices
  * against their construction rules (counts by closed form, every bond one spacing long,
- * clamp flags on the chosen edges, an orthonormal frame for a tilted plane), the bond force
+ * clamp flags on the chosen edges, an orthonormal frame for a tilted plane), the side of a
+ * sagged net a point is on (worked by hand), the bond force
  * against a central difference of its energy and the damping against its definition, the
  * rupture criteria on either side of the limit, and the net file codec (round trip; a bond
  * to a missing ball, a repeated ball and a bad header refused with the line named). */
@@ -75,6 +76,37 @@ static void test_frame(void)
   p.e2[0] = 0, p.e2[1] = 1, p.e2[2] = 0;
   p.rest = 0.0;
   CHECK(lsdem_net_build(&p, &net, &err) == LSDEM_ERR_ARG, "zero rest length accepted");
+}
+
+/* lsdem_net_side on a 3 x 3 square net in z = 0 (n = +z) whose middle ball sagged to
+ * z = -0.5: the side each point must be on, worked out by hand from the rule (nearest ball
+ * in (u, v) over the footprint, the initial plane beside it). */
+static void test_side(void)
+{
+  lsdem_net_params p = {LSDEM_NET_SQUARE, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 2}, 1.0, 1.0, 15};
+  lsdem_net net;
+  lsdem_error err;
+  CHECK(lsdem_net_build(&p, &net, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(net.nballs == 9 && net.x[3 * 4] == 1.0 && net.x[3 * 4 + 1] == 1.0, "middle ball");
+  net.x[3 * 4 + 2] = -0.5;
+  static const struct {
+    double x[3];
+    int side;
+  } cases[] = {
+      {{1.1, 0.9, -0.3}, LSDEM_NET_BEFORE},  /* in the bulge, above the sagged ball */
+      {{1.1, 0.9, -0.7}, LSDEM_NET_THROUGH}, /* below it */
+      {{0.2, 0.1, -0.1}, LSDEM_NET_THROUGH}, /* nearest ball (0, 0) at z = 0 */
+      {{0.2, 0.1, 0.1}, LSDEM_NET_BEFORE},
+      {{3.0, 1.0, 0.5}, LSDEM_NET_BEFORE},   /* beside the footprint, on the normal's side */
+      {{3.0, 1.0, -0.5}, LSDEM_NET_BESIDE},  /* beside it and past the plane */
+      {{1.0, -0.1, -0.5}, LSDEM_NET_BESIDE},
+  };
+  for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+    int side = lsdem_net_side(&net, net.x, cases[c].x);
+    CHECK(side == cases[c].side, "point (%g, %g, %g): side %d, expected %d", cases[c].x[0],
+          cases[c].x[1], cases[c].x[2], side, cases[c].side);
+  }
+  lsdem_net_free(&net);
 }
 
 /* f_j = -dE/dx_j (central difference of the returned energy); damping along the bond */
@@ -173,6 +205,7 @@ int main(void)
   test_counts(LSDEM_NET_HEX, 6, 5);
   test_counts(LSDEM_NET_HEX, 7, 1);
   test_frame();
+  test_side();
   test_force();
   test_breaks();
   test_file();

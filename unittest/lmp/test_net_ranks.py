@@ -1,9 +1,10 @@
 """The net outputs of fix net/lsdem (anchor reaction, largest strain, residual height,
-bonds broken, grains through) and every ball's and grain's position are bit-identical on
-1, 2 and 4 ranks (4 oversubscribed), over the first 2,500 steps of examples/net_drop (the
-grains land on the net from step ~1,500): bond forces and the anchors' sum are rounded to
-power-of-two quanta (doc/howto_parallel.rst), so no sum depends on the decomposition.
-The same on 1 and 2 ranks for the impulse method (400 steps of 2e-3)."""
+bonds broken, grains through, peak anchor force, grains before the net) and every ball's
+and grain's position are bit-identical on 1, 2 and 4 ranks (4 oversubscribed), over the
+first 2,500 steps of examples/net_drop (the grains land on the net from step ~1,500): bond
+forces and the anchors' sum are rounded to power-of-two quanta (doc/howto_parallel.rst),
+so no sum depends on the decomposition. The same on 1 and 2 ranks for the impulse method
+(400 steps of 2e-3)."""
 import os
 import shutil
 
@@ -17,7 +18,8 @@ deck = open(os.path.join("net_drop", "in.net_drop")).read()
 deck = deck.replace("thermo          1000", "thermo          100")
 deck = deck.replace("run             ${nsteps}",
                     "thermo_style custom step f_net[1] f_net[2] f_net[3] f_net[4] f_net[5] "
-                    "f_net[6] f_net[7]\nthermo_modify format float %.17g\nrun ${nsteps}\n"
+                    "f_net[6] f_net[7] f_net[9] f_net[10]\n"
+                    "thermo_modify format float %.17g\nrun ${nsteps}\n"
                     "write_dump all custom end.dump id x y z vx vy vz modify sort id "
                     "format float %.17g")
 open(os.path.join("net_drop", "in.test"), "w").write(deck)
@@ -31,6 +33,9 @@ for np_ in (1, 2, 4):
 rows1 = out[1][0]
 check(len(rows1) == 26, "thermo rows on 1 rank: %d" % len(rows1))
 check(any(r["f_net[5]"] < -0.1 for r in rows1), "the net did not sag")
+check(rows1[-1]["f_net[9]"] > 0 and rows1[-1]["f_net[10]"] == 10,
+      "peak anchor force %g, grains before the net %g (expected > 0 and all 10)"
+      % (rows1[-1]["f_net[9]"], rows1[-1]["f_net[10]"]))
 for np_ in (2, 4):
     check(out[np_][0] == rows1, "net outputs on %d ranks differ from 1 rank" % np_)
     check(out[np_][1] == out[1][1], "positions/velocities on %d ranks differ from 1 rank" % np_)

@@ -330,6 +330,15 @@ void lsdem_net_free(lsdem_net *net);
  * uv = ((x - origin) . e1, (x - origin) . e2). */
 double lsdem_net_height(const lsdem_net *net, const double x[3], double uv[2]);
 
+/* Which side of the net a point (a grain's centre) is on, the balls being at xball (3 per
+ * ball, the net's order): over the footprint (0 <= u <= size[0], 0 <= v <= size[1]) it is
+ * LSDEM_NET_THROUGH below the ball nearest to it in (u, v), LSDEM_NET_BEFORE at or above
+ * it; beside the footprint LSDEM_NET_BEFORE on the normal's side of the initial plane
+ * (height >= 0), LSDEM_NET_BESIDE below it (gone past the net around or over it). With the
+ * normal pointing upslope, BEFORE is upslope of the net (retained). Cost: nballs. */
+enum { LSDEM_NET_BESIDE = 0, LSDEM_NET_THROUGH = 1, LSDEM_NET_BEFORE = 2 };
+int lsdem_net_side(const lsdem_net *net, const double *xball, const double x[3]);
+
 /* Net bond force (bond_style lsdem/net), an axial spring with axial viscous damping:
  * with d = xj - xi, L = |d|, u = d / L, v = vj - vi,
  *   f_j = -(k (L - r0) + c (v . u)) u,   f_i = -f_j,

@@ -154,6 +154,25 @@ double lsdem_net_height(const lsdem_net *net, const double x[3], double uv[2])
   return lsdem_dot3(d, net->normal);
 }
 
+int lsdem_net_side(const lsdem_net *net, const double *xball, const double x[3])
+{
+  double uv[2];
+  const double h = lsdem_net_height(net, x, uv);
+  if (uv[0] < 0.0 || uv[0] > net->size[0] || uv[1] < 0.0 || uv[1] > net->size[1])
+    return h >= 0.0 ? LSDEM_NET_BEFORE : LSDEM_NET_BESIDE;
+  double best = INFINITY, hball = 0.0;
+  for (int b = 0; b < net->nballs; b++) {
+    double buv[2];
+    const double hb = lsdem_net_height(net, xball + 3 * (size_t) b, buv);
+    const double d2 = (buv[0] - uv[0]) * (buv[0] - uv[0]) + (buv[1] - uv[1]) * (buv[1] - uv[1]);
+    if (d2 < best) {
+      best = d2;
+      hball = hb;
+    }
+  }
+  return h < hball ? LSDEM_NET_THROUGH : LSDEM_NET_BEFORE;
+}
+
 /* --------------------------------------------------------------- bonds ---- */
 
 /* report §4.4.2: permanent springs between the balls ("K = 0.1"), axial */
