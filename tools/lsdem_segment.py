@@ -49,7 +49,8 @@ SPECK_VOXELS = 27     # coarse foreground specks smaller than this are noise in 
 DENOISE = "none"      # the default denoising (doc/lsdem_segment.rst, "How well it segments")
 H_PER_SIZE2 = 0.0015  # h-maxima height over the square of the grain size
 MIN_VOLUME_SHARE = 0.05  # smallest grain over the volume of a sphere of the grain size
-PURE_DEPTH = 2        # voxels: a pure voxel is this far inside its phase
+PURE_DEPTH = 2        # voxels: a pure voxel is this far inside its phase, if there are
+MIN_PURE = 100        # this many sampled per fitted coefficient (else nearer the surface)
 RING_WINDOW = 9       # half-voxel bins: rings are narrower than a median over 4.5 voxels
 GREY_WEIGHT = 2.0     # the distance map times the normalised grey level to this power
 WEIGHT_SIGMA = 0.7    # voxels: the Gaussian that takes the noise out of that weight
@@ -243,8 +244,9 @@ def axis_radius(shape):
 
 class Shading:
     """The grey levels of the two phases across the scan: for each phase, pore and grain, a
-    least-squares fit of its pure voxels (those whose 26 neighbours are all of the same
-    phase: no partial volume) to 1, x, y, z (a linear trend) and rho^2, rho^4 (cupping:
+    least-squares fit of its pure voxels (those PURE_DEPTH voxels or more inside the phase
+    in every direction, 26-neighbour erosion: no partial volume, no blur; less deep when the
+    pores of small grains leave fewer than MIN_PURE per coefficient) to 1, x, y, z (a linear trend) and rho^2, rho^4 (cupping:
     beam hardening darkens the middle of the field of view; rho the distance from the axis
     over the field of view's radius), both plus one offset per half-voxel ring about the
     axis that the two phases share (ring artifacts: the mean residual of the pure voxels at
@@ -264,12 +266,16 @@ class Shading:
             cols += [rho ** 2, rho ** 4]
         basis = np.stack(cols, axis=1)
         full = np.ones((3, 3, 3), bool)
-        pure = [ndi.binary_erosion(m, full, PURE_DEPTH)[::step, ::step, ::step][keep].ravel()
-                for m in (~solid & roi if roi is not None else ~solid, solid)]
-        for m in pure:
-            if m.sum() < 10 * basis.shape[1]:
-                fail("one phase has almost no voxels away from the other (%d): the scan does "
-                     "not look like grains and pores; give --threshold" % m.sum())
+        phases = (~solid & roi if roi is not None else ~solid, solid)
+        for depth in range(PURE_DEPTH, -1, -1):  # narrow pores of small grains: less deep
+            pure = [(ndi.binary_erosion(m, full, depth) if depth else m)[::step, ::step, ::step]
+                    [keep].ravel() for m in phases]
+            if min(m.sum() for m in pure) >= MIN_PURE * basis.shape[1]:
+                break
+        else:
+            fail("one phase has almost no voxels (%d): the scan does not look like grains and "
+                 "pores; give --threshold" % min(m.sum() for m in pure))
+        self.depth = depth
         self.trend, self.redge = trend, float(rho.max())
         self.bins = np.floor(rho * self.rfov * 2).astype(np.int64)
         self.ring = np.zeros(int(rad.max() * 2) + 2)

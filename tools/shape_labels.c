@@ -11,15 +11,17 @@
 #include <string.h>
 
 enum { LABELS_MAX_WARNED = 10 }; /* grains whose warnings are printed in full */
-/* The node checks' tolerances for grains from voxel labels: on 751 perfectly segmented grains
- * (the truth labels of tools/synthetic_sand.py scans at D50 8, 14 and 25 voxels, default node
- * spacing) the node volume differed from the grid's by -3.8 to +12.0 % (median +5 %: the
- * co-area node areas of a grid that is only nearly a distance function) and the moments of
- * inertia by up to 13.2 %, against the defaults' 3 % and 5 % that every such grain failed;
- * these bounds pass them all with a margin (doc/lsdem_shape.rst, from-labels). They check
- * the nodes against the grid, not the segmentation: a merged or fattened label passes. */
-#define LABELS_VOLUME_TOL 0.15
-#define LABELS_INERTIA_TOL 0.20
+/* The node checks' tolerances for grains from voxel labels, from what the discretisation
+ * gives on good grains of tools/synthetic_sand.py scans at D50 8, 14 and 25 voxels (default
+ * node spacing): the node volume differed from the grid's by -3.8 to +12.0 % on 751 truth
+ * labels (median +5 %: the co-area node areas of a grid that is only nearly a distance
+ * function) and by up to 16.6 % on 285 labels lsdem-segment found with IoU >= 0.8 (rougher
+ * surfaces); the moments by up to 13.2 and 17.1 %. The defaults' 3 % and 5 % failed nearly
+ * every grain; these bounds pass them all with a margin (doc/lsdem_shape.rst, from-labels).
+ * They check the nodes against the grid, not the segmentation: the labels that held two
+ * grains or missed one showed the same spread (up to 17.4 % and 23.8 %). */
+#define LABELS_VOLUME_TOL 0.20
+#define LABELS_INERTIA_TOL 0.25
 /* warnings that only restate the scan's resolution: counted once for all grains */
 #define LABELS_RESOLUTION (LSDEM_CHECK_COARSE_GRID | LSDEM_CHECK_SPARSE_NODES)
 
