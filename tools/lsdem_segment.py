@@ -10,22 +10,36 @@ python3-skimage, python3-scipy) the usual way for sand scans, and the labels go 
 `lsdem-shape from-labels`, which builds one level-set shape per grain:
 
   0. region of interest (--roi auto, the default): the zero-filled corners outside a
-     reconstruction's circular field of view and the air around the specimen are left out of
-     the threshold's and the trend's statistics (--roi none: the whole scan; --roi cylinder
-     CX CY R: a cylinder along z, in voxels);
-  1. smoothing: Gaussian filter, --sigma voxels (noise);
-  2. grey-level trend: a linear trend in x, y, z of the grain and pore grey levels is fitted
-     and removed (--no-detrend to keep the scan as it is): beam hardening or uneven
-     illumination shift the grey level across a scan, and one global threshold then cuts
-     grains at one end and merges pores at the other;
-  3. threshold: Otsu's (--threshold otsu, the default) or a given grey level; grains are the
-     brighter phase (--dark-grains for the other way round);
-  4. Euclidean distance transform of the solid phase;
-  5. markers: the h-maxima of the distance (--h voxels: a maximum must rise h above the
-     saddle to its neighbour's to seed a grain of its own; larger h merges more);
-  6. marker-controlled watershed of the negated distance, inside the solid phase;
-  7. small fragments (fewer than --min-voxels) are merged into the neighbour they share most
-     faces with, or dropped when they touch none.
+     reconstruction's circular field of view (warned about) and the air around the specimen
+     are left out; the threshold, the fits and the grains are found inside it (--roi none:
+     the whole scan; --roi cylinder CX CY R: a cylinder along z, in voxels; --mask FILE: a
+     scan of the same size, nonzero in the specimen);
+  1. denoising: none by default (at 8-25 voxels per grain any smoothing closes the 1-2
+     voxel gaps between grains more than it helps against noise at SNR 5 or more);
+     --denoise median (3x3x3) or gaussian (--sigma voxels) on request;
+  2. shading: the grey levels of the pore and the grain phase are fitted across the scan on
+     their pure voxels (away from the other phase): a linear trend in x, y, z, cupping
+     (rho^2, rho^4 about the axis) and ring artifacts (an offset per half-voxel ring);
+     the scan is normalised to 0 in the pore and 1 in the grains everywhere (--no-detrend:
+     two constant levels);
+  3. threshold: half way, 0.5 of the normalised scan (--threshold midpoint, the default):
+     a partial-volume voxel is solid when more than half of it is; 'otsu' takes Otsu's
+     threshold of the normalised scan, a number a grey level of the scan itself (no
+     normalisation); grains are the brighter phase (--dark-grains for the other way round);
+     warnings when one phase dominates the region or the phases overlap;
+  4. Euclidean distance transform of the solid phase, weighted by the normalised grey level
+     (smoothed over 0.7 voxel) to the power --grey-weight (2): the darker voxels of a gap
+     the threshold closed lower the map where two grains meet;
+  5. markers: the h-maxima of that map, h = 0.0015 D^2 voxels (--h), D the grain size
+     (--d50, or 6 V / S of the solid phase, V its volume, S 2/3 of its voxel faces);
+  6. marker-controlled watershed of the negated map, inside the solid phase;
+  7. regions whose common saddle reaches --merge-ratio of the smaller peak are joined;
+  8. small fragments (fewer than --min-voxels, default 5 % of a sphere of diameter D) are
+     merged into the neighbour they share most faces with, or dropped when they touch none.
+
+--report DIR writes report.txt (the progress lines and warnings), histogram.png (the scan
+and the normalised scan in the region, the phases' levels and the threshold) and the middle
+z slice after each stage as PNG.
 
 Options passed on to from-labels: --nodes N | --node-spacing S, --smooth K, --margin M,
 --seed S, --min-voxels N (also its threshold). --labels FILE keeps the label volume (raw
