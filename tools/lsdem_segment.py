@@ -27,10 +27,10 @@ python3-skimage, python3-scipy) the usual way for sand scans, and the labels go 
      threshold of the normalised scan, a number a grey level of the scan itself (no
      normalisation); grains are the brighter phase (--dark-grains for the other way round);
      warnings when one phase dominates the region or the phases overlap;
-  4. Euclidean distance transform of the solid phase, weighted by the normalised grey level
-     (smoothed over 0.7 voxel) to the power --grey-weight (2): the darker voxels of a gap
-     the threshold closed lower the map where two grains meet;
-  5. markers: the h-maxima of that map, h = 0.0015 D^2 voxels (--h), D the grain size
+  4. Euclidean distance transform of the solid phase, lowered by --grey-weight (4) voxels
+     times 1 - the normalised grey level (smoothed over 0.7 voxel, clipped to 0..1): the
+     darker voxels of a gap the threshold closed lower the map where two grains meet;
+  5. markers: the h-maxima of that map, h = 0.0015 D^2 voxels, at most 0.5 (--h), D the grain size
      (--d50, or 6 V / S of the solid phase, V its volume, S 2/3 of its voxel faces);
   6. marker-controlled watershed of the negated map, inside the solid phase;
   7. regions whose common saddle reaches --merge-ratio of the smaller peak are joined;
@@ -61,12 +61,13 @@ TYPES = {"u8": "<u1", "u16": "<u2", "u32": "<u4", "i8": "<i1", "i16": "<i2", "i3
 CORNERS = ([0, 0, -1, -1], [0, -1, 0, -1])  # [y], [x] of a slice's four corners
 SPECK_VOXELS = 27     # coarse foreground specks smaller than this are noise in the air
 DENOISE = "none"      # the default denoising (doc/lsdem_segment.rst, "How well it segments")
-H_PER_SIZE2 = 0.0015  # h-maxima height over the square of the grain size
+H_PER_SIZE2 = 0.0015  # h-maxima height over the square of the grain size,
+H_MAX = 0.5           # voxels, at most
 MIN_VOLUME_SHARE = 0.05  # smallest grain over the volume of a sphere of the grain size
 PURE_DEPTH = 2        # voxels: a pure voxel is this far inside its phase, if there are
 MIN_PURE = 100        # this many sampled per fitted coefficient (else nearer the surface)
 RING_WINDOW = 9       # half-voxel bins: rings are narrower than a median over 4.5 voxels
-GREY_WEIGHT = 2.0     # the distance map times the normalised grey level to this power
+GREY_WEIGHT = 4.0     # voxels: the distance map lowered by this times 1 - normalised grey
 WEIGHT_SIGMA = 0.7    # voxels: the Gaussian that takes the noise out of that weight
 
 
@@ -504,7 +505,7 @@ def segment(grey, args, say, mask=None, report=None):
         info.update(markers=0, merged=0, dropped=0, grains=0)
         return np.zeros(solid.shape, np.uint32), info
     size = args.d50 or grain_size(solid)
-    h = args.h or H_PER_SIZE2 * size ** 2
+    h = args.h or min(H_PER_SIZE2 * size ** 2, H_MAX)
     min_voxels = args.min_voxels or max(8, round(MIN_VOLUME_SHARE * np.pi / 6 * size ** 3))
     info.update(size=size, h=h, min_voxels=min_voxels)
     say("solid fraction %.3f in the region; grain size %.3g voxels (%s)"
@@ -513,8 +514,10 @@ def segment(grey, args, say, mask=None, report=None):
     say("distance transform: largest inscribed radius %.1f voxels" % dist.max())
     norm = info.pop("norm", None)
     if norm is not None and args.grey_weight > 0:
-        dist *= np.clip(ndi.gaussian_filter(norm, WEIGHT_SIGMA), 0, 1) ** args.grey_weight
-        say("distance weighted by the normalised grey level to the power %g" % args.grey_weight)
+        dist += args.grey_weight * (np.clip(ndi.gaussian_filter(norm, WEIGHT_SIGMA), 0, 1) - 1)
+        np.maximum(dist, 0, out=dist)
+        say("distance lowered by %g voxels times 1 - the normalised grey level"
+            % args.grey_weight)
     del norm
     if report:
         report.slice("distance", dist)
@@ -584,12 +587,12 @@ def parse(argv):
     p.add_argument("--d50", type=float,
                    help="grain size, voxels (default: 6 V / S of the solid phase)")
     p.add_argument("--h", type=float,
-                   help="h-maxima height, voxels (default %g x the grain size squared)"
-                        % H_PER_SIZE2)
+                   help="h-maxima height, voxels (default %g x the grain size squared, at "
+                        "most %g)" % (H_PER_SIZE2, H_MAX))
     p.add_argument("--grey-weight", type=float, default=GREY_WEIGHT,
-                   help="weight the distance map by the normalised grey level to this power, "
-                        "so that the darker voxels of a gap the threshold closed part the "
-                        "grains (%g; 0: the plain distance)" % GREY_WEIGHT)
+                   help="lower the distance map by this many voxels times 1 - the normalised "
+                        "grey level, so that the darker voxels of a gap the threshold closed "
+                        "part the grains (%g; 0: the plain distance)" % GREY_WEIGHT)
     p.add_argument("--merge-ratio", type=float, default=0.9,
                    help="join regions whose saddle reaches this share of their peak distance "
                         "(0.9; 1 joins none)")
