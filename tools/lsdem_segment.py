@@ -570,10 +570,11 @@ def parse(argv):
     p.add_argument("--threshold", default="midpoint",
                    help="'midpoint' (default: half way between the two phases' fitted grey "
                         "levels), 'otsu' (Otsu's of the normalised scan) or a grey level")
-    p.add_argument("--mask", help="the specimen: a TIFF or raw-readable scan of the same size, "
-                                  "nonzero inside (instead of --roi)")
+    p.add_argument("--mask", help="the specimen: a TIFF of the scan's size, nonzero inside "
+                                  "(instead of --roi)")
     p.add_argument("--roi", nargs="+", default=["auto"], metavar="KIND",
-                   help="where the threshold is chosen: auto (default: the specimen, without "
+                   help="where the threshold is chosen and grains are looked for: auto "
+                        "(default: the specimen, without "
                         "a zero-filled field of view or the air around it), none (the whole "
                         "scan) or cylinder CX CY R (voxels)")
     p.add_argument("--no-detrend", dest="detrend", action="store_false",
