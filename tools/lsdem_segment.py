@@ -292,7 +292,6 @@ class Shading:
         else:
             fail("one phase has almost no voxels (%d): the scan does not look like grains and "
                  "pores; give --threshold" % min(m.sum() for m in pure))
-        self.depth = depth
         self.trend, self.redge = trend, float(rho.max())
         self.bins = np.floor(rho * self.rfov * 2).astype(np.int64)
         self.ring = np.zeros(int(rad.max() * 2) + 2)
