@@ -50,15 +50,20 @@ int shape_warn_quality(const lsdem_shape *s, const char *name)
 {
   lsdem_shape_report r;
   lsdem_error err;
-  char text[1536];
   if (lsdem_shape_check(s, &r, &err) != LSDEM_OK) {
     fprintf(stderr, "lsdem-shape: warning: %s: not checked: %s\n", name, err.msg);
     return 0;
   }
-  lsdem_shape_report_text(&r, text, sizeof text);
+  return shape_print_report(&r, name);
+}
+
+int shape_print_report(const lsdem_shape_report *r, const char *name)
+{
+  char text[1536];
+  lsdem_shape_report_text(r, text, sizeof text);
   for (char *line = strtok(text, "\n"); line; line = strtok(NULL, "\n"))
     fprintf(stderr, "lsdem-shape: warning: %s: %s\n", name, line);
-  return r.warnings;
+  return r->warnings;
 }
 
 int shape_write_data(const char *path, const char *title, int n, const int *shape,

@@ -15,6 +15,8 @@ int parse_count(const char *s, long lo, long hi, long *v);
 /* Print the warnings of the shared quality checks (lsdem_shape_check) for one shape as
  * "lsdem-shape: warning: NAME: ..." lines on stderr; returns the LSDEM_CHECK_* bits. */
 int shape_warn_quality(const lsdem_shape *s, const char *name);
+/* The same lines for a report already made; returns its bits. */
+int shape_print_report(const lsdem_shape_report *r, const char *name);
 
 /* A LAMMPS data file for atom_style lsdem: n grains, shape[i] the 1-based shape-ID,
  * positions 3n, quaternions 4n (scalar-first, body -> world), one density, box lo/hi.

@@ -62,6 +62,16 @@ static void test_each_warning(void)
   CHECK(lsdem_shape_check(&b.shape, &r, &err) == LSDEM_OK, "%s", err.msg);
   CHECK((r.warnings & LSDEM_CHECK_VOLUME) && (r.warnings & LSDEM_CHECK_INERTIA), "warnings %d",
         r.warnings);
+  /* the same shape within tolerances given (volume 10 % off, moments 20 %): no node warning,
+   * and the text names the tolerance that was used */
+  CHECK(lsdem_shape_check_tol(&b.shape, 0.15, 0.30, &r, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(!(r.warnings & (LSDEM_CHECK_VOLUME | LSDEM_CHECK_INERTIA)) && r.volume_tol == 0.15,
+        "warnings %d", r.warnings);
+  CHECK(lsdem_shape_check_tol(&b.shape, 0.05, 0.30, &r, &err) == LSDEM_OK, "%s", err.msg);
+  lsdem_shape_report_text(&r, text, sizeof text);
+  CHECK((r.warnings & LSDEM_CHECK_VOLUME) && !(r.warnings & LSDEM_CHECK_INERTIA) &&
+        strstr(text, "(tolerance 5%)"), "warnings %d: %s", r.warnings, text);
+  CHECK(lsdem_shape_check(&b.shape, &r, &err) == LSDEM_OK, "%s", err.msg);
   const size_t need = lsdem_shape_report_text(&r, text, 20); /* truncation: size reported */
   CHECK(need > 100 && strlen(text) < 20, "need %zu", need);
   lsdem_built_shape_free(&b);

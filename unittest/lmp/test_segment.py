@@ -9,10 +9,11 @@ file -> a running lmp. Independent expectations:
     recovery and volume error within the figures of doc/lsdem_segment.rst, and removing the
     grey-level trend must reduce the volume error;
   * a scan of a cylindrical specimen with air around it and zero-filled corners outside the
-    circular field of view: over the whole scan Otsu's threshold lands far below Otsu's
-    over the true specimen cylinder (skimage on the raw scan) and grains come out fattened;
-    with the default region of interest it lands within 3 % of it and recovers at least as
-    many grains as on the scan without air;
+    circular field of view: the threshold (the midpoint of the two phases' fitted levels)
+    lies within 3 % of the contrast of the midpoint of the two phases' mean grey levels
+    taken from the truth, with the default region of interest, the true cylinder and even
+    the whole scan; the zero fill is warned about, and over the whole scan that one phase
+    dominates; the default recovers at least as many grains as on the scan without air;
   * the in-situ data file holds one grain per shape and lmp runs it.
 A damaged file and a scan without grains stop with a message naming the file and the cause."""
 import os
@@ -21,7 +22,7 @@ import subprocess
 import sys
 
 import numpy as np
-from skimage import filters
+from scipy import ndimage as ndi
 
 from lsdemtest import HERE, SHAPE_TOOL, check, finish, run_lmp, shape_tool
 
@@ -72,7 +73,8 @@ check(os.path.getsize("scan_zip.tif") < os.path.getsize("scan.tif"), "Deflate di
 # ---- segmentation against the known grains -----------------------------------------------
 p = run([SEGMENT, "scan_lzw.tif", "grains.lslib", "--voxel", 1e-4, "--labels", "found.raw",
          "--data", "insitu.data", "--density", 2650, "--nodes", 100], progress="1")
-for stage in ("no constant fill", "region of interest", "threshold", "distance transform",
+for stage in ("no constant fill", "region of interest", "grey levels", "threshold", "grain size",
+              "distance transform",
               "markers", "watershed", "joined", "fragments", "building", "shapes built"):
     check(stage in p.stdout, "no progress line for '%s':\n%s" % (stage, p.stdout[-2000:]))
 built = [tuple(map(int, re.search(r"shapes built: (\d+) of (\d+)", l).groups()))
@@ -108,37 +110,41 @@ SPECIMEN = 0.8  # radius of the grains' cylinder, a fraction of half the size
 run([sys.executable, os.path.join(TOOLS, "synthetic_scan.py"), "make", "air", "--size", N,
      "--grains", 120, "--seed", 1, "--specimen", SPECIMEN, "--zero-corners"])
 air = tifffile.imread("air.tif")
+air_truth = np.fromfile("air.truth.raw", "<u4").reshape(N, N, N)
 yy, xx = np.ogrid[0:N, 0:N]
 from_axis = np.hypot(xx - (N - 1) / 2, yy - (N - 1) / 2)
 in_specimen = from_axis <= SPECIMEN * N / 2
 check((air[:, from_axis > N / 2] == 0).all() and (air[:, in_specimen] > 0).mean() > 0.99,
       "the scan's corners are not zero-filled")
-t_true = float(filters.threshold_otsu(air[:, in_specimen]))
+# the two phases' grey levels in the middle slice (where the trend along z is 0), from the
+# truth: voxels more than 2 voxels inside a grain or inside the specimen's pore space
+inner = [ndi.distance_transform_edt(m) > 2 for m in (air_truth == 0, air_truth > 0)]
+pore_mean, grain_mean = (float(air[N // 2][m[N // 2] & in_specimen].mean()) for m in inner)
+t_true = 0.5 * (pore_mean + grain_mean)
 
 
 def segment_air(*roi):
-    out = run([SEGMENT, "air.tif", "air.lslib", "--voxel", 1e-4, "--labels", "air.raw",
-               "--nodes", 50] + list(roi), progress="1").stdout
-    t = float(re.search(r"threshold ([0-9.]+) \(otsu\)", out).group(1))
-    return t, score("air.raw", "air.truth.raw"), out
+    p = run([SEGMENT, "air.tif", "air.lslib", "--voxel", 1e-4, "--labels", "air.raw",
+             "--nodes", 50] + list(roi), progress="1")
+    t = float(re.search(r"threshold ([0-9.]+) \(midpoint", p.stdout).group(1))
+    return t, score("air.raw", "air.truth.raw"), p.stdout
 
 
-t_none, r_none, _ = segment_air("--roi", "none")
+t_none, r_none, out_none = segment_air("--roi", "none")
 t_auto, r_auto, out = segment_air()
-print("air around the specimen: Otsu over the true specimen %.0f; --roi none: threshold %.0f, "
-      "%s; --roi auto: threshold %.0f, %s" % (t_true, t_none, r_none, t_auto, r_auto))
-check("filled with 0" in out, "zero-filled corners not reported:\n%s" % out[-2000:])
-check(t_none < 0.9 * t_true, "without a region of interest Otsu %.0f is not below %.0f"
-      % (t_none, t_true))
-check(r_none["vol_err_mean"] > 0.1, "without a region of interest grains are not fattened: %s"
-      % r_none)
-check(abs(t_auto - t_true) <= 0.03 * t_true, "--roi auto: threshold %.0f, Otsu over the "
-      "specimen %.0f" % (t_auto, t_true))
+t_cyl, _, _ = segment_air("--roi", "cylinder", (N - 1) / 2, (N - 1) / 2, SPECIMEN * N / 2)
+print("air around the specimen: phases %.0f and %.0f (truth), midpoint %.0f; threshold "
+      "--roi none %.0f, %s; auto %.0f, %s; cylinder %.0f" % (pore_mean, grain_mean, t_true,
+                                                            t_none, r_none, t_auto, r_auto, t_cyl))
+check("filled with 0" in out and "warning: the corners outside the field of view are filled "
+      "with 0" in out, "zero-filled corners not reported:\n%s" % out[-2000:])
+check("warning: one phase dominates" in out_none and "one phase dominates" not in out,
+      "the whole scan (--roi none) is mostly air and zero fill: a warning expected there only")
+for name, t in (("auto", t_auto), ("cylinder", t_cyl), ("none", t_none)):
+    check(abs(t - t_true) <= 0.03 * (grain_mean - pore_mean), "--roi %s: threshold %.0f, the "
+          "phases' midpoint %.0f" % (name, t, t_true))
 check(r_auto["fraction"] >= r["fraction"] and abs(r_auto["vol_err_mean"]) <= 0.07,
       "--roi auto on the scan with air: %s; without air: %s" % (r_auto, r))
-t_cyl, _, _ = segment_air("--roi", "cylinder", (N - 1) / 2, (N - 1) / 2, SPECIMEN * N / 2)
-check(abs(t_cyl - t_true) <= 0.03 * t_true, "--roi cylinder: threshold %.0f, Otsu over the "
-      "specimen %.0f" % (t_cyl, t_true))
 
 # ---- the shapes and the data file run in lmp ---------------------------------------------
 listing = shape_tool("list", "grains.lslib")

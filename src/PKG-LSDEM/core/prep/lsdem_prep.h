@@ -196,12 +196,19 @@ typedef struct {
   double volume_error;   /* volume_nodes / volume - 1 */
   double inertia_error;  /* max_i |inertia_nodes[i] / inertia[i] - 1| */
   long border_negative;  /* negative grid samples on the grid's border faces */
+  double volume_tol, inertia_tol; /* the tolerances the two node checks used */
   int warnings;          /* LSDEM_CHECK_* bits */
 } lsdem_shape_report;
 
-/* Run the checks on a finished shape (normals from its SDF at the nodes). Returns
- * LSDEM_ERR_ARG for a shape without nodes or volume; warnings are not errors. */
+/* Run the checks on a finished shape (normals from its SDF at the nodes), with the default
+ * tolerances LSDEM_CHECK_VOLUME_TOL and LSDEM_CHECK_INERTIA_TOL. Returns LSDEM_ERR_ARG for
+ * a shape without nodes or volume; warnings are not errors. */
 lsdem_status lsdem_shape_check(const lsdem_shape *s, lsdem_shape_report *r, lsdem_error *err);
+/* The same with the node checks' tolerances given: a shape source whose discretisation
+ * is known to give larger node errors on good shapes (voxel labels: lsdem-shape
+ * from-labels) sets them from what it measured. */
+lsdem_status lsdem_shape_check_tol(const lsdem_shape *s, double volume_tol, double inertia_tol,
+                                   lsdem_shape_report *r, lsdem_error *err);
 /* One line of text per warning (each ending in '\n') into buf; returns the length that
  * was needed (like snprintf). "" when there is no warning. */
 size_t lsdem_shape_report_text(const lsdem_shape_report *r, char *buf, size_t size);

@@ -139,8 +139,16 @@ static void node_moments(const lsdem_shape *s, double *volume, double inertia[3]
 
 lsdem_status lsdem_shape_check(const lsdem_shape *s, lsdem_shape_report *r, lsdem_error *err)
 {
+  return lsdem_shape_check_tol(s, LSDEM_CHECK_VOLUME_TOL, LSDEM_CHECK_INERTIA_TOL, r, err);
+}
+
+lsdem_status lsdem_shape_check_tol(const lsdem_shape *s, double volume_tol, double inertia_tol,
+                                   lsdem_shape_report *r, lsdem_error *err)
+{
   if (!s || !r) return lsdem_fail(err, LSDEM_ERR_ARG, "NULL argument");
   memset(r, 0, sizeof *r);
+  r->volume_tol = volume_tol;
+  r->inertia_tol = inertia_tol;
   if (s->nnodes < 1 || !s->nodes || !s->node_area)
     return lsdem_fail(err, LSDEM_ERR_ARG, "the shape has no nodes");
   if (!(s->volume > 0.0))
@@ -158,12 +166,12 @@ lsdem_status lsdem_shape_check(const lsdem_shape *s, lsdem_shape_report *r, lsde
   }
   node_moments(s, &r->volume_nodes, r->inertia_nodes);
   r->volume_error = r->volume_nodes / s->volume - 1.0;
-  if (!(fabs(r->volume_error) <= LSDEM_CHECK_VOLUME_TOL)) r->warnings |= LSDEM_CHECK_VOLUME;
+  if (!(fabs(r->volume_error) <= volume_tol)) r->warnings |= LSDEM_CHECK_VOLUME;
   for (int a = 0; a < 3; a++)
     r->inertia_error = fmax(r->inertia_error, s->inertia[a] > 0.0
                                                   ? fabs(r->inertia_nodes[a] / s->inertia[a] - 1.0)
                                                   : HUGE_VAL);
-  if (!(r->inertia_error <= LSDEM_CHECK_INERTIA_TOL)) r->warnings |= LSDEM_CHECK_INERTIA;
+  if (!(r->inertia_error <= inertia_tol)) r->warnings |= LSDEM_CHECK_INERTIA;
   return LSDEM_OK;
 }
 
@@ -184,11 +192,11 @@ size_t lsdem_shape_report_text(const lsdem_shape_report *r, char *buf, size_t si
   if (r->warnings & LSDEM_CHECK_VOLUME)
     snprintf(line[nl++], sizeof line[0], "node volume %g differs from the shape volume by "
              "%+.2f%% (tolerance %.0f%%)\n", r->volume_nodes, 100.0 * r->volume_error,
-             100.0 * LSDEM_CHECK_VOLUME_TOL);
+             100.0 * r->volume_tol);
   if (r->warnings & LSDEM_CHECK_INERTIA)
     snprintf(line[nl++], sizeof line[0], "node moments of inertia differ from the shape's "
              "by up to %.2f%% (tolerance %.0f%%)\n", 100.0 * r->inertia_error,
-             100.0 * LSDEM_CHECK_INERTIA_TOL);
+             100.0 * r->inertia_tol);
   size_t need = 0;
   if (size) buf[0] = '\0';
   for (int i = 0; i < nl; i++) {
