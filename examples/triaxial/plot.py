@@ -1,8 +1,13 @@
 #!/usr/bin/env python3
 """Plot the triaxial example's CSV: q, mobilised friction angle and volumetric strain
 against axial strain (three PNGs next to the CSV), and print the peak friction angle.
+With --cycles, a cyclic run's cycles.csv (in.triaxial -var cycles N): report Figure 3.25
+(cycles.png: the axial deviator and the volumetric strain against axial strain, each cycle in
+its colour, the holds marked) and each loop's secant modulus, loop energy, damping ratio and
+residual volumetric strain (cycles.py) printed and written to loops.csv next to it.
 
-usage: plot.py triaxial.csv [label]"""
+usage: plot.py triaxial.csv [label]
+       plot.py --cycles cycles.csv[+cycles.2.csv ...]"""
 import csv
 import os
 import sys
@@ -12,8 +17,47 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
+import cycles
+
+
+def plot_cycles(spec):
+    """Figure 3.25 and loops.csv from a cyclic run's cycles.csv (parts joined with +)."""
+    rows = cycles.read(spec)
+    measured = cycles.loops(rows)
+    outdir = os.path.dirname(os.path.abspath(spec.split("+")[0]))
+    cycles.write(os.path.join(outdir, "loops.csv"), measured)
+    fig, (aq, av) = plt.subplots(2, 1, figsize=(6, 7), sharex=True)
+    for k in sorted({r["cycle"] for r in rows}):
+        part = [r for r in rows if r["cycle"] == k]
+        ea = [100 * r["eps_a"] for r in part]
+        aq.plot(ea, [r["qz"] for r in part], lw=1, label="cycle %d" % k)
+        av.plot(ea, [100 * r["eps_v"] for r in part], lw=1)
+        held = [r for r in part if r["phase"] == "hold"]
+        aq.plot([100 * r["eps_a"] for r in held], [r["qz"] for r in held], "k.", ms=2)
+    aq.set_ylabel("axial deviator qz (x sigma_c)")
+    av.set_ylabel("volumetric strain (%, + = contraction)")
+    av.set_xlabel("axial strain (%)")
+    aq.legend(fontsize=8)
+    for a in (aq, av):
+        a.grid(alpha=0.3)
+    aq.set_title("loading-unloading cycles (report Figure 3.25); dots: holds")
+    fig.tight_layout()
+    fig.savefig(os.path.join(outdir, "cycles.png"), dpi=110)
+    plt.close(fig)
+    print("cycle  eps_a top %  q top  secant modulus  loop energy  damping  residual eps_v %")
+    for lp in measured:
+        if lp["closed"]:
+            print("%5d  %11.3f  %5.3g  %14.4g  %11.4g  %7.4f  %16.4f"
+                  % (lp["cycle"], 100 * lp["eps_top"], lp["q_top"], lp["secant_modulus"],
+                     lp["loop_energy"], lp["damping_ratio"], 100 * lp["residual_eps_v"]))
+        else:
+            print("%5d  reload ended before the unloading's strain: loop open" % lp["cycle"])
+
 
 def main():
+    if sys.argv[1] == "--cycles":
+        plot_cycles(sys.argv[2])
+        return
     src = sys.argv[1]
     label = sys.argv[2] if len(sys.argv) > 2 else ""
     rows = list(csv.DictReader(open(src)))

@@ -4,8 +4,8 @@
 # LSDEM_LMP and LSDEM_SHAPE_TOOL). Environment knobs:
 #   SHAPES=angular (default: random sand-like grains) | spheres (equal-volume spheres,
 #   the report's §3.4.4 control); NP=2 ranks; NGRAINS=300; MU=0.6; OUT=out (or out/spheres);
-#   EPSMAX (final axial strain); UNLOAD_AT (axial strain of an unload-reload cycle, default
-#   none; UNLOAD_Q the fraction of the axial deviator to unload to, default 0.3); KM, KM_OUTER
+#   EPSMAX (final axial strain); CYCLES=N unload-reload cycles (default none; CYC_AT, CYC_STEP,
+#   CYC_AMP, CYC_Q, CYC_HOLD: in.triaxial's cyc_* variables; plot.py --cycles draws them); KM, KM_OUTER
 #   (membrane springs); PIVOT=1 (the top platen pivots about the ram contact point, report
 #   §3.2.1; OUT default out/pivot); STRIDE=N (grain contacts test every N-th node, forces
 #   times N, report §3.4.1; default 1); DENSITY=dense (default: packed frictionless in the
@@ -127,14 +127,15 @@ rm -f "$log"
   -var memin mem.in -var memtri mem.tri -var mu "$mu" -var pivot "$pivot" -var rho "$rho" -var R "$R" \
   -var stride "${STRIDE:-1}" \
   ${EPSMAX:+-var epsmax $EPSMAX} \
-  ${UNLOAD_AT:+-var unload_at $UNLOAD_AT} ${UNLOAD_Q:+-var unload_q $UNLOAD_Q} "${part[@]}" \
+  ${CYCLES:+-var cycles $CYCLES} ${CYC_AT:+-var cyc_at $CYC_AT} ${CYC_STEP:+-var cyc_step $CYC_STEP} \
+  ${CYC_AMP:+-var cyc_amp $CYC_AMP} ${CYC_Q:+-var cyc_q $CYC_Q} ${CYC_HOLD:+-var cyc_hold $CYC_HOLD} "${part[@]}" \
   -log "$log" -echo none -screen none &
 lmp_pid=$!
 # the deck's PROGRESS lines (strain reached, time left) on the screen as the log grows
 tail --pid=$lmp_pid -n +1 -F "$log" 2>/dev/null | grep --line-buffered '^PROGRESS' \
   | sed -u 's/^PROGRESS /  /' || true
 wait $lmp_pid
-grep -E '^(PIVOT|CONSOLIDATED|UNLOAD|RELOAD|RESUMED|SHEARED)' "$log"
+grep -E '^(PIVOT|CONSOLIDATED|CYCLE|RESUMED|SHEARED)' "$log"
 echo "total time $((SECONDS - start)) s"
 csv=triaxial.csv
 if [ "$mode" = resume ]; then
@@ -142,4 +143,8 @@ if [ "$mode" = resume ]; then
   csv=triaxial_joined.csv
 fi
 /usr/bin/python3 "$here/plot.py" "$csv" "$kind"
+if [ -n "${CYCLES:-}" ] && [ "$mode" != resume ]; then
+  /usr/bin/python3 "$here/plot.py" --cycles cycles.csv
+  echo "cycles: $out/cycles.csv, $out/cycles.png (report Figure 3.25), $out/loops.csv"
+fi
 echo "results: $out/triaxial.csv, $out/q_eps.png, $out/phi_eps.png, $out/epsv_eps.png, $out/dump.triaxial"

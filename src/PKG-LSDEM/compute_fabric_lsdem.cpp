@@ -47,7 +47,7 @@ ComputeFabricLsdem::ComputeFabricLsdem(LAMMPS *lmp, int narg, char **arg) :
   extvector = 0;
   vector = new double[NVALUES];
   peratom_flag = 1;
-  size_peratom_cols = 2;
+  size_peratom_cols = 5;
 
   id_fix = utils::strdup(id + std::string("_COMPUTE_STORE"));
   fix = LsdemCompat::add_peratom_store(modify, id_fix, group->names[igroup], 4);
@@ -78,8 +78,8 @@ void ComputeFabricLsdem::init()
 }
 
 /* ----------------------------------------------------------------------
-   rotation angle of every owned group grain into rot[i][0]; group mean, standard
-   deviation and the count above mean + 2 sd (flags into rot[i][1])
+   rotation angle of every owned group grain into rot[i][0], its long axis into rot[i][2..4];
+   group mean, standard deviation and the count above mean + 2 sd (flags into rot[i][1])
 ------------------------------------------------------------------------- */
 
 void ComputeFabricLsdem::rotation_stats(double &mean, double &sd, double &nflag)
@@ -87,14 +87,15 @@ void ComputeFabricLsdem::rotation_stats(double &mean, double &sd, double &nflag)
   if (atom->nmax > nmax) {
     memory->destroy(rot);
     nmax = atom->nmax;
-    memory->create(rot, nmax, 2, "fabric/lsdem:rot");
+    memory->create(rot, nmax, 5, "fabric/lsdem:rot");
     array_atom = rot;
   }
   const int *mask = atom->mask;
   double sum[3] = {0.0, 0.0, 0.0}, all[3];  // count, sum, sum of squares
   for (int i = 0; i < atom->nlocal; i++) {
-    rot[i][0] = rot[i][1] = 0.0;
+    for (int k = 0; k < 5; k++) rot[i][k] = 0.0;
     if (!(mask[i] & groupbit)) continue;
+    lsdem_long_axis(avec->quat[i], avec->inertia[i], &rot[i][2]);
     const double th = lsdem_rotation_angle(avec->quat[i], fix->astore[i]);
     rot[i][0] = th;
     sum[0] += 1.0;
@@ -151,5 +152,5 @@ void ComputeFabricLsdem::compute_peratom()
 
 double ComputeFabricLsdem::memory_usage()
 {
-  return 2.0 * nmax * sizeof(double);
+  return 5.0 * nmax * sizeof(double);
 }

@@ -34,7 +34,7 @@ class ComputeFabricLsdem : public Compute {
   LsdemCompat::FixStorePeratom *fix;
   class AtomVecLsdem *avec;
   int nmax;
-  double **rot;               // per atom: rotation angle (rad), flag
+  double **rot;               // per atom: rotation angle (rad), flag, long axis (3)
 
   void rotation_stats(double &mean, double &sd, double &nflag);
 };

@@ -298,7 +298,8 @@ std::vector<char> FixNetworkLsdem::lines_in_band(const std::vector<double> &line
 
 /* ----------------------------------------------------------------------
    one polyline per contact: x_a, point, x_b (a wall contact: x_a, point); cell data
-   id_a, id_b (a wall: -(index + 1)), normal_force, force (on grain a), strong (1/0)
+   id_a, id_b (a wall: -(index + 1)), normal_force, force (on grain a), normal (the
+   partner's outward unit normal), strong (1/0)
 ------------------------------------------------------------------------- */
 
 void FixNetworkLsdem::write_vtp(const std::vector<double> &lines, const std::vector<double> &fn)
@@ -344,13 +345,19 @@ void FixNetworkLsdem::write_vtp(const std::vector<double> &lines, const std::vec
   }
   fputs("<DataArray type=\"Float64\" Name=\"normal_force\" format=\"ascii\">\n", fp);
   for (int l = 0; l < n; l++) fmt::print(fp, "{:.17g}\n", fn[l]);
-  fputs("</DataArray>\n<DataArray type=\"Float64\" Name=\"force\" NumberOfComponents=\"3\" "
-        "format=\"ascii\">\n", fp);
-  for (int l = 0; l < n; l++) {
-    const double *f = &lines[(size_t) l * ROW + FORCE];
-    fmt::print(fp, "{:.17g} {:.17g} {:.17g}\n", f[0], f[1], f[2]);
+  fputs("</DataArray>\n", fp);
+  const char *vecname[2] = {"force", "normal"};
+  const int vecat[2] = {FORCE, NORMAL};
+  for (int k = 0; k < 2; k++) {
+    fmt::print(fp, "<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"3\" "
+               "format=\"ascii\">\n", vecname[k]);
+    for (int l = 0; l < n; l++) {
+      const double *v = &lines[(size_t) l * ROW + vecat[k]];
+      fmt::print(fp, "{:.17g} {:.17g} {:.17g}\n", v[0], v[1], v[2]);
+    }
+    fputs("</DataArray>\n", fp);
   }
-  fputs("</DataArray>\n<DataArray type=\"UInt8\" Name=\"strong\" format=\"ascii\">\n", fp);
+  fputs("<DataArray type=\"UInt8\" Name=\"strong\" format=\"ascii\">\n", fp);
   for (int l = 0; l < n; l++) fmt::print(fp, "{}\n", fn[l] > mean ? 1 : 0);
   fputs("</DataArray>\n</CellData>\n</Piece>\n</PolyData>\n</VTKFile>\n", fp);
   const bool bad = ferror(fp) != 0;

@@ -49,6 +49,19 @@ static void test_platen_contacts(void)
   for (int k = 0; k < 8; k++) CHECK_NEAR(sigma[k], 0.0, 1e-12);
 }
 
+/* R d R^T for a diagonal tensor d (row-major 3x3), R the rotation of 0.6 rad about (1,2,2)/3 */
+static void rotated(const double d[9], double out[9])
+{
+  double R[9];
+  const double q[4] = {cos(0.3), sin(0.3) / 3.0, 2.0 * sin(0.3) / 3.0, 2.0 * sin(0.3) / 3.0};
+  lsdem_quat_to_matrix(q, R);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      out[3 * i + j] = 0.0;
+      for (int k = 0; k < 3; k++) out[3 * i + j] += R[3 * i + k] * d[4 * k] * R[3 * j + k];
+    }
+}
+
 static void test_invariants(void)
 {
   /* hydrostatic: q = 0, friction angle 0 */
@@ -63,15 +76,9 @@ static void test_invariants(void)
   const double tri[9] = {1, 0, 0, 0, 1, 0, 0, 0, 3};
   CHECK_NEAR(lsdem_stress_mean(tri), 5.0 / 3.0, 1e-15);
   CHECK_NEAR(lsdem_stress_deviatoric(tri), 2.0, 1e-14);
-  /* the same state in a rotated frame: R diag R^T, rotation 0.6 rad about (1,2,2)/3 */
-  double R[9], rot[9];
-  const double q[4] = {cos(0.3), sin(0.3) / 3.0, 2.0 * sin(0.3) / 3.0, 2.0 * sin(0.3) / 3.0};
-  lsdem_quat_to_matrix(q, R);
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++) {
-      rot[3 * i + j] = 0.0;
-      for (int k = 0; k < 3; k++) rot[3 * i + j] += R[3 * i + k] * tri[4 * k] * R[3 * j + k];
-    }
+  /* the same state in a rotated frame */
+  double rot[9];
+  rotated(tri, rot);
   lsdem_stress_principal(rot, s);
   CHECK_NEAR(s[0], 3.0, 1e-12);
   CHECK_NEAR(s[1], 1.0, 1e-12);
@@ -80,6 +87,16 @@ static void test_invariants(void)
   CHECK_NEAR(lsdem_friction_angle(s[0], s[2]), PI / 6.0, 1e-12);
   /* sigma_1 / sigma_3 = 6 gives 45.58 deg (the report: "6 times the confining pressure") */
   CHECK_NEAR(lsdem_friction_angle(6.0, 1.0) * 180.0 / PI, 45.584, 1e-3);
+  /* 45 deg exactly where sigma_1 / sigma_3 = (1 + sin 45)/(1 - sin 45) = 3 + 2 sqrt 2 = 5.83,
+   * also from the principal stresses of that state in the rotated frame (issue 35's check) */
+  const double r45 = 3.0 + 2.0 * sqrt(2.0);
+  const double s45[9] = {1, 0, 0, 0, 1, 0, 0, 0, r45};
+  rotated(s45, rot);
+  lsdem_stress_principal(rot, s);
+  CHECK_NEAR(lsdem_friction_angle(s[0], s[2]), PI / 4.0, 1e-12);
+  CHECK_NEAR(lsdem_friction_angle(r45, 1.0), PI / 4.0, 1e-15);
+  /* the ratio rounded to 5.83: 45.005 deg */
+  CHECK_NEAR(lsdem_friction_angle(5.83, 1.0) * 180.0 / PI, 45.0055, 1e-4);
   CHECK_NEAR(lsdem_friction_angle(1.0, -1.0), 0.0, 0.0); /* tension: undefined, 0 */
 }
 

@@ -8,7 +8,9 @@ contacts are strong: strong fraction 1/2, their share of the load 3/4; the grain
 normals are vertical, so their fabric deviator has Dzz = 5, Dxx = -5/2 and anisotropy 7.5
 (Kanatani's, as compute fabric/lsdem's). Cubes 1 and 2 do not touch. The same in two-way mode (two tests per pair merged into one line). The .vtp holds
 polylines centre - point - centre (3 points) and centre - point (2 for a wall); 1 and 2
-ranks write the same bytes. With band v_name the grain lines split into inside (both grains
+ranks write the same bytes. The .vtp's normal array holds unit vectors along which the
+force gives the normal force (one-way: to 1e-12; a merged two-way line keeps its first test's
+normal: 1e-5), vertical here (down onto cubes 1 and 2, up from the floor). With band v_name the grain lines split into inside (both grains
 flagged) and outside, each with its count and fabric, on 1 and 2 ranks."""
 import os
 import re
@@ -42,7 +44,9 @@ def read_vtp(path):
     arrays = dict(re.findall(r'Name="(\w+)"[^>]*>\n([^<]*)</DataArray>', text))
     num = lambda name: [float(v) for v in arrays[name].split()]
     nlines = int(re.search(r'NumberOfLines="(\d+)"', text).group(1))
-    return nlines, num("id_a"), num("id_b"), num("normal_force"), num("offsets"), num("strong")
+    vec = lambda name: list(zip(*[iter(num(name))] * 3))
+    return (nlines, num("id_a"), num("id_b"), num("normal_force"), num("offsets"), num("strong"),
+            vec("force"), vec("normal"))
 
 
 def check_network(name, wd, log):
@@ -60,7 +64,7 @@ def check_network(name, wd, log):
     if not os.path.exists(path):
         check(False, name + ": no net_4000.vtp")
         return b""
-    nlines, ida, idb, fn, offsets, strong = read_vtp(path)
+    nlines, ida, idb, fn, offsets, strong, force, normal = read_vtp(path)
     check(nlines == 4, "%s: %d lines" % (name, nlines))
     got = {(int(a), int(b)): f for a, b, f in zip(ida, idb, fn)}
     check(sorted(got) == [(1, -1), (1, 3), (2, -1), (2, 3)], "%s: lines %r" % (name, sorted(got)))
@@ -77,6 +81,15 @@ def check_network(name, wd, log):
     widths = [int(b - a) for a, b in zip([0.0] + offsets[:-1], offsets)]
     check(widths == [3 if b > 0 else 2 for b in idb], "%s: points per line %r" % (name, widths))
     check(strong == [1.0 if b < 0 else 0.0 for b in idb], "%s: strong flags %r" % (name, strong))
+    # the normal array: unit vectors, the normal force the force along them (a merged
+    # two-way line keeps its first test's normal, its normal force sums each test's own);
+    # the partner's outward normal points to grain a: down from cube 3 onto 1 and 2, up
+    # from the floor
+    for b, f, fv, n in zip(idb, fn, force, normal):
+        near(sum(c * c for c in n), 1.0, rtol=1e-12, msg="%s: |normal| of line to %d" % (name, b))
+        near(sum(x * y for x, y in zip(fv, n)), f, rtol=1e-12 if "oneway" in name else 1e-5,
+             msg="%s: force . normal" % name)
+        check(n[2] * (1 if b < 0 else -1) > 0.99, "%s: normal %r of the line to %d" % (name, n, b))
     pvd = open(os.path.join(wd, "net.pvd")).read()
     check(all('file="net_%d.vtp"' % s in pvd for s in (0, 2000, 4000)), name + ": .pvd")
     return open(path, "rb").read()

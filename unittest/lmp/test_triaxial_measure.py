@@ -19,6 +19,9 @@
    warning while the pressure is 0, then the formula, and one warning above LIMIT.
 7. compute fabric/lsdem rotations: none flagged at rest (round-off alone), and of 27 grains
    the one spun at w about z for t is flagged, with mean and sd of the angles from w t.
+8. compute fabric/lsdem long axes (per-atom columns 3-5) of three rods (boxes 1.2 x 0.6 x 0.3,
+   turned by known quaternions): each is +-R(q) e_x, the body axis of the smallest moment, to
+   1e-12, and the deviator 15/2 (<n n> - I/3) of the three equals the global c_fab[1-6].
 """
 import math
 import os
@@ -242,5 +245,36 @@ if check(set(rows7) >= {10, 20}, "fabric: thermo rows missing"):
         near(rows7[n]["c_fab[9]"], th * math.sqrt(26) / 27, rtol=1e-9,
              msg="sd of the rotations at step %d" % n)
         check(rows7[n]["c_fab[10]"] == 1, "one grain flagged at step %d" % n)
+
+# 8. long axes of three rods
+shape_tool("analytic", "rod.lslib", "box", 0.6, 0.3, 0.15, "--spacing", 0.05, "--nodes", 120)
+turns = [((1, 2, 3), 0.7), ((0, 0, 1), 1.2), ((-1, 0.5, 0.2), 2.5)]
+rods = [Grain((1.5 + 2 * i, 1.5, 1.5), q=quat_axis_angle(ax, an)) for i, (ax, an) in enumerate(turns)]
+write_data("rods.data", (0, 6, 0, 3, 0, 3), rods)
+deck8 = head("rod.lslib", "rods.data", boundary="f f f") + """
+pair_style lsdem
+pair_coeff * * 1000 900 0.3
+compute fab all fabric/lsdem
+dump axes all custom 1 axes.dump id c_fab[3] c_fab[4] c_fab[5]
+dump_modify axes format float %.17g sort id
+thermo_style custom step c_fab[1] c_fab[2] c_fab[3] c_fab[4] c_fab[5] c_fab[6]
+thermo_modify format float %.17g
+run 0
+"""
+rc, log = run_lmp(deck8, cwd=os.path.abspath("axes"))
+row8 = thermo(log)[-1] if rc == 0 else {}
+dump = open(os.path.join("axes", "axes.dump")).read().split("ITEM: ATOMS")[-1].split("\n")[1:4]
+axes = [[float(v) for v in line.split()[1:]] for line in dump]
+F = [[0.0] * 3 for _ in range(3)]
+for g, n in zip(rods, axes):
+    w, x, y, z = g.q
+    ex = (1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y))  # R(q) e_x
+    near(abs(sum(a * b for a, b in zip(ex, n))), 1.0, atol=1e-12, msg="long axis %r of %r" % (n, g.q))
+    for i in range(3):
+        for j in range(3):
+            F[i][j] += n[i] * n[j] / 3
+for k, (i, j) in enumerate(((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))):
+    near(row8.get("c_fab[%d]" % (k + 1), float("nan")), 7.5 * (F[i][j] - (i == j) / 3.0),
+         atol=1e-12, msg="fabric deviator from the dumped axes, component %d" % (k + 1))
 
 finish()
