@@ -1097,7 +1097,6 @@ void FixImpulseLsdem::fall_asleep()
     total_damped += kinetic_energy(i, atom->v[i], atom->omega[i]);
     sleep_label[i] = (double) label[i];
     for (int d = 0; d < 3; d++) atom->v[i][d] = atom->omega[i][d] = 0.0;
-    now.fell_asleep++;
   }
   t_islands += MPI_Wtime() - t0;
 }

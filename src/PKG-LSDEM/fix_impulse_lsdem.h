@@ -117,7 +117,7 @@ class FixImpulseLsdem : public Fix {
     int resting, contacts, pairs;  // resting contacts, contacts (capped), touching pairs
     double absorbed, dissipated, released, resting_work, contact_work;
     double depth, wall_depth;  // deepest grain-grain and grain-wall penetration
-    int woken, fell_asleep;    // grains woken (pre_force) and put to sleep this step
+    int woken;                 // grains woken (pre_force) before this step
   } now;
   int woken_pending;           // grains woken in this step's pre_force (now is reset later)
   // this rank's share since start; damped: by global damping and by putting grains to sleep

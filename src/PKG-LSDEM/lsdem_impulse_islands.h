@@ -81,7 +81,7 @@ class LsdemImpulseIslands : protected Pointers {
   // the contacts coll[0..n) between grains with moving[i] set (the same on every rank;
   // valid until the next call). Collective.
   const int64_t *island_labels(const LsdemImpulseContact *coll, int n, const char *moving,
-                       LsdemIslandStats &st);
+                               LsdemIslandStats &st);
 
   // ghost communication of labels and flags, through the fix's pack/unpack methods
   bool exchanging() const { return what != NONE; }
