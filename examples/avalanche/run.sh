@@ -12,29 +12,26 @@
 #   run.sh [prepare]   (prepare: make valley.asc, valley.band, grains.lslib, source.data only)
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-lmp=${LSDEM_LMP:-$here/../../build/lmp}
-shape=${LSDEM_SHAPE_TOOL:-$here/../../build/lsdem-shape}
+. "$here/../common.sh"
 py=/usr/bin/python3
 n=${NGRAINS:-400} runout=${RUNOUT:-0} seed=${SEED:-7} method=${METHOD:-penalty} np=${NP:-2}
 t_end=${TIME:-10} vtk=${VTK:-1.0} nets=${NETS:-0}
 out=${OUT:-$here/out}
 case "$method" in penalty|impulse) ;; *) echo "run.sh: METHOD must be penalty or impulse, not '$method'" >&2; exit 2 ;; esac
-mkdir -p "$out"
-cd "$out"
+enter_out "$out"
 LSDEM_SHAPE_TOOL=$shape bash "$here/make_scene.sh" . "$n" "$runout" "$seed"
 # shellcheck disable=SC2086 # NET_ARGS: words on purpose
 [ "$nets" != 0 ] && LSDEM_SHAPE_TOOL=$shape bash "$here/make_nets.sh" . "$nets" ${NET_ARGS:-}
 # the penalty step: 0.2 sqrt(m_min / (5 kn)), below fix nve/lsdem's bound for a flat contact
 # of five nodes (eq 4.47's 0.1 sqrt(m_min / kn) is just above it); kn = 3e4, density 2.65
-vmin=$("$shape" list grains.lslib | awk 'NR > 2 && NF { v = $(NF - 3); if (m == "" || v < m) m = v } END { print m }')
+vmin=$(smallest_volume grains.lslib)
 dt=$("$py" -c "print('%.2g' % (0.2 * (2.65 * $vmin / (5 * 3.0e4)) ** 0.5))")
 echo "dt $dt"
 [ "${1:-}" = prepare ] && exit 0
 # the terrain's west end and half-width, for the deck's count of grains near its edges
 edge_x=$(awk 'tolower($1) == "xllcenter" { print $2 }' valley.asc)
 edge_y=$(awk 'tolower($1) == "yllcenter" { print -$2 }' valley.asc)
-mpi=()
-[ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
+mpi_for "$np"
 echo "avalanche: $method, up to $t_end time units, $np rank(s) (log in $out/log.lammps)"
 rm -rf vtk
 start=$SECONDS

@@ -4,13 +4,11 @@
 # LSDEM_SHAPE_TOOL); NP=2 by default, OUT the output folder (default out/).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-lmp=${LSDEM_LMP:-$here/../../build/lmp}
-shape=${LSDEM_SHAPE_TOOL:-$here/../../build/lsdem-shape}
+. "$here/../common.sh"
 np=${NP:-2}
 n=${NGRAINS:-120}
 out=${OUT:-$here/out}
-mkdir -p "$out"
-cd "$out"
+enter_out "$out"
 
 # 1. a labelled volume: 45 bumpy ellipsoids in 120^3 voxels (raw uint16, like a watershed
 #    segmentation exported from a CT scan)
@@ -34,8 +32,7 @@ head -n 6 list.txt
 [ "${1:-}" = prepare ] && exit 0
 
 # 5. settle it under gravity (the deck sets dt = 0.05 sqrt(m_min / kn))
-mpi=()
-[ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
+mpi_for "$np"
 echo "running lmp on $np rank(s): $n grains, ${NSTEPS:-15000} steps (progress in $out/log.lammps)"
 start=$SECONDS
 "${mpi[@]}" "$lmp" -in "$here/in.avatars" -var nsteps "${NSTEPS:-15000}" -log log.lammps -echo none -screen none

@@ -6,16 +6,13 @@
 #   run.sh [prepare]   (prepare: make all.lslib, net.data, net.in, net.net, cube.in only)
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-lmp=${LSDEM_LMP:-$here/../../build/lmp}
-shape=${LSDEM_SHAPE_TOOL:-$here/../../build/lsdem-shape}
+. "$here/../common.sh"
 np=${NP:-1}
 out=${OUT:-$here/out}
-mkdir -p "$out"
-cd "$out"
+enter_out "$out"
 LSDEM_SHAPE_TOOL=$shape bash "$here/make_scene.sh" .
 [ "${1:-}" = prepare ] && exit 0
-mpi=()
-[ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
+mpi_for "$np"
 # penalty: dt 2e-4, 15,000 steps of impact then 20,000 of quieting down (the deck's
 # defaults); impulse: 5 times the step (the balls' bond damping bounds it), same times
 for method in penalty impulse; do

@@ -7,19 +7,16 @@
 # default "method split", the fix's defaults; "method etm" for the report's method).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-lmp=${LSDEM_LMP:-$here/../../build/lmp}
-shape=${LSDEM_SHAPE_TOOL:-$here/../../build/lsdem-shape}
+. "$here/../common.sh"
 n=${NGRAINS:-1600} method=${METHOD:-impulse} mul=${DTMUL:-16} np=${NP:-2} t_end=${TIME:-8}
 opts=${OPTS:-method split}
 out=${OUT:-$here/out}
-mkdir -p "$out"
-cd "$out"
+enter_out "$out"
 LSDEM_SHAPE_TOOL=$shape bash "$here/make_scene.sh" . "$n"
 # dt = 0.1 sqrt(m_min / kn), the report's eq 4.47 (kn = 3e4 per node, density 2.65)
-vmin=$("$shape" list grains.lslib | awk 'NR > 2 && NF { v = $(NF - 3); if (m == "" || v < m) m = v } END { print m }')
+vmin=$(smallest_volume grains.lslib)
 dt=$(/usr/bin/python3 -c "print('%.4g' % (0.1 * (2.65 * $vmin / 3.0e4) ** 0.5))")
-mpi=()
-[ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
+mpi_for "$np"
 steps() { /usr/bin/python3 -c "print(round($1 / $2))"; }
 echo "fill: 2.5 s in the container, penalty, dt = $dt, $np rank(s) (log in $out/log.fill)"
 "${mpi[@]}" "$lmp" -in "$here/in.fill" -var dt "$dt" -var nsteps "$(steps 2.5 "$dt")" \

@@ -5,14 +5,12 @@
 # default. SIZE, GRAINS, SEED change the scan, NSTEPS the run.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-lmp=${LSDEM_LMP:-$here/../../build/lmp}
-shape=${LSDEM_SHAPE_TOOL:-$here/../../build/lsdem-shape}
+. "$here/../common.sh"
 segment=$(dirname "$shape")/lsdem-segment
 np=${NP:-2}
 size=${SIZE:-128}
 out=${OUT:-$here/out}
-mkdir -p "$out"
-cd "$out"
+enter_out "$out"
 
 # 1. the scan as it leaves a lab: 16-bit grey levels, one page per slice, LZW-compressed
 #    (compressed by libtiff's own tiffcp); the grains it was made from go to scan.truth.raw
@@ -33,8 +31,7 @@ rm scan.tif
 # 4. look at it, then let the in-situ sample settle under gravity between walls
 "$shape" render grains.lslib insitu.data insitu.png
 [ "${1:-}" = prepare ] && exit 0
-mpi=()
-[ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
+mpi_for "$np"
 echo "running lmp on $np rank(s): ${NSTEPS:-4000} steps (progress on screen, log in $out/log.lammps)"
 start=$SECONDS
 "${mpi[@]}" "$lmp" -in "$here/in.ct_scan" -var nsteps "${NSTEPS:-4000}" -log log.lammps -echo none

@@ -14,8 +14,7 @@
 # none), OUT (output folder, out/).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-lmp=${LSDEM_LMP:-$here/../../build/lmp}
-shape=${LSDEM_SHAPE_TOOL:-$here/../../build/lsdem-shape}
+. "$here/../common.sh"
 py=/usr/bin/python3
 stage=${1:-all}
 case "$stage" in prepare|run|plot|all) ;; *) echo "run.sh: unknown stage '$stage' (prepare, run, plot, all)" >&2; exit 2 ;; esac
@@ -23,8 +22,7 @@ D=${D:-6} angle=${ANGLE:-60} radius=${RADIUS:-7} height=${HEIGHT:-16} n=${NGRAIN
 spacing=${SPACING:-0.25} width=${WIDTH:-1.0} np=${NP:-2}
 nsettle=${NSETTLE:-8000} nsteps=${NSTEPS:-60000} nvtk=${NVTK:-20000}
 out=${OUT:-$here/out}
-mkdir -p "$out"
-cd "$out"
+enter_out "$out"
 geo=(--orifice "$D" --half-angle "$angle" --radius "$radius" --height "$height")
 
 prepare() {
@@ -39,8 +37,7 @@ prepare() {
 
 run() {
   for f in hopper.band sphere.lslib hopper.data hopper.txt; do [ -f "$f" ] || prepare; done
-  mpi=()
-  [ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
+  mpi_for "$np"
   echo "running lmp on $np rank(s): settle $nsettle steps, discharge up to $nsteps (log in $out/log.lammps)"
   start=$SECONDS
   "${mpi[@]}" "$lmp" -in "$here/in.hopper" -var nsettle "$nsettle" -var ndischarge "$nsteps" \

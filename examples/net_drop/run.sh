@@ -5,16 +5,13 @@
 #   run.sh [prepare]   (prepare: make all.lslib and net.data, net.in, net.net only)
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-lmp=${LSDEM_LMP:-$here/../../build/lmp}
-shape=${LSDEM_SHAPE_TOOL:-$here/../../build/lsdem-shape}
+. "$here/../common.sh"
 np=${NP:-2}
 out=${OUT:-$here/out}
-mkdir -p "$out"
-cd "$out"
+enter_out "$out"
 LSDEM_SHAPE_TOOL=$shape bash "$here/make_scene.sh" .
 [ "${1:-}" = prepare ] && exit 0
-mpi=()
-[ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
+mpi_for "$np"
 start=$SECONDS
 "${mpi[@]}" "$lmp" -in "$here/in.net_drop" -log log.lammps -screen none
 echo "lmp took $((SECONDS - start)) s"

@@ -5,13 +5,11 @@
 # OUT sets the output folder (default out/).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-lmp=${LSDEM_LMP:-$here/../../build/lmp}
-shape=${LSDEM_SHAPE_TOOL:-$here/../../build/lsdem-shape}
+. "$here/../common.sh"
 np=${NP:-2}
 n=${NGRAINS:-300}
 out=${OUT:-$here/out}
-mkdir -p "$out"
-cd "$out"
+enter_out "$out"
 
 # four angular shapes, 1-2 mm: two cuboids, a plate and a short cylinder, 200 nodes each
 rm -f grains.lslib part*.lslib
@@ -24,8 +22,7 @@ rm -f part*.lslib
 /usr/bin/python3 "$here/make_grains.py" "$n" 4 0.0028 8 8 0.024 0.024 0.03 2024 > data.settle
 [ "${1:-}" = prepare ] && exit 0
 
-mpi=()
-[ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
+mpi_for "$np"
 echo "running lmp on $np rank(s): $n grains, ${NSTEPS:-20000} steps (progress in $out/log.lammps)"
 start=$SECONDS
 "${mpi[@]}" "$lmp" -in "$here/in.settle" -var nsteps "${NSTEPS:-20000}" -log log.lammps -echo none -screen none

@@ -21,8 +21,7 @@
 # `run.sh prepare` stops when the inputs of in.triaxial are made (examples/make_inputs.sh).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-lmp=${LSDEM_LMP:-$here/../../build/lmp}
-shape=${LSDEM_SHAPE_TOOL:-$here/../../build/lsdem-shape}
+. "$here/../common.sh"
 np=${NP:-2}
 n=${NGRAINS:-300}
 kind=${SHAPES:-angular}
@@ -52,10 +51,8 @@ km_outer=${KM_OUTER:-$(awk -v r="$R" 'BEGIN { printf "%.3g", 2 * r / 90 }')}  # 
               # share of the pressure inward; stiff hoop springs there hold part of that share back.
               # Softer still (KM=4 KM_OUTER=1) and the outer layer is pressed through the inner
               # one's gaps onto the grains; that membrane fails at ~3% axial strain.
-mkdir -p "$out"
-cd "$out"
-mpi=()
-[ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
+enter_out "$out"
+mpi_for "$np"
 start=$SECONDS
 
 mode=${1:-}   # prepare: stop when the inputs are made; resume: go on from triaxial.restart
