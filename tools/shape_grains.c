@@ -16,6 +16,8 @@ void shape_free_grains(shape_grain_file *gf)
   free(gf->vel);
   for (int i = 0; i < gf->nbonds; i++) free(gf->bond[i]);
   free(gf->bond);
+  for (int i = 0; i < gf->nangles; i++) free(gf->angle[i]);
+  free(gf->angle);
   for (int i = 0; gf->g && i < gf->n; i++) free(gf->g[i].line);
   free(gf->g);
 }
@@ -81,21 +83,26 @@ static int read_atom(const char *buf, shape_grain *g)
   return 1;
 }
 
-/* NBONDS Bonds lines "id type atom1 atom2" (types 1 to nbondtypes), kept verbatim */
-static int read_bonds(FILE *f, const char *path, long nbonds, shape_grain_file *gf, int *line)
+/* COUNT lines of a Bonds (ends 2: "id type atom1 atom2") or Angles (ends 3: "id type atom1
+ * atom2 atom3") section, types 1 to ntypes, kept verbatim */
+static int read_topology(FILE *f, const char *path, const char *section, int ends, long count,
+                         int ntypes, char ***lines, int *n, int *line)
 {
-  char buf[1024];
-  if (!(gf->bond = calloc((size_t) (nbonds ? nbonds : 1), sizeof(char *))))
+  char buf[1024], msg[160];
+  if (!(*lines = calloc((size_t) (count ? count : 1), sizeof(char *))))
     return grains_error(path, *line, "out of memory");
-  for (long i = 0; i < nbonds; i++) {
-    long id, a, b;
+  for (long i = 0; i < count; i++) {
+    long id, at[3];
     int type;
     if (!next_line(f, buf, sizeof buf, line) ||
-        sscanf(buf, "%ld %d %ld %ld", &id, &type, &a, &b) != 4 || type < 1 ||
-        type > gf->nbondtypes)
-      return grains_error(path, *line, "expected a Bonds line 'id type atom1 atom2' with a "
-                                       "type from 1 to the bond types");
-    if (!(gf->bond[gf->nbonds++] = strdup(buf))) return grains_error(path, *line, "out of memory");
+        sscanf(buf, "%ld %d %ld %ld %ld", &id, &type, at, at + 1, at + 2) < 2 + ends ||
+        type < 1 || type > ntypes) {
+      snprintf(msg, sizeof msg, "expected a %s line 'id type %s' with a type from 1 to the "
+               "%s types", section, ends == 2 ? "atom1 atom2" : "atom1 atom2 atom3",
+               ends == 2 ? "bond" : "angle");
+      return grains_error(path, *line, msg);
+    }
+    if (!((*lines)[(*n)++] = strdup(buf))) return grains_error(path, *line, "out of memory");
   }
   return 0;
 }
@@ -113,7 +120,7 @@ int shape_read_grains(const char *path, shape_grain_file *gf)
   }
   char buf[1024];
   int line = 0, rc = 0;
-  long natoms = -1, nbonds = 0;
+  long natoms = -1, nbonds = 0, nangles = 0;
   gf->ntypes = 1;
   if (!fgets(buf, sizeof buf, f)) rc = grains_error(path, 1, "empty file");
   line = 1;
@@ -133,6 +140,11 @@ int shape_read_grains(const char *path, shape_grain_file *gf)
       if (n < 0 || n > 1000000000) rc = grains_error(path, line, "bad bond count");
     } else if (header_count(buf, "bond types", &n)) {
       gf->nbondtypes = (int) n;
+    } else if (header_count(buf, "angles", &n)) {
+      nangles = n;
+      if (n < 0 || n > 1000000000) rc = grains_error(path, line, "bad angle count");
+    } else if (header_count(buf, "angle types", &n)) {
+      gf->nangletypes = (int) n;
     } else if (sscanf(buf, "%lf %lf %63s %63s", &a, &b, w1, w2) == 4 && w1[1] == 'l' &&
                w1[0] >= 'x' && w1[0] <= 'z') {
       gf->lo[w1[0] - 'x'] = a;
@@ -159,7 +171,11 @@ int shape_read_grains(const char *path, shape_grain_file *gf)
         else gf->vel[gf->nvel++] = strdup(buf);
       }
     } else if (sscanf(buf, "%63s", w1) == 1 && !strcmp(w1, "Bonds")) {
-      rc = read_bonds(f, path, nbonds, gf, &line);
+      rc = read_topology(f, path, "Bonds", 2, nbonds, gf->nbondtypes, &gf->bond, &gf->nbonds,
+                         &line);
+    } else if (sscanf(buf, "%63s", w1) == 1 && !strcmp(w1, "Angles")) {
+      rc = read_topology(f, path, "Angles", 3, nangles, gf->nangletypes, &gf->angle,
+                         &gf->nangles, &line);
     } else if (isalpha((unsigned char) buf[strspn(buf, " \t")])) {
       rc = grains_error(path, line, "unsupported section or header line (expected a data "
                                     "file of atom_style lsdem, or one lsdem-shape net wrote)");
@@ -169,6 +185,8 @@ int shape_read_grains(const char *path, shape_grain_file *gf)
   if (!rc && natoms < 0) rc = grains_error(path, line, "no atom count");
   if (!rc && gf->nbonds != nbonds) rc = grains_error(path, line, "the header's bond count "
                                                     "does not match the Bonds section");
+  if (!rc && gf->nangles != nangles) rc = grains_error(path, line, "the header's angle count "
+                                                      "does not match the Angles section");
   if (rc) shape_free_grains(gf);
   return rc;
 }
@@ -234,6 +252,11 @@ void shape_write_grain_atoms(FILE *f, const shape_grain_file *gf)
 void shape_write_bonds(FILE *f, const shape_grain_file *gf)
 {
   for (int i = 0; i < gf->nbonds; i++) fputs(gf->bond[i], f);
+}
+
+void shape_write_angles(FILE *f, const shape_grain_file *gf)
+{
+  for (int i = 0; i < gf->nangles; i++) fputs(gf->angle[i], f);
 }
 
 typedef struct {

@@ -23,12 +23,14 @@ typedef struct {
   int nvel;
   char **bond; /* Bonds lines (copied verbatim) */
   int nbonds, nbondtypes;
+  char **angle; /* Angles lines (copied verbatim; lsdem-shape net --bending) */
+  int nangles, nangletypes;
   long maxmol; /* the largest molecule ID (0: grains only) */
 } shape_grain_file;
 
 /* Read PATH: header counts and box, Atoms (atom_style lsdem: id type shape density x y z
  * qw qx qy qz; or hybrid lsdem bond: id type x y z shape density qw qx qy qz molecule),
- * optional Velocities and Bonds (kept verbatim). 0, or 1 after a message naming the line. */
+ * optional Velocities, Bonds and Angles (kept verbatim). 0, or 1 after a message naming the line. */
 int shape_read_grains(const char *path, shape_grain_file *gf);
 void shape_free_grains(shape_grain_file *gf);
 /* The first atom ID after the file's largest (1 for an empty file). */
@@ -48,6 +50,8 @@ int shape_close_out(const char *cmd, FILE *f, const char *path);
 void shape_write_grain_atoms(FILE *f, const shape_grain_file *gf);
 /* The file's Bonds lines (numbered 1 to nbonds, as read). */
 void shape_write_bonds(FILE *f, const shape_grain_file *gf);
+/* The file's Angles lines (numbered 1 to nangles, as read). */
+void shape_write_angles(FILE *f, const shape_grain_file *gf);
 /* The length of the file's longest bond (0 without bonds); -1 after a message when a bond
  * joins an atom the file does not have. */
 double shape_longest_bond(const shape_grain_file *gf);

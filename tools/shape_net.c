@@ -3,10 +3,12 @@
  * there before), as LAMMPS input:
  *   PREFIX.data  atom_style hybrid lsdem bond: the given file's atoms and bonds + the net's
  *                balls (molecule: one past the file's largest) + its bonds (bond type: one
- *                past the file's bond types)
+ *                past the file's bond types); with --bending (or angles in the given
+ *                file) atom_style hybrid lsdem angle: + its joints as Angles (angle type:
+ *                one past the file's)
  *   PREFIX.net   the net file fix net/lsdem reads (core lsdem_net_write)
  *   PREFIX.in    bond_style lsdem/net (the first net only), bond_coeff of the net's bond
- *                type, groups NAME, NAME_free, NAME_clamp (and grains when the file had
+ *                type, angle_style lsdem/net and angle_coeff with --bending, groups NAME, NAME_free, NAME_clamp (and grains when the file had
  *                grains): include after read_data, every net's in the order they were made
  * Free balls get type TFREE, clamped balls TCLAMP, both the one sphere shape. */
 #include "lsdem_shape_cmds.h"
@@ -22,7 +24,7 @@ typedef struct {
   const char *prefix, *grains, *library, *brk, *name;
   lsdem_net_params np;
   int shape, type[2];
-  double rb, density, mass, k, damp, limit, margin;
+  double rb, density, mass, k, damp, limit, margin, bending; /* bending < 0: none */
 } net_opts;
 
 static int net_usage(void)
@@ -33,11 +35,12 @@ static int net_usage(void)
           "         [--e2 X Y Z] [--rest R0] [--clamp all|none|EDGE[,EDGE...]]\n"
           "         [--density RHO | --mass M] [--k K] [--damp C]\n"
           "         [--break strain S | --break force F] [--types TFREE TCLAMP]\n"
-          "         [--grains DATA] [--name NAME] [--margin D]\n"
+          "         [--grains DATA] [--name NAME] [--margin D] [--bending KB]\n"
           "  EDGE: u0 u1 v0 v1 (the net's sides at e1 = 0, e1 = L1, e2 = 0, e2 = L2)\n"
           "  DATA: grains (atom_style lsdem), or a PREFIX.data of this command: the net is\n"
           "  added to it with the next atom IDs, types, molecule and bond type; NAME: its\n"
-          "  groups NAME, NAME_free, NAME_clamp (default net)\n"
+          "  groups NAME, NAME_free, NAME_clamp (default net); KB: bending stiffness of the\n"
+          "  joints (angle_style lsdem/net; then atom_style hybrid lsdem angle)\n"
           "  writes PREFIX.data, PREFIX.net, PREFIX.in (doc/fix_net_lsdem.rst)\n");
   return 2;
 }
@@ -88,6 +91,7 @@ static void defaults(net_opts *o)
   o->density = 1.0;
   o->k = 0.1;
   o->margin = -1.0;
+  o->bending = -1.0;
   o->name = "net";
 }
 
@@ -137,6 +141,9 @@ static int parse_opt(int argc, char **argv, int *i, net_opts *o)
     if (!parse_number(argv[++*i], 1, &o->k)) return bad("k", argv[*i]);
   } else if (!strcmp(a, "--damp") && left >= 1) {
     if (!parse_number(argv[++*i], 0, &o->damp) || o->damp < 0) return bad("damp", argv[*i]);
+  } else if (!strcmp(a, "--bending") && left >= 1) {
+    if (!parse_number(argv[++*i], 0, &o->bending) || o->bending < 0)
+      return bad("bending stiffness (>= 0)", argv[*i]);
   } else if (!strcmp(a, "--margin") && left >= 1) {
     if (!parse_number(argv[++*i], 0, &o->margin) || o->margin < 0) return bad("margin", argv[*i]);
   } else if (!strcmp(a, "--break") && left >= 2) {
@@ -197,18 +204,23 @@ static void net_box(const net_opts *o, const shape_grain_file *gf, const lsdem_n
   }
 }
 
+/* The data file; joints (nj of them, or none without --bending) become Angles of the next
+ * angle type. */
 static int write_data(const net_opts *o, const shape_grain_file *gf, const lsdem_net *net,
-                      int ntypes)
+                      int ntypes, const int *joint, int nj)
 {
-  const int btype = gf->nbondtypes + 1;
+  const int btype = gf->nbondtypes + 1, atype = gf->nangletypes + (o->bending >= 0);
   char path[4096];
   FILE *f = shape_open_out("net", o->prefix, ".data", path, sizeof path);
   if (!f) return 1;
   double lo[3], hi[3];
   net_box(o, gf, net, lo, hi);
-  fprintf(f, "LSDEM grains + net (lsdem-shape net; atom_style hybrid lsdem bond)\n\n");
-  fprintf(f, "%ld atoms\n%d atom types\n%d bonds\n%d bond types\n\n",
+  fprintf(f, "LSDEM grains + net (lsdem-shape net; atom_style hybrid lsdem %s)\n\n",
+          atype ? "angle" : "bond");
+  fprintf(f, "%ld atoms\n%d atom types\n%d bonds\n%d bond types\n",
           (long) gf->n + net->nballs, ntypes, gf->nbonds + net->nbonds, btype);
+  if (atype) fprintf(f, "%d angles\n%d angle types\n", gf->nangles + nj, atype);
+  fprintf(f, "\n");
   for (int k = 0; k < 3; k++) fprintf(f, "%.12g %.12g %clo %chi\n", lo[k], hi[k], 'x' + k, 'x' + k);
   fprintf(f, "\nAtoms # hybrid\n\n");
   shape_write_grain_atoms(f, gf);
@@ -222,6 +234,13 @@ static int write_data(const net_opts *o, const shape_grain_file *gf, const lsdem
   for (int b = 0; b < net->nbonds; b++)
     fprintf(f, "%d %d %ld %ld\n", gf->nbonds + b + 1, btype, net->id[net->bond[2 * b]],
             net->id[net->bond[2 * b + 1]]);
+  if (atype) {
+    fprintf(f, "\nAngles\n\n");
+    shape_write_angles(f, gf);
+    for (int k = 0; k < nj; k++)
+      fprintf(f, "%d %d %ld %ld %ld\n", gf->nangles + k + 1, atype, net->id[joint[3 * k]],
+              net->id[joint[3 * k + 1]], net->id[joint[3 * k + 2]]);
+  }
   return shape_close_out("net", f, path);
 }
 
@@ -245,7 +264,14 @@ static int write_include(const net_opts *o, const shape_grain_file *gf, const ls
   fprintf(f, "bond_coeff %d %.15g %.15g", btype, o->k, net->rest);
   if (o->damp > 0) fprintf(f, " damp %.15g", o->damp);
   if (o->brk) fprintf(f, " break %s %.15g", o->brk, o->limit);
-  fprintf(f, "\ngroup %s type %d %d\ngroup %s_free type %d\ngroup %s_clamp type %d\n",
+  fprintf(f, "\n");
+  if (o->bending >= 0) {
+    const int atype = gf->nangletypes + 1;
+    fprintf(f, "# joints bend (needs atom_style hybrid lsdem angle)\n");
+    if (atype == 1) fprintf(f, "angle_style lsdem/net\n");
+    fprintf(f, "angle_coeff %d %.15g\n", atype, o->bending);
+  }
+  fprintf(f, "group %s type %d %d\ngroup %s_free type %d\ngroup %s_clamp type %d\n",
           o->name, o->type[0], o->type[1], o->name, o->type[0], o->name, o->type[1]);
   if (gf->n) fprintf(f, "group grains molecule 0\n");
   return shape_close_out("net", f, path);
@@ -301,16 +327,22 @@ int cmd_net(int argc, char **argv)
   }
   long id0 = shape_next_id(&gf);
   for (int b = 0; b < net.nballs; b++) net.id[b] = id0 + b;
-  rc = write_data(&o, &gf, &net, ntypes);
+  int *joint = NULL, nj = 0;
+  if (o.bending >= 0 && lsdem_net_joints(&net, &joint, &nj, &err) != LSDEM_OK) {
+    fprintf(stderr, "lsdem-shape net: %s\n", err.msg);
+    rc = 1;
+  }
+  if (!rc) rc = write_data(&o, &gf, &net, ntypes, joint, nj);
+  free(joint);
   if (!rc) rc = write_net(&o, &net);
   if (!rc) rc = write_include(&o, &gf, &net, carried);
   if (!rc)
     printf("net: %d x %d balls (%d clamped), %d bonds, footprint %.12g x %.12g, normal "
            "%.12g %.12g %.12g; atom IDs %ld-%ld, types %d (free) %d (clamped), molecule %ld, "
-           "bond type %d\n",
+           "bond type %d; %d joints as angles\n",
            net.n1, net.n2, count_clamped(&net), net.nbonds, net.size[0], net.size[1],
            net.normal[0], net.normal[1], net.normal[2], id0, id0 + net.nballs - 1, o.type[0],
-           o.type[1], gf.maxmol + 1, gf.nbondtypes + 1);
+           o.type[1], gf.maxmol + 1, gf.nbondtypes + 1, nj);
   lsdem_net_free(&net);
   shape_free_grains(&gf);
   return rc;

@@ -291,5 +291,7 @@ void *BondLsdemNet::extract(const char *str, int &dim)
   if (strcmp(str, "k") == 0) return (void *) k;
   if (strcmp(str, "r0") == 0) return (void *) r0;
   if (strcmp(str, "damping_work") == 0) return (void *) damping_work;    // this rank's, per type
+  dim = 0;
+  if (strcmp(str, "force_quantum") == 0) return (void *) &quantum.q;    // after init_style
   return nullptr;
 }

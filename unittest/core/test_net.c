@@ -9,6 +9,7 @@
 #include "lsdem_test.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static double dist(const double *a, const double *b)
@@ -146,6 +147,83 @@ static void test_force(void)
   CHECK(lsdem_net_bond_damping_power(xi, xi, v0, vj, c) == 0.0, "zero length");
 }
 
+/* Joints: square n1 x n2 has n2 (n1 - 2) along rows and n1 (n2 - 2) along columns; the
+ * hexagonal 3 x 3 net 3 in its rows and 4 across them (counted by hand: the middle row's
+ * first two balls have both diagonals, the third none); each joint's ends are bonded to its
+ * middle ball, at the spacing, on opposite sides */
+static void test_joints(int lattice, int n1, int n2, int expect)
+{
+  double a = 0.5;
+  lsdem_net_params p = {lattice, {0, 0, 0}, {1, 0, 0}, {0, 1, 0},
+                        {(n1 - 1) * a, (n2 - 1) * a * (lattice ? sqrt(3.0) / 2 : 1.0)},
+                        a, a, 15};
+  lsdem_net net;
+  lsdem_error err;
+  CHECK(lsdem_net_build(&p, &net, &err) == LSDEM_OK, "%s", err.msg);
+  int *joint, nj;
+  CHECK(lsdem_net_joints(&net, &joint, &nj, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(nj == expect, "lattice %d %d x %d: %d joints, expected %d", lattice, n1, n2, nj, expect);
+  for (int k = 0; k < nj; k++) {
+    const double *xp = net.x + 3 * joint[3 * k], *xb = net.x + 3 * joint[3 * k + 1],
+                 *xq = net.x + 3 * joint[3 * k + 2];
+    const double u[3] = {xp[0] - xb[0], xp[1] - xb[1], xp[2] - xb[2]};
+    const double w[3] = {xq[0] - xb[0], xq[1] - xb[1], xq[2] - xb[2]};
+    CHECK_NEAR(dist(xp, xb), a, 1e-12);
+    CHECK_NEAR(dist(xq, xb), a, 1e-12);
+    CHECK_NEAR(dot(u, w), -a * a, 1e-12);
+    CHECK(joint[3 * k] < joint[3 * k + 2], "joint %d listed twice", k);
+  }
+  free(joint);
+  lsdem_net_free(&net);
+}
+
+/* bending: forces are -dE/dx (central differences) and sum to zero with the middle ball's;
+ * E = 0 on a straight line and kb d^2 / 2 + O(d^4) at a small bend d; no torque about the
+ * middle ball (the forces only bend, they do not turn the joint) */
+static void test_bend(void)
+{
+  const double kb = 2.5, h = 1e-6;
+  double x1[3] = {-1.1, 0.2, 0.1}, x2[3] = {0.05, -0.1, 0.2}, x3[3] = {0.9, 0.3, -0.4};
+  double f1[3], f3[3], g1[3], g3[3];
+  lsdem_net_bend_force(x1, x2, x3, kb, f1, f3);
+  double *ends[2] = {x1, x3}, *fend[2] = {f1, f3};
+  for (int e = 0; e < 2; e++)
+    for (int d = 0; d < 3; d++) {
+      const double keep = ends[e][d];
+      ends[e][d] = keep + h;
+      const double ep = lsdem_net_bend_force(x1, x2, x3, kb, g1, g3);
+      ends[e][d] = keep - h;
+      const double em = lsdem_net_bend_force(x1, x2, x3, kb, g1, g3);
+      ends[e][d] = keep;
+      CHECK_NEAR(fend[e][d], -(ep - em) / (2 * h), 1e-8);
+    }
+  double f2[3], torque[3] = {0, 0, 0};
+  for (int d = 0; d < 3; d++) f2[d] = -(f1[d] + f3[d]);
+  for (int d = 0; d < 3; d++) { /* -dE/dx2 by central differences */
+    const double keep = x2[d];
+    x2[d] = keep + h;
+    const double ep = lsdem_net_bend_force(x1, x2, x3, kb, g1, g3);
+    x2[d] = keep - h;
+    const double em = lsdem_net_bend_force(x1, x2, x3, kb, g1, g3);
+    x2[d] = keep;
+    CHECK_NEAR(f2[d], -(ep - em) / (2 * h), 1e-8);
+  }
+  for (int e = 0; e < 2; e++) {
+    const double r[3] = {ends[e][0] - x2[0], ends[e][1] - x2[1], ends[e][2] - x2[2]};
+    torque[0] += r[1] * fend[e][2] - r[2] * fend[e][1];
+    torque[1] += r[2] * fend[e][0] - r[0] * fend[e][2];
+    torque[2] += r[0] * fend[e][1] - r[1] * fend[e][0];
+  }
+  for (int d = 0; d < 3; d++) CHECK_NEAR(torque[d], 0.0, 1e-14);
+  const double s1[3] = {-1.0, 0.0, 0.0}, s2[3] = {0.0, 0.0, 0.0}, s3[3] = {2.0, 0.0, 0.0};
+  CHECK_NEAR(lsdem_net_bend_force(s1, s2, s3, kb, f1, f3), 0.0, 1e-15);
+  for (int d = 0; d < 3; d++) CHECK(f1[d] == 0.0 && f3[d] == 0.0, "straight: no force");
+  const double dth = 1e-3, b3[3] = {2.0 * cos(dth), 2.0 * sin(dth), 0.0};
+  CHECK_REL(lsdem_net_bend_force(s1, s2, b3, kb, f1, f3), 0.5 * kb * dth * dth, 1e-6);
+  CHECK_NEAR(lsdem_net_bend_force(s2, s2, s3, kb, f1, f3), kb, 0.0);
+  CHECK(f1[0] == 0.0 && f3[0] == 0.0, "zero arm: no force");
+}
+
 static void test_breaks(void)
 {
   CHECK(!lsdem_net_bond_breaks(LSDEM_NET_BREAK_STRAIN, 0.2, 5.0, 1.0, 0.19), "strain below");
@@ -207,6 +285,10 @@ int main(void)
   test_frame();
   test_side();
   test_force();
+  test_joints(LSDEM_NET_SQUARE, 5, 4, 4 * 3 + 5 * 2);
+  test_joints(LSDEM_NET_HEX, 3, 3, 3 + 4);
+  test_joints(LSDEM_NET_HEX, 7, 1, 5);
+  test_bend();
   test_breaks();
   test_file();
   return lsdem_test_summary();

@@ -326,6 +326,14 @@ typedef struct {
 lsdem_status lsdem_net_build(const lsdem_net_params *p, lsdem_net *net, lsdem_error *err);
 void lsdem_net_free(lsdem_net *net);
 
+/* The net's joints for bending (angle_style lsdem/net): every triple (p, b, q) of a ball b
+ * and two of its bonded neighbours on opposite sides of it along one lattice line (x_p +
+ * x_q = 2 x_b as built), each once with p < q: along both directions of a square lattice
+ * and the three of a hexagonal one. *joint gets 3 * *njoints ball indices (malloc'ed; free
+ * it); needs the positions as built (net->x). */
+lsdem_status lsdem_net_joints(const lsdem_net *net, int **joint, int *njoints,
+                              lsdem_error *err);
+
 /* Height of x over the net's initial plane, (x - origin) . n, and in-plane coordinates
  * uv = ((x - origin) . e1, (x - origin) . e2). */
 double lsdem_net_height(const lsdem_net *net, const double x[3], double uv[2]);
@@ -354,6 +362,16 @@ double lsdem_net_bond_force(const double xi[3], const double xj[3], const double
  * over the steps to the work of the damping forces (fix net/lsdem output 8). */
 double lsdem_net_bond_damping_power(const double xi[3], const double xj[3], const double vi[3],
                                     const double vj[3], double c);
+
+/* Net bending (angle_style lsdem/net): a joint of three balls along a lattice line, ball 2
+ * in the middle, a = x1 - x2, b = x3 - x2, cos(theta) = a . b / (|a| |b|); the energy
+ *   E = kb (1 + cos theta),
+ * zero for a straight line (theta = pi) and kb (pi - theta)^2 / 2 to second order, so kb
+ * (energy) is the joint's bending stiffness per radian squared: a chain of spacing s bends
+ * like a beam of flexural rigidity EI = kb s. Writes the forces -dE/dx on balls 1 and 3
+ * (ball 2 takes -(f1 + f3)) and returns E; zero forces when an arm has zero length. */
+double lsdem_net_bend_force(const double x1[3], const double x2[3], const double x3[3],
+                            double kb, double f1[3], double f3[3]);
 
 /* Rupture criteria (bond_style lsdem/net ... break): by strain, (L - r0) / r0 > limit; by
  * force, the spring's tension k (L - r0) > limit (damping not counted). limit > 0. */

@@ -146,6 +146,69 @@ void lsdem_net_free(lsdem_net *net)
   net->clamp = net->bond = NULL;
 }
 
+/* the bonded neighbours of every ball: nbr[6 b .. 6 b + count[b]) (at most 6 on these
+ * lattices) */
+static int neighbour_table(const lsdem_net *net, int *nbr, int *count)
+{
+  memset(count, 0, (size_t) net->nballs * sizeof(int));
+  for (int e = 0; e < net->nbonds; e++)
+    for (int s = 0; s < 2; s++) {
+      const int b = net->bond[2 * e + s], other = net->bond[2 * e + 1 - s];
+      if (count[b] == 6) return 0;
+      nbr[6 * b + count[b]++] = other;
+    }
+  return 1;
+}
+
+/* p and q on opposite sides of b along one line: x_p + x_q = 2 x_b (to rounding) */
+static int opposite(const lsdem_net *net, int p, int b, int q)
+{
+  double off = 0.0;
+  for (int k = 0; k < 3; k++) {
+    const double d = net->x[3 * p + k] + net->x[3 * q + k] - 2.0 * net->x[3 * b + k];
+    off += d * d;
+  }
+  return off <= 1e-18 * net->spacing * net->spacing;
+}
+
+lsdem_status lsdem_net_joints(const lsdem_net *net, int **joint, int *njoints,
+                              lsdem_error *err)
+{
+  *joint = NULL;
+  *njoints = 0;
+  if (!net->x) return lsdem_fail(err, LSDEM_ERR_ARG, "net joints: the positions as built "
+                                 "are needed (a net read from a file has none)");
+  const size_t n = (size_t) net->nballs;
+  int *nbr = malloc(6 * n * sizeof(int)), *count = malloc(n * sizeof(int));
+  int *out = malloc(3 * 3 * n * sizeof(int) + sizeof(int)); /* <= 3 lines through a ball */
+  if (!nbr || !count || !out) {
+    free(nbr), free(count), free(out);
+    return lsdem_fail(err, LSDEM_ERR_NOMEM, "net joints: out of memory for %zu balls", n);
+  }
+  int nj = 0;
+  if (neighbour_table(net, nbr, count))
+    for (int b = 0; b < net->nballs; b++)
+      for (int i = 0; i < count[b]; i++)
+        for (int j = 0; j < count[b]; j++) {
+          const int p = nbr[6 * b + i], q = nbr[6 * b + j];
+          if (p < q && opposite(net, p, b, q)) {
+            out[3 * nj] = p, out[3 * nj + 1] = b, out[3 * nj + 2] = q;
+            nj++;
+          }
+        }
+  else
+    nj = -1;
+  free(nbr);
+  free(count);
+  if (nj < 0) {
+    free(out);
+    return lsdem_fail(err, LSDEM_ERR_ARG, "net joints: a ball with more than 6 bonds");
+  }
+  *joint = out;
+  *njoints = nj;
+  return LSDEM_OK;
+}
+
 double lsdem_net_height(const lsdem_net *net, const double x[3], double uv[2])
 {
   double d[3] = {x[0] - net->origin[0], x[1] - net->origin[1], x[2] - net->origin[2]};
@@ -201,6 +264,25 @@ double lsdem_net_bond_damping_power(const double xi[3], const double xj[3], cons
   double v[3] = {vj[0] - vi[0], vj[1] - vi[1], vj[2] - vi[2]};
   double w = lsdem_dot3(v, d) / len;
   return c * w * w;
+}
+
+/* bending stiffness of the joints (lsdem_specimen.h): E = kb (1 + cos theta), the form of
+ * LAMMPS's angle_style cosine, smooth through the straight line where the harmonic form in
+ * theta has a 1 / sin(theta) */
+double lsdem_net_bend_force(const double x1[3], const double x2[3], const double x3[3],
+                            double kb, double f1[3], double f3[3])
+{
+  const double a[3] = {x1[0] - x2[0], x1[1] - x2[1], x1[2] - x2[2]};
+  const double b[3] = {x3[0] - x2[0], x3[1] - x2[1], x3[2] - x2[2]};
+  const double la = sqrt(lsdem_dot3(a, a)), lb = sqrt(lsdem_dot3(b, b));
+  f1[0] = f1[1] = f1[2] = f3[0] = f3[1] = f3[2] = 0.0;
+  if (!(la > 0.0 && lb > 0.0)) return kb;
+  const double c = lsdem_dot3(a, b) / (la * lb);
+  for (int m = 0; m < 3; m++) { /* -kb dc/dx1 and -kb dc/dx3 */
+    f1[m] = -kb * (b[m] / lb - c * a[m] / la) / la;
+    f3[m] = -kb * (a[m] / la - c * b[m] / lb) / lb;
+  }
+  return kb * (1.0 + c);
 }
 
 int lsdem_net_bond_breaks(int mode, double limit, double k, double r0, double stretch)
