@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """The triaxial example's figure pack (report Figures 3.12-3.25) from a finished run's folder.
 
 usage: figures.py RUN_DIR [--out DIR]          (DIR default RUN_DIR/figures)
@@ -59,10 +59,12 @@ def read_csv(path):
 
 
 def read_parts(run, name):
-    """The rows of name.csv and of a resumed run's parts name.<k>.csv, in part order."""
+    """The rows of name.csv and of a resumed run's parts name.<part>.csv (in.triaxial's
+    -var part: .2, .3, ... or bench/specimen.sh's .r1, .r2, ...), in the parts' number order."""
     parts = sorted(glob.glob(os.path.join(run, name + ".*.csv")),
-                   key=lambda p: int(re.search(r"\.(\d+)\.csv$", p).group(1)))
-    return [r for p in [os.path.join(run, name + ".csv")] + parts for r in read_csv(p)]
+                   key=lambda p: int(re.sub(r"\D", "", os.path.basename(p)) or 0))
+    first = os.path.join(run, name + ".csv")
+    return [r for p in ([first] if os.path.exists(first) else []) + parts for r in read_csv(p)]
 
 
 def read_dump_frames(paths):
@@ -260,7 +262,7 @@ def draw_response(rows, out):
 def theories(rows):
     """Coulomb, Roscoe and Arthur inclinations (deg) from the peak phi and largest psi."""
     phi = max(r["phi_deg"] for r in rows)
-    psi = max(r["psi_deg"] for r in rows if math.isfinite(r["psi_deg"]))
+    psi = max((r["psi_deg"] for r in rows if math.isfinite(r["psi_deg"])), default=math.nan)
     return phi, psi, {"Coulomb": 45 + phi / 2, "Roscoe": 45 + psi / 2,
                       "Arthur": 45 + (phi + psi) / 4}
 
@@ -480,6 +482,16 @@ def main(argv):
     draw_response(rows, out)
     phi, psi, th = draw_band(rows, out)
     snaps = load_snapshots(a.run)
+    snapped = draw_snapshots(snaps, out) if snaps else None
+    cyc = os.path.join(a.run, "cycles.csv")
+    if os.path.exists(cyc):
+        curves.plot_cycles(cyc, out)
+    write_summary(rows, phi, psi, th, snapped, out)
+    print("figures in %s" % out)
+
+
+def draw_snapshots(snaps, out):
+    """The figures of the snapshots; returns the slice (p0, t) and the chains' statistics."""
     p0, t = slice_plane(snaps)
     slices = sample_slices(snaps, p0, t, out)
     draw_slices(snaps, slices, 2, p0, t, "strain_slices.png", "von Mises shear strain", out)
@@ -489,17 +501,25 @@ def main(argv):
     write_rows(os.path.join(out, "chains.csv"), chains)
     write_rows(os.path.join(out, "fabric.csv"), fabric_rows(snaps))
     draw_fabric(snaps[-1], out)
-    cyc = os.path.join(a.run, "cycles.csv")
-    if os.path.exists(cyc):
-        curves.plot_cycles(cyc, out)
+    return p0, t, chains
+
+
+def write_summary(rows, phi, psi, th, snapped, out):
+    """summary.txt (and the screen): the band at the end, the theories, the chains
+    (snapped: draw_snapshots' slice and statistics, None without snapshots)."""
     last = rows[-1]
     with open(os.path.join(out, "summary.txt"), "w") as f:
-        f.write("slice: through (%.1f, %.1f, %.1f) px along (%.4f, %.4f, 0)\n" % (*p0, t[0], t[1]))
+        if not snapped:
+            f.write("no snapshots (in.triaxial writes them at snap_at = 5 %, 10 %, ...)\n")
+        else:
+            p0, t, chains = snapped
+            f.write("slice: through (%.1f, %.1f, %.1f) px along (%.4f, %.4f, 0)\n"
+                    % (*p0, t[0], t[1]))
         f.write("band at eps_a %s: dip %.1f deg, thickness %.2f D50; theories from peak phi "
                 "%.1f and largest psi %.1f deg: %s\n"
                 % (pct(last["eps_a"]), last["band_dip"], last["band_thickness"], phi, psi,
                    ", ".join("%s %.1f" % kv for kv in th.items())))
-        for c in chains:
+        for c in (snapped[2] if snapped else []):
             f.write("chains at eps_a %s: %d lines (%d grain, %d platen, %d membrane), strong "
                     "%.3f of them carrying %.3f; grain contacts strong %.3f, strong normals "
                     "%.1f deg from vertical (weak %.1f)\n"
@@ -508,7 +528,6 @@ def main(argv):
                        c["grain_strong_fraction"], c["grain_strong_angle_deg"],
                        c["grain_weak_angle_deg"]))
     print(open(os.path.join(out, "summary.txt")).read(), end="")
-    print("figures in %s" % out)
 
 
 if __name__ == "__main__":
