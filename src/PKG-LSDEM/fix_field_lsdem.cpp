@@ -41,7 +41,7 @@ using namespace FixConst;
 // (a wall: -(its index among the listed walls + 1)) force[3] point[3] centre[3]
 static constexpr int GRAIN_ROW = 9, BRANCH_ROW = 11;
 
-static const char *USAGE = "fix ID group field/lsdem N prefix kernel W spacing H "
+static const char *USAGE = "fix ID group field/lsdem N|v_name prefix kernel W spacing H "
                            "[regular V S] [mask cylinder cx cy R zlo zhi] [wall fixID ...]";
 
 // the keywords after which a list of wall IDs ends

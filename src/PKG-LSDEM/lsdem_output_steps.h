@@ -34,8 +34,6 @@ class LsdemOutputSteps {
   std::string var;  // the variable's name without v_ (empty: an interval)
   int ivar = -1;
   bigint next = 0;
-
-  bigint next_of_variable(LAMMPS *lmp, const char *style) const;
 };
 
 }    // namespace LAMMPS_NS
