@@ -369,7 +369,7 @@ def draw_chains(snaps, p0, t, out):
     """Figures 3.18/3.20: the lines whose contact point lies within D50 of the slice,
     projected on it; width by normal force (linear to 4 times the mean, then constant),
     strong (above the mean of all lines with a grain) dark red between grains, blue at
-    platens and membrane, weak grey."""
+    platens and membrane, weak grey; each snapshot's band plane dashed."""
     fig, axs = plt.subplots(1, len(snaps), figsize=(3.2 * len(snaps), 5.2), squeeze=False,
                             sharey=True)
     stats = []
@@ -394,6 +394,8 @@ def draw_chains(snaps, p0, t, out):
                            "darkred" if kinds[k] == "grain" else "royalblue")
         ax.add_collection(LineCollection(segs, linewidths=widths, colors=colours))
         ax.autoscale()
+        line = np.array(ax.get_xlim())
+        ax.plot(line, band_trace(snap, p0, t, line), "c--", lw=1)
         ax.set_aspect("equal")
         ax.set_title("eps_a %s: %d lines in the slab,\nstrong %.0f %% of all, carrying %.0f %%"
                      % (pct(snap["eps_a"]), keep.sum(), 100 * st["strong_fraction"],
@@ -401,9 +403,10 @@ def draw_chains(snaps, p0, t, out):
         ax.set_xlabel("s (px)")
     axs[0][0].set_ylabel("z (px)")
     fig.suptitle("force chains, slab of 2 D50 about the slice (dark red: strong grain "
-                 "contacts; blue: strong platen/membrane contacts)", fontsize=8)
+                 "contacts; blue: strong platen/membrane contacts; dashed: the fitted band)",
+                 fontsize=8)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "chains.png"), dpi=100)
+    fig.savefig(os.path.join(out, "chains.png"), dpi=90)
     plt.close(fig)
     return stats
 
