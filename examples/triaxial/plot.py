@@ -20,11 +20,12 @@ import matplotlib.pyplot as plt
 import cycles
 
 
-def plot_cycles(spec):
-    """Figure 3.25 and loops.csv from a cyclic run's cycles.csv (parts joined with +)."""
+def plot_cycles(spec, outdir=None):
+    """Figure 3.25 and loops.csv from a cyclic run's cycles.csv (parts joined with +), into
+    outdir (default: the CSV's folder)."""
     rows = cycles.read(spec)
     measured = cycles.loops(rows)
-    outdir = os.path.dirname(os.path.abspath(spec.split("+")[0]))
+    outdir = outdir or os.path.dirname(os.path.abspath(spec.split("+")[0]))
     cycles.write(os.path.join(outdir, "loops.csv"), measured)
     fig, (aq, av) = plt.subplots(2, 1, figsize=(6, 7), sharex=True)
     for k in sorted({r["cycle"] for r in rows}):

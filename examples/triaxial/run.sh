@@ -18,6 +18,8 @@
 #   0.12; 0.05: rounder, like the report's eroded low-resolution avatars); R (specimen radius, default 90 px for 300
 #   grains, scaled as NGRAINS^(1/3)); KM scales with R (10 at R = 90); PACK_SEED (seed of the
 #   random loose packing, default 3: another seed, another specimen of the same grains).
+# Then plot.py (the CSV's curves) and figures.py (the figure pack, report Figures 3.12-3.25,
+# in $OUT/figures).
 # `run.sh prepare` stops when the inputs of in.triaxial are made (examples/make_inputs.sh).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -144,4 +146,5 @@ if [ -n "${CYCLES:-}" ] && [ "$mode" != resume ]; then
   /usr/bin/python3 "$here/plot.py" --cycles cycles.csv
   echo "cycles: $out/cycles.csv, $out/cycles.png (report Figure 3.25), $out/loops.csv"
 fi
+/usr/bin/python3 "$here/figures.py" .   # the figure pack: out/figures/ (README.md)
 echo "results: $out/triaxial.csv, $out/q_eps.png, $out/phi_eps.png, $out/epsv_eps.png, $out/dump.triaxial"

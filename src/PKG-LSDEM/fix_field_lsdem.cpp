@@ -5,7 +5,8 @@
    fix ID group field/lsdem N prefix kernel W spacing H [regular V S]
        [mask cylinder cx cy R zlo zhi] [wall fixID ...]
    (doc/fix_field_lsdem.rst). Every N steps (and at a run's setup when the step is a
-   multiple of N): each grain of the group (mass, solid volume, centre, displacement since
+   multiple of N), or on the steps an equal-style variable names (N = v_name): each
+   grain of the group (mass, solid volume, centre, displacement since
    the reference) and each contact branch of pair_style lsdem and the listed wall/lsdem
    fixes (force on a grain of the group, contact point, grain centre: what compute
    stress/lsdem sums) travel to rank 0, sorted (grains by tag, branches by their values),
@@ -40,7 +41,7 @@ using namespace FixConst;
 // (a wall: -(its index among the listed walls + 1)) force[3] point[3] centre[3]
 static constexpr int GRAIN_ROW = 9, BRANCH_ROW = 11;
 
-static const char *USAGE = "fix ID group field/lsdem N prefix kernel W spacing H "
+static const char *USAGE = "fix ID group field/lsdem N|v_name prefix kernel W spacing H "
                            "[regular V S] [mask cylinder cx cy R zlo zhi] [wall fixID ...]";
 
 // the keywords after which a list of wall IDs ends
@@ -59,8 +60,7 @@ FixFieldLsdem::FixFieldLsdem(LAMMPS *lmp, int narg, char **arg) :
   series(narg > 4 ? arg[4] : "", "vti")
 {
   if (narg < 9) error->all(FLERR, "Illegal fix field/lsdem command: {}", USAGE);
-  nevery = utils::inumeric(FLERR, arg[3], false, lmp);
-  if (nevery <= 0) error->all(FLERR, "Fix field/lsdem: N must be > 0, got {}", arg[3]);
+  nevery = steps.parse(lmp, arg[3], "Fix field/lsdem");
   if (std::string(arg[4]).find_first_of("*%") != std::string::npos)
     error->all(FLERR, "Fix field/lsdem takes a file prefix without * or %: it writes "
                "prefix_<step>.vti and prefix.pvd");
@@ -138,6 +138,7 @@ void FixFieldLsdem::init()
   if (!store) error->all(FLERR, "Could not find fix field/lsdem's store {}", id_store);
   avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
   sources.find(lmp, wall_ids, "Fix field/lsdem");
+  steps.init(lmp, "Fix field/lsdem");
 }
 
 /* ---------------------------------------------------------------------- */
@@ -145,14 +146,24 @@ void FixFieldLsdem::init()
 void FixFieldLsdem::setup(int /*vflag*/)
 {
   if (!have_reference) store_reference();
-  if (update->ntimestep % nevery == 0) write_fields();
+  if (steps.due_at_setup(update->ntimestep)) write_and_schedule();
 }
 
 /* ---------------------------------------------------------------------- */
 
 void FixFieldLsdem::end_of_step()
 {
+  if (steps.due(update->ntimestep)) write_and_schedule();
+}
+
+/* ----------------------------------------------------------------------
+   every rank: the files (rank 0), then the next step to write
+------------------------------------------------------------------------- */
+
+void FixFieldLsdem::write_and_schedule()
+{
   write_fields();
+  steps.written(lmp, update->ntimestep, "Fix field/lsdem");
 }
 
 /* ---------------------------------------------------------------------- */

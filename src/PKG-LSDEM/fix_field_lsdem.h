@@ -19,6 +19,7 @@ FixStyle(field/lsdem,FixFieldLsdem);
 #include "fields/lsdem_fields.h"
 #include "lsdem_contact_sources.h"
 #include "lsdem_lammps_compat.h"
+#include "lsdem_output_steps.h"
 #include "lsdem_vtk_series.h"
 
 #include <string>
@@ -47,11 +48,13 @@ class FixFieldLsdem : public Fix {
   LsdemCompat::FixStorePeratom *store;
   bool have_reference;
   LsdemVtkSeries series;
+  LsdemOutputSteps steps;             // N: every N steps or v_name
 
   void store_reference();
   std::vector<double> grain_rows() const;
   std::vector<double> branch_rows() const;
   void write_fields();
+  void write_and_schedule();
 };
 
 }    // namespace LAMMPS_NS

@@ -3,7 +3,8 @@
    LSDEM package: level-set discrete element method for LAMMPS.
 
    fix ID group network/lsdem N prefix [wall fixID ...]   (doc/fix_network_lsdem.rst)
-   Every N steps (and at a run's setup when the step is a multiple of N): each contact
+   Every N steps (and at a run's setup when the step is a multiple of N), or on the steps
+   an equal-style variable names (N = v_name): each contact
    between two grains of the group (pair_style lsdem's tests, two-way halves merged) and
    each contact of a grain of the group with a listed fix wall/lsdem travels to rank 0,
    sorted, with its normal force: the force on the grain along the partner's outward
@@ -44,10 +45,9 @@ FixNetworkLsdem::FixNetworkLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), avec(nullptr), series(narg > 4 ? arg[4] : "", "vtp"), band_ivar(-1),
   stats{}, nstats(11)
 {
-  const char *usage = "fix ID group network/lsdem N prefix [band v_name] [wall fixID ...]";
+  const char *usage = "fix ID group network/lsdem N|v_name prefix [band v_name] [wall fixID ...]";
   if (narg < 5) error->all(FLERR, "Illegal fix network/lsdem command: {}", usage);
-  nevery = utils::inumeric(FLERR, arg[3], false, lmp);
-  if (nevery <= 0) error->all(FLERR, "Fix network/lsdem: N must be > 0, got {}", arg[3]);
+  nevery = steps.parse(lmp, arg[3], "Fix network/lsdem");
   if (std::string(arg[4]).find_first_of("*%") != std::string::npos)
     error->all(FLERR, "Fix network/lsdem takes a file prefix without * or %: it writes "
                "prefix_<step>.vtp and prefix.pvd");
@@ -86,6 +86,7 @@ void FixNetworkLsdem::init()
   sources.find(lmp, wall_ids, "Fix network/lsdem");
   if (!sources.pair && sources.walls.empty())
     error->all(FLERR, "Fix network/lsdem needs pair_style lsdem or a wall");
+  steps.init(lmp, "Fix network/lsdem");
   if (!band_var.empty()) {
     band_ivar = input->variable->find(band_var.c_str());
     if (band_ivar < 0 || !input->variable->atomstyle(band_ivar))
@@ -98,14 +99,14 @@ void FixNetworkLsdem::init()
 
 void FixNetworkLsdem::setup(int /*vflag*/)
 {
-  if (update->ntimestep % nevery == 0) write_network();
+  if (steps.due_at_setup(update->ntimestep)) write_network();
 }
 
 /* ---------------------------------------------------------------------- */
 
 void FixNetworkLsdem::end_of_step()
 {
-  write_network();
+  if (steps.due(update->ntimestep)) write_network();
 }
 
 /* ---------------------------------------------------------------------- */
@@ -236,6 +237,7 @@ void FixNetworkLsdem::write_network()
     lines_in_band(std::vector<double>());  // the gather is collective
   }
   MPI_Bcast(stats, nstats, MPI_DOUBLE, 0, world);
+  steps.written(lmp, update->ntimestep, "Fix network/lsdem");
 }
 
 /* ----------------------------------------------------------------------

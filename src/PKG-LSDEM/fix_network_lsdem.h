@@ -18,6 +18,7 @@ FixStyle(network/lsdem,FixNetworkLsdem);
 #include "fix.h"
 #include "lsdem_contact_sources.h"
 #include "lsdem_kernel.h"
+#include "lsdem_output_steps.h"
 #include "lsdem_vtk_series.h"
 
 #include <string>
@@ -39,6 +40,7 @@ class FixNetworkLsdem : public Fix {
   LsdemContactSources sources;
   class AtomVecLsdem *avec;
   LsdemVtkSeries series;
+  LsdemOutputSteps steps;             // N: every N steps or v_name
   // keyword band v_name: an atom-style variable flagging grains in a shear band (non-zero)
   std::string band_var;
   int band_ivar;
