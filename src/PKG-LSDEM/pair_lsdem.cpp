@@ -303,7 +303,7 @@ void PairLsdem::compute(int eflag, int vflag)
   end_force_call();
   if (zcap > 0) coordination(1);
   apply_contacts(*lanes[0], atom->f, atom->torque);
-  tally_workload();
+  if (eflag_global) tally_workload();  // compute pair reads it on energy steps only
   if (update->setupflag) report_overlaps();
   if (vflag_fdotr) virial_fdotr_compute();
 }
@@ -491,7 +491,8 @@ const double *PairLsdem::coordination(int to_ghosts)
 }
 
 /* ----------------------------------------------------------------------
-   local workload of the last force call into pvector (see constructor)
+   local workload of the last force call into pvector (see constructor); on the steps
+   that tally energy only, the only steps compute pair may read it on
 ------------------------------------------------------------------------- */
 
 void PairLsdem::tally_workload()
