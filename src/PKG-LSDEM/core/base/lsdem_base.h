@@ -54,10 +54,9 @@ void lsdem_quat_advance(double q[4], const double omega_body[3], double dt);
  * frame. */
 /* Rodrigues' formula (report eq 2.9): rotate v about the unit axis k by angle theta. */
 void lsdem_rodrigues(const double v[3], const double k[3], double theta, double out[3]);
-/* Rotate v by the rotation that takes unit vector n_old onto unit vector n_new
- * (the operator Z of report eq 2.8). Identity when n_old == n_new. */
-void lsdem_rotate_between(const double v[3], const double n_old[3], const double n_new[3],
-                          double out[3]);
+/* lsdem_rotate_between (lsdem_quat.h): rotate v by the rotation that takes unit vector
+ * n_old onto unit vector n_new (the operator Z of report eq 2.8). Identity when
+ * n_old == n_new. */
 
 /* Kawamoto/Tan rotation files store (q0 q1 q2 q3) = their code's quaternion, w last.
  * Their rotation matrix (report eq 2.26 with Evans' q1..q4 = file q0..q3) equals the

@@ -1,5 +1,6 @@
-/* lsdem_quat.h -- the core's small quaternion operations, inline (a grain's step calls them
- * every time step: fix nve/lsdem's sphere path runs them without a call). Quaternions are
+/* lsdem_quat.h -- the core's small quaternion operations and the shear springs' rotation,
+ * inline (a grain's step and each contact's law call them every time step: the sphere
+ * paths run them without a call). Quaternions are
  * scalar-first (w, x, y, z), body -> world (rotation.c). Declared through lsdem_base.h. */
 #ifndef LSDEM_QUAT_H
 #define LSDEM_QUAT_H
@@ -68,6 +69,51 @@ static inline void lsdem_quat_turn(double q[4], const double omega[3], double dt
   lsdem_quat_multiply(e, q, r);
   for (int i = 0; i < 4; i++) q[i] = r[i];
   lsdem_quat_normalize(q);
+}
+
+/* Minimal rotation taking unit a onto unit b, applied to v, in the division-free-axis
+ * form  R v = c v + k x v + (k.v) k / (1 + c),  k = a x b, c = a.b  (Rodrigues with
+ * sin(theta) k_hat = k). Its round-off grows like eps/(1 + c), so when a and b are
+ * nearly opposite we instead compose a half-turn about an axis u perpendicular to a
+ * (taking a to -a exactly) with the well-conditioned minimal rotation from -a to b. */
+static inline void lsdem_rotate_minimal(const double v[3], const double a[3],
+                                        const double b[3], double out[3])
+{
+  const double c = lsdem_dot3(a, b);
+  double k[3], kxv[3];
+  lsdem_cross3(a, b, k);
+  lsdem_cross3(k, v, kxv);
+  const double f = lsdem_dot3(k, v) / (1.0 + c);
+  for (int i = 0; i < 3; i++) out[i] = c * v[i] + kxv[i] + f * k[i];
+}
+
+/* a unit vector perpendicular to unit a */
+static inline void lsdem_perpendicular_unit(const double a[3], double u[3])
+{
+  /* cross a with the coordinate axis it is least aligned with */
+  const double ax = fabs(a[0]), ay = fabs(a[1]), az = fabs(a[2]);
+  const double e[3] = {ax <= ay && ax <= az, ay < ax && ay <= az, az < ax && az < ay};
+  lsdem_cross3(a, e, u);
+  const double n = sqrt(lsdem_dot3(u, u));
+  for (int i = 0; i < 3; i++) u[i] /= n;
+}
+
+/* The operator Z of report eq 2.8 (lsdem_base.h): the minimal rotation taking n_old onto
+ * n_new, applied to v (every shear spring, every step). */
+static inline void lsdem_rotate_between(const double v[3], const double n_old[3],
+                                        const double n_new[3], double out[3])
+{
+  const double c = lsdem_dot3(n_old, n_new);
+  if (1.0 + c > 1e-6) {
+    lsdem_rotate_minimal(v, n_old, n_new, out);
+    return;
+  }
+  double u[3], w[3];
+  lsdem_perpendicular_unit(n_old, u);
+  const double uv = lsdem_dot3(u, v);
+  for (int i = 0; i < 3; i++) w[i] = 2.0 * uv * u[i] - v[i]; /* half-turn about u */
+  const double m[3] = {-n_old[0], -n_old[1], -n_old[2]};
+  lsdem_rotate_minimal(w, m, n_new, out);
 }
 
 #endif /* LSDEM_QUAT_H */

@@ -108,48 +108,6 @@ void lsdem_rodrigues(const double v[3], const double k[3], double theta, double 
   for (int i = 0; i < 3; i++) out[i] = v[i] * c + (1.0 - c) * kv * k[i] + s * kxv[i];
 }
 
-/* Minimal rotation taking unit a onto unit b, applied to v, in the division-free-axis
- * form  R v = c v + k x v + (k.v) k / (1 + c),  k = a x b, c = a.b  (Rodrigues with
- * sin(theta) k_hat = k). Its round-off grows like eps/(1 + c), so when a and b are
- * nearly opposite we instead compose a half-turn about an axis u perpendicular to a
- * (taking a to -a exactly) with the well-conditioned minimal rotation from -a to b. */
-static void rotate_minimal(const double v[3], const double a[3], const double b[3],
-                           double out[3])
-{
-  const double c = lsdem_dot3(a, b);
-  double k[3], kxv[3];
-  lsdem_cross3(a, b, k);
-  lsdem_cross3(k, v, kxv);
-  const double f = lsdem_dot3(k, v) / (1.0 + c);
-  for (int i = 0; i < 3; i++) out[i] = c * v[i] + kxv[i] + f * k[i];
-}
-
-static void perpendicular_unit(const double a[3], double u[3])
-{
-  /* cross a with the coordinate axis it is least aligned with */
-  const double ax = fabs(a[0]), ay = fabs(a[1]), az = fabs(a[2]);
-  const double e[3] = {ax <= ay && ax <= az, ay < ax && ay <= az, az < ax && az < ay};
-  lsdem_cross3(a, e, u);
-  const double n = sqrt(lsdem_dot3(u, u));
-  for (int i = 0; i < 3; i++) u[i] /= n;
-}
-
-void lsdem_rotate_between(const double v[3], const double n_old[3], const double n_new[3],
-                          double out[3])
-{
-  const double c = lsdem_dot3(n_old, n_new);
-  if (1.0 + c > 1e-6) {
-    rotate_minimal(v, n_old, n_new, out);
-    return;
-  }
-  double u[3], w[3];
-  perpendicular_unit(n_old, u);
-  const double uv = lsdem_dot3(u, v);
-  for (int i = 0; i < 3; i++) w[i] = 2.0 * uv * u[i] - v[i]; /* half-turn about u */
-  const double m[3] = {-n_old[0], -n_old[1], -n_old[2]};
-  rotate_minimal(w, m, n_new, out);
-}
-
 /* ---------------------------------------- Kawamoto/Tan quaternion convention ---- */
 
 /* File (q0, q1, q2, q3) = Evans (q1, q2, q3, q4); eq 2.26 equals the textbook matrix of
