@@ -21,7 +21,8 @@ static constexpr int SPRING_DOUBLES = 8;
 /* ---------------------------------------------------------------------- */
 
 FixLsdemSphereShear::FixLsdemSphereShear(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), nmax_atom(0), cap(0), nslot(nullptr), partner(nullptr), slot(nullptr)
+  Fix(lmp, narg, arg), nmax_atom(0), rows(0), cap(0), nslot(nullptr), partner(nullptr),
+  slot(nullptr)
 {
   if (narg != 3) error->all(FLERR, "Illegal fix LSDEM_SPHERE_SHEAR command (internal fix)");
   restart_peratom = 1;
@@ -43,7 +44,8 @@ FixLsdemSphereShear::~FixLsdemSphereShear()
 }
 
 /* ----------------------------------------------------------------------
-   per-atom arrays: nslot for nmax atoms, partner and slot cap per atom
+   per-atom arrays: nslot for nmax atoms (owned and ghosts); the slots, cap per atom, only
+   for the rows of owned spheres that keep some (ensure_rows), never for ghosts
 ------------------------------------------------------------------------- */
 
 void FixLsdemSphereShear::grow_arrays(int nmax)
@@ -51,11 +53,24 @@ void FixLsdemSphereShear::grow_arrays(int nmax)
   if (nmax <= nmax_atom) return;
   memory->grow(nslot, nmax, "lsdem/sphere_shear:nslot");
   for (int i = nmax_atom; i < nmax; i++) nslot[i] = 0;
-  partner = (tagint *) memory->srealloc(partner, sizeof(tagint) * nmax * std::max(cap, 1),
-                                        "lsdem/sphere_shear:partner");
-  slot = (lsdem_shear_hist *) memory->srealloc(slot, sizeof(lsdem_shear_hist) * nmax *
-                                               std::max(cap, 1), "lsdem/sphere_shear:slot");
   nmax_atom = nmax;
+}
+
+void FixLsdemSphereShear::realloc_slots(int new_rows, int new_cap)
+{
+  partner = (tagint *) memory->srealloc(partner, sizeof(tagint) * std::max(new_rows * new_cap, 1),
+                                        "lsdem/sphere_shear:partner");
+  slot = (lsdem_shear_hist *) memory->srealloc(slot, sizeof(lsdem_shear_hist) *
+                                               std::max(new_rows * new_cap, 1),
+                                               "lsdem/sphere_shear:slot");
+}
+
+/* rows for atoms 0..n-1 */
+void FixLsdemSphereShear::ensure_rows(int n)
+{
+  if (n <= rows) return;
+  rows = std::max(n, rows + rows / 4);
+  realloc_slots(rows, cap);
 }
 
 /* more slots per atom: each atom's run moves to its place at the new stride (from the last
@@ -65,11 +80,9 @@ void FixLsdemSphereShear::grow_cap(int need)
   if (need <= cap) return;
   const int old = cap;
   cap = std::max(need, cap + cap / 2);
-  partner = (tagint *) memory->srealloc(partner, sizeof(tagint) * nmax_atom * cap,
-                                        "lsdem/sphere_shear:partner");
-  slot = (lsdem_shear_hist *) memory->srealloc(slot, sizeof(lsdem_shear_hist) * nmax_atom * cap,
-                                               "lsdem/sphere_shear:slot");
-  for (int i = nmax_atom - 1; i > 0; i--) {
+  realloc_slots(rows, cap);
+  for (int i = rows - 1; i > 0; i--) {
+    if (i >= nmax_atom || nslot[i] == 0) continue;
     memmove(partner + (bigint) i * cap, partner + (bigint) i * old, sizeof(tagint) * nslot[i]);
     memmove(slot + (bigint) i * cap, slot + (bigint) i * old, sizeof(lsdem_shear_hist) * nslot[i]);
   }
@@ -88,6 +101,7 @@ void FixLsdemSphereShear::note_exchange_size()
 
 void FixLsdemSphereShear::assign(int i, const tagint *partners, int n)
 {
+  ensure_rows(i + 1);
   const int had = nslot[i];
   old_partner.assign(partner + (bigint) i * cap, partner + (bigint) i * cap + had);
   old_slot.assign(slots(i), slots(i) + had);
@@ -127,6 +141,8 @@ double FixLsdemSphereShear::springs_held() const
 void FixLsdemSphereShear::copy_arrays(int i, int j, int /*delflag*/)
 {
   nslot[j] = nslot[i];
+  if (nslot[i] == 0) return;
+  ensure_rows(j + 1);
   memcpy(partner + (bigint) j * cap, partner + (bigint) i * cap, sizeof(tagint) * nslot[i]);
   memcpy(slots(j), slots(i), sizeof(lsdem_shear_hist) * nslot[i]);
 }
@@ -159,6 +175,9 @@ int FixLsdemSphereShear::pack_held(int i, double *buf) const
 int FixLsdemSphereShear::unpack_held(int i, const double *buf)
 {
   const int n = (int) ubuf(buf[0]).i;
+  nslot[i] = 0;
+  if (n == 0) return 1;
+  ensure_rows(i + 1);
   grow_cap(n);
   int m = 1;
   for (int k = 0; k < n; k++) {
@@ -220,8 +239,8 @@ int FixLsdemSphereShear::maxsize_restart()
 
 double FixLsdemSphereShear::memory_usage()
 {
-  return (double) nmax_atom * (sizeof(int) + std::max(cap, 1) * (sizeof(tagint) +
-                                                                sizeof(lsdem_shear_hist))) +
+  return (double) nmax_atom * sizeof(int) +
+         (double) rows * cap * (sizeof(tagint) + sizeof(lsdem_shear_hist)) +
          (double) old_slot.capacity() * sizeof(lsdem_shear_hist) +
          (double) old_partner.capacity() * sizeof(tagint);
 }

@@ -55,14 +55,16 @@ class FixLsdemSphereShear : public Fix {
   double memory_usage() override;
 
  private:
-  int nmax_atom;      // atoms the arrays hold
-  int cap;            // slots per atom
-  int *nslot;         // per atom: slots in use
-  tagint *partner;    // per atom, cap each: the partner of each slot
-  lsdem_shear_hist *slot;  // per atom, cap each
+  int nmax_atom;      // atoms nslot holds
+  int rows, cap;      // atoms the slots are allocated for (owned spheres), slots per atom
+  int *nslot;         // per atom: slots in use (0 for ghosts and atoms without a row)
+  tagint *partner;    // per row, cap each: the partner of each slot
+  lsdem_shear_hist *slot;  // per row, cap each
   std::vector<tagint> old_partner;         // scratch of assign()
   std::vector<lsdem_shear_hist> old_slot;
 
+  void realloc_slots(int new_rows, int new_cap);
+  void ensure_rows(int);
   void grow_cap(int);
   void note_exchange_size();
   int count_held(int i) const;
