@@ -64,6 +64,12 @@ class LsdemContactPath {
   int detect(int i, tagint partner, const lsdem_shape *A, const lsdem_pose &pa,
              const lsdem_shape *B, const lsdem_pose &pb, const lsdem_detect_params &det,
              bigint step);
+  // test() for an analytic sphere A of radius ra whose pair keeps its one spring in `slot`
+  // (not in the store; FixLsdemSphereShear), read and written in place. Returns the
+  // penetrating nodes (0 or 1).
+  static int test_sphere_in_place(double ra, const lsdem_pose &pa, const lsdem_shape *B,
+                                  const lsdem_pose &pb, const lsdem_contact_params &prm,
+                                  bigint step, lsdem_shear_hist &slot, lsdem_contact_result &res);
   // the manifold of the last test or detect
   const lsdem_manifold &manifold() const { return m; }
 

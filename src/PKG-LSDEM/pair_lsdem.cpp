@@ -15,6 +15,7 @@
 #include "domain.h"
 #include "error.h"
 #include "fix_lsdem_history.h"
+#include "fix_lsdem_sphere_shear.h"
 #include "force.h"
 #include "lsdem_lammps_compat.h"
 #include "math_const.h"
@@ -35,12 +36,14 @@ using MathConst::MY_PI;
 // equivalent-sphere radius (grains generated or imported overlapping)
 static constexpr double OVERLAP_WARN = LsdemContactOptions::OVERLAP_WARN;
 static const char HISTORY_ID[] = "LSDEM_PAIR_HISTORY";
+static const char SPHERE_SHEAR_ID[] = "LSDEM_PAIR_SPHERE_SHEAR";
 
 /* ---------------------------------------------------------------------- */
 
 PairLsdem::PairLsdem(LAMMPS *lmp) :
   Pair(lmp), mode(LSDEM_ROLES_ONEWAY), zcap(0), params(nullptr),
   onerad(nullptr), maxrad(nullptr), kn_max(0.0), kn_law_max(0.0), avec(nullptr), fix_history(nullptr),
+  sphere_shear(nullptr),
   nmax_atom(0), pose(nullptr), shape(nullptr), ncount(nullptr),
   master_built(0), nmax_master(0), maxmaster(0), master_first(nullptr), master_num(nullptr),
   master_j(nullptr), master_scale_of(nullptr), nlanes(1), contact_step(-1)
@@ -65,6 +68,8 @@ PairLsdem::~PairLsdem()
   delete[] pvector;
   int ifix = modify->find_fix(HISTORY_ID);
   if (fix_history && ifix >= 0) modify->delete_fix(ifix);
+  ifix = modify->find_fix(SPHERE_SHEAR_ID);
+  if (sphere_shear && ifix >= 0) modify->delete_fix(ifix);
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -203,20 +208,31 @@ void PairLsdem::init_style()
 
   // history where friction is on or node lists are kept; none at all when mu == 0
   // everywhere and node lists are off
-  int need_history = global.detect(avec).node_skin > 0.0;
+  int friction = 0;
   for (int i = 1; i <= ntypes; i++)
     for (int j = i; j <= ntypes; j++)
-      if (setflag[i][j] && params[i][j].law.mu > 0.0) need_history = 1;
-  // a fixed ID, so restart files find it again (pair gran appends instance_me, which
-  // differs when a script clears and re-reads a restart within one process)
-  if (need_history) {
-    int ifix = modify->find_fix(HISTORY_ID);
-    Fix *fix = ifix >= 0 ? modify->fix[ifix]
-                         : modify->add_fix(fmt::format("{} all LSDEM_HISTORY", HISTORY_ID));
-    fix_history = dynamic_cast<FixLsdemHistory *>(fix);
-    if (!fix_history) error->all(FLERR, "Fix ID {} is reserved for pair lsdem", HISTORY_ID);
-  }
+      if (setflag[i][j] && params[i][j].law.mu > 0.0) friction = 1;
+  // fixed IDs, so restart files find them again (pair gran appends instance_me, which
+  // differs when a script clears and re-reads a restart within one process); sphere
+  // masters keep their springs apart (fix_lsdem_sphere_shear.h)
+  if (friction || global.detect(avec).node_skin > 0.0)
+    fix_history = internal_fix<FixLsdemHistory>(HISTORY_ID, "LSDEM_HISTORY");
+  if (friction) sphere_shear = internal_fix<FixLsdemSphereShear>(SPHERE_SHEAR_ID, "LSDEM_SPHERE_SHEAR");
   set_lanes(1);
+}
+
+/* ----------------------------------------------------------------------
+   the internal fix of this ID and style, made when it does not exist yet
+------------------------------------------------------------------------- */
+
+template <class F> F *PairLsdem::internal_fix(const char *fix_id, const char *style)
+{
+  const int ifix = modify->find_fix(fix_id);
+  Fix *fix = ifix >= 0 ? modify->fix[ifix]
+                       : modify->add_fix(fmt::format("{} all {}", fix_id, style));
+  F *f = dynamic_cast<F *>(fix);
+  if (!f) error->all(FLERR, "Fix ID {} is reserved for pair lsdem", fix_id);
+  return f;
 }
 
 /* ----------------------------------------------------------------------
@@ -303,7 +319,7 @@ void PairLsdem::compute(int eflag, int vflag)
   end_force_call();
   if (zcap > 0) coordination(1);
   apply_contacts(*lanes[0], atom->f, atom->torque);
-  tally_workload();
+  if (eflag_global) tally_workload();  // compute pair reads it on energy steps only
   if (update->setupflag) report_overlaps();
   if (vflag_fdotr) virial_fdotr_compute();
 }
@@ -346,12 +362,21 @@ void PairLsdem::test_pairs(Lane &lane, int iifrom, int iito)
   const int *ilist = list->ilist;
   for (int ii = iifrom; ii < iito; ii++) {
     const int i = ilist[ii];
-    lane.path.begin_atom();
     const int *js = master_j + master_first[i];
     const double *scales = master_scale_of + master_first[i];
+    if (keeps_sphere_slots(i)) {
+      // a sphere master: its springs in its slots, one per master pair, in place
+      lsdem_shear_hist *slot = sphere_shear->slots(i);
+      for (int k = 0; k < master_num[i]; k++) {
+        if (bounding_spheres_overlap(i, js[k])) test_pair(lane, i, js[k], scales[k], &slot[k]);
+        else FixLsdemSphereShear::drop(slot[k]);
+      }
+      continue;
+    }
+    lane.path.begin_atom();
     for (int k = 0; k < master_num[i]; k++) {
       const int j = js[k];
-      if (bounding_spheres_overlap(i, j)) test_pair(lane, i, j, scales[k]);
+      if (bounding_spheres_overlap(i, j)) test_pair(lane, i, j, scales[k], nullptr);
     }
     lane.path.end_atom(i);
   }
@@ -409,21 +434,47 @@ void PairLsdem::build_master_pairs()
       master_scale_of[n++] = scale;
     }
     master_num[i] = n - master_first[i];
+    if (keeps_sphere_slots(i)) assign_sphere_slots(i);
   }
   master_built = 1;
 }
 
 /* ----------------------------------------------------------------------
-   i's nodes (or i's sphere) against j's level set, through the shared contact path; the
-   result is written in place of a new contact, which is kept when they touch
+   sphere master i's slots := one per master pair, with the springs it held; a spring
+   the general store holds instead (a restart file of an earlier version) is taken over
 ------------------------------------------------------------------------- */
 
-void PairLsdem::test_pair(Lane &lane, int i, int j, double scale)
+void PairLsdem::assign_sphere_slots(int i)
+{
+  partner_tags.resize(master_num[i]);
+  for (int k = 0; k < master_num[i]; k++) partner_tags[k] = atom->tag[master_j[master_first[i] + k]];
+  sphere_shear->assign(i, partner_tags.data(), master_num[i]);
+  if (!fix_history || !fix_history->holds(i)) return;
+  lsdem_shear_hist *slot = sphere_shear->slots(i);
+  for (int k = 0; k < master_num[i]; k++) {
+    lsdem_pair_state in;
+    if (!FixLsdemSphereShear::held(slot[k]) && fix_history->find(i, partner_tags[k], in) &&
+        in.nshear > 0 && in.shear[0].node == 0)
+      slot[k] = in.shear[0];
+  }
+}
+
+/* ----------------------------------------------------------------------
+   i's nodes (or i's sphere) against j's level set, through the shared contact path (a
+   sphere master with its spring's slot: in place); the result is written in place of a
+   new contact, which is kept when they touch
+------------------------------------------------------------------------- */
+
+void PairLsdem::test_pair(Lane &lane, int i, int j, double scale, lsdem_shear_hist *slot)
 {
   lane.contact.emplace_back();
   Contact &c = lane.contact.back();
-  const int npen = lane.path.test(i, atom->tag[j], shape[i], pose[i], shape[j], pose[j],
-                                  params[atom->type[i]][atom->type[j]], contact_step, c.res);
+  const lsdem_contact_params &prm = params[atom->type[i]][atom->type[j]];
+  const int npen =
+      slot ? LsdemContactPath::test_sphere_in_place(shape[i]->sdf.a[0], pose[i], shape[j],
+                                                    pose[j], prm, contact_step, *slot, c.res)
+           : lane.path.test(i, atom->tag[j], shape[i], pose[i], shape[j], pose[j], prm,
+                            contact_step, c.res);
   lane.ntested_pairs++;
   lane.ntested_nodes += c.res.ntested;
   lane.npen_nodes += npen;
@@ -491,7 +542,8 @@ const double *PairLsdem::coordination(int to_ghosts)
 }
 
 /* ----------------------------------------------------------------------
-   local workload of the last force call into pvector (see constructor)
+   local workload of the last force call into pvector (see constructor); on the steps
+   that tally energy only, the only steps compute pair may read it on
 ------------------------------------------------------------------------- */
 
 void PairLsdem::tally_workload()
@@ -501,6 +553,12 @@ void PairLsdem::tally_workload()
   if (fix_history) {
     pvector[4] = fix_history->memory_usage();
     fix_history->held(pvector[5], pvector[6], pvector[7]);
+  }
+  if (sphere_shear) {  // a sphere master's pair state is its one spring
+    const double springs = sphere_shear->springs_held();
+    pvector[4] += sphere_shear->memory_usage();
+    pvector[5] += springs;
+    pvector[7] += springs;
   }
   for (int l = 0; l < nlanes; l++) {
     const Lane &lane = *lanes[l];

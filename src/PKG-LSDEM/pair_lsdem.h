@@ -102,6 +102,9 @@ class PairLsdem : public Pair {
 
   class AtomVecLsdem *avec;
   class FixLsdemHistory *fix_history;  // nullptr when mu == 0 for every type pair
+  // sphere masters' springs, one slot per master pair; nullptr when mu == 0 everywhere
+  class FixLsdemSphereShear *sphere_shear;
+  std::vector<tagint> partner_tags;  // scratch of assign_sphere_slots
 
   // one thread's share of a force call (pair_style lsdem/omp; one lane without threads):
   // its contact path (manifold storage, the history's lane), the contacts it found, its
@@ -136,7 +139,14 @@ class PairLsdem : public Pair {
   void update_poses(int from, int to);
   void build_master_pairs();
   void test_pairs(Lane &, int iifrom, int iito);
-  void test_pair(Lane &, int, int, double);
+  void test_pair(Lane &, int, int, double, lsdem_shear_hist *slot);
+  // owned grain i is a sphere keeping its springs in slots (sphere_shear)
+  bool keeps_sphere_slots(int i) const
+  {
+    return sphere_shear && shape[i]->sdf.kind == LSDEM_SDF_SPHERE;
+  }
+  void assign_sphere_slots(int i);
+  template <class F> F *internal_fix(const char *fix_id, const char *style);
   void end_force_call();
   void apply_contacts(Lane &, double **f, double **torque) const;
   void tally_workload();

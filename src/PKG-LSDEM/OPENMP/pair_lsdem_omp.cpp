@@ -67,7 +67,7 @@ void PairLsdemOMP::compute(int eflag, int vflag)
     reduce_thr(this, eflag, vflag, thr);  // every thread, inside the region (it syncs them)
   }
 
-  tally_workload();
+  if (eflag_global) tally_workload();
   if (update->setupflag) report_overlaps();
 }
 

@@ -8,6 +8,7 @@
 #include <stdint.h>
 
 #include "lsdem_vec3.h" /* dot, cross, 3x3 products: inline, one copy */
+#include "lsdem_quat.h" /* normalize, multiply, turn: inline, one copy */
 
 #ifdef __cplusplus
 extern "C" {
@@ -40,8 +41,6 @@ lsdem_status lsdem_fail(lsdem_error *err, lsdem_status s, const char *fmt, ...)
 
 /* ------------------------------------------------- quaternions, rotations ---- */
 
-void lsdem_quat_normalize(double q[4]);
-void lsdem_quat_multiply(const double a[4], const double b[4], double out[4]); /* a*b */
 void lsdem_quat_conjugate(const double q[4], double out[4]);
 void lsdem_quat_to_matrix(const double q[4], double R[9]);          /* body -> world */
 void lsdem_matrix_to_quat(const double R[9], double q[4]);          /* proper rotation */
@@ -50,15 +49,14 @@ void lsdem_quat_rotate_inv(const double q[4], const double v[3], double out[3]);
 /* q <- q * exp(omega_body * dt / 2): exact update for a body-frame angular velocity
  * held constant over dt (solution of the quaternion rate equation, report eq 2.28). */
 void lsdem_quat_advance(double q[4], const double omega_body[3], double dt);
-/* q <- exp(omega * dt / 2) * q: the same update for a world-frame angular velocity omega
- * (= R omega_body), without taking omega to the body frame. */
-void lsdem_quat_turn(double q[4], const double omega[3], double dt);
+/* lsdem_quat_turn (lsdem_quat.h): q <- exp(omega * dt / 2) * q, the same update for a
+ * world-frame angular velocity omega (= R omega_body), without taking omega to the body
+ * frame. */
 /* Rodrigues' formula (report eq 2.9): rotate v about the unit axis k by angle theta. */
 void lsdem_rodrigues(const double v[3], const double k[3], double theta, double out[3]);
-/* Rotate v by the rotation that takes unit vector n_old onto unit vector n_new
- * (the operator Z of report eq 2.8). Identity when n_old == n_new. */
-void lsdem_rotate_between(const double v[3], const double n_old[3], const double n_new[3],
-                          double out[3]);
+/* lsdem_rotate_between (lsdem_quat.h): rotate v by the rotation that takes unit vector
+ * n_old onto unit vector n_new (the operator Z of report eq 2.8). Identity when
+ * n_old == n_new. */
 
 /* Kawamoto/Tan rotation files store (q0 q1 q2 q3) = their code's quaternion, w last.
  * Their rotation matrix (report eq 2.26 with Evans' q1..q4 = file q0..q3) equals the

@@ -430,15 +430,13 @@ static double outside_distance(const lsdem_sdf *sdf, const double c[3], double n
 
 static int is_sphere(const lsdem_shape *s) { return s->sdf.kind == LSDEM_SDF_SPHERE; }
 
-/* Sphere B in closed form (sphere_pair_overlap); any other B with ONE level-set lookup of
- * the sphere centre in B's frame (report §2.3.5): depth d = radius - phi_B(centre), normal
- * = B's gradient there; for a centre outside B's grid, its distance found by descent over
- * the grid's box (outside_distance); none for a centre at or beyond a band's width. */
-int lsdem_sphere_overlap(double radius, const lsdem_pose *pa, const lsdem_shape *B,
-                         const lsdem_pose *pb, double n[3], double *d, int *lookups)
+/* B not a sphere: ONE level-set lookup of the sphere centre in B's frame (report §2.3.5):
+ * depth d = radius - phi_B(centre), normal = B's gradient there; for a centre outside B's
+ * grid, its distance found by descent over the grid's box (outside_distance); none for a
+ * centre at or beyond a band's width. */
+int lsdem_sphere_overlap_shape(double radius, const lsdem_pose *pa, const lsdem_shape *B,
+                               const lsdem_pose *pb, double n[3], double *d, int *lookups)
 {
-  if (is_sphere(B))
-    return *lookups = sphere_pair_overlap(radius, pa->x, B->sdf.a[0], pb->x, n, d);
   double dx[3];
   for (int i = 0; i < 3; i++) dx[i] = pa->x[i] - pb->x[i];
   const double reach = radius + B->radius;
@@ -479,8 +477,6 @@ static int detect_sphere(double radius, const lsdem_pose *pa, const lsdem_shape 
 }
 
 /* ----------------------------------------------------------------- dispatch ---- */
-
-double lsdem_sphere_contact_area(double radius) { return M_PI * radius * radius; }
 
 lsdem_manifold lsdem_manifold_over(lsdem_contact_point *storage, int cap)
 {

@@ -189,8 +189,12 @@ int lsdem_detect_band_points(const lsdem_band *band, const lsdem_band_points *pt
                              const lsdem_pose *pa, const lsdem_shape *B,
                              const lsdem_pose *pb, lsdem_manifold *m);
 
-/* The sphere path's tributary area under the traction law: the cross-section pi r^2. */
-double lsdem_sphere_contact_area(double radius);
+/* The sphere path's tributary area under the traction law: the cross-section pi r^2
+ * (inline: the sphere kernel takes it for every contact). */
+static inline double lsdem_sphere_contact_area(double radius)
+{
+  return 3.14159265358979323846 * radius * radius; /* M_PI */
+}
 
 /* The stiffest contact shape s can form, in node springs: the most nodes one flat contact
  * (a wall, a flat face of a partner) presses at once. Over the six principal axes and

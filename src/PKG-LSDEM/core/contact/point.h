@@ -80,12 +80,20 @@ static inline void sphere_contact_point(double r, const double xa[3], const doub
 }
 
 /* The overlap of an analytic sphere (centre pa->x, radius) with B: B's outward normal n and
- * the depth d there (report §2.3.5: two spheres in closed form, any other B with one lookup
- * of the centre in B's level set, detect.c). Returns 1 when they overlap; *lookups counts
- * the level-set lookups made (0: beyond B's bounding sphere; two spheres: 1 when they
- * overlap, else 0). */
-int lsdem_sphere_overlap(double radius, const lsdem_pose *pa, const lsdem_shape *B,
-                         const lsdem_pose *pb, double n[3], double *d, int *lookups);
+ * the depth d there (report §2.3.5: two spheres in closed form, inline, any other B with one
+ * lookup of the centre in B's level set, lsdem_sphere_overlap_shape in detect.c). Returns 1
+ * when they overlap; *lookups counts the level-set lookups made (0: beyond B's bounding
+ * sphere; two spheres: 1 when they overlap, else 0). */
+int lsdem_sphere_overlap_shape(double radius, const lsdem_pose *pa, const lsdem_shape *B,
+                               const lsdem_pose *pb, double n[3], double *d, int *lookups);
+static inline int lsdem_sphere_overlap(double radius, const lsdem_pose *pa,
+                                       const lsdem_shape *B, const lsdem_pose *pb, double n[3],
+                                       double *d, int *lookups)
+{
+  if (B->sdf.kind == LSDEM_SDF_SPHERE)
+    return *lookups = sphere_pair_overlap(radius, pa->x, B->sdf.a[0], pb->x, n, d);
+  return lsdem_sphere_overlap_shape(radius, pa, B, pb, n, d, lookups);
+}
 
 /* -------------------------------------------------------------------- law ---- */
 

@@ -10,26 +10,51 @@ extern "C" {
 
 /* ---------------------------------------------------------------- integrator ---- */
 
+/* The integrator of a grain with one moment of inertia (translation, a sphere's spin) is
+ * inline: fix nve/lsdem runs it for every sphere every step. */
+
+/* The velocity half of lsdem_step_translation alone (report eq 2.18):
+ * v <- [(1 - xi dt/2) v + dt f / m] / (1 + xi dt/2). */
+static inline void lsdem_step_velocity(double v[3], const double f[3], double mass, double xi,
+                                       double dt)
+{
+  const double h = 0.5 * xi * dt;
+  const double inv = 1.0 / (1.0 + h);
+  const double dt_m = dt / mass;
+  for (int i = 0; i < 3; i++) v[i] = ((1.0 - h) * v[i] + dt_m * f[i]) * inv; /* eq 2.18 */
+}
+
 /* Centred-difference translation with global damping xi (report eqs 2.18-2.19):
- * v <- [(1 - xi dt/2) v + dt f / m] / (1 + xi dt/2);  x <- x + dt v. */
-void lsdem_step_translation(double x[3], double v[3], const double f[3], double mass,
-                            double xi, double dt);
-/* The velocity half of lsdem_step_translation alone (eq 2.18). */
-void lsdem_step_velocity(double v[3], const double f[3], double mass, double xi, double dt);
+ * the velocity of lsdem_step_velocity, then x <- x + dt v. */
+static inline void lsdem_step_translation(double x[3], double v[3], const double f[3],
+                                          double mass, double xi, double dt)
+{
+  lsdem_step_velocity(v, f, mass, xi, dt);
+  for (int i = 0; i < 3; i++) x[i] += dt * v[i]; /* eq 2.19 */
+}
 
 /* The rotation of a body with one moment of inertia I about the axes it turns about (a
  * sphere; a pivoting platen): the centred difference of eq 2.18 in the world frame,
  * omega <- [(1 - xi dt/2) omega + dt torque / I] / (1 + xi dt/2) (Euler's equation, eq 2.20,
  * without its gyroscopic terms, which vanish for equal moments), then q (body -> world)
  * advanced from n to n+1 by omega^{n+1/2} over dt (eq 2.28). omega and torque world-frame. */
-void lsdem_step_spin(double q[4], double omega[3], const double torque[3], double inertia,
-                     double xi, double dt);
+static inline void lsdem_step_spin(double q[4], double omega[3], const double torque[3],
+                                   double inertia, double xi, double dt)
+{
+  lsdem_step_velocity(omega, torque, inertia, xi, dt); /* eq 2.18 as eq 2.20, I isotropic */
+  lsdem_quat_turn(q, omega, dt);                       /* q^n -> q^{n+1}, eq 2.28 */
+}
+
 /* One step of an analytic sphere (isotropic moment of inertia I, report §2.3.5): the
  * translation of lsdem_step_translation and the rotation of lsdem_step_spin (x, v, omega at
  * the levels of lsdem_step_body; omega and torque world-frame, as LAMMPS keeps them). */
-void lsdem_step_sphere(double x[3], double v[3], double q[4], double omega[3],
-                       const double force[3], const double torque[3], double mass,
-                       double inertia, double xi, double dt);
+static inline void lsdem_step_sphere(double x[3], double v[3], double q[4], double omega[3],
+                                     const double force[3], const double torque[3],
+                                     double mass, double inertia, double xi, double dt)
+{
+  lsdem_step_translation(x, v, force, mass, xi, dt);
+  lsdem_step_spin(q, omega, torque, inertia, xi, dt);
+}
 
 /* Predictor-corrector Euler equations in the principal frame (report eqs 2.21-2.25).
  * omega: body-frame angular velocity at n-1/2, updated to n+1/2.

@@ -5,37 +5,6 @@
  * body (principal) frame, where the inertia tensor is diagonal. */
 #include "lsdem_dynamics.h"
 
-void lsdem_step_velocity(double v[3], const double f[3], double mass, double xi, double dt)
-{
-  const double h = 0.5 * xi * dt;
-  const double inv = 1.0 / (1.0 + h);
-  const double dt_m = dt / mass;
-  for (int i = 0; i < 3; i++) v[i] = ((1.0 - h) * v[i] + dt_m * f[i]) * inv; /* eq 2.18 */
-}
-
-/* Centred-difference translation with global damping (eqs 2.18-2.19). */
-void lsdem_step_translation(double x[3], double v[3], const double f[3], double mass,
-                            double xi, double dt)
-{
-  lsdem_step_velocity(v, f, mass, xi, dt);
-  for (int i = 0; i < 3; i++) x[i] += dt * v[i]; /* eq 2.19 */
-}
-
-void lsdem_step_spin(double q[4], double omega[3], const double torque[3], double inertia,
-                     double xi, double dt)
-{
-  lsdem_step_velocity(omega, torque, inertia, xi, dt); /* eq 2.18 as eq 2.20, I isotropic */
-  lsdem_quat_turn(q, omega, dt);                       /* q^n -> q^{n+1}, eq 2.28 */
-}
-
-void lsdem_step_sphere(double x[3], double v[3], double q[4], double omega[3],
-                       const double force[3], const double torque[3], double mass,
-                       double inertia, double xi, double dt)
-{
-  lsdem_step_translation(x, v, force, mass, xi, dt);
-  lsdem_step_spin(q, omega, torque, inertia, xi, dt);
-}
-
 /* dt * angular acceleration from Euler's equations with damping (eq 2.20), evaluated
  * at the body-frame angular velocity w: the bracket of eqs 2.22 and 2.24. */
 static void euler_increment(const double w[3], const double torque[3],
