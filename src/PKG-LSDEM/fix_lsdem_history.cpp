@@ -35,7 +35,7 @@ static void unpack_ids(int64_t v, lsdem_state_record &r)
 /* ---------------------------------------------------------------------- */
 
 FixLsdemHistory::FixLsdemHistory(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), cur(0), nmax_atom(0), lane_of(nullptr), sfirst(nullptr),
+  Fix(lmp, narg, arg), nlanes(1), cur(0), nmax_atom(0), lane_of(nullptr), sfirst(nullptr),
   nslice(nullptr), visited(nullptr), generation(0), maxrecords(0)
 {
   if (narg != 3) error->all(FLERR, "Illegal fix LSDEM_HISTORY command (internal fix)");
@@ -44,12 +44,8 @@ FixLsdemHistory::FixLsdemHistory(LAMMPS *lmp, int narg, char **arg) :
   create_attribute = 1;
   maxexchange_dynamic = 1;
   maxexchange = 1;
-  for (auto &lanes : pool) lanes.resize(1);
-  for (auto &lanes : pool)
-    for (Pool &p : lanes) {
-      p.slot = nullptr;
-      p.ns = p.nslot = p.maxslot = p.atom_slice = p.atom_records = p.maxrecords = 0;
-    }
+  lanes.resize(1);
+  init_lane(lanes[0]);
   static_assert(sizeof(Slot) == 64 && sizeof(lsdem_nodelist_head) <= HEAD_SLOTS * sizeof(Slot),
                 "a list head fits two slots");
 
@@ -64,8 +60,10 @@ FixLsdemHistory::~FixLsdemHistory()
 {
   atom->delete_callback(id, Atom::GROW);
   atom->delete_callback(id, Atom::RESTART);
-  for (auto &lanes : pool)
-    for (Pool &p : lanes) release(p);
+  for (Lane &l : lanes) {
+    release_chunks(l.chunk);
+    memory->sfree(l.scratch);
+  }
   memory->destroy(lane_of);
   memory->destroy(sfirst);
   memory->destroy(nslice);
@@ -79,29 +77,53 @@ int FixLsdemHistory::setmask()
   return 0;
 }
 
-void FixLsdemHistory::release(Pool &p)
+void FixLsdemHistory::init_lane(Lane &l)
 {
-  memory->sfree(p.slot);
-  p.slot = nullptr;
-  p.maxslot = 0;
+  l.ns[0] = l.ns[1] = 0;
+  l.scratch = nullptr;
+  l.maxscratch = l.atom_slice = l.atom_records = l.maxrecords = 0;
+}
+
+void FixLsdemHistory::release_chunks(std::vector<Chunk> &chunks)
+{
+  for (Chunk &c : chunks) memory->sfree(c.slot);
+  chunks.clear();
 }
 
 /* ----------------------------------------------------------------------
-   room in pool p for ns more slices and nslot more slots (grows by doubling; the step's
-   pointers into p are taken after this)
+   n slots for a new run from lane l's chunks; a new chunk (at least a quarter of what
+   the lane holds, so that they stay few) when the last one is full. Chunks never move:
+   other lanes may be reading runs in them.
 ------------------------------------------------------------------------- */
 
-/* room for ns more slices and nslot more slots; grows by a quarter (not doubling: the
-   pools are most of a grain's memory, and they reach their size in the first steps) */
-void FixLsdemHistory::pool_room(Pool &p, int ns, int nslot)
+FixLsdemHistory::Slot *FixLsdemHistory::take_slots(Lane &l, int n)
 {
-  const size_t need = (size_t) p.ns + (size_t) ns;
-  if (need > p.slice.size())
-    p.slice.resize(std::max({need, p.slice.size() + p.slice.size() / 4, (size_t) 16}));
-  if (p.nslot + nslot > p.maxslot) {
-    p.maxslot = std::max(p.maxslot + p.maxslot / 4, p.nslot + nslot);
-    p.slot = (Slot *) memory->srealloc(p.slot, sizeof(Slot) * p.maxslot, "lsdem/history:slots");
+  if (l.chunk.empty() || l.chunk.back().cap - l.chunk.back().used < n) {
+    size_t held = 0;
+    for (const Chunk &c : l.chunk) held += c.cap;
+    Chunk c;
+    c.cap = (int) std::max({(size_t) n, held / 4, (size_t) MIN_CHUNK_SLOTS});
+    c.used = 0;
+    c.slot = (Slot *) memory->smalloc(sizeof(Slot) * c.cap, "lsdem/history:chunk");
+    l.chunk.push_back(c);
   }
+  Chunk &c = l.chunk.back();
+  Slot *run = c.slot + c.used;
+  c.used += n;
+  return run;
+}
+
+/* the slots a pair's state takes: head and entries when it has a list, its shear entries */
+int FixLsdemHistory::slots_of(const lsdem_pair_state &st)
+{
+  return (st.list.valid ? HEAD_SLOTS + st.list.head->count : 0) + st.nshear;
+}
+
+/* a new run's slots for a state of `used`: an eighth more, so that a pair whose contact
+   gains a node is mostly rewritten in place */
+int FixLsdemHistory::run_capacity(int used)
+{
+  return used + used / 8;
 }
 
 /* ----------------------------------------------------------------------
@@ -109,45 +131,64 @@ void FixLsdemHistory::pool_room(Pool &p, int ns, int nslot)
    the shear entries behind them
 ------------------------------------------------------------------------- */
 
-void FixLsdemHistory::slice_state(const Pool &p, const Slice &s, lsdem_pair_state &st)
+void FixLsdemHistory::slice_state(const Slice &s, lsdem_pair_state &st)
 {
-  Slot *run = p.slot + s.first;
-  st.list.valid = s.list_valid;
-  st.list.head = reinterpret_cast<lsdem_nodelist_head *>(run);
-  st.list.entry = &run[HEAD_SLOTS].entry;
-  st.shear = &run[s.list_valid ? HEAD_SLOTS + s.nentry : 0].shear;
+  st.list.valid = s.nentry >= 0;
+  st.list.head = reinterpret_cast<lsdem_nodelist_head *>(s.run);
+  st.list.entry = &s.run[HEAD_SLOTS].entry;
+  st.shear = &s.run[st.list.valid ? HEAD_SLOTS + s.nentry : 0].shear;
   st.nshear = s.nshear;
+}
+
+/* ----------------------------------------------------------------------
+   a run's head and first entries on their way into the cache: runs are read in the order
+   of the slices, but they need not lie in that order (runs rewritten in place stay where
+   they are; a state that outgrew its run moved to the end)
+------------------------------------------------------------------------- */
+
+void FixLsdemHistory::prefetch_run(const Slice &s)
+{
+  const int lines = std::min(s.cap, PREFETCH_SLOTS);
+  for (int k = 0; k < lines; k++) __builtin_prefetch(s.run + k);
 }
 
 /* ----------------------------------------------------------------------
    the state of atom i against one partner; false when it keeps none
 ------------------------------------------------------------------------- */
 
-bool FixLsdemHistory::find(int i, tagint ptag, lsdem_pair_state &in) const
+const FixLsdemHistory::Slice *FixLsdemHistory::slice_of(int i, tagint ptag) const
 {
-  const Pool &p = pool[cur][lane_of[i]];
-  const Slice *s = p.slice.data() + sfirst[i];
+  const Slice *s = lanes[lane_of[i]].slice[cur].data() + sfirst[i];
   for (int k = 0; k < nslice[i]; k++)  // a few partners: a scan beats a binary search
-    if (s[k].partner == ptag) {
-      slice_state(p, s[k], in);
-      return true;
-    }
-  return false;
+    if (s[k].partner == ptag) return &s[k];
+  return nullptr;
 }
 
-/* ---------------------------------------------------------------------- */
-
-void FixLsdemHistory::begin_step(int nlanes)
+bool FixLsdemHistory::find(int i, tagint ptag, lsdem_pair_state &in) const
 {
-  auto &next = pool[1 - cur];
-  for (int l = nlanes; l < (int) next.size(); l++) release(next[l]);
-  const int had = (int) next.size();
-  next.resize(nlanes);
-  for (int l = had; l < nlanes; l++) {
-    next[l].slot = nullptr;
-    next[l].maxslot = 0;
+  const Slice *s = slice_of(i, ptag);
+  if (!s) return false;
+  slice_state(*s, in);
+  const Lane &l = lanes[lane_of[i]];
+  if (s + 1 < l.slice[cur].data() + l.ns[cur])
+    prefetch_run(s[1]);  // the pair visited next, most likely (slices: in visit order)
+  return true;
+}
+
+/* ----------------------------------------------------------------------
+   the lanes of this step; those of the last one stay until the pool is compacted (their
+   chunks hold runs that are read, and rewritten in place, this step)
+------------------------------------------------------------------------- */
+
+void FixLsdemHistory::begin_step(int n)
+{
+  const int had = (int) lanes.size();
+  if (n > had) {
+    lanes.resize(n);
+    for (int l = had; l < n; l++) init_lane(lanes[l]);
   }
-  for (Pool &p : next) p.ns = p.nslot = p.maxrecords = 0;
+  nlanes = n;
+  for (Lane &l : lanes) l.ns[1 - cur] = l.maxrecords = 0;
   generation = generation < INT_MAX ? generation + 1 : 1;  // wraps, never to 0 (new atoms)
 }
 
@@ -155,29 +196,36 @@ void FixLsdemHistory::begin_step(int nlanes)
 
 void FixLsdemHistory::begin_atom(int lane)
 {
-  Pool &next = pool[1 - cur][lane];
-  next.atom_slice = next.ns;
-  next.atom_records = 0;
+  Lane &l = lanes[lane];
+  l.atom_slice = l.ns[1 - cur];
+  l.atom_records = 0;
 }
 
 /* ----------------------------------------------------------------------
-   room in pool p for one more pair's state, a run of slots after the used ones (head,
-   list_cap entries, then the shear entries wherever place_shear puts them), and keeping
-   what was written there: a pair with a list or shear entries becomes the pool's next
-   slice; returns the records it takes (0: nothing kept)
+   room for the kernel's output of one pair in lane l's scratch: head, list_cap entries,
+   then the shear entries wherever place_shear puts them
 ------------------------------------------------------------------------- */
 
-lsdem_pair_state FixLsdemHistory::pair_room(Pool &p, int list_cap, int shear_cap)
+lsdem_pair_state FixLsdemHistory::scratch_state(Lane &l, int list_cap, int shear_cap)
 {
-  pool_room(p, 1, HEAD_SLOTS + list_cap + shear_cap);
-  Slot *run = p.slot + p.nslot;
+  const int need = HEAD_SLOTS + list_cap + shear_cap;
+  if (need > l.maxscratch) {
+    memory->sfree(l.scratch);
+    l.scratch = (Slot *) memory->smalloc(sizeof(Slot) * need, "lsdem/history:scratch");
+    l.maxscratch = need;
+  }
   lsdem_pair_state st;
   st.list.valid = 0;
-  st.list.head = reinterpret_cast<lsdem_nodelist_head *>(run);
-  st.list.entry = &run[HEAD_SLOTS].entry;
-  st.shear = &run[HEAD_SLOTS + list_cap].shear;  // until place_shear knows the list
+  st.list.head = reinterpret_cast<lsdem_nodelist_head *>(l.scratch);
+  st.list.entry = &l.scratch[HEAD_SLOTS].entry;
+  st.shear = &l.scratch[HEAD_SLOTS + list_cap].shear;  // until place_shear knows the list
   st.nshear = 0;
   return st;
+}
+
+lsdem_pair_state FixLsdemHistory::reserve(int lane, int list_cap, int shear_cap)
+{
+  return scratch_state(lanes[lane], list_cap, shear_cap);
 }
 
 void FixLsdemHistory::place_shear(lsdem_pair_state &out)
@@ -186,85 +234,125 @@ void FixLsdemHistory::place_shear(lsdem_pair_state &out)
   out.shear = &run[out.list.valid ? HEAD_SLOTS + out.list.head->count : 0].shear;
 }
 
-int FixLsdemHistory::keep_pair(Pool &p, tagint ptag, const lsdem_pair_state &st)
-{
-  if (!st.list.valid && st.nshear <= 0) return 0;
-  Slice &s = p.slice[p.ns++];
-  s.partner = ptag;
-  s.first = p.nslot;
-  s.list_valid = st.list.valid;
-  s.nentry = st.list.valid ? st.list.head->count : 0;
-  s.nshear = st.nshear;
-  p.nslot += (st.list.valid ? HEAD_SLOTS + s.nentry : 0) + st.nshear;
-  return (st.list.valid ? 2 + s.nentry : 0) + st.nshear;
-}
-
 /* ----------------------------------------------------------------------
-   room for a pair's new state after the committed ones, and keeping the state the
-   kernel wrote there
+   keeping a pair's state st (one run from st.list.head, place_shear's layout) as the
+   next slice of lane l's slice list `which`: copied over the run of its old slice when
+   that fits and no other pair took it this step, else into a new run; returns the
+   records it takes (0: nothing kept)
 ------------------------------------------------------------------------- */
 
-lsdem_pair_state FixLsdemHistory::reserve(int lane, int list_cap, int shear_cap)
+int FixLsdemHistory::keep_pair(Lane &l, int which, tagint ptag, const lsdem_pair_state &st,
+                               Slice *old)
 {
-  return pair_room(pool[1 - cur][lane], list_cap, shear_cap);
-}
-
-void FixLsdemHistory::commit(int lane, tagint ptag, const lsdem_pair_state &out)
-{
-  Pool &next = pool[1 - cur][lane];
-  next.atom_records += keep_pair(next, ptag, out);
+  const int used = slots_of(st);
+  if (used <= 0) return 0;
+  if ((int) l.slice[which].size() <= l.ns[which])
+    l.slice[which].resize(std::max(l.slice[which].size() + l.slice[which].size() / 4,
+                                   (size_t) 16));
+  Slice &s = l.slice[which][l.ns[which]++];
+  const bool in_place = old && old->claimed != generation && old->cap >= used;
+  s.cap = in_place ? old->cap : run_capacity(used);
+  s.run = in_place ? old->run : take_slots(l, s.cap);
+  if (in_place) old->claimed = generation;
+  memmove(s.run, st.list.head, sizeof(Slot) * used);
+  s.partner = ptag;
+  s.nentry = st.list.valid ? st.list.head->count : -1;
+  s.nshear = st.nshear;
+  s.claimed = 0;
+  return (st.list.valid ? 2 + st.list.head->count : 0) + st.nshear;
 }
 
 /* ----------------------------------------------------------------------
-   atom i's state := the committed pairs, ordered by partner tag
+   keeping the state the kernel wrote into the scratch, in place of atom i's last one
+   with this partner when it fits
+------------------------------------------------------------------------- */
+
+void FixLsdemHistory::commit(int lane, int i, tagint ptag, const lsdem_pair_state &out)
+{
+  Lane &l = lanes[lane];
+  // the old slice is this fix's own (found through the atom's index): marked as taken
+  Slice *old = const_cast<Slice *>(slice_of(i, ptag));
+  l.atom_records += keep_pair(l, 1 - cur, ptag, out, old);
+}
+
+/* ----------------------------------------------------------------------
+   atom i's state := the committed pairs, in the order they were committed (the order
+   of the next step's visit: its runs are read in the order they lie)
 ------------------------------------------------------------------------- */
 
 void FixLsdemHistory::end_atom(int lane, int i)
 {
-  Pool &next = pool[1 - cur][lane];
-  Slice *s = next.slice.data() + next.atom_slice;
-  const int ns = next.ns - next.atom_slice;
-  for (int a = 1; a < ns; a++) {  // few partners per grain: insertion sort
-    Slice t = s[a];
-    int b = a - 1;
-    while (b >= 0 && s[b].partner > t.partner) {
-      s[b + 1] = s[b];
-      b--;
-    }
-    s[b + 1] = t;
-  }
+  Lane &l = lanes[lane];
   lane_of[i] = lane;
-  sfirst[i] = next.atom_slice;
-  nslice[i] = ns;
+  sfirst[i] = l.atom_slice;
+  nslice[i] = l.ns[1 - cur] - l.atom_slice;
   visited[i] = generation;
-  next.maxrecords = std::max(next.maxrecords, next.atom_records);
+  l.maxrecords = std::max(l.maxrecords, l.atom_records);
 }
 
 /* ----------------------------------------------------------------------
-   the written pool becomes the current one; owned atoms the step did not visit have
-   nothing in it
+   the written slices become the current ones; owned atoms the step did not visit have
+   nothing in them
 ------------------------------------------------------------------------- */
 
 void FixLsdemHistory::end_step()
 {
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++)
-    if (visited[i] != generation) nslice[i] = 0;
-  for (const Pool &p : pool[1 - cur]) note_records(p.maxrecords);
+    if (visited[i] != generation) nslice[i] = lane_of[i] = 0;
+  for (const Lane &l : lanes) note_records(l.maxrecords);
   cur = 1 - cur;
+  compact_if_wasteful();
 }
 
 /* ----------------------------------------------------------------------
-   records of atom i's state in the current pool; the exchange buffer must hold the
-   largest, and it only ever grows
+   when a quarter of the chunks' used slots are no state's (runs left behind by states
+   that outgrew them, pairs dropped) or lanes have gone: each lane's runs copied, in the
+   order of its slices, into one new chunk with room for an eighth more, the old chunks
+   freed
+------------------------------------------------------------------------- */
+
+void FixLsdemHistory::compact_if_wasteful()
+{
+  size_t used = 0, live = 0;
+  for (const Lane &l : lanes) {
+    for (const Chunk &c : l.chunk) used += c.used;
+    for (int k = 0; k < l.ns[cur]; k++) live += l.slice[cur][k].cap;
+  }
+  if ((int) lanes.size() <= nlanes && 8 * (used - live) <= used) return;
+  std::vector<std::vector<Chunk>> old(lanes.size());
+  for (size_t l = 0; l < lanes.size(); l++) old[l].swap(lanes[l].chunk);
+  for (Lane &l : lanes) {
+    size_t need = 0;
+    for (int k = 0; k < l.ns[cur]; k++) need += l.slice[cur][k].cap;
+    if (need == 0) continue;
+    Chunk c;
+    c.cap = (int) std::max(need + need / 8, (size_t) MIN_CHUNK_SLOTS);
+    c.used = 0;
+    c.slot = (Slot *) memory->smalloc(sizeof(Slot) * c.cap, "lsdem/history:chunk");
+    for (int k = 0; k < l.ns[cur]; k++) {
+      Slice &s = l.slice[cur][k];
+      memcpy(c.slot + c.used, s.run, sizeof(Slot) * s.cap);
+      s.run = c.slot + c.used;
+      c.used += s.cap;
+    }
+    l.chunk.push_back(c);
+  }
+  for (auto &chunks : old) release_chunks(chunks);
+  for (int l = nlanes; l < (int) lanes.size(); l++) memory->sfree(lanes[l].scratch);
+  lanes.resize(std::max(nlanes, 1));
+}
+
+/* ----------------------------------------------------------------------
+   records of atom i's state; the exchange buffer must hold the largest, and it only ever
+   grows
 ------------------------------------------------------------------------- */
 
 int FixLsdemHistory::count_records(int i) const
 {
-  const Pool &p = pool[cur][lane_of[i]];
+  const Slice *s = lanes[lane_of[i]].slice[cur].data() + sfirst[i];
   int n = 0;
-  for (int k = sfirst[i]; k < sfirst[i] + nslice[i]; k++)
-    n += (p.slice[k].list_valid ? 2 + p.slice[k].nentry : 0) + p.slice[k].nshear;
+  for (int k = 0; k < nslice[i]; k++) n += (s[k].nentry >= 0 ? 2 + s[k].nentry : 0) + s[k].nshear;
   return n;
 }
 
@@ -289,8 +377,8 @@ void FixLsdemHistory::grow_arrays(int nmax)
 }
 
 /* ----------------------------------------------------------------------
-   atom j takes over atom i's state (its place in the pool: states are never written in
-   place, so two atoms may share one until the next step rewrites the pool)
+   atom j takes over atom i's state (its slices: i is then gone or a copy the caller
+   discards, so that one state has one owner)
 ------------------------------------------------------------------------- */
 
 void FixLsdemHistory::copy_arrays(int i, int j, int /*delflag*/)
@@ -310,18 +398,23 @@ void FixLsdemHistory::set_arrays(int i)
 
 /* ----------------------------------------------------------------------
    count, then per record: partner, id/aux, stamp, a[3], b[3] (each pair's records
-   together, lsdem_pair_state_encode)
+   together, lsdem_pair_state_encode; pairs by partner tag, whatever order the step
+   visited them in)
 ------------------------------------------------------------------------- */
 
 int FixLsdemHistory::pack_state(int i, double *buf)
 {
   int m = 0;
   buf[m++] = ubuf(count_records(i)).d;
-  const Pool &p = pool[cur][lane_of[i]];
+  const Slice *slices = lanes[lane_of[i]].slice[cur].data() + sfirst[i];
+  by_partner.resize(std::max(by_partner.size(), (size_t) nslice[i]));
+  for (int k = 0; k < nslice[i]; k++) by_partner[k] = &slices[k];
+  std::sort(by_partner.begin(), by_partner.begin() + nslice[i],
+            [](const Slice *a, const Slice *b) { return a->partner < b->partner; });
   for (int k = 0; k < nslice[i]; k++) {
-    const Slice &s = p.slice[sfirst[i] + k];
+    const Slice &s = *by_partner[k];
     lsdem_pair_state st;
-    slice_state(p, s, st);
+    slice_state(s, st);
     records.resize(std::max(records.size(), (size_t) lsdem_pair_state_records(&st)));
     const int n = lsdem_pair_state_encode(&st, records.data());
     for (int r = 0; r < n; r++) {
@@ -348,9 +441,9 @@ int FixLsdemHistory::unpack_state(int i, const double *buf)
   auto avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
   if (!avec) error->one(FLERR, "Fix LSDEM_HISTORY requires atom_style lsdem");
   const int nnodes = avec->shape_of(i)->nnodes;
-  Pool &p = pool[cur][0];  // exchange and restart are serial: the first lane
+  Lane &l = lanes[0];  // exchange and restart are serial: the first lane
   lane_of[i] = 0;
-  sfirst[i] = p.ns;
+  sfirst[i] = l.ns[cur];
   nslice[i] = 0;
   records.resize(std::max(records.size(), (size_t) n));
   int m = 1;
@@ -368,13 +461,13 @@ int FixLsdemHistory::unpack_state(int i, const double *buf)
       }
       len++;
     }
-    lsdem_pair_state st = pair_room(p, len, len);
+    lsdem_pair_state st = scratch_state(l, len, len);
     lsdem_pair_state_decode(records.data(), len, nnodes, &st);
     // the decoded shear entries go behind the list, in the run's own layout
     lsdem_pair_state kept = st;
     place_shear(kept);
     memmove(kept.shear, st.shear, sizeof(lsdem_shear_hist) * st.nshear);
-    if (keep_pair(p, ptag, kept) > 0) nslice[i]++;
+    if (keep_pair(l, cur, ptag, kept, nullptr) > 0) nslice[i]++;
     k += len;
     m += RECORD_DOUBLES * len;
   }
@@ -436,23 +529,28 @@ int FixLsdemHistory::maxsize_restart()
 
 /* ---------------------------------------------------------------------- */
 
-void FixLsdemHistory::held(double &pairs, double &entries, double &shears) const
+void FixLsdemHistory::held(double &pairs, double &entries, double &shears,
+                           double &bytes_used) const
 {
-  pairs = entries = shears = 0.0;
-  for (const Pool &p : pool[cur])
-    for (int k = 0; k < p.ns; k++) {
+  pairs = entries = shears = bytes_used = 0.0;
+  for (const Lane &l : lanes)
+    for (int k = 0; k < l.ns[cur]; k++) {
+      const Slice &s = l.slice[cur][k];
       pairs += 1.0;
-      entries += p.slice[k].list_valid ? p.slice[k].nentry : 0;
-      shears += p.slice[k].nshear;
+      entries += s.nentry >= 0 ? s.nentry : 0;
+      shears += s.nshear;
+      bytes_used += (double) sizeof(Slot) * ((s.nentry >= 0 ? HEAD_SLOTS + s.nentry : 0) + s.nshear);
     }
 }
 
 double FixLsdemHistory::memory_usage()
 {
   double bytes = (double) nmax_atom * 4 * sizeof(int);
-  for (const auto &lanes : pool)
-    for (const Pool &p : lanes)
-      bytes += (double) p.slice.size() * sizeof(Slice) + (double) p.maxslot * sizeof(Slot);
+  for (const Lane &l : lanes) {
+    for (const auto &slices : l.slice) bytes += (double) slices.size() * sizeof(Slice);
+    for (const Chunk &c : l.chunk) bytes += (double) c.cap * sizeof(Slot);
+    bytes += (double) l.maxscratch * sizeof(Slot);
+  }
   bytes += (double) records.size() * sizeof(lsdem_state_record);
   return bytes;
 }

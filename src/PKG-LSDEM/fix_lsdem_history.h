@@ -5,25 +5,27 @@
    the user). Each owned grain keeps, per partner it touched or was near on the last
    step, the state the core carries for a master from step to step (core/contact,
    lsdem_pair_state): the pair's node list (head and entries) and the shear history of
-   ITS OWN nodes. Partners are held sorted by tag. The state travels with the grain
+   ITS OWN nodes, partners in the order they were visited. The state travels with the grain
    (exchange) and is saved in restart files (as lsdem_state_record records, the layout of
    earlier versions, so that their restart files still load).
 
-   Storage: all grains' states sit in a pool of 64-byte slots, pair after pair in the
-   order the styles visit the grains, each pair's state in one run: its list head (two
-   slots), its list entries, its shear entries (the layout of earlier versions in memory
-   too, so that a step reads one stream and writes one). A step reads the current pool and
-   writes the next one, so the kernel writes its output where it will be read next step
-   (no copy). A pool is split into lanes, one per thread (pair_style lsdem/omp): each
-   lane is written by one thread only and each grain's state lies in one lane, so that
-   writing is race-free by construction (a pair's state has one owner, its master's
-   lane); reading (find) is of the current pool only. Use per step:
+   Storage: one pool of 64-byte slots, updated in place. Each pair's state is one run of
+   slots: its list head (two slots), its list entries, its shear entries (the layout of
+   earlier versions). The kernel reads a pair's run and writes the pair's new state into
+   its lane's scratch; commit copies that back over the run when it fits there (a run is
+   reserved with an eighth more than it used), else into a new run, and the old one
+   becomes garbage, reclaimed by compacting the pool at the end of a step once a quarter
+   of it is garbage. The slots are held in chunks that never move during a step: each
+   lane (one per thread, pair_style lsdem/omp) takes new runs from its own chunks, so that
+   writing is race-free by construction (a pair's state has one owner, its master's lane,
+   and runs are only rewritten by it); reading (find) is of the last step's states. Use
+   per step:
      begin_step(nlanes);
      for each owned grain i, by the thread of lane L:
        begin_atom(L);
        for each partner j: find(i, tag_j, in) -> this pair's state (the kernel's input);
                            reserve(L, list_cap, shear_cap) -> room for the kernel's output;
-                           commit(L, tag_j, out);
+                           commit(L, i, tag_j, out);
        end_atom(L, i);  // i's state := the committed pairs; untouched pairs are dropped
      end_step();        // grains not visited lose their state
 ------------------------------------------------------------------------- */
@@ -57,7 +59,7 @@ class FixLsdemHistory : public Fix {
   void begin_atom(int lane);
   lsdem_pair_state reserve(int lane, int list_cap, int shear_cap);  // out.shear: place_shear
   static void place_shear(lsdem_pair_state &out);  // after detection: behind the list
-  void commit(int lane, tagint partner, const lsdem_pair_state &out);
+  void commit(int lane, int i, tagint partner, const lsdem_pair_state &out);
   void end_atom(int lane, int i);
   void end_step();
   void grow_arrays(int) override;
@@ -70,8 +72,9 @@ class FixLsdemHistory : public Fix {
   int size_restart(int) override;
   int maxsize_restart() override;
   double memory_usage() override;
-  // what the current pool holds: pair states, node-list entries, shear entries
-  void held(double &pairs, double &entries, double &shears) const;
+  // what the pool holds: pair states, node-list entries, shear entries, and the bytes of
+  // the states (runs of 64-byte slots) in use and reserved (memory_usage: all the store's)
+  void held(double &pairs, double &entries, double &shears, double &bytes_used) const;
 
  private:
   // a slot holds a shear entry or a list entry; a list head takes two
@@ -81,31 +84,51 @@ class FixLsdemHistory : public Fix {
     unsigned char bytes[64];
   };
   static constexpr int HEAD_SLOTS = 2;
-  struct Slice {   // one pair's state in a pool: its run of slots from `first`
+  static constexpr int MIN_CHUNK_SLOTS = 1024;  // 64 KB
+  static constexpr int PREFETCH_SLOTS = 4;      // of the next run: its head, 2 entries
+  struct Slice {   // one pair's state: its run of slots
     tagint partner;
-    int first, list_valid, nentry, nshear;
+    Slot *run;
+    int cap;       // slots reserved at run (at least slots_of)
+    int nentry;    // list entries; -1: no list
+    int nshear;
+    int claimed;   // the generation of the step that rewrote run in place
   };
-  struct Pool {    // one lane: the states of its atoms, one after the other
-    std::vector<Slice> slice;
+  struct Chunk {   // slots that stay put until the pool is compacted
     Slot *slot;
-    int ns, nslot, maxslot;  // used; slots allocated
-    int atom_slice;          // where the atom being visited starts (while written)
-    int atom_records;        // and the records its committed pairs take
-    int maxrecords;          // the largest state written to this lane this step
+    int used, cap;
   };
-  std::vector<Pool> pool[2];  // the lanes of the two pools
-  int cur;                    // pool[cur] holds the states; pool[1 - cur] is written
+  struct Lane {    // one thread's part: the states of its atoms, one after the other
+    std::vector<Slice> slice[2];  // slice[cur]: the last step's; slice[1 - cur] written
+    int ns[2];                    // slices used in each
+    std::vector<Chunk> chunk;     // where the lane's new runs are taken from
+    Slot *scratch;                // the kernel's output for one pair
+    int maxscratch;
+    int atom_slice;               // where the atom being visited starts (while written)
+    int atom_records;             // and the records its committed pairs take
+    int maxrecords;               // the largest state written to this lane this step
+  };
+  std::vector<Lane> lanes;    // at least the lanes of the last step (their chunks hold runs)
+  int nlanes;                 // lanes of the current step
+  int cur;                    // which slice lists hold the states
   int nmax_atom;              // length of the per-atom arrays
-  int *lane_of, *sfirst, *nslice;  // per atom: its slices in pool[cur][lane_of]
+  int *lane_of, *sfirst, *nslice;  // per atom: its slices in lanes[lane_of].slice[cur]
   int *visited, generation;   // atoms visited since begin_step() carry its generation
   int maxrecords;             // largest state seen, in records (sizes exchange buffers)
   std::vector<lsdem_state_record> records;  // scratch for packing and unpacking
+  std::vector<const Slice *> by_partner;     // scratch: an atom's pairs in packing order
 
-  void pool_room(Pool &p, int ns, int nslot);
-  void release(Pool &p);
-  lsdem_pair_state pair_room(Pool &p, int list_cap, int shear_cap);
-  static int keep_pair(Pool &p, tagint partner, const lsdem_pair_state &st);
-  static void slice_state(const Pool &p, const Slice &s, lsdem_pair_state &st);
+  void init_lane(Lane &l);
+  void release_chunks(std::vector<Chunk> &chunks);
+  Slot *take_slots(Lane &l, int n);
+  static int slots_of(const lsdem_pair_state &st);
+  static int run_capacity(int used);
+  const Slice *slice_of(int i, tagint partner) const;
+  lsdem_pair_state scratch_state(Lane &l, int list_cap, int shear_cap);
+  int keep_pair(Lane &l, int which, tagint partner, const lsdem_pair_state &st, Slice *old);
+  static void slice_state(const Slice &s, lsdem_pair_state &st);
+  static void prefetch_run(const Slice &s);
+  void compact_if_wasteful();
   void note_records(int n);
   int count_records(int i) const;
   int pack_state(int i, double *buf);
