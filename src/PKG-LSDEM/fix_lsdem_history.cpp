@@ -36,7 +36,8 @@ static void unpack_ids(int64_t v, lsdem_state_record &r)
 
 FixLsdemHistory::FixLsdemHistory(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), nlanes(1), cur(0), nmax_atom(0), lane_of(nullptr), sfirst(nullptr),
-  nslice(nullptr), visited(nullptr), generation(0), maxrecords(0)
+  nslice(nullptr), room(nullptr), nroom(nullptr), visited(nullptr), generation(0),
+  maxrecords(0)
 {
   if (narg != 3) error->all(FLERR, "Illegal fix LSDEM_HISTORY command (internal fix)");
 
@@ -67,6 +68,8 @@ FixLsdemHistory::~FixLsdemHistory()
   memory->destroy(lane_of);
   memory->destroy(sfirst);
   memory->destroy(nslice);
+  memory->sfree(room);
+  memory->destroy(nroom);
   memory->destroy(visited);
 }
 
@@ -81,7 +84,7 @@ void FixLsdemHistory::init_lane(Lane &l)
 {
   l.ns[0] = l.ns[1] = 0;
   l.scratch = nullptr;
-  l.maxscratch = l.atom_slice = l.atom_records = l.maxrecords = 0;
+  l.maxscratch = l.atom_used = l.atom_slice = l.atom_records = l.maxrecords = 0;
 }
 
 void FixLsdemHistory::release_chunks(std::vector<Chunk> &chunks)
@@ -91,8 +94,8 @@ void FixLsdemHistory::release_chunks(std::vector<Chunk> &chunks)
 }
 
 /* ----------------------------------------------------------------------
-   n slots for a new run from lane l's chunks; a new chunk (at least a quarter of what
-   the lane holds, so that they stay few) when the last one is full. Chunks never move:
+   n slots of new room from lane l's chunks; a new chunk (at least a quarter of what the
+   lane holds, so that they stay few) when the last one is full. Chunks never move:
    other lanes may be reading runs in them.
 ------------------------------------------------------------------------- */
 
@@ -113,15 +116,21 @@ FixLsdemHistory::Slot *FixLsdemHistory::take_slots(Lane &l, int n)
   return run;
 }
 
-/* the slots a pair's state takes: head and entries when it has a list, its shear entries */
+/* the slots a pair's state takes: head and entries when it has a list, its shear entries
+   (as the kernel wrote it, and as stored) */
 int FixLsdemHistory::slots_of(const lsdem_pair_state &st)
 {
   return (st.list.valid ? HEAD_SLOTS + st.list.head->count : 0) + st.nshear;
 }
 
-/* a new run's slots for a state of `used`: an eighth more, so that a pair whose contact
-   gains a node is mostly rewritten in place */
-int FixLsdemHistory::run_capacity(int used)
+int FixLsdemHistory::slice_slots(const Slice &s)
+{
+  return (s.nentry >= 0 ? HEAD_SLOTS + s.nentry : 0) + s.nshear;
+}
+
+/* new room for an atom's state of `used` slots: an eighth more, so that an atom whose
+   contacts gain a node or two is rewritten in place */
+int FixLsdemHistory::room_for(int used)
 {
   return used + used / 8;
 }
@@ -141,18 +150,6 @@ void FixLsdemHistory::slice_state(const Slice &s, lsdem_pair_state &st)
 }
 
 /* ----------------------------------------------------------------------
-   a run's head and first entries on their way into the cache: runs are read in the order
-   of the slices, but they need not lie in that order (runs rewritten in place stay where
-   they are; a state that outgrew its run moved to the end)
-------------------------------------------------------------------------- */
-
-void FixLsdemHistory::prefetch_run(const Slice &s)
-{
-  const int lines = std::min(s.cap, PREFETCH_SLOTS);
-  for (int k = 0; k < lines; k++) __builtin_prefetch(s.run + k);
-}
-
-/* ----------------------------------------------------------------------
    the state of atom i against one partner; false when it keeps none
 ------------------------------------------------------------------------- */
 
@@ -169,9 +166,12 @@ bool FixLsdemHistory::find(int i, tagint ptag, lsdem_pair_state &in) const
   const Slice *s = slice_of(i, ptag);
   if (!s) return false;
   slice_state(*s, in);
+  // the slices lie in the order of the last step's visit: the next atom's first run is
+  // most likely the next one read after this atom's; its head on the way into the cache
   const Lane &l = lanes[lane_of[i]];
-  if (s + 1 < l.slice[cur].data() + l.ns[cur])
-    prefetch_run(s[1]);  // the pair visited next, most likely (slices: in visit order)
+  const int next = sfirst[i] + nslice[i];
+  if (s == l.slice[cur].data() + sfirst[i] && next < l.ns[cur])
+    for (int k = 0; k < HEAD_SLOTS; k++) __builtin_prefetch(l.slice[cur][next].run + k);
   return true;
 }
 
@@ -198,34 +198,38 @@ void FixLsdemHistory::begin_atom(int lane)
 {
   Lane &l = lanes[lane];
   l.atom_slice = l.ns[1 - cur];
-  l.atom_records = 0;
+  l.atom_used = l.atom_records = 0;
 }
 
 /* ----------------------------------------------------------------------
-   room for the kernel's output of one pair in lane l's scratch: head, list_cap entries,
-   then the shear entries wherever place_shear puts them
+   the lane's scratch holds at least `need` slots, the atom's pairs kept so far included
 ------------------------------------------------------------------------- */
 
-lsdem_pair_state FixLsdemHistory::scratch_state(Lane &l, int list_cap, int shear_cap)
+void FixLsdemHistory::scratch_room(Lane &l, int need)
 {
-  const int need = HEAD_SLOTS + list_cap + shear_cap;
-  if (need > l.maxscratch) {
-    memory->sfree(l.scratch);
-    l.scratch = (Slot *) memory->smalloc(sizeof(Slot) * need, "lsdem/history:scratch");
-    l.maxscratch = need;
-  }
-  lsdem_pair_state st;
-  st.list.valid = 0;
-  st.list.head = reinterpret_cast<lsdem_nodelist_head *>(l.scratch);
-  st.list.entry = &l.scratch[HEAD_SLOTS].entry;
-  st.shear = &l.scratch[HEAD_SLOTS + list_cap].shear;  // until place_shear knows the list
-  st.nshear = 0;
-  return st;
+  if (need <= l.maxscratch) return;
+  l.maxscratch = need + need / 4;
+  l.scratch = (Slot *) memory->srealloc(l.scratch, sizeof(Slot) * l.maxscratch,
+                                        "lsdem/history:scratch");
 }
+
+/* ----------------------------------------------------------------------
+   room for the kernel's output of one pair behind the atom's pairs kept so far: head,
+   list_cap entries, then the shear entries wherever place_shear puts them
+------------------------------------------------------------------------- */
 
 lsdem_pair_state FixLsdemHistory::reserve(int lane, int list_cap, int shear_cap)
 {
-  return scratch_state(lanes[lane], list_cap, shear_cap);
+  Lane &l = lanes[lane];
+  scratch_room(l, l.atom_used + HEAD_SLOTS + list_cap + shear_cap);
+  Slot *run = l.scratch + l.atom_used;
+  lsdem_pair_state st;
+  st.list.valid = 0;
+  st.list.head = reinterpret_cast<lsdem_nodelist_head *>(run);
+  st.list.entry = &run[HEAD_SLOTS].entry;
+  st.shear = &run[HEAD_SLOTS + list_cap].shear;  // until place_shear knows the list
+  st.nshear = 0;
+  return st;
 }
 
 void FixLsdemHistory::place_shear(lsdem_pair_state &out)
@@ -235,108 +239,115 @@ void FixLsdemHistory::place_shear(lsdem_pair_state &out)
 }
 
 /* ----------------------------------------------------------------------
-   keeping a pair's state st (one run from st.list.head, place_shear's layout) as the
-   next slice of lane l's slice list `which`: copied over the run of its old slice when
-   that fits and no other pair took it this step, else into a new run; returns the
-   records it takes (0: nothing kept)
+   keeping the pair's state st written at the end of lane l's scratch: a pair with a list
+   or shear entries becomes the next slice of the lane's slice list `which` (its run
+   stays in the scratch until the atom ends); returns the records it takes
 ------------------------------------------------------------------------- */
 
-int FixLsdemHistory::keep_pair(Lane &l, int which, tagint ptag, const lsdem_pair_state &st,
-                               Slice *old)
+int FixLsdemHistory::keep_pair(Lane &l, int which, tagint ptag, const lsdem_pair_state &st)
 {
   const int used = slots_of(st);
   if (used <= 0) return 0;
-  if ((int) l.slice[which].size() <= l.ns[which])
-    l.slice[which].resize(std::max(l.slice[which].size() + l.slice[which].size() / 4,
-                                   (size_t) 16));
-  Slice &s = l.slice[which][l.ns[which]++];
-  const bool in_place = old && old->claimed != generation && old->cap >= used;
-  s.cap = in_place ? old->cap : run_capacity(used);
-  s.run = in_place ? old->run : take_slots(l, s.cap);
-  if (in_place) old->claimed = generation;
-  memmove(s.run, st.list.head, sizeof(Slot) * used);
+  std::vector<Slice> &list = l.slice[which];
+  if ((int) list.size() <= l.ns[which])
+    list.resize(std::max(list.size() + list.size() / 4, (size_t) 16));
+  Slice &s = list[l.ns[which]++];
   s.partner = ptag;
+  s.run = nullptr;  // in the scratch until the atom ends, behind the atom's earlier pairs
   s.nentry = st.list.valid ? st.list.head->count : -1;
   s.nshear = st.nshear;
-  s.claimed = 0;
+  l.atom_used += used;
   return (st.list.valid ? 2 + st.list.head->count : 0) + st.nshear;
 }
 
-/* ----------------------------------------------------------------------
-   keeping the state the kernel wrote into the scratch, in place of atom i's last one
-   with this partner when it fits
-------------------------------------------------------------------------- */
-
-void FixLsdemHistory::commit(int lane, int i, tagint ptag, const lsdem_pair_state &out)
+void FixLsdemHistory::commit(int lane, tagint ptag, const lsdem_pair_state &out)
 {
   Lane &l = lanes[lane];
-  // the old slice is this fix's own (found through the atom's index): marked as taken
-  Slice *old = const_cast<Slice *>(slice_of(i, ptag));
-  l.atom_records += keep_pair(l, 1 - cur, ptag, out, old);
+  l.atom_records += keep_pair(l, 1 - cur, ptag, out);
 }
 
 /* ----------------------------------------------------------------------
-   atom i's state := the committed pairs, in the order they were committed (the order
-   of the next step's visit: its runs are read in the order they lie)
+   atom i's state := the pairs committed since begin_atom (slice list `which`), copied
+   from the scratch over the atom's old room when it fits there, else into new room
 ------------------------------------------------------------------------- */
+
+void FixLsdemHistory::keep_atom(Lane &l, int which, int i)
+{
+  if (l.atom_used > nroom[i]) {
+    nroom[i] = room_for(l.atom_used);
+    room[i] = take_slots(l, nroom[i]);
+  }
+  if (l.atom_used > 0) memcpy(room[i], l.scratch, sizeof(Slot) * l.atom_used);
+  Slice *s = l.slice[which].data() + l.atom_slice;
+  const int ns = l.ns[which] - l.atom_slice;
+  Slot *run = room[i];
+  for (int k = 0; k < ns; k++) {  // back to back, in the order they were kept
+    s[k].run = run;
+    run += slice_slots(s[k]);
+  }
+  lane_of[i] = (int) (&l - lanes.data());
+  sfirst[i] = l.atom_slice;
+  nslice[i] = ns;
+}
 
 void FixLsdemHistory::end_atom(int lane, int i)
 {
   Lane &l = lanes[lane];
-  lane_of[i] = lane;
-  sfirst[i] = l.atom_slice;
-  nslice[i] = l.ns[1 - cur] - l.atom_slice;
+  keep_atom(l, 1 - cur, i);
   visited[i] = generation;
   l.maxrecords = std::max(l.maxrecords, l.atom_records);
 }
 
 /* ----------------------------------------------------------------------
    the written slices become the current ones; owned atoms the step did not visit have
-   nothing in them
+   nothing in them (and their room is given up)
 ------------------------------------------------------------------------- */
 
 void FixLsdemHistory::end_step()
 {
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++)
-    if (visited[i] != generation) nslice[i] = lane_of[i] = 0;
+    if (visited[i] != generation) nslice[i] = lane_of[i] = nroom[i] = 0;
   for (const Lane &l : lanes) note_records(l.maxrecords);
   cur = 1 - cur;
   compact_if_wasteful();
 }
 
 /* ----------------------------------------------------------------------
-   when a quarter of the chunks' used slots are no state's (runs left behind by states
-   that outgrew them, pairs dropped) or lanes have gone: each lane's runs copied, in the
-   order of its slices, into one new chunk with room for an eighth more, the old chunks
-   freed
+   when an eighth of the chunks' used slots are no atom's (rooms left behind by states
+   that outgrew them, atoms gone or without pairs) or lanes have gone: the owned atoms'
+   rooms copied, atom by atom, into one new chunk per lane (the lane that visited the
+   atom) with room for an eighth more, the old chunks freed
 ------------------------------------------------------------------------- */
 
 void FixLsdemHistory::compact_if_wasteful()
 {
+  const int nlocal = atom->nlocal;
   size_t used = 0, live = 0;
-  for (const Lane &l : lanes) {
+  for (const Lane &l : lanes)
     for (const Chunk &c : l.chunk) used += c.used;
-    for (int k = 0; k < l.ns[cur]; k++) live += l.slice[cur][k].cap;
-  }
+  for (int i = 0; i < nlocal; i++) live += nroom[i];
   if ((int) lanes.size() <= nlanes && 8 * (used - live) <= used) return;
+  std::vector<size_t> need(lanes.size(), 0);
+  for (int i = 0; i < nlocal; i++) need[lane_of[i]] += nroom[i];
   std::vector<std::vector<Chunk>> old(lanes.size());
-  for (size_t l = 0; l < lanes.size(); l++) old[l].swap(lanes[l].chunk);
-  for (Lane &l : lanes) {
-    size_t need = 0;
-    for (int k = 0; k < l.ns[cur]; k++) need += l.slice[cur][k].cap;
-    if (need == 0) continue;
+  for (size_t l = 0; l < lanes.size(); l++) {
+    old[l].swap(lanes[l].chunk);
+    if (need[l] == 0) continue;
     Chunk c;
-    c.cap = (int) std::max(need + need / 8, (size_t) MIN_CHUNK_SLOTS);
+    c.cap = (int) std::max(need[l] + need[l] / 8, (size_t) MIN_CHUNK_SLOTS);
     c.used = 0;
     c.slot = (Slot *) memory->smalloc(sizeof(Slot) * c.cap, "lsdem/history:chunk");
-    for (int k = 0; k < l.ns[cur]; k++) {
-      Slice &s = l.slice[cur][k];
-      memcpy(c.slot + c.used, s.run, sizeof(Slot) * s.cap);
-      s.run = c.slot + c.used;
-      c.used += s.cap;
-    }
-    l.chunk.push_back(c);
+    lanes[l].chunk.push_back(c);
+  }
+  for (int i = 0; i < nlocal; i++) {
+    if (nroom[i] == 0) continue;
+    Lane &l = lanes[lane_of[i]];
+    Slot *to = take_slots(l, nroom[i]);
+    memcpy(to, room[i], sizeof(Slot) * nroom[i]);
+    Slice *s = l.slice[cur].data() + sfirst[i];
+    for (int k = 0; k < nslice[i]; k++) s[k].run = to + (s[k].run - room[i]);
+    room[i] = to;
   }
   for (auto &chunks : old) release_chunks(chunks);
   for (int l = nlanes; l < (int) lanes.size(); l++) memory->sfree(lanes[l].scratch);
@@ -372,7 +383,12 @@ void FixLsdemHistory::grow_arrays(int nmax)
   memory->grow(sfirst, nmax, "lsdem/history:sfirst");
   memory->grow(nslice, nmax, "lsdem/history:nslice");
   memory->grow(visited, nmax, "lsdem/history:visited");
-  for (int i = nmax_atom; i < nmax; i++) lane_of[i] = sfirst[i] = nslice[i] = visited[i] = 0;
+  room = (Slot **) memory->srealloc(room, sizeof(Slot *) * nmax, "lsdem/history:room");
+  memory->grow(nroom, nmax, "lsdem/history:nroom");
+  for (int i = nmax_atom; i < nmax; i++) {
+    lane_of[i] = sfirst[i] = nslice[i] = visited[i] = nroom[i] = 0;
+    room[i] = nullptr;
+  }
   nmax_atom = nmax;
 }
 
@@ -386,6 +402,8 @@ void FixLsdemHistory::copy_arrays(int i, int j, int /*delflag*/)
   lane_of[j] = lane_of[i];
   sfirst[j] = sfirst[i];
   nslice[j] = nslice[i];
+  room[j] = room[i];
+  nroom[j] = nroom[i];
   visited[j] = visited[i];
 }
 
@@ -393,7 +411,7 @@ void FixLsdemHistory::copy_arrays(int i, int j, int /*delflag*/)
 
 void FixLsdemHistory::set_arrays(int i)
 {
-  nslice[i] = 0;
+  nslice[i] = nroom[i] = 0;
 }
 
 /* ----------------------------------------------------------------------
@@ -431,8 +449,8 @@ int FixLsdemHistory::pack_state(int i, double *buf)
 
 /* ----------------------------------------------------------------------
    records come grouped by partner: each run of one partner is one pair's state
-   (lsdem_pair_state_decode, against the nodes of atom i's shape). They are appended to
-   the current pool (the next step rewrites it without the dropped ones).
+   (lsdem_pair_state_decode, against the nodes of atom i's shape), kept as the atom's
+   state of the last step, in new room of the first lane.
 ------------------------------------------------------------------------- */
 
 int FixLsdemHistory::unpack_state(int i, const double *buf)
@@ -442,9 +460,9 @@ int FixLsdemHistory::unpack_state(int i, const double *buf)
   if (!avec) error->one(FLERR, "Fix LSDEM_HISTORY requires atom_style lsdem");
   const int nnodes = avec->shape_of(i)->nnodes;
   Lane &l = lanes[0];  // exchange and restart are serial: the first lane
-  lane_of[i] = 0;
-  sfirst[i] = l.ns[cur];
-  nslice[i] = 0;
+  l.atom_slice = l.ns[cur];
+  l.atom_used = 0;
+  nroom[i] = 0;  // new room: what index i held before is another atom's or garbage
   records.resize(std::max(records.size(), (size_t) n));
   int m = 1;
   for (int k = 0; k < n;) {
@@ -461,16 +479,17 @@ int FixLsdemHistory::unpack_state(int i, const double *buf)
       }
       len++;
     }
-    lsdem_pair_state st = scratch_state(l, len, len);
+    lsdem_pair_state st = reserve(0, len, len);
     lsdem_pair_state_decode(records.data(), len, nnodes, &st);
     // the decoded shear entries go behind the list, in the run's own layout
     lsdem_pair_state kept = st;
     place_shear(kept);
     memmove(kept.shear, st.shear, sizeof(lsdem_shear_hist) * st.nshear);
-    if (keep_pair(l, cur, ptag, kept, nullptr) > 0) nslice[i]++;
+    keep_pair(l, cur, ptag, kept);
     k += len;
     m += RECORD_DOUBLES * len;
   }
+  keep_atom(l, cur, i);
   note_records(count_records(i));
   return m;
 }
@@ -539,13 +558,13 @@ void FixLsdemHistory::held(double &pairs, double &entries, double &shears,
       pairs += 1.0;
       entries += s.nentry >= 0 ? s.nentry : 0;
       shears += s.nshear;
-      bytes_used += (double) sizeof(Slot) * ((s.nentry >= 0 ? HEAD_SLOTS + s.nentry : 0) + s.nshear);
+      bytes_used += (double) sizeof(Slot) * slice_slots(s);
     }
 }
 
 double FixLsdemHistory::memory_usage()
 {
-  double bytes = (double) nmax_atom * 4 * sizeof(int);
+  double bytes = (double) nmax_atom * (5 * sizeof(int) + sizeof(Slot *));
   for (const Lane &l : lanes) {
     for (const auto &slices : l.slice) bytes += (double) slices.size() * sizeof(Slice);
     for (const Chunk &c : l.chunk) bytes += (double) c.cap * sizeof(Slot);

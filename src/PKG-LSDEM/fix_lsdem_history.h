@@ -9,23 +9,24 @@
    (exchange) and is saved in restart files (as lsdem_state_record records, the layout of
    earlier versions, so that their restart files still load).
 
-   Storage: one pool of 64-byte slots, updated in place. Each pair's state is one run of
+   Storage: one pool of 64-byte slots, updated in place. Each pair's state is a run of
    slots: its list head (two slots), its list entries, its shear entries (the layout of
-   earlier versions). The kernel reads a pair's run and writes the pair's new state into
-   its lane's scratch; commit copies that back over the run when it fits there (a run is
-   reserved with an eighth more than it used), else into a new run, and the old one
-   becomes garbage, reclaimed by compacting the pool at the end of a step once a quarter
-   of it is garbage. The slots are held in chunks that never move during a step: each
-   lane (one per thread, pair_style lsdem/omp) takes new runs from its own chunks, so that
-   writing is race-free by construction (a pair's state has one owner, its master's lane,
-   and runs are only rewritten by it); reading (find) is of the last step's states. Use
-   per step:
+   earlier versions); an atom's pairs' runs lie back to back, in the order they were
+   visited (so that a step reads them in the order they lie). The kernel reads an atom's
+   runs and writes each pair's new state into its lane's scratch; at the end of the atom
+   the scratch is copied over the atom's old runs when it fits there (an atom's room is
+   reserved with an eighth more than it used), else into new room, the old becoming
+   garbage, reclaimed by compacting the pool at the end of a step once an eighth of it is
+   garbage. The slots are held in chunks that never move during a step: each lane (one
+   per thread, pair_style lsdem/omp) takes new room from its own chunks, and an atom's
+   room is only written by the lane visiting the atom, so that writing is race-free by
+   construction; reading (find) is of the last step's states. Use per step:
      begin_step(nlanes);
      for each owned grain i, by the thread of lane L:
        begin_atom(L);
        for each partner j: find(i, tag_j, in) -> this pair's state (the kernel's input);
                            reserve(L, list_cap, shear_cap) -> room for the kernel's output;
-                           commit(L, i, tag_j, out);
+                           commit(L, tag_j, out);
        end_atom(L, i);  // i's state := the committed pairs; untouched pairs are dropped
      end_step();        // grains not visited lose their state
 ------------------------------------------------------------------------- */
@@ -59,7 +60,7 @@ class FixLsdemHistory : public Fix {
   void begin_atom(int lane);
   lsdem_pair_state reserve(int lane, int list_cap, int shear_cap);  // out.shear: place_shear
   static void place_shear(lsdem_pair_state &out);  // after detection: behind the list
-  void commit(int lane, int i, tagint partner, const lsdem_pair_state &out);
+  void commit(int lane, tagint partner, const lsdem_pair_state &out);
   void end_atom(int lane, int i);
   void end_step();
   void grow_arrays(int) override;
@@ -85,26 +86,24 @@ class FixLsdemHistory : public Fix {
   };
   static constexpr int HEAD_SLOTS = 2;
   static constexpr int MIN_CHUNK_SLOTS = 1024;  // 64 KB
-  static constexpr int PREFETCH_SLOTS = 4;      // of the next run: its head, 2 entries
   struct Slice {   // one pair's state: its run of slots
     tagint partner;
-    Slot *run;
-    int cap;       // slots reserved at run (at least slots_of)
+    Slot *run;     // (set when its atom ends)
     int nentry;    // list entries; -1: no list
     int nshear;
-    int claimed;   // the generation of the step that rewrote run in place
   };
   struct Chunk {   // slots that stay put until the pool is compacted
     Slot *slot;
     int used, cap;
   };
-  struct Lane {    // one thread's part: the states of its atoms, one after the other
+  struct Lane {    // one thread's part
     std::vector<Slice> slice[2];  // slice[cur]: the last step's; slice[1 - cur] written
     int ns[2];                    // slices used in each
-    std::vector<Chunk> chunk;     // where the lane's new runs are taken from
-    Slot *scratch;                // the kernel's output for one pair
+    std::vector<Chunk> chunk;     // where the lane's new room is taken from
+    Slot *scratch;                // the new state of the atom being visited
     int maxscratch;
-    int atom_slice;               // where the atom being visited starts (while written)
+    int atom_used;                // its slots in the scratch
+    int atom_slice;               // where its slices start
     int atom_records;             // and the records its committed pairs take
     int maxrecords;               // the largest state written to this lane this step
   };
@@ -113,6 +112,8 @@ class FixLsdemHistory : public Fix {
   int cur;                    // which slice lists hold the states
   int nmax_atom;              // length of the per-atom arrays
   int *lane_of, *sfirst, *nslice;  // per atom: its slices in lanes[lane_of].slice[cur]
+  Slot **room;                // per atom: where its runs lie
+  int *nroom;                 // and the slots reserved there
   int *visited, generation;   // atoms visited since begin_step() carry its generation
   int maxrecords;             // largest state seen, in records (sizes exchange buffers)
   std::vector<lsdem_state_record> records;  // scratch for packing and unpacking
@@ -122,12 +123,13 @@ class FixLsdemHistory : public Fix {
   void release_chunks(std::vector<Chunk> &chunks);
   Slot *take_slots(Lane &l, int n);
   static int slots_of(const lsdem_pair_state &st);
-  static int run_capacity(int used);
+  static int slice_slots(const Slice &s);
+  static int room_for(int used);
+  void scratch_room(Lane &l, int need);
   const Slice *slice_of(int i, tagint partner) const;
-  lsdem_pair_state scratch_state(Lane &l, int list_cap, int shear_cap);
-  int keep_pair(Lane &l, int which, tagint partner, const lsdem_pair_state &st, Slice *old);
   static void slice_state(const Slice &s, lsdem_pair_state &st);
-  static void prefetch_run(const Slice &s);
+  int keep_pair(Lane &l, int which, tagint partner, const lsdem_pair_state &st);
+  void keep_atom(Lane &l, int which, int i);
   void compact_if_wasteful();
   void note_records(int n);
   int count_records(int i) const;

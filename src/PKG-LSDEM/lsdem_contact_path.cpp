@@ -120,7 +120,7 @@ int LsdemContactPath::test(int i, tagint partner, const lsdem_shape *A, const ls
   FixLsdemHistory::place_shear(out);  // behind the list just written: one stream per step
   lsdem_penalty_apply(&m, &prm.law, prm.dt, step, found ? in.shear : nullptr,
                       found ? in.nshear : 0, out.shear, &out.nshear, &res);
-  store->commit(lane, i, partner, out);
+  store->commit(lane, partner, out);
   return res.npen;
 }
 
@@ -143,7 +143,7 @@ int LsdemContactPath::test_points(int i, tagint partner, const lsdem_band *band,
   lsdem_penalty_apply(&m, &prm.law, prm.dt, step, found ? in.shear : nullptr,
                       found ? in.nshear : 0, keep ? out.shear : nullptr,
                       keep ? &out.nshear : nullptr, &res);
-  if (keep) store->commit(lane, i, partner, out);
+  if (keep) store->commit(lane, partner, out);
   return res.npen;
 }
 
@@ -162,7 +162,7 @@ int LsdemContactPath::detect(int i, tagint partner, const lsdem_shape *A, const 
   lsdem_pair_state out = store->reserve(lane, lsdem_nodelist_capacity(A), 0);
   lsdem_detect(A, &pa, B, &pb, &det, step, found ? &in.list : nullptr, &out.list, &m);
   out.nshear = 0;
-  store->commit(lane, i, partner, out);
+  store->commit(lane, partner, out);
   return m.n;
 }
 
@@ -186,6 +186,6 @@ int LsdemContactPath::test_sphere(int i, tagint partner, double ra, const lsdem_
   FixLsdemHistory::place_shear(out);
   lsdem_contact_sphere(ra, &pa, B, &pb, &prm.law, prm.dt, step, found ? in.shear : nullptr,
                        found ? in.nshear : 0, out.shear, &out.nshear, &res);
-  store->commit(lane, i, partner, out);
+  store->commit(lane, partner, out);
   return res.npen;
 }
