@@ -35,9 +35,8 @@ static void unpack_ids(int64_t v, lsdem_state_record &r)
 /* ---------------------------------------------------------------------- */
 
 FixLsdemHistory::FixLsdemHistory(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), nlanes(1), cur(0), nmax_atom(0), lane_of(nullptr), sfirst(nullptr),
-  nslice(nullptr), room(nullptr), nroom(nullptr), visited(nullptr), generation(0),
-  maxrecords(0)
+  Fix(lmp, narg, arg), cur(0), nmax_atom(0), lane_of(nullptr), sfirst(nullptr),
+  nslice(nullptr), visited(nullptr), generation(0), maxrecords(0)
 {
   if (narg != 3) error->all(FLERR, "Illegal fix LSDEM_HISTORY command (internal fix)");
 
@@ -45,8 +44,12 @@ FixLsdemHistory::FixLsdemHistory(LAMMPS *lmp, int narg, char **arg) :
   create_attribute = 1;
   maxexchange_dynamic = 1;
   maxexchange = 1;
-  lanes.resize(1);
-  init_lane(lanes[0]);
+  for (auto &lanes : pool) lanes.resize(1);
+  for (auto &lanes : pool)
+    for (Pool &p : lanes) {
+      p.slot = nullptr;
+      p.ns = p.nslot = p.maxslot = p.atom_slice = p.atom_records = p.maxrecords = 0;
+    }
   static_assert(sizeof(Slot) == 64 && sizeof(lsdem_nodelist_head) <= HEAD_SLOTS * sizeof(Slot),
                 "a list head fits two slots");
 
@@ -61,15 +64,11 @@ FixLsdemHistory::~FixLsdemHistory()
 {
   atom->delete_callback(id, Atom::GROW);
   atom->delete_callback(id, Atom::RESTART);
-  for (Lane &l : lanes) {
-    release_chunks(l.chunk);
-    memory->sfree(l.scratch);
-  }
+  for (auto &lanes : pool)
+    for (Pool &p : lanes) release(p);
   memory->destroy(lane_of);
   memory->destroy(sfirst);
   memory->destroy(nslice);
-  memory->sfree(room);
-  memory->destroy(nroom);
   memory->destroy(visited);
 }
 
@@ -80,59 +79,29 @@ int FixLsdemHistory::setmask()
   return 0;
 }
 
-void FixLsdemHistory::init_lane(Lane &l)
+void FixLsdemHistory::release(Pool &p)
 {
-  l.ns[0] = l.ns[1] = 0;
-  l.scratch = nullptr;
-  l.maxscratch = l.atom_used = l.atom_slice = l.atom_records = l.maxrecords = 0;
-}
-
-void FixLsdemHistory::release_chunks(std::vector<Chunk> &chunks)
-{
-  for (Chunk &c : chunks) memory->sfree(c.slot);
-  chunks.clear();
+  memory->sfree(p.slot);
+  p.slot = nullptr;
+  p.maxslot = 0;
 }
 
 /* ----------------------------------------------------------------------
-   n slots of new room from lane l's chunks; a new chunk (at least a quarter of what the
-   lane holds, so that they stay few) when the last one is full. Chunks never move:
-   other lanes may be reading runs in them.
+   room in pool p for ns more slices and nslot more slots (grows by doubling; the step's
+   pointers into p are taken after this)
 ------------------------------------------------------------------------- */
 
-FixLsdemHistory::Slot *FixLsdemHistory::take_slots(Lane &l, int n)
+/* room for ns more slices and nslot more slots; grows by a quarter (not doubling: the
+   pools are most of a grain's memory, and they reach their size in the first steps) */
+void FixLsdemHistory::pool_room(Pool &p, int ns, int nslot)
 {
-  if (l.chunk.empty() || l.chunk.back().cap - l.chunk.back().used < n) {
-    size_t held = 0;
-    for (const Chunk &c : l.chunk) held += c.cap;
-    Chunk c;
-    c.cap = (int) std::max({(size_t) n, held / 4, (size_t) MIN_CHUNK_SLOTS});
-    c.used = 0;
-    c.slot = (Slot *) memory->smalloc(sizeof(Slot) * c.cap, "lsdem/history:chunk");
-    l.chunk.push_back(c);
+  const size_t need = (size_t) p.ns + (size_t) ns;
+  if (need > p.slice.size())
+    p.slice.resize(std::max({need, p.slice.size() + p.slice.size() / 4, (size_t) 16}));
+  if (p.nslot + nslot > p.maxslot) {
+    p.maxslot = std::max(p.maxslot + p.maxslot / 4, p.nslot + nslot);
+    p.slot = (Slot *) memory->srealloc(p.slot, sizeof(Slot) * p.maxslot, "lsdem/history:slots");
   }
-  Chunk &c = l.chunk.back();
-  Slot *run = c.slot + c.used;
-  c.used += n;
-  return run;
-}
-
-/* the slots a pair's state takes: head and entries when it has a list, its shear entries
-   (as the kernel wrote it, and as stored) */
-int FixLsdemHistory::slots_of(const lsdem_pair_state &st)
-{
-  return (st.list.valid ? HEAD_SLOTS + st.list.head->count : 0) + st.nshear;
-}
-
-int FixLsdemHistory::slice_slots(const Slice &s)
-{
-  return (s.nentry >= 0 ? HEAD_SLOTS + s.nentry : 0) + s.nshear;
-}
-
-/* new room for an atom's state of `used` slots: an eighth more, so that an atom whose
-   contacts gain a node or two is rewritten in place */
-int FixLsdemHistory::room_for(int used)
-{
-  return used + used / 8;
 }
 
 /* ----------------------------------------------------------------------
@@ -140,12 +109,13 @@ int FixLsdemHistory::room_for(int used)
    the shear entries behind them
 ------------------------------------------------------------------------- */
 
-void FixLsdemHistory::slice_state(const Slice &s, lsdem_pair_state &st)
+void FixLsdemHistory::slice_state(const Pool &p, const Slice &s, lsdem_pair_state &st)
 {
-  st.list.valid = s.nentry >= 0;
-  st.list.head = reinterpret_cast<lsdem_nodelist_head *>(s.run);
-  st.list.entry = &s.run[HEAD_SLOTS].entry;
-  st.shear = &s.run[st.list.valid ? HEAD_SLOTS + s.nentry : 0].shear;
+  Slot *run = p.slot + s.first;
+  st.list.valid = s.list_valid;
+  st.list.head = reinterpret_cast<lsdem_nodelist_head *>(run);
+  st.list.entry = &run[HEAD_SLOTS].entry;
+  st.shear = &run[s.list_valid ? HEAD_SLOTS + s.nentry : 0].shear;
   st.nshear = s.nshear;
 }
 
@@ -153,42 +123,31 @@ void FixLsdemHistory::slice_state(const Slice &s, lsdem_pair_state &st)
    the state of atom i against one partner; false when it keeps none
 ------------------------------------------------------------------------- */
 
-const FixLsdemHistory::Slice *FixLsdemHistory::slice_of(int i, tagint ptag) const
-{
-  const Slice *s = lanes[lane_of[i]].slice[cur].data() + sfirst[i];
-  for (int k = 0; k < nslice[i]; k++)  // a few partners: a scan beats a binary search
-    if (s[k].partner == ptag) return &s[k];
-  return nullptr;
-}
-
 bool FixLsdemHistory::find(int i, tagint ptag, lsdem_pair_state &in) const
 {
-  const Slice *s = slice_of(i, ptag);
-  if (!s) return false;
-  slice_state(*s, in);
-  // the slices lie in the order of the last step's visit: the next atom's first run is
-  // most likely the next one read after this atom's; its head on the way into the cache
-  const Lane &l = lanes[lane_of[i]];
-  const int next = sfirst[i] + nslice[i];
-  if (s == l.slice[cur].data() + sfirst[i] && next < l.ns[cur])
-    for (int k = 0; k < HEAD_SLOTS; k++) __builtin_prefetch(l.slice[cur][next].run + k);
-  return true;
+  const Pool &p = pool[cur][lane_of[i]];
+  const Slice *s = p.slice.data() + sfirst[i];
+  for (int k = 0; k < nslice[i]; k++)  // a few partners: a scan beats a binary search
+    if (s[k].partner == ptag) {
+      slice_state(p, s[k], in);
+      return true;
+    }
+  return false;
 }
 
-/* ----------------------------------------------------------------------
-   the lanes of this step; those of the last one stay until the pool is compacted (their
-   chunks hold runs that are read, and rewritten in place, this step)
-------------------------------------------------------------------------- */
+/* ---------------------------------------------------------------------- */
 
-void FixLsdemHistory::begin_step(int n)
+void FixLsdemHistory::begin_step(int nlanes)
 {
-  const int had = (int) lanes.size();
-  if (n > had) {
-    lanes.resize(n);
-    for (int l = had; l < n; l++) init_lane(lanes[l]);
+  auto &next = pool[1 - cur];
+  for (int l = nlanes; l < (int) next.size(); l++) release(next[l]);
+  const int had = (int) next.size();
+  next.resize(nlanes);
+  for (int l = had; l < nlanes; l++) {
+    next[l].slot = nullptr;
+    next[l].maxslot = 0;
   }
-  nlanes = n;
-  for (Lane &l : lanes) l.ns[1 - cur] = l.maxrecords = 0;
+  for (Pool &p : next) p.ns = p.nslot = p.maxrecords = 0;
   generation = generation < INT_MAX ? generation + 1 : 1;  // wraps, never to 0 (new atoms)
 }
 
@@ -196,33 +155,22 @@ void FixLsdemHistory::begin_step(int n)
 
 void FixLsdemHistory::begin_atom(int lane)
 {
-  Lane &l = lanes[lane];
-  l.atom_slice = l.ns[1 - cur];
-  l.atom_used = l.atom_records = 0;
+  Pool &next = pool[1 - cur][lane];
+  next.atom_slice = next.ns;
+  next.atom_records = 0;
 }
 
 /* ----------------------------------------------------------------------
-   the lane's scratch holds at least `need` slots, the atom's pairs kept so far included
+   room in pool p for one more pair's state, a run of slots after the used ones (head,
+   list_cap entries, then the shear entries wherever place_shear puts them), and keeping
+   what was written there: a pair with a list or shear entries becomes the pool's next
+   slice; returns the records it takes (0: nothing kept)
 ------------------------------------------------------------------------- */
 
-void FixLsdemHistory::scratch_room(Lane &l, int need)
+lsdem_pair_state FixLsdemHistory::pair_room(Pool &p, int list_cap, int shear_cap)
 {
-  if (need <= l.maxscratch) return;
-  l.maxscratch = need + need / 4;
-  l.scratch = (Slot *) memory->srealloc(l.scratch, sizeof(Slot) * l.maxscratch,
-                                        "lsdem/history:scratch");
-}
-
-/* ----------------------------------------------------------------------
-   room for the kernel's output of one pair behind the atom's pairs kept so far: head,
-   list_cap entries, then the shear entries wherever place_shear puts them
-------------------------------------------------------------------------- */
-
-lsdem_pair_state FixLsdemHistory::reserve(int lane, int list_cap, int shear_cap)
-{
-  Lane &l = lanes[lane];
-  scratch_room(l, l.atom_used + HEAD_SLOTS + list_cap + shear_cap);
-  Slot *run = l.scratch + l.atom_used;
+  pool_room(p, 1, HEAD_SLOTS + list_cap + shear_cap);
+  Slot *run = p.slot + p.nslot;
   lsdem_pair_state st;
   st.list.valid = 0;
   st.list.head = reinterpret_cast<lsdem_nodelist_head *>(run);
@@ -238,132 +186,85 @@ void FixLsdemHistory::place_shear(lsdem_pair_state &out)
   out.shear = &run[out.list.valid ? HEAD_SLOTS + out.list.head->count : 0].shear;
 }
 
+int FixLsdemHistory::keep_pair(Pool &p, tagint ptag, const lsdem_pair_state &st)
+{
+  if (!st.list.valid && st.nshear <= 0) return 0;
+  Slice &s = p.slice[p.ns++];
+  s.partner = ptag;
+  s.first = p.nslot;
+  s.list_valid = st.list.valid;
+  s.nentry = st.list.valid ? st.list.head->count : 0;
+  s.nshear = st.nshear;
+  p.nslot += (st.list.valid ? HEAD_SLOTS + s.nentry : 0) + st.nshear;
+  return (st.list.valid ? 2 + s.nentry : 0) + st.nshear;
+}
+
 /* ----------------------------------------------------------------------
-   keeping the pair's state st written at the end of lane l's scratch: a pair with a list
-   or shear entries becomes the next slice of the lane's slice list `which` (its run
-   stays in the scratch until the atom ends); returns the records it takes
+   room for a pair's new state after the committed ones, and keeping the state the
+   kernel wrote there
 ------------------------------------------------------------------------- */
 
-int FixLsdemHistory::keep_pair(Lane &l, int which, tagint ptag, const lsdem_pair_state &st)
+lsdem_pair_state FixLsdemHistory::reserve(int lane, int list_cap, int shear_cap)
 {
-  const int used = slots_of(st);
-  if (used <= 0) return 0;
-  std::vector<Slice> &list = l.slice[which];
-  if ((int) list.size() <= l.ns[which])
-    list.resize(std::max(list.size() + list.size() / 4, (size_t) 16));
-  Slice &s = list[l.ns[which]++];
-  s.partner = ptag;
-  s.run = nullptr;  // in the scratch until the atom ends, behind the atom's earlier pairs
-  s.nentry = st.list.valid ? st.list.head->count : -1;
-  s.nshear = st.nshear;
-  l.atom_used += used;
-  return (st.list.valid ? 2 + st.list.head->count : 0) + st.nshear;
+  return pair_room(pool[1 - cur][lane], list_cap, shear_cap);
 }
 
 void FixLsdemHistory::commit(int lane, tagint ptag, const lsdem_pair_state &out)
 {
-  Lane &l = lanes[lane];
-  l.atom_records += keep_pair(l, 1 - cur, ptag, out);
+  Pool &next = pool[1 - cur][lane];
+  next.atom_records += keep_pair(next, ptag, out);
 }
 
 /* ----------------------------------------------------------------------
-   atom i's state := the pairs committed since begin_atom (slice list `which`), copied
-   from the scratch over the atom's old room when it fits there, else into new room
+   atom i's state := the committed pairs, ordered by partner tag
 ------------------------------------------------------------------------- */
-
-void FixLsdemHistory::keep_atom(Lane &l, int which, int i)
-{
-  if (l.atom_used > nroom[i]) {
-    nroom[i] = room_for(l.atom_used);
-    room[i] = take_slots(l, nroom[i]);
-  }
-  if (l.atom_used > 0) memcpy(room[i], l.scratch, sizeof(Slot) * l.atom_used);
-  Slice *s = l.slice[which].data() + l.atom_slice;
-  const int ns = l.ns[which] - l.atom_slice;
-  Slot *run = room[i];
-  for (int k = 0; k < ns; k++) {  // back to back, in the order they were kept
-    s[k].run = run;
-    run += slice_slots(s[k]);
-  }
-  lane_of[i] = (int) (&l - lanes.data());
-  sfirst[i] = l.atom_slice;
-  nslice[i] = ns;
-}
 
 void FixLsdemHistory::end_atom(int lane, int i)
 {
-  Lane &l = lanes[lane];
-  keep_atom(l, 1 - cur, i);
+  Pool &next = pool[1 - cur][lane];
+  Slice *s = next.slice.data() + next.atom_slice;
+  const int ns = next.ns - next.atom_slice;
+  for (int a = 1; a < ns; a++) {  // few partners per grain: insertion sort
+    Slice t = s[a];
+    int b = a - 1;
+    while (b >= 0 && s[b].partner > t.partner) {
+      s[b + 1] = s[b];
+      b--;
+    }
+    s[b + 1] = t;
+  }
+  lane_of[i] = lane;
+  sfirst[i] = next.atom_slice;
+  nslice[i] = ns;
   visited[i] = generation;
-  l.maxrecords = std::max(l.maxrecords, l.atom_records);
+  next.maxrecords = std::max(next.maxrecords, next.atom_records);
 }
 
 /* ----------------------------------------------------------------------
-   the written slices become the current ones; owned atoms the step did not visit have
-   nothing in them (and their room is given up)
+   the written pool becomes the current one; owned atoms the step did not visit have
+   nothing in it
 ------------------------------------------------------------------------- */
 
 void FixLsdemHistory::end_step()
 {
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++)
-    if (visited[i] != generation) nslice[i] = lane_of[i] = nroom[i] = 0;
-  for (const Lane &l : lanes) note_records(l.maxrecords);
+    if (visited[i] != generation) nslice[i] = 0;
+  for (const Pool &p : pool[1 - cur]) note_records(p.maxrecords);
   cur = 1 - cur;
-  compact_if_wasteful();
 }
 
 /* ----------------------------------------------------------------------
-   when an eighth of the chunks' used slots are no atom's (rooms left behind by states
-   that outgrew them, atoms gone or without pairs) or lanes have gone: the owned atoms'
-   rooms copied, atom by atom, into one new chunk per lane (the lane that visited the
-   atom) with room for an eighth more, the old chunks freed
-------------------------------------------------------------------------- */
-
-void FixLsdemHistory::compact_if_wasteful()
-{
-  const int nlocal = atom->nlocal;
-  size_t used = 0, live = 0;
-  for (const Lane &l : lanes)
-    for (const Chunk &c : l.chunk) used += c.used;
-  for (int i = 0; i < nlocal; i++) live += nroom[i];
-  if ((int) lanes.size() <= nlanes && 8 * (used - live) <= used) return;
-  std::vector<size_t> need(lanes.size(), 0);
-  for (int i = 0; i < nlocal; i++) need[lane_of[i]] += nroom[i];
-  std::vector<std::vector<Chunk>> old(lanes.size());
-  for (size_t l = 0; l < lanes.size(); l++) {
-    old[l].swap(lanes[l].chunk);
-    if (need[l] == 0) continue;
-    Chunk c;
-    c.cap = (int) std::max(need[l] + need[l] / 8, (size_t) MIN_CHUNK_SLOTS);
-    c.used = 0;
-    c.slot = (Slot *) memory->smalloc(sizeof(Slot) * c.cap, "lsdem/history:chunk");
-    lanes[l].chunk.push_back(c);
-  }
-  for (int i = 0; i < nlocal; i++) {
-    if (nroom[i] == 0) continue;
-    Lane &l = lanes[lane_of[i]];
-    Slot *to = take_slots(l, nroom[i]);
-    memcpy(to, room[i], sizeof(Slot) * nroom[i]);
-    Slice *s = l.slice[cur].data() + sfirst[i];
-    for (int k = 0; k < nslice[i]; k++) s[k].run = to + (s[k].run - room[i]);
-    room[i] = to;
-  }
-  for (auto &chunks : old) release_chunks(chunks);
-  for (int l = nlanes; l < (int) lanes.size(); l++) memory->sfree(lanes[l].scratch);
-  lanes.resize(std::max(nlanes, 1));
-}
-
-/* ----------------------------------------------------------------------
-   records of atom i's state; the exchange buffer must hold the largest, and it only ever
-   grows
+   records of atom i's state in the current pool; the exchange buffer must hold the
+   largest, and it only ever grows
 ------------------------------------------------------------------------- */
 
 int FixLsdemHistory::count_records(int i) const
 {
-  const Slice *s = lanes[lane_of[i]].slice[cur].data() + sfirst[i];
+  const Pool &p = pool[cur][lane_of[i]];
   int n = 0;
-  for (int k = 0; k < nslice[i]; k++) n += (s[k].nentry >= 0 ? 2 + s[k].nentry : 0) + s[k].nshear;
+  for (int k = sfirst[i]; k < sfirst[i] + nslice[i]; k++)
+    n += (p.slice[k].list_valid ? 2 + p.slice[k].nentry : 0) + p.slice[k].nshear;
   return n;
 }
 
@@ -383,18 +284,13 @@ void FixLsdemHistory::grow_arrays(int nmax)
   memory->grow(sfirst, nmax, "lsdem/history:sfirst");
   memory->grow(nslice, nmax, "lsdem/history:nslice");
   memory->grow(visited, nmax, "lsdem/history:visited");
-  room = (Slot **) memory->srealloc(room, sizeof(Slot *) * nmax, "lsdem/history:room");
-  memory->grow(nroom, nmax, "lsdem/history:nroom");
-  for (int i = nmax_atom; i < nmax; i++) {
-    lane_of[i] = sfirst[i] = nslice[i] = visited[i] = nroom[i] = 0;
-    room[i] = nullptr;
-  }
+  for (int i = nmax_atom; i < nmax; i++) lane_of[i] = sfirst[i] = nslice[i] = visited[i] = 0;
   nmax_atom = nmax;
 }
 
 /* ----------------------------------------------------------------------
-   atom j takes over atom i's state (its slices: i is then gone or a copy the caller
-   discards, so that one state has one owner)
+   atom j takes over atom i's state (its place in the pool: states are never written in
+   place, so two atoms may share one until the next step rewrites the pool)
 ------------------------------------------------------------------------- */
 
 void FixLsdemHistory::copy_arrays(int i, int j, int /*delflag*/)
@@ -402,8 +298,6 @@ void FixLsdemHistory::copy_arrays(int i, int j, int /*delflag*/)
   lane_of[j] = lane_of[i];
   sfirst[j] = sfirst[i];
   nslice[j] = nslice[i];
-  room[j] = room[i];
-  nroom[j] = nroom[i];
   visited[j] = visited[i];
 }
 
@@ -411,28 +305,23 @@ void FixLsdemHistory::copy_arrays(int i, int j, int /*delflag*/)
 
 void FixLsdemHistory::set_arrays(int i)
 {
-  nslice[i] = nroom[i] = 0;
+  nslice[i] = 0;
 }
 
 /* ----------------------------------------------------------------------
    count, then per record: partner, id/aux, stamp, a[3], b[3] (each pair's records
-   together, lsdem_pair_state_encode; pairs by partner tag, whatever order the step
-   visited them in)
+   together, lsdem_pair_state_encode)
 ------------------------------------------------------------------------- */
 
 int FixLsdemHistory::pack_state(int i, double *buf)
 {
   int m = 0;
   buf[m++] = ubuf(count_records(i)).d;
-  const Slice *slices = lanes[lane_of[i]].slice[cur].data() + sfirst[i];
-  by_partner.resize(std::max(by_partner.size(), (size_t) nslice[i]));
-  for (int k = 0; k < nslice[i]; k++) by_partner[k] = &slices[k];
-  std::sort(by_partner.begin(), by_partner.begin() + nslice[i],
-            [](const Slice *a, const Slice *b) { return a->partner < b->partner; });
+  const Pool &p = pool[cur][lane_of[i]];
   for (int k = 0; k < nslice[i]; k++) {
-    const Slice &s = *by_partner[k];
+    const Slice &s = p.slice[sfirst[i] + k];
     lsdem_pair_state st;
-    slice_state(s, st);
+    slice_state(p, s, st);
     records.resize(std::max(records.size(), (size_t) lsdem_pair_state_records(&st)));
     const int n = lsdem_pair_state_encode(&st, records.data());
     for (int r = 0; r < n; r++) {
@@ -449,8 +338,8 @@ int FixLsdemHistory::pack_state(int i, double *buf)
 
 /* ----------------------------------------------------------------------
    records come grouped by partner: each run of one partner is one pair's state
-   (lsdem_pair_state_decode, against the nodes of atom i's shape), kept as the atom's
-   state of the last step, in new room of the first lane.
+   (lsdem_pair_state_decode, against the nodes of atom i's shape). They are appended to
+   the current pool (the next step rewrites it without the dropped ones).
 ------------------------------------------------------------------------- */
 
 int FixLsdemHistory::unpack_state(int i, const double *buf)
@@ -459,10 +348,10 @@ int FixLsdemHistory::unpack_state(int i, const double *buf)
   auto avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
   if (!avec) error->one(FLERR, "Fix LSDEM_HISTORY requires atom_style lsdem");
   const int nnodes = avec->shape_of(i)->nnodes;
-  Lane &l = lanes[0];  // exchange and restart are serial: the first lane
-  l.atom_slice = l.ns[cur];
-  l.atom_used = 0;
-  nroom[i] = 0;  // new room: what index i held before is another atom's or garbage
+  Pool &p = pool[cur][0];  // exchange and restart are serial: the first lane
+  lane_of[i] = 0;
+  sfirst[i] = p.ns;
+  nslice[i] = 0;
   records.resize(std::max(records.size(), (size_t) n));
   int m = 1;
   for (int k = 0; k < n;) {
@@ -479,17 +368,16 @@ int FixLsdemHistory::unpack_state(int i, const double *buf)
       }
       len++;
     }
-    lsdem_pair_state st = reserve(0, len, len);
+    lsdem_pair_state st = pair_room(p, len, len);
     lsdem_pair_state_decode(records.data(), len, nnodes, &st);
     // the decoded shear entries go behind the list, in the run's own layout
     lsdem_pair_state kept = st;
     place_shear(kept);
     memmove(kept.shear, st.shear, sizeof(lsdem_shear_hist) * st.nshear);
-    keep_pair(l, cur, ptag, kept);
+    if (keep_pair(p, ptag, kept) > 0) nslice[i]++;
     k += len;
     m += RECORD_DOUBLES * len;
   }
-  keep_atom(l, cur, i);
   note_records(count_records(i));
   return m;
 }
@@ -551,25 +439,25 @@ int FixLsdemHistory::maxsize_restart()
 void FixLsdemHistory::held(double &pairs, double &entries, double &shears,
                            double &bytes_used) const
 {
-  pairs = entries = shears = bytes_used = 0.0;
-  for (const Lane &l : lanes)
-    for (int k = 0; k < l.ns[cur]; k++) {
-      const Slice &s = l.slice[cur][k];
+  pairs = entries = shears = 0.0;
+  double slots = 0.0;
+  for (const Pool &p : pool[cur])
+    for (int k = 0; k < p.ns; k++) {
+      const Slice &s = p.slice[k];
       pairs += 1.0;
-      entries += s.nentry >= 0 ? s.nentry : 0;
+      entries += s.list_valid ? s.nentry : 0;
       shears += s.nshear;
-      bytes_used += (double) sizeof(Slot) * slice_slots(s);
+      slots += (s.list_valid ? HEAD_SLOTS + s.nentry : 0) + s.nshear;
     }
+  bytes_used = slots * sizeof(Slot);
 }
 
 double FixLsdemHistory::memory_usage()
 {
-  double bytes = (double) nmax_atom * (5 * sizeof(int) + sizeof(Slot *));
-  for (const Lane &l : lanes) {
-    for (const auto &slices : l.slice) bytes += (double) slices.size() * sizeof(Slice);
-    for (const Chunk &c : l.chunk) bytes += (double) c.cap * sizeof(Slot);
-    bytes += (double) l.maxscratch * sizeof(Slot);
-  }
+  double bytes = (double) nmax_atom * 4 * sizeof(int);
+  for (const auto &lanes : pool)
+    for (const Pool &p : lanes)
+      bytes += (double) p.slice.size() * sizeof(Slice) + (double) p.maxslot * sizeof(Slot);
   bytes += (double) records.size() * sizeof(lsdem_state_record);
   return bytes;
 }

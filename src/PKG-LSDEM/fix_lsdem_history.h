@@ -5,22 +5,19 @@
    the user). Each owned grain keeps, per partner it touched or was near on the last
    step, the state the core carries for a master from step to step (core/contact,
    lsdem_pair_state): the pair's node list (head and entries) and the shear history of
-   ITS OWN nodes, partners in the order they were visited. The state travels with the grain
+   ITS OWN nodes. Partners are held sorted by tag. The state travels with the grain
    (exchange) and is saved in restart files (as lsdem_state_record records, the layout of
    earlier versions, so that their restart files still load).
 
-   Storage: one pool of 64-byte slots, updated in place. Each pair's state is a run of
-   slots: its list head (two slots), its list entries, its shear entries (the layout of
-   earlier versions); an atom's pairs' runs lie back to back, in the order they were
-   visited (so that a step reads them in the order they lie). The kernel reads an atom's
-   runs and writes each pair's new state into its lane's scratch; at the end of the atom
-   the scratch is copied over the atom's old runs when it fits there (an atom's room is
-   reserved with an eighth more than it used), else into new room, the old becoming
-   garbage, reclaimed by compacting the pool at the end of a step once an eighth of it is
-   garbage. The slots are held in chunks that never move during a step: each lane (one
-   per thread, pair_style lsdem/omp) takes new room from its own chunks, and an atom's
-   room is only written by the lane visiting the atom, so that writing is race-free by
-   construction; reading (find) is of the last step's states. Use per step:
+   Storage: all grains' states sit in a pool of 64-byte slots, pair after pair in the
+   order the styles visit the grains, each pair's state in one run: its list head (two
+   slots), its list entries, its shear entries (the layout of earlier versions in memory
+   too, so that a step reads one stream and writes one). A step reads the current pool and
+   writes the next one, so the kernel writes its output where it will be read next step
+   (no copy). A pool is split into lanes, one per thread (pair_style lsdem/omp): each
+   lane is written by one thread only and each grain's state lies in one lane, so that
+   writing is race-free by construction (a pair's state has one owner, its master's
+   lane); reading (find) is of the current pool only. Use per step:
      begin_step(nlanes);
      for each owned grain i, by the thread of lane L:
        begin_atom(L);
@@ -73,8 +70,9 @@ class FixLsdemHistory : public Fix {
   int size_restart(int) override;
   int maxsize_restart() override;
   double memory_usage() override;
-  // what the pool holds: pair states, node-list entries, shear entries, and the bytes of
-  // the states (runs of 64-byte slots) in use and reserved (memory_usage: all the store's)
+  // what the current pool holds: pair states, node-list entries, shear entries, and the
+  // bytes they take (64 a slot: two a list head, one an entry); memory_usage(): all the
+  // store reserves
   void held(double &pairs, double &entries, double &shears, double &bytes_used) const;
 
  private:
@@ -85,52 +83,31 @@ class FixLsdemHistory : public Fix {
     unsigned char bytes[64];
   };
   static constexpr int HEAD_SLOTS = 2;
-  static constexpr int MIN_CHUNK_SLOTS = 1024;  // 64 KB
-  struct Slice {   // one pair's state: its run of slots
+  struct Slice {   // one pair's state in a pool: its run of slots from `first`
     tagint partner;
-    Slot *run;     // (set when its atom ends)
-    int nentry;    // list entries; -1: no list
-    int nshear;
+    int first, list_valid, nentry, nshear;
   };
-  struct Chunk {   // slots that stay put until the pool is compacted
+  struct Pool {    // one lane: the states of its atoms, one after the other
+    std::vector<Slice> slice;
     Slot *slot;
-    int used, cap;
+    int ns, nslot, maxslot;  // used; slots allocated
+    int atom_slice;          // where the atom being visited starts (while written)
+    int atom_records;        // and the records its committed pairs take
+    int maxrecords;          // the largest state written to this lane this step
   };
-  struct Lane {    // one thread's part
-    std::vector<Slice> slice[2];  // slice[cur]: the last step's; slice[1 - cur] written
-    int ns[2];                    // slices used in each
-    std::vector<Chunk> chunk;     // where the lane's new room is taken from
-    Slot *scratch;                // the new state of the atom being visited
-    int maxscratch;
-    int atom_used;                // its slots in the scratch
-    int atom_slice;               // where its slices start
-    int atom_records;             // and the records its committed pairs take
-    int maxrecords;               // the largest state written to this lane this step
-  };
-  std::vector<Lane> lanes;    // at least the lanes of the last step (their chunks hold runs)
-  int nlanes;                 // lanes of the current step
-  int cur;                    // which slice lists hold the states
+  std::vector<Pool> pool[2];  // the lanes of the two pools
+  int cur;                    // pool[cur] holds the states; pool[1 - cur] is written
   int nmax_atom;              // length of the per-atom arrays
-  int *lane_of, *sfirst, *nslice;  // per atom: its slices in lanes[lane_of].slice[cur]
-  Slot **room;                // per atom: where its runs lie
-  int *nroom;                 // and the slots reserved there
+  int *lane_of, *sfirst, *nslice;  // per atom: its slices in pool[cur][lane_of]
   int *visited, generation;   // atoms visited since begin_step() carry its generation
   int maxrecords;             // largest state seen, in records (sizes exchange buffers)
   std::vector<lsdem_state_record> records;  // scratch for packing and unpacking
-  std::vector<const Slice *> by_partner;     // scratch: an atom's pairs in packing order
 
-  void init_lane(Lane &l);
-  void release_chunks(std::vector<Chunk> &chunks);
-  Slot *take_slots(Lane &l, int n);
-  static int slots_of(const lsdem_pair_state &st);
-  static int slice_slots(const Slice &s);
-  static int room_for(int used);
-  void scratch_room(Lane &l, int need);
-  const Slice *slice_of(int i, tagint partner) const;
-  static void slice_state(const Slice &s, lsdem_pair_state &st);
-  int keep_pair(Lane &l, int which, tagint partner, const lsdem_pair_state &st);
-  void keep_atom(Lane &l, int which, int i);
-  void compact_if_wasteful();
+  void pool_room(Pool &p, int ns, int nslot);
+  void release(Pool &p);
+  lsdem_pair_state pair_room(Pool &p, int list_cap, int shear_cap);
+  static int keep_pair(Pool &p, tagint partner, const lsdem_pair_state &st);
+  static void slice_state(const Pool &p, const Slice &s, lsdem_pair_state &st);
   void note_records(int n);
   int count_records(int i) const;
   int pack_state(int i, double *buf);
