@@ -436,15 +436,20 @@ int FixLsdemHistory::maxsize_restart()
 
 /* ---------------------------------------------------------------------- */
 
-void FixLsdemHistory::held(double &pairs, double &entries, double &shears) const
+void FixLsdemHistory::held(double &pairs, double &entries, double &shears,
+                           double &bytes_used) const
 {
   pairs = entries = shears = 0.0;
+  double slots = 0.0;
   for (const Pool &p : pool[cur])
     for (int k = 0; k < p.ns; k++) {
+      const Slice &s = p.slice[k];
       pairs += 1.0;
-      entries += p.slice[k].list_valid ? p.slice[k].nentry : 0;
-      shears += p.slice[k].nshear;
+      entries += s.list_valid ? s.nentry : 0;
+      shears += s.nshear;
+      slots += (s.list_valid ? HEAD_SLOTS + s.nentry : 0) + s.nshear;
     }
+  bytes_used = slots * sizeof(Slot);
 }
 
 double FixLsdemHistory::memory_usage()

@@ -70,8 +70,10 @@ class FixLsdemHistory : public Fix {
   int size_restart(int) override;
   int maxsize_restart() override;
   double memory_usage() override;
-  // what the current pool holds: pair states, node-list entries, shear entries
-  void held(double &pairs, double &entries, double &shears) const;
+  // what the current pool holds: pair states, node-list entries, shear entries, and the
+  // bytes they take (64 a slot: two a list head, one an entry); memory_usage(): all the
+  // store reserves
+  void held(double &pairs, double &entries, double &shears, double &bytes_used) const;
 
  private:
   // a slot holds a shear entry or a list entry; a list head takes two

@@ -55,8 +55,9 @@ PairLsdem::PairLsdem(LAMMPS *lmp) :
   comm_reverse = 1;
   // workload of the last force call, for compute pair: pairs tested, contacts,
   // nodes looked up, penetrating nodes; the contact state it left: bytes of the history
-  // store, pair states, node-list entries, shear entries (compute pair sums over ranks)
-  nextra = 8;
+  // store (reserved), pair states, node-list entries, shear entries, bytes the states take
+  // (compute pair sums over ranks)
+  nextra = 9;
   pvector = new double[nextra];
   for (int k = 0; k < nextra; k++) pvector[k] = 0.0;
 }
@@ -552,13 +553,14 @@ void PairLsdem::tally_workload()
   for (int k = 0; k < nextra; k++) pvector[k] = 0.0;
   if (fix_history) {
     pvector[4] = fix_history->memory_usage();
-    fix_history->held(pvector[5], pvector[6], pvector[7]);
+    fix_history->held(pvector[5], pvector[6], pvector[7], pvector[8]);
   }
   if (sphere_shear) {  // a sphere master's pair state is its one spring
     const double springs = sphere_shear->springs_held();
     pvector[4] += sphere_shear->memory_usage();
     pvector[5] += springs;
     pvector[7] += springs;
+    pvector[8] += springs * sizeof(lsdem_shear_hist);
   }
   for (int l = 0; l < nlanes; l++) {
     const Lane &lane = *lanes[l];

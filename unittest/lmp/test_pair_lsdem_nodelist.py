@@ -11,7 +11,9 @@ with lists, migrating grains carry their lists: the serial answer to 1e-8 (only 
 of ghost force sums differs). The contact state compute pair reports (values 5-8): every
 penetrating node of a step keeps one shear entry (mu > 0 everywhere), node-list entries only
 with lists, each stored pair at most one list, and the store's bytes cover what it holds at
-64 bytes an entry (two slots a list head). A bad keyword value is named."""
+64 bytes an entry (two slots a list head); the bytes it reports in use (value 9) are that
+count of the entries it holds, the shear entries being one a penetrating node. A bad
+keyword value is named."""
 import os
 import random
 
@@ -43,7 +45,7 @@ fix 1 all nve/lsdem
 fix floor all wall/lsdem plane 0 0 0 0 0 1 3000 2500 0.4 cn 2.0%s
 compute er all erotate/lsdem
 compute w all pair lsdem
-thermo_style custom step ke c_er f_floor[1] f_floor[2] f_floor[3] c_w[2] c_w[3] c_w[4] c_w[5] c_w[6] c_w[7] c_w[8]
+thermo_style custom step ke c_er f_floor[1] f_floor[2] f_floor[3] c_w[2] c_w[3] c_w[4] c_w[5] c_w[6] c_w[7] c_w[8] c_w[9]
 %s
 thermo 100
 timestep 5e-4
@@ -86,9 +88,19 @@ if off and auto and skin and par:
               % (name, row["c_w[7]"]))
         check(row["c_w[6]"] >= row["c_w[2]"], "%s: %d pair states for %d contacts"
               % (name, row["c_w[6]"], row["c_w[2]"]))
-        used = 64 * (row["c_w[7]"] + row["c_w[8]"] + (2 * row["c_w[6]"] if name != "off" else 0))
-        check(used <= row["c_w[5]"] <= 8 * used + 2e6, "%s: store %d bytes for %d in use"
-              % (name, row["c_w[5]"], used))
+        # bytes in use (value 9) against the kernel's own count: 64 a penetrating node's
+        # shear entry, 64 a node-list entry, 128 a list head (at most one a pair state)
+        entries = row["c_w[7]"] + row["c_w[4]"]
+        heads = (row["c_w[9]"] / 64 - entries) / 2
+        if name == "off":
+            check(row["c_w[9]"] == 64 * row["c_w[4]"], "off: %d bytes in use for %d shear entries"
+                  % (row["c_w[9]"], row["c_w[4]"]))
+        else:
+            check(heads == int(heads) and row["c_w[2]"] <= heads <= row["c_w[6]"],
+                  "%s: %d bytes in use: %g list heads beside %d entries, %d pair states, %d contacts"
+                  % (name, row["c_w[9]"], heads, entries, row["c_w[6]"], row["c_w[2]"]))
+        check(row["c_w[9]"] <= row["c_w[5]"] <= 8 * row["c_w[9]"] + 2e6,
+              "%s: store %d bytes reserved for %d in use" % (name, row["c_w[5]"], row["c_w[9]"]))
 
 rc, log = run_lmp(deck("wide"), cwd=os.path.abspath("bad"), expect_fail=True)
 check("nodelist must be auto, off or a skin length > 0, not wide" in log,
