@@ -22,7 +22,25 @@ typedef struct {
   double lip;        /* bound on |grad phi| where phi >= 0 (lsdem_grid_outer_lipschitz),
                         0 = unknown; set by lsdem_library_open, for the node lists */
   double lip_reach;  /* ... valid while lip * skin < lip_reach */
+  const float *bricks; /* the same samples in bricks (below) for the lookups, or NULL:
+                          they read phi. Set by lsdem_library_open. */
 } lsdem_grid;
+
+/* Grain grids in bricks, for the cache: the grid's cells are cut into bricks of
+ * LSDEM_GRID_BRICK_CELLS^3 cells, each stored as its LSDEM_GRID_BRICK_SIDE^3 samples, x
+ * fastest (neighbouring bricks repeat their shared faces), the bricks x fastest,
+ * ceil((n[a] - 1) / LSDEM_GRID_BRICK_CELLS) per axis; samples past the grid's last repeat
+ * it. A brick's plane of 16 samples is one 64-byte cache line, so the 8 samples of a
+ * cell lie on 2 lines (bricks aligned to 64 bytes), against 4 rows on 2 planes of the
+ * dense layout. The same float values: lookups give the same bits. */
+#define LSDEM_GRID_BRICK_CELLS 3
+#define LSDEM_GRID_BRICK_SIDE 4     /* samples per brick edge: cells + 1 */
+#define LSDEM_GRID_BRICK_SAMPLES 64 /* floats per brick: 4^3 = 256 bytes */
+/* Floats of g's bricks (a multiple of LSDEM_GRID_BRICK_SAMPLES). */
+size_t lsdem_grid_brick_floats(const lsdem_grid *g);
+/* Copies g's dense samples (phi) into its bricks at out (lsdem_grid_brick_floats(g)
+ * floats). */
+void lsdem_grid_make_bricks(const lsdem_grid *g, float *out);
 
 /* Trilinear interpolation of value and gradient (report Algorithm 1).
  * Returns phi at p and writes the normalised gradient to grad (unit length; +x if the
