@@ -8,10 +8,10 @@
  *
  * Opening checks the header, the header/TOC checksum and every TOC entry against the
  * file size (offsets, lengths, alignment, overlaps, counts) and each shape's cluster
- * table (small, at the start of its section). It does not read level-set grids, so only
- * shapes that are used get paged in. Per-shape section checksums are checked on demand
- * by lsdem_library_verify. The lookups read each grid from a copy in bricks
- * (lsdem_grid_make_bricks), made at open in one block of private memory. */
+ * table (small, at the start of its section). It reads each level-set grid once, for its
+ * Lipschitz bound and to copy it into bricks (lsdem_grid_make_bricks) in one block of
+ * private memory, which the lookups read. Per-shape section checksums are checked on
+ * demand by lsdem_library_verify. */
 #define _DEFAULT_SOURCE /* madvise */
 #include "filemap.h"
 #include "shapelib_format.h"
@@ -264,6 +264,16 @@ const lsdem_shape *lsdem_library_shape(const lsdem_library *lib, int index)
 {
   if (!lib || index < 0 || index >= lib->count) return NULL;
   return &lib->shapes[index];
+}
+
+void lsdem_library_grid_bytes(const lsdem_library *lib, size_t *dense, size_t *bricks)
+{
+  *dense = *bricks = 0;
+  for (int i = 0; lib && i < lib->count; i++) {
+    const lsdem_shape *s = &lib->shapes[i];
+    *dense += (size_t)grid_samples(s) * sizeof(float);
+    if (s->sdf.grid.bricks) *bricks += lsdem_grid_brick_floats(&s->sdf.grid) * sizeof(float);
+  }
 }
 
 const char *lsdem_library_name(const lsdem_library *lib, int index)
