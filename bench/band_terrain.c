@@ -52,7 +52,7 @@ static void compare_lookups(const lsdem_band *b)
         phi[i + (size_t)b->n[0] * (j + (size_t)b->n[1] * k)] = (float)lsdem_band_eval(b, q, g);
       }
   lsdem_grid dense = {{b->n[0], b->n[1], b->n[2]}, b->h, {b->origin[0], b->origin[1], b->origin[2]},
-                      phi, 0.0, 0.0, NULL};
+                      phi, 0.0, 0.0};
   uint64_t rng = 12345;
   int m = 0;
   while (m < NPTS) { /* random points with |phi| < width, inside the box */

@@ -13,7 +13,7 @@
 # accelerations, logs) go to a temporary folder under $TMPDIR (default /tmp), removed at the
 # end unless --keep is given. Default 200 steps (the report benchmark's first 200). Prints the
 # LAMMPS time split (pair, neighbour, comm, modify), the workload per grain-step, the node
-# lookups' memory traffic (cache lines per lookup x 64 B x lookups per second) beside this
+# lookups' memory traffic (4 cache lines per lookup x 64 B x lookups per second) beside this
 # core's memory speed (bench/membw.c, compiled with cc: read and copy bandwidth, latency of a
 # dependent miss), and as its last line
 #   us_per_grain_step=<x> node_tests_per_s=<y>

@@ -365,12 +365,6 @@ void AtomVecLsdem::report_library()
                         "{:.1f} nodes per shape on average\n", rmin, maxradius, vmin, vmax,
                         (double) nodes / n);
   }
-  size_t dense_bytes, brick_bytes;
-  lsdem_library_grid_bytes(lib, &dense_bytes, &brick_bytes);
-  if (brick_bytes > 0)
-    mesg += fmt::format("  level-set grids: {:.1f} MB as stored, {:.1f} MB per rank in bricks of "
-                        "{}^3 samples: {} cache lines per lookup\n", dense_bytes / 1048576.0,
-                        brick_bytes / 1048576.0, LSDEM_GRID_BRICK_SIDE, LSDEM_GRID_BRICK_LINES);
   utils::logmesg(lmp, mesg);
 
   // name the first few coarse shapes, count the rest (CT libraries hold thousands)

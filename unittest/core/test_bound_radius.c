@@ -56,8 +56,8 @@ static double brute_force_extent(const lsdem_grid *g, int n, double tmax)
 static lsdem_sdf grid_of(lsdem_sdf_kind kind, const double a[3], const double lo[3],
                          const double hi[3], double h, int margin)
 {
-  lsdem_sdf s = {kind, 0, {a[0], a[1], a[2]}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0, NULL}, NULL};
-  lsdem_sdf g = {LSDEM_SDF_GRID, 0, {0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0, NULL}, NULL};
+  lsdem_sdf s = {kind, 0, {a[0], a[1], a[2]}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}, NULL};
+  lsdem_sdf g = {LSDEM_SDF_GRID, 0, {0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}, NULL};
   lsdem_error err;
   CHECK(lsdem_grid_sample(&s, lo, hi, h, margin, &g.grid, &err) == LSDEM_OK, "%s", err.msg);
   return g;

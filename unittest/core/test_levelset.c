@@ -50,7 +50,7 @@ static void random_inside(const lsdem_grid *g, double p[3])
  * double round-off. */
 static void test_trilinear_exact(void)
 {
-  lsdem_grid g = {{7, 5, 9}, 0.5, {-1.5, -1.0, 0.25}, NULL, 0.0, 0.0, NULL};
+  lsdem_grid g = {{7, 5, 9}, 0.5, {-1.5, -1.0, 0.25}, NULL, 0.0, 0.0};
   double worst_v = 0, worst_g = 0, worst_unit = 0, worst_dir = 0;
   for (int field = 0; field < 20; field++) {
     double c[8];
@@ -82,7 +82,7 @@ static void test_trilinear_exact(void)
 /* General random coefficients and spacing: exact up to the float rounding of samples. */
 static void test_trilinear_random(void)
 {
-  lsdem_grid g = {{11, 6, 8}, 0.37, {0.3, -2.1, 1.7}, NULL, 0.0, 0.0, NULL};
+  lsdem_grid g = {{11, 6, 8}, 0.37, {0.3, -2.1, 1.7}, NULL, 0.0, 0.0};
   double c[8];
   for (int i = 0; i < 8; i++) c[i] = 2.0 * urand() - 1.0;
   float *phi = fill_grid(&g, c);
@@ -102,7 +102,7 @@ static void test_trilinear_random(void)
 static void test_linear_gradient(void)
 {
   /* phi = 0.3 + 0.6x - 0.48y + 0.64z: a unit-gradient (exact SDF of a plane) */
-  lsdem_grid g = {{4, 4, 4}, 0.25, {-0.5, -0.5, -0.5}, NULL, 0.0, 0.0, NULL};
+  lsdem_grid g = {{4, 4, 4}, 0.25, {-0.5, -0.5, -0.5}, NULL, 0.0, 0.0};
   const double c[8] = {0.3, 0.6, -0.48, 0.64, 0, 0, 0, 0};
   float *phi = fill_grid(&g, c);
   for (int t = 0; t < 200; t++) {
@@ -120,7 +120,7 @@ static void test_linear_gradient(void)
 
 static void test_boundary_and_outside(void)
 {
-  lsdem_grid g = {{5, 6, 7}, 0.5, {-1.0, -1.5, -2.0}, NULL, 0.0, 0.0, NULL};
+  lsdem_grid g = {{5, 6, 7}, 0.5, {-1.0, -1.5, -2.0}, NULL, 0.0, 0.0};
   const double c[8] = {2.0, 1.0, -1.0, 0.5, 0.25, 0, -0.5, 0.125};
   float *phi = fill_grid(&g, c);
   const double hi[3] = {g.origin[0] + g.h * 4, g.origin[1] + g.h * 5, g.origin[2] + g.h * 6};
@@ -171,7 +171,7 @@ static void test_boundary_and_outside(void)
 static void test_check(void)
 {
   float vals[8] = {1, 1, 1, 1, 1, 1, 1, 1};
-  lsdem_grid g = {{2, 2, 2}, 1.0, {0, 0, 0}, vals, 0.0, 0.0, NULL};
+  lsdem_grid g = {{2, 2, 2}, 1.0, {0, 0, 0}, vals, 0.0, 0.0};
   lsdem_error err;
   CHECK(lsdem_grid_check(&g, &err) == LSDEM_OK, "valid grid");
   lsdem_grid b = g;
@@ -211,7 +211,7 @@ static void test_check(void)
 static void test_sample(void)
 {
   /* a half-space sampled: phi = z exactly, covering [lo, hi] plus the margin */
-  lsdem_sdf plane = {LSDEM_SDF_PLANE, 0, {0, 0, 0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0, NULL}, NULL};
+  lsdem_sdf plane = {LSDEM_SDF_PLANE, 0, {0, 0, 0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}, NULL};
   const double lo[3] = {-1.0, -0.5, -0.75}, hi[3] = {1.0, 0.5, 0.75};
   lsdem_grid g;
   lsdem_error err;
@@ -242,7 +242,7 @@ static void test_sample(void)
 /* Not a pass/fail timing: prints the cost of one lookup for the record. */
 static void report_speed(void)
 {
-  lsdem_sdf sph = {LSDEM_SDF_SPHERE, 0, {1.0, 0, 0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0, NULL}, NULL};
+  lsdem_sdf sph = {LSDEM_SDF_SPHERE, 0, {1.0, 0, 0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}, NULL};
   const double lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
   lsdem_grid g;
   if (lsdem_grid_sample(&sph, lo, hi, 0.05, 2, &g, NULL) != LSDEM_OK) return;
@@ -260,81 +260,6 @@ static void report_speed(void)
   lsdem_grid_free(&g);
 }
 
-/* Lookups from bricks (lsdem_grid_make_bricks) against the dense layout, bit for bit:
- * random samples, sizes that fill whole bricks or leave partial ones, every cell at random
- * fractions and at its corners (upper faces included), points outside, the batched and
- * cached lookups. */
-static void same_bits(double a, double b, const char *what, const int n[3])
-{
-  CHECK(memcmp(&a, &b, sizeof a) == 0, "%s of a %d x %d x %d grid: bricks %.17g, dense %.17g",
-        what, n[0], n[1], n[2], a, b);
-}
-
-static void check_bricks(const int n[3])
-{
-  lsdem_grid g = {{n[0], n[1], n[2]}, 0.3, {-0.4, 0.1, -1.3}, NULL, 0.0, 0.0, NULL};
-  const size_t ns = (size_t)n[0] * n[1] * n[2];
-  float *phi = malloc(ns * sizeof *phi);
-  for (size_t m = 0; m < ns; m++) phi[m] = (float)(2.0 * urand() - 1.0);
-  g.phi = phi;
-  const size_t bricks = (size_t)((n[0] + 1) / 3) * ((n[1] + 1) / 3) * ((n[2] + 1) / 3);
-  CHECK(lsdem_grid_brick_floats(&g) == 64 * bricks, "%d x %d x %d samples: %zu floats, "
-        "expected 64 x %zu bricks of 3^3 cells", n[0], n[1], n[2], lsdem_grid_brick_floats(&g),
-        bricks);
-  float *bf = malloc(lsdem_grid_brick_floats(&g) * sizeof *bf);
-  lsdem_grid_make_bricks(&g, bf);
-  lsdem_grid b = g;
-  b.bricks = bf;
-  enum { M = 8 };
-  double p[3 * M], vb[M], vd[M], gb[3 * M], gd[3 * M];
-  lsdem_grid_cell cb[M], cd[M];
-  for (int m = 0; m < M; m++) cb[m].index = cd[m].index = -1;
-  for (int k = 0; k + 1 < n[2]; k++)
-    for (int j = 0; j + 1 < n[1]; j++)
-      for (int i = 0; i + 1 < n[0]; i++) {
-        for (int m = 0; m < M; m++) {
-          const int c[3] = {i, j, k};
-          for (int a = 0; a < 3; a++) {
-            /* m = 0: the cell's lower corner, 1: its upper corner, 2: beyond the box */
-            const double f = m == 0 ? 0.0 : m == 1 ? 1.0 : urand();
-            const double u = m == 2 && c[a] + 2 == n[a] ? n[a] - 1 + 0.7 : c[a] + f;
-            p[3 * m + a] = g.origin[a] + g.h * u;
-          }
-        }
-        for (int m = 0; m < M; m++) {
-          double gb1[3], gd1[3];
-          same_bits(lsdem_grid_eval(&b, &p[3 * m], gb1), lsdem_grid_eval(&g, &p[3 * m], gd1),
-                    "value", n);
-          for (int a = 0; a < 3; a++) same_bits(gb1[a], gd1[a], "gradient", n);
-          same_bits(lsdem_grid_value(&b, &p[3 * m]), lsdem_grid_value(&g, &p[3 * m]),
-                    "value only", n);
-        }
-        for (int pass = 0; pass < 2; pass++) { /* cells read, then kept */
-          lsdem_grid_eval_many_cached(&b, M, p, vb, gb, cb);
-          lsdem_grid_eval_many_cached(&g, M, p, vd, gd, cd);
-          for (int m = 0; m < M; m++) {
-            same_bits(vb[m], vd[m], "cached value", n);
-            CHECK(cb[m].index == cd[m].index &&
-                  (cb[m].index < 0 || memcmp(cb[m].v, cd[m].v, sizeof cb[m].v) == 0),
-                  "the same cell kept (none outside the box)");
-          }
-          for (int m = 0; m < 3 * M; m++) same_bits(gb[m], gd[m], "cached gradient", n);
-        }
-        lsdem_grid_eval_many(&b, M, p, vb, gb);
-        lsdem_grid_eval_many(&g, M, p, vd, gd);
-        for (int m = 0; m < M; m++) same_bits(vb[m], vd[m], "batched value", n);
-        for (int m = 0; m < 3 * M; m++) same_bits(gb[m], gd[m], "batched gradient", n);
-      }
-  free(bf);
-  free(phi);
-}
-
-static void test_bricks(void)
-{
-  const int sizes[][3] = {{2, 2, 2}, {4, 4, 4}, {5, 7, 10}, {11, 6, 8}, {3, 9, 2}};
-  for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; s++) check_bricks(sizes[s]);
-}
-
 int main(void)
 {
   test_trilinear_exact();
@@ -343,7 +268,6 @@ int main(void)
   test_boundary_and_outside();
   test_check();
   test_sample();
-  test_bricks();
   report_speed();
   return lsdem_test_summary();
 }

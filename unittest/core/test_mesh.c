@@ -66,7 +66,7 @@ static void test_cube(void)
   write_stl_ascii("cube_ascii.stl", &s);
   write_stl_binary("cube_binary.stl", &s, 0);
   const char *files[2] = {"cube_ascii.stl", "cube_binary.stl"};
-  const lsdem_sdf box = {LSDEM_SDF_BOX, 0, {1.0, 0.75, 0.5}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0, NULL}, NULL};
+  const lsdem_sdf box = {LSDEM_SDF_BOX, 0, {1.0, 0.75, 0.5}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}, NULL};
   for (int f = 0; f < 2; f++) {
     lsdem_mesh m;
     lsdem_error err;
@@ -95,7 +95,7 @@ static void test_icosphere(void)
   CHECK(lsdem_mesh_check_self_intersection(&m, NULL, &err) == LSDEM_OK, "%s", err.msg);
   /* chord sagitta of the level-4 icosphere: edges ~ 0.078, sagitta ~ e^2/(8R) < 1e-3;
    * the flat faces lie inside the sphere by at most ~2e-3 */
-  const lsdem_sdf sphere = {LSDEM_SDF_SPHERE, 0, {1.0, 0, 0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0, NULL}, NULL};
+  const lsdem_sdf sphere = {LSDEM_SDF_SPHERE, 0, {1.0, 0, 0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}, NULL};
   compare_sdf(&m, &sphere, 0.1, 3e-3, 0.01, "icosphere");
   lsdem_mesh_free(&m);
   free(s.t);

@@ -20,8 +20,8 @@ static lsdem_shape shapes[NSHAPES];
 static void make_shapes(void)
 {
   const lsdem_sdf kinds[NSHAPES] = {
-      {LSDEM_SDF_ELLIPSOID, 0, {0.5, 0.35, 0.25}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0, NULL}, NULL},
-      {LSDEM_SDF_BOX, 0, {0.35, 0.3, 0.2}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0, NULL}, NULL}};
+      {LSDEM_SDF_ELLIPSOID, 0, {0.5, 0.35, 0.25}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}, NULL},
+      {LSDEM_SDF_BOX, 0, {0.35, 0.3, 0.2}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}, NULL}};
   for (int k = 0; k < NSHAPES; k++) {
     const double lo[3] = {-kinds[k].a[0], -kinds[k].a[1], -kinds[k].a[2]};
     lsdem_sdf g;

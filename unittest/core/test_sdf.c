@@ -17,7 +17,7 @@ static double clampd(double x, double lo, double hi) { return x < lo ? lo : x > 
 
 static lsdem_sdf make(lsdem_sdf_kind kind, double a0, double a1, double a2)
 {
-  lsdem_sdf s = {kind, 0, {a0, a1, a2}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0, NULL}, NULL};
+  lsdem_sdf s = {kind, 0, {a0, a1, a2}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}, NULL};
   return s;
 }
 

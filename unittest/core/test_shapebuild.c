@@ -13,9 +13,9 @@ static const double PI = 3.14159265358979323846;
 static void build_sphere(double R, double h, int margin, int nnodes, double spacing,
                          lsdem_built_shape *b)
 {
-  const lsdem_sdf sphere = {LSDEM_SDF_SPHERE, 0, {R, 0, 0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0, NULL}, NULL};
+  const lsdem_sdf sphere = {LSDEM_SDF_SPHERE, 0, {R, 0, 0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}, NULL};
   const double lo[3] = {-R, -R, -R}, hi[3] = {R, R, R};
-  lsdem_sdf s = {LSDEM_SDF_GRID, 0, {0, 0, 0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0, NULL}, NULL};
+  lsdem_sdf s = {LSDEM_SDF_GRID, 0, {0, 0, 0}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}, NULL};
   lsdem_error err;
   CHECK(lsdem_grid_sample(&sphere, lo, hi, h, margin, &s.grid, &err) == LSDEM_OK, "%s", err.msg);
   CHECK(lsdem_shape_build(&s, nnodes, spacing, 3, b, &err) == LSDEM_OK, "%s", err.msg);

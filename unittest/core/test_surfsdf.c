@@ -11,7 +11,7 @@ static const double PI = 3.14159265358979323846;
 
 static lsdem_sdf superellipsoid(double a, double b, double c, double e1, double e2)
 {
-  lsdem_sdf s = {LSDEM_SDF_SUPERELLIPSOID, 0, {a, b, c, e1, e2}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0, NULL}, NULL};
+  lsdem_sdf s = {LSDEM_SDF_SUPERELLIPSOID, 0, {a, b, c, e1, e2}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}, NULL};
   return s;
 }
 
@@ -42,7 +42,7 @@ static lsdem_grid sample(const lsdem_sdf *s, double h)
 static void test_ellipsoid_case(void)
 {
   const lsdem_sdf se = superellipsoid(1.0, 0.7, 0.5, 1.0, 1.0);
-  const lsdem_sdf el = {LSDEM_SDF_ELLIPSOID, 0, {1.0, 0.7, 0.5}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0, NULL}, NULL};
+  const lsdem_sdf el = {LSDEM_SDF_ELLIPSOID, 0, {1.0, 0.7, 0.5}, {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0}, NULL};
   const double h = 0.05;
   lsdem_grid g = sample(&se, h);
   double band_max = 0.0, all_max = 0.0, gr[3];

@@ -2,9 +2,7 @@
  * validation, freeing (grids are made in prep/grid_sample.c).
  *
  * Grid coordinates: u = (p - origin) / h, sample (i,j,k) at u = (i,j,k), index
- * i + n0*(j + n1*k) (x fastest). The interpolation box is [0, n-1] on each axis. Lookups
- * read a cell's samples from the grid's bricks when it has them (lsdem_geom.h), else from
- * the dense samples; everything else reads the dense samples. */
+ * i + n0*(j + n1*k) (x fastest). The interpolation box is [0, n-1] on each axis. */
 #include "lsdem_geom.h"
 #include "trilinear.h"
 
@@ -13,72 +11,26 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-/* The cell of grid coordinates u inside [0, n-1]^3: its (0,0,0) sample (i,j,k) in c, and
- * the fractions f within it. The cell index is clamped to n-2 so points on the upper face
+/* The cell of grid coordinates u inside [0, n-1]^3: its (0,0,0) sample's index, and the
+ * fractions f within it. The cell index is clamped to n-2 so points on the upper face
  * use the last cell with fraction 1. */
-static inline void cell_of(const lsdem_grid *g, const double u[3], int c[3], double f[3])
+static inline size_t cell_of(const lsdem_grid *g, const double u[3], double f[3])
 {
-  for (int a = 0; a < 3; a++) {
-    const int i = (int)u[a];
-    c[a] = i > g->n[a] - 2 ? g->n[a] - 2 : i;
-    f[a] = u[a] - c[a];
-  }
+  const int n0 = g->n[0], n1 = g->n[1];
+  int i = (int)u[0], j = (int)u[1], k = (int)u[2];
+  i = i > n0 - 2 ? n0 - 2 : i;
+  j = j > n1 - 2 ? n1 - 2 : j;
+  k = k > g->n[2] - 2 ? g->n[2] - 2 : k;
+  f[0] = u[0] - i;
+  f[1] = u[1] - j;
+  f[2] = u[2] - k;
+  return (size_t)i + (size_t)n0 * ((size_t)j + (size_t)n1 * (size_t)k);
 }
 
-/* Dense index of sample (i,j,k) = c: i + n0 (j + n1 k). */
-static inline size_t dense_index(const lsdem_grid *g, const int c[3])
+/* The 8 samples of the cell whose (0,0,0) sample is at index c. */
+static inline void load_cell(const lsdem_grid *g, size_t c, float v[8])
 {
-  return (size_t)c[0] + (size_t)g->n[0] * ((size_t)c[1] + (size_t)g->n[1] * (size_t)c[2]);
-}
-
-enum { BCELLS = LSDEM_GRID_BRICK_CELLS, BSIDE = LSDEM_GRID_BRICK_SIDE, BPLANE = BSIDE * BSIDE };
-
-/* Bricks per axis: ceil((n - 1) / cells per brick). */
-static inline int bricks_along(int n) { return (n - 2) / BCELLS + 1; }
-
-/* Where sample (i,j,k) = c of its brick (c / BCELLS) lies in the bricks: the brick's
- * start plus c mod BCELLS x fastest. */
-static inline size_t brick_offset(const lsdem_grid *g, const int c[3])
-{
-  const size_t nb0 = (size_t)bricks_along(g->n[0]), nb1 = (size_t)bricks_along(g->n[1]);
-  const int b0 = c[0] / BCELLS, b1 = c[1] / BCELLS, b2 = c[2] / BCELLS;
-  const size_t brick = (size_t)b0 + nb0 * ((size_t)b1 + nb1 * (size_t)b2);
-  return brick * LSDEM_GRID_BRICK_SAMPLES + (size_t)(c[0] - BCELLS * b0) +
-         BSIDE * (size_t)(c[1] - BCELLS * b1) + BPLANE * (size_t)(c[2] - BCELLS * b2);
-}
-
-/* The 8 samples of cell c, from the bricks when g has them. */
-static inline void load_cell(const lsdem_grid *g, const int c[3], float v[8])
-{
-  if (g->bricks)
-    load_cell_strided(g->bricks + brick_offset(g, c), BSIDE, BPLANE, v);
-  else
-    load_cell_strided(g->phi + dense_index(g, c), (size_t)g->n[0],
-                      (size_t)g->n[0] * (size_t)g->n[1], v);
-}
-
-size_t lsdem_grid_brick_floats(const lsdem_grid *g)
-{
-  return (size_t)bricks_along(g->n[0]) * (size_t)bricks_along(g->n[1]) *
-         (size_t)bricks_along(g->n[2]) * LSDEM_GRID_BRICK_SAMPLES;
-}
-
-void lsdem_grid_make_bricks(const lsdem_grid *g, float *out)
-{
-  const int nb[3] = {bricks_along(g->n[0]), bricks_along(g->n[1]), bricks_along(g->n[2])};
-  for (int b2 = 0; b2 < nb[2]; b2++)
-    for (int b1 = 0; b1 < nb[1]; b1++)
-      for (int b0 = 0; b0 < nb[0]; b0++)
-        for (int l = 0; l < LSDEM_GRID_BRICK_SAMPLES; l++) {
-          const int local[3] = {l % BSIDE, l / BSIDE % BSIDE, l / BPLANE};
-          const int base[3] = {BCELLS * b0, BCELLS * b1, BCELLS * b2};
-          int c[3];
-          for (int a = 0; a < 3; a++) {
-            const int i = base[a] + local[a];
-            c[a] = i < g->n[a] ? i : g->n[a] - 1; /* past the grid: its last sample */
-          }
-          *out++ = g->phi[dense_index(g, c)];
-        }
+  load_cell_strided(g->phi + c, (size_t)g->n[0], (size_t)g->n[0] * (size_t)g->n[1], v);
 }
 
 /* Trilinear interpolation at grid coordinates u inside [0, n-1]^3. */
@@ -86,9 +38,7 @@ static inline double trilinear(const lsdem_grid *g, const double u[3], double du
 {
   double f[3];
   float v[8];
-  int c[3];
-  cell_of(g, u, c, f);
-  load_cell(g, c, v);
+  load_cell(g, cell_of(g, u, f), v);
   return trilinear_cell(v, f, du);
 }
 
@@ -145,12 +95,10 @@ static inline double grid_eval_cached(const lsdem_grid *g, double inv_h, const d
     return outside_value(g, u, grad);
   }
   double f[3], du[3];
-  int c[3];
-  cell_of(g, u, c, f);
-  const int64_t index = (int64_t)dense_index(g, c);
-  if (cell->index != index) {
+  const size_t c = cell_of(g, u, f);
+  if (cell->index != (int64_t)c) {
     load_cell(g, c, cell->v);
-    cell->index = index;
+    cell->index = (int64_t)c;
   }
   const double phi = trilinear_cell(cell->v, f, du);
   unit_gradient(du, grad);

@@ -22,26 +22,7 @@ typedef struct {
   double lip;        /* bound on |grad phi| where phi >= 0 (lsdem_grid_outer_lipschitz),
                         0 = unknown; set by lsdem_library_open, for the node lists */
   double lip_reach;  /* ... valid while lip * skin < lip_reach */
-  const float *bricks; /* the same samples in bricks (below) for the lookups, or NULL:
-                          they read phi. Set by lsdem_library_open. */
 } lsdem_grid;
-
-/* Grain grids in bricks, for the cache: the grid's cells are cut into bricks of
- * LSDEM_GRID_BRICK_CELLS^3 cells, each stored as its LSDEM_GRID_BRICK_SIDE^3 samples, x
- * fastest (neighbouring bricks repeat their shared faces), the bricks x fastest,
- * ceil((n[a] - 1) / LSDEM_GRID_BRICK_CELLS) per axis; samples past the grid's last repeat
- * it. A brick's plane of 16 samples is one 64-byte cache line, so the 8 samples of a
- * cell lie on 2 lines (bricks aligned to 64 bytes), against 4 rows on 2 planes of the
- * dense layout. The same float values: lookups give the same bits. */
-#define LSDEM_GRID_BRICK_CELLS 3
-#define LSDEM_GRID_BRICK_SIDE 4     /* samples per brick edge: cells + 1 */
-#define LSDEM_GRID_BRICK_SAMPLES 64 /* floats per brick: 4^3 = 256 bytes */
-#define LSDEM_GRID_BRICK_LINES 2    /* 64-byte lines a cell's samples lie on */
-/* Floats of g's bricks (a multiple of LSDEM_GRID_BRICK_SAMPLES). */
-size_t lsdem_grid_brick_floats(const lsdem_grid *g);
-/* Copies g's dense samples (phi) into its bricks at out (lsdem_grid_brick_floats(g)
- * floats). */
-void lsdem_grid_make_bricks(const lsdem_grid *g, float *out);
 
 /* Trilinear interpolation of value and gradient (report Algorithm 1).
  * Returns phi at p and writes the normalised gradient to grad (unit length; +x if the
@@ -382,8 +363,7 @@ typedef struct {
 
 /* A read-only, memory-mapped library of shapes (format in doc/shape_library.rst).
  * All pointers in the shapes point into the mapping; ranks on one node share one copy
- * through the page cache. The lookups read each grid from a copy in bricks
- * (lsdem_grid.bricks) that open makes in the process's own memory. */
+ * through the page cache. */
 typedef struct lsdem_library lsdem_library;
 
 lsdem_status lsdem_library_open(const char *path, lsdem_library **lib, lsdem_error *err);
@@ -391,9 +371,6 @@ void lsdem_library_close(lsdem_library *lib);
 int lsdem_library_count(const lsdem_library *lib);
 const lsdem_shape *lsdem_library_shape(const lsdem_library *lib, int index);
 const char *lsdem_library_name(const lsdem_library *lib, int index); /* may be "" */
-/* Bytes of the library's grids as stored (dense, in the mapping) and in bricks (made at
- * open, this process's own memory). */
-void lsdem_library_grid_bytes(const lsdem_library *lib, size_t *dense, size_t *bricks);
 
 /* Limits of the format (checked by the writer and by open). */
 #define LSDEM_LIBRARY_NAME_MAX 128            /* name bytes including the NUL */
@@ -402,7 +379,7 @@ void lsdem_library_grid_bytes(const lsdem_library *lib, size_t *dense, size_t *b
 #define LSDEM_LIBRARY_MAX_SAMPLES 2147483647u /* grid samples per shape (int index) */
 
 /* Open checks the header, the header/TOC checksum, every offset and length and the
- * cluster tables, and reads the grids only to make their bricks. This checks shape `index` (-1: all shapes): its
+ * cluster tables, but reads no grid. This checks shape `index` (-1: all shapes): its
  * section checksum, then lsdem_shape_validate. LSDEM_ERR_FORMAT on a checksum mismatch,
  * LSDEM_ERR_NUMERIC from lsdem_shape_validate. */
 lsdem_status lsdem_library_verify(const lsdem_library *lib, int index, lsdem_error *err);

@@ -8,18 +8,16 @@
  *
  * Opening checks the header, the header/TOC checksum and every TOC entry against the
  * file size (offsets, lengths, alignment, overlaps, counts) and each shape's cluster
- * table (small, at the start of its section). It reads each level-set grid once, for its
- * Lipschitz bound and to copy it into bricks (lsdem_grid_make_bricks) in one block of
- * private memory, which the lookups read. Per-shape section checksums are checked on
- * demand by lsdem_library_verify. */
-#define _DEFAULT_SOURCE /* madvise */
+ * table (small, at the start of its section). It does not read level-set grids, so only
+ * shapes that are used get paged in. Per-shape section checksums are checked on demand
+ * by lsdem_library_verify. */
+#define _POSIX_C_SOURCE 200809L
 #include "filemap.h"
 #include "shapelib_format.h"
 
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <sys/mman.h>
 
 static const char *const ARRAY_NAME[LIB_NARRAYS] = {"cluster_start", "cluster_sphere", "nodes",
                                                     "node_area", "phi"};
@@ -31,7 +29,6 @@ struct lsdem_library {
   lsdem_shape *shapes;
   const char **names;
   uint64_t *sec_off, *sec_len, *sec_sum;
-  float *bricks; /* every grid's bricks, one after the other */
 };
 
 /* ------------------------------------------------------------------ reader ---- */
@@ -45,7 +42,6 @@ static void library_free(lsdem_library *lib)
   free(lib->sec_off);
   free(lib->sec_len);
   free(lib->sec_sum);
-  free(lib->bricks);
   free(lib);
 }
 
@@ -194,34 +190,6 @@ static lsdem_status load_entry(lsdem_library *lib, int i, uint64_t *prev_end, co
   return LSDEM_OK;
 }
 
-/* The bricks of every grid shape, in one block aligned to 2 MB and asked for huge pages:
- * the lookups of many shapes then miss the TLB less. */
-static lsdem_status make_bricks(lsdem_library *lib, const char *path, lsdem_error *err)
-{
-  enum { HUGE_PAGE = 2 << 20 };
-  size_t total = 0;
-  for (int i = 0; i < lib->count; i++)
-    if (lib->shapes[i].sdf.kind == LSDEM_SDF_GRID)
-      total += lsdem_grid_brick_floats(&lib->shapes[i].sdf.grid);
-  if (total == 0) return LSDEM_OK;
-  const size_t bytes = (total * sizeof(float) + HUGE_PAGE - 1) / HUGE_PAGE * HUGE_PAGE;
-  void *block = NULL;
-  if (posix_memalign(&block, HUGE_PAGE, bytes) != 0)
-    return lsdem_fail(err, LSDEM_ERR_NOMEM, "shape library '%s': cannot allocate %zu MB for "
-                      "its grids in bricks", path, bytes >> 20);
-  madvise(block, bytes, MADV_HUGEPAGE); /* advice: without it, ordinary pages */
-  lib->bricks = (float *)block;
-  float *next = lib->bricks;
-  for (int i = 0; i < lib->count; i++) {
-    lsdem_grid *g = &lib->shapes[i].sdf.grid;
-    if (lib->shapes[i].sdf.kind != LSDEM_SDF_GRID) continue;
-    lsdem_grid_make_bricks(g, next);
-    g->bricks = next;
-    next += lsdem_grid_brick_floats(g);
-  }
-  return LSDEM_OK;
-}
-
 lsdem_status lsdem_library_open(const char *path, lsdem_library **out, lsdem_error *err)
 {
   if (!path || !out) return lsdem_fail(err, LSDEM_ERR_ARG, "shape library: NULL argument");
@@ -247,7 +215,6 @@ lsdem_status lsdem_library_open(const char *path, lsdem_library **out, lsdem_err
   uint64_t prev_end = LIB_HEADER_SIZE + (uint64_t)LIB_ENTRY_SIZE * (uint64_t)lib->count;
   for (int i = 0; st == LSDEM_OK && i < lib->count; i++)
     st = load_entry(lib, i, &prev_end, path, err);
-  if (st == LSDEM_OK) st = make_bricks(lib, path, err);
   if (st != LSDEM_OK) {
     library_free(lib);
     return st;
@@ -264,16 +231,6 @@ const lsdem_shape *lsdem_library_shape(const lsdem_library *lib, int index)
 {
   if (!lib || index < 0 || index >= lib->count) return NULL;
   return &lib->shapes[index];
-}
-
-void lsdem_library_grid_bytes(const lsdem_library *lib, size_t *dense, size_t *bricks)
-{
-  *dense = *bricks = 0;
-  for (int i = 0; lib && i < lib->count; i++) {
-    const lsdem_shape *s = &lib->shapes[i];
-    *dense += (size_t)grid_samples(s) * sizeof(float);
-    if (s->sdf.grid.bricks) *bricks += lsdem_grid_brick_floats(&s->sdf.grid) * sizeof(float);
-  }
 }
 
 const char *lsdem_library_name(const lsdem_library *lib, int index)

@@ -14,7 +14,7 @@ lsdem_status lsdem_grid_alloc(const double lo[3], const double hi[3], double h, 
   if (!(h > 0.0) || !isfinite(h))
     return lsdem_fail(err, LSDEM_ERR_ARG, "grid spacing h = %g: must be positive", h);
   if (margin < 0) return lsdem_fail(err, LSDEM_ERR_ARG, "margin %d is negative", margin);
-  lsdem_grid out = {{0, 0, 0}, h, {0, 0, 0}, NULL, 0.0, 0.0, NULL};
+  lsdem_grid out = {{0, 0, 0}, h, {0, 0, 0}, NULL, 0.0, 0.0};
   for (int a = 0; a < 3; a++) {
     const double span = hi[a] - lo[a];
     if (!isfinite(lo[a]) || !isfinite(span) || span < 0.0)

@@ -269,7 +269,7 @@ static lsdem_status read_morph_lines(text_reader *r, lsdem_morph *m, lsdem_error
  * all-positive grid would otherwise meet the other checks, or pass them, as a grain). */
 static lsdem_status check_morph_values(const char *path, const lsdem_morph *m, lsdem_error *err)
 {
-  const lsdem_grid g = {{m->n[0], m->n[1], m->n[2]}, 1.0, {0.0, 0.0, 0.0}, m->phi, 0.0, 0.0, NULL};
+  const lsdem_grid g = {{m->n[0], m->n[1], m->n[2]}, 1.0, {0.0, 0.0, 0.0}, m->phi, 0.0, 0.0};
   if (!lsdem_grid_has_solid(&g))
     return lsdem_fail(err, LSDEM_ERR_NUMERIC, "%s: line 8: no level-set value is negative: "
                       "the grid has no solid voxel, so the file describes no grain (a "

@@ -320,7 +320,7 @@ lsdem_status lsdem_grid_from_star(lsdem_radius_fn radius, const void *ctx, const
   if (st != LSDEM_OK) return st;
   for (int a = 0; a < 3; a++) rmax = fmax(rmax, fmax(-blo[a], bhi[a]));
   star_samples S = {0};
-  lsdem_grid out = {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0, NULL};
+  lsdem_grid out = {{0, 0, 0}, 0, {0, 0, 0}, NULL, 0.0, 0.0};
   float *phi = NULL;
   nearest_field F = {&S, &out, NULL, NULL};
   st = sample_surface(radius, ctx, rmax, h / 3.0, &S, err);
