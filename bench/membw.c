@@ -32,7 +32,8 @@ static double read_rate(const double *a, size_t n, double *sink)
   for (int p = 0; p < PASSES; p++) {
     const double t0 = now();
     double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-    for (size_t i = 0; i + 3 < n; i += 4) s0 += a[i], s1 += a[i + 1], s2 += a[i + 2], s3 += a[i + 3];
+    for (size_t i = 0; i + 3 < n; i += 4)
+      s0 += a[i], s1 += a[i + 1], s2 += a[i + 2], s3 += a[i + 3];
     const double dt = now() - t0;
     *sink += s0 + s1 + s2 + s3;
     if ((double)(n * sizeof *a) / dt > best) best = (double)(n * sizeof *a) / dt;
