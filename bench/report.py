@@ -15,6 +15,7 @@ def main():
     ap.add_argument("log")
     ap.add_argument("--np", type=int, default=1)
     ap.add_argument("--mode", default="oneway")
+    ap.add_argument("--membw", default="", help="bench/membw.c's output line")
     a = ap.parse_args()
     text = open(a.log).read()
     loops = re.findall(r"Loop time of ([\d.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms", text)
@@ -61,7 +62,30 @@ def main():
     print("wall time per grain-step: %.3f us (loop %.2f s; core-us per grain-step %.3f)"
           % (loop / (atoms * steps) * 1e6, loop, loop * procs / (atoms * steps) * 1e6))
     lookups = per.get("node lookups", float("nan")) * atoms * steps
+    memory_line(lookups / loop, a.membw)
     print("us_per_grain_step=%.3f node_tests_per_s=%.4g" % (loop / (atoms * steps) * 1e6, lookups / loop))
+
+
+# Cache lines a lookup reads from a grid (levelset.c, dense floats x fastest): its cell's 8
+# samples are 2 neighbours on each of 4 rows (2 rows in each of 2 planes), a line per row
+# (a pair straddles two lines in 1 cell of 16, which this leaves out).
+LINES_PER_LOOKUP = 4
+
+
+def memory_line(rate, membw):
+    """Node lookups per second against the memory system: the bytes a lookup moves at most,
+    estimated as LINES_PER_LOOKUP x 64 bytes, the traffic that rate makes, and this core's
+    measured speed (bench/membw.c's output line `read_GBps=.. copy_GBps=.. latency_ns=..`)."""
+    need = rate * LINES_PER_LOOKUP * 64
+    print("memory: %.4g node lookups/s x %d cache lines x 64 B = %d B per lookup at most "
+          "(lookups served by a node list's kept cell move none): %.3f GB/s"
+          % (rate, LINES_PER_LOOKUP, LINES_PER_LOOKUP * 64, need * 1e-9))
+    f = dict(kv.split("=") for kv in membw.split())
+    if f:
+        print("memory: this core streams %s GB/s read, %s GB/s copy (read + write); one "
+              "dependent miss %s ns (bench/membw.c): the lookups use %.1f %% of the read "
+              "bandwidth" % (f["read_GBps"], f["copy_GBps"], f["latency_ns"],
+                             100 * need * 1e-9 / float(f["read_GBps"])))
 
 
 def by_stretch(rows, atoms, settle=300):

@@ -12,8 +12,10 @@
 # ~/.cache/lsdem/bench) for later runs. The run's files (shape library, data file, body
 # accelerations, logs) go to a temporary folder under $TMPDIR (default /tmp), removed at the
 # end unless --keep is given. Default 200 steps (the report benchmark's first 200). Prints the
-# LAMMPS time split (pair, neighbour, comm, modify), the workload per grain-step, and as its
-# last line
+# LAMMPS time split (pair, neighbour, comm, modify), the workload per grain-step, the node
+# lookups' memory traffic (4 cache lines per lookup x 64 B x lookups per second) beside this
+# core's memory speed (bench/membw.c, compiled with cc: read and copy bandwidth, latency of a
+# dependent miss), and as its last line
 #   us_per_grain_step=<x> node_tests_per_s=<y>
 # --nodelist off: every node of a master screened at every step (the report's algorithm;
 # same forces), so that "node lookups" counts the nodes inside the partner's bounding sphere,
@@ -212,4 +214,9 @@ mpi=()
 [ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
 deck_args "$steps"
 "${mpi[@]}" "$lmp" "${deck[@]}" -log log.bench -screen none
-/usr/bin/python3 "$here/report.py" log.bench --np "$np" --mode "$mode"
+# this core's memory speed beside the lookups' traffic (bench/membw.c)
+membw=""
+if command -v cc >/dev/null && cc -O2 -o membw "$here/membw.c" 2>/dev/null; then
+  membw=$(./membw 256)
+fi
+/usr/bin/python3 "$here/report.py" log.bench --np "$np" --mode "$mode" --membw "$membw"

@@ -1,8 +1,9 @@
 """bench/run.sh on a small scene folder in the Kawamoto/Tan layout (the benchmark a user points
 at their own data). Independent expectations: its last line's us_per_grain_step is the run's
 'Loop time' divided by steps x grains and node_tests_per_s the thermo rows' mean node lookups
-(c_work[3]) times steps over the loop time, both recomputed here from the kept log; the run
-leaves nothing in $TMPDIR unless --keep is given, and then says where its files are."""
+(c_work[3]) times steps over the loop time, both recomputed here from the kept log; the
+memory line's traffic is the same rate times its bytes per lookup (lines x 64), beside a
+measured bandwidth and latency; the run leaves nothing in $TMPDIR unless --keep is given, and then says where its files are."""
 import os
 import re
 import shutil
@@ -57,4 +58,16 @@ if m and k:
     check(lookups > 0, "the scene's grains touch: %g node lookups per step" % lookups)
     near(float(m.group(2)), lookups * STEPS / float(loop[0]), rtol=1e-3,
          msg="node_tests_per_s = mean lookups per step x steps / loop time")
+    t = re.search(r"memory: ([\d.eE+-]+) node lookups/s x (\d+) cache lines x 64 B = (\d+) B "
+                  r"per lookup .*: ([\d.]+) GB/s", p.stdout)
+    check(t is not None, "the lookups' memory traffic is printed: %r" % p.stdout[-800:])
+    if t:
+        near(float(t.group(1)), float(m.group(2)), rtol=1e-3, msg="the same lookup rate")
+        check(int(t.group(3)) == 64 * int(t.group(2)), "bytes per lookup = lines x 64")
+        near(float(t.group(4)), float(t.group(1)) * int(t.group(3)) * 1e-9, rtol=2e-3,
+             atol=1e-3, msg="GB/s = lookups/s x bytes per lookup")
+    b = re.search(r"streams ([\d.]+) GB/s read, ([\d.]+) GB/s copy .*one dependent miss "
+                  r"([\d.]+) ns", p.stdout)
+    check(b is not None and min(map(float, b.groups())) > 0,
+          "this core's measured memory speed (bench/membw.c) is printed: %r" % p.stdout[-800:])
 finish()

@@ -70,8 +70,8 @@ static inline double band_eval(const lsdem_band *b, double inv_h, const double p
   }
   const float *s = b->phi + (size_t)brick * LSDEM_BAND_BRICK_SAMPLES +
                    (c[0] & MASK) + SIDE * ((c[1] & MASK) + SIDE * (c[2] & MASK));
-  const float v[8] = {s[0], s[1], s[SIDE], s[SIDE + 1],
-                      s[PLANE], s[PLANE + 1], s[PLANE + SIDE], s[PLANE + SIDE + 1]};
+  float v[8];
+  load_cell_strided(s, SIDE, PLANE, v);
   const double phi = trilinear_cell(v, f, du);
   if (b->exact && phi > -b->width && phi < b->width) return exact_value(b, brick, p, grad);
   unit_gradient(du, grad);

@@ -30,16 +30,7 @@ static inline size_t cell_of(const lsdem_grid *g, const double u[3], double f[3]
 /* The 8 samples of the cell whose (0,0,0) sample is at index c. */
 static inline void load_cell(const lsdem_grid *g, size_t c, float v[8])
 {
-  const size_t sy = (size_t)g->n[0], sz = sy * (size_t)g->n[1];
-  const float *p = g->phi + c;
-  v[0] = p[0];
-  v[1] = p[1];
-  v[2] = p[sy];
-  v[3] = p[sy + 1];
-  v[4] = p[sz];
-  v[5] = p[sz + 1];
-  v[6] = p[sz + sy];
-  v[7] = p[sz + sy + 1];
+  load_cell_strided(g->phi + c, (size_t)g->n[0], (size_t)g->n[0] * (size_t)g->n[1], v);
 }
 
 /* Trilinear interpolation at grid coordinates u inside [0, n-1]^3. */

@@ -5,6 +5,22 @@
 #define LSDEM_GEOM_TRILINEAR_H
 
 #include <math.h>
+#include <stddef.h>
+
+/* The 8 samples of the cell whose (0,0,0) sample is at p, in a block of samples laid out
+ * x fastest with row stride sy and plane stride sz (a dense grid, a grain brick, a band
+ * brick), in trilinear_cell's order. */
+static inline void load_cell_strided(const float *p, size_t sy, size_t sz, float v[8])
+{
+  v[0] = p[0];
+  v[1] = p[1];
+  v[2] = p[sy];
+  v[3] = p[sy + 1];
+  v[4] = p[sz];
+  v[5] = p[sz + 1];
+  v[6] = p[sz + sy];
+  v[7] = p[sz + sy + 1];
+}
 
 /* Trilinear interpolation in one cell from its 8 samples v (x fastest: v000, v100, v010,
  * v110, v001, v101, v011, v111) at fractions f (report Algorithm 1, written as nested
