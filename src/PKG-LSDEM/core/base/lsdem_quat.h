@@ -92,7 +92,8 @@ static inline void lsdem_perpendicular_unit(const double a[3], double u[3])
 {
   /* cross a with the coordinate axis it is least aligned with */
   const double ax = fabs(a[0]), ay = fabs(a[1]), az = fabs(a[2]);
-  const double e[3] = {ax <= ay && ax <= az, ay < ax && ay <= az, az < ax && az < ay};
+  const double e[3] = {(double)(ax <= ay && ax <= az), (double)(ay < ax && ay <= az),
+                       (double)(az < ax && az < ay)};
   lsdem_cross3(a, e, u);
   const double n = sqrt(lsdem_dot3(u, u));
   for (int i = 0; i < 3; i++) u[i] /= n;
