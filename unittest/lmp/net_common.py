@@ -20,18 +20,20 @@ def make_net(prefix, *args, library="ball.lslib", shape=1, rb=RB):
     return shape_tool("net", prefix, "--library", library, "--shape", shape, "--rb", rb, *args)
 
 
-def head(prefix, library="ball.lslib", kn=100.0, pre=""):
+def head(prefix, library="ball.lslib", kn=100.0, pre="", style="bond"):
     """Everything up to the integrators: the net (and grains) read, its .in included;
-    `pre` goes before read_data (processors, ...)."""
+    `pre` goes before read_data (processors, ...); style: the molecular half of the atom
+    style (angle for nets made with --bending)."""
     return """units lj
-atom_style hybrid lsdem library {lib} bond
+atom_style hybrid lsdem library {lib} {style}
 boundary f f f
 newton on
 {pre}read_data {p}.data
 include {p}.in
 pair_style lsdem
 pair_coeff * * {kn} 0 0
-""".format(lib=os.path.join(HERE, library), p=os.path.join(HERE, prefix), kn=kn, pre=pre)
+""".format(lib=os.path.join(HERE, library), p=os.path.join(HERE, prefix), kn=kn, pre=pre,
+           style=style)
 
 
 def bonds(prefix):

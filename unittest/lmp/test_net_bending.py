@@ -15,25 +15,11 @@
    leaving angle_style to the first.
 4. Bad input: a negative Kb, and angle_style lsdem/net without bond_style lsdem/net, stop
    with messages that say what is wrong."""
-import os
-
 from lsdemtest import run_lmp, check, near, finish
-from net_common import HERE, make_ball, make_net, read_dump
+from net_common import HERE, make_ball, make_net, head, read_dump
 
 make_ball()
 N, A, KB, P = 10, 1.0, 1.0, 1e-3    # segments, spacing, joint stiffness, tip load
-
-
-def head(prefix, style="angle"):
-    return """units lj
-atom_style hybrid lsdem library {lib} {style}
-boundary f f f
-newton on
-read_data {p}.data
-include {p}.in
-pair_style lsdem
-pair_coeff * * 100 0 0
-""".format(lib=os.path.join(HERE, "ball.lslib"), p=os.path.join(HERE, prefix), style=style)
 
 
 def cantilever(prefix, np=1, bending=True):
@@ -41,7 +27,7 @@ def cantilever(prefix, np=1, bending=True):
     args = ["--lattice", "square", "--spacing", A, "--size", N * A, 0, "--clamp", "none",
             "--k", 100]
     make_net(prefix, *(args + (["--bending", KB] if bending else [])))
-    deck = head(prefix, "angle" if bending else "bond") + """
+    deck = head(prefix, style="angle" if bending else "bond") + """
 group held id 1 2
 group moving subtract all held
 group tip id {tip}
@@ -94,14 +80,15 @@ check(all(a[1] == "2" for a in angles_b[7:]), "second net's joints: angle type 2
 inc = open("hexb.in").read()
 check(not any(l.startswith("angle_style") for l in inc.splitlines()) and
       "angle_coeff 2 0.25" in inc, "second net's .in sets only its angle type:\n" + inc)
-rc, log = run_lmp(head("hexb").replace("include", "include %s/hexa.in\ninclude" % HERE) +
-                  "run 0\n", cwd="hexb_run")
+two_nets = head("hexb", style="angle").replace("include", "include %s/hexa.in\ninclude" % HERE)
+rc, log = run_lmp(two_nets + "run 0\n", cwd="hexb_run")
 check(rc == 0, "two bending nets read and run")
 
 # ---- 4. bad input -----------------------------------------------------------------------
-rc, log = run_lmp(head("hexa") + "angle_coeff 1 -1\nrun 0\n", cwd="bad_kb", expect_fail=True)
-check(rc != 0 and "Kb (-1) must be >= 0" in log, "negative Kb:\n" + log[-600:])
-rc, log = run_lmp(head("hexa") + "bond_style zero\nbond_coeff *\nrun 0\n", cwd="bad_bond",
+rc, log = run_lmp(head("hexa", style="angle") + "angle_coeff 1 -1\nrun 0\n", cwd="bad_kb",
                   expect_fail=True)
+check(rc != 0 and "Kb (-1) must be >= 0" in log, "negative Kb:\n" + log[-600:])
+rc, log = run_lmp(head("hexa", style="angle") + "bond_style zero\nbond_coeff *\nrun 0\n",
+                  cwd="bad_bond", expect_fail=True)
 check(rc != 0 and "needs bond_style lsdem/net" in log, "no net bonds:\n" + log[-600:])
 finish()
