@@ -4,23 +4,27 @@
 
    fix impulse/lsdem e mu [keywords] (doc/fix_impulse_lsdem.rst). One step, in
    final_integrate, where f and torque hold this step's external forces at the positions
-   the pair style just detected contacts at (report Figure 4.4, core/impulse/lsdem_impulse.h):
-     1. kick: v, omega += dt f/m, dt I^-1 torque (owned grains), sent to the ghosts;
+   the pair style just detected contacts at (report Figure 4.4). The stages are the core's
+   (core/impulse/lsdem_impulse.h, step.c) over the solver's arrays, which this fix gathers
+   from the atom arrays (make_bodies) and scatters back (scatter_grains); it adds the
+   contacts, the communication and the output:
+     1. kick (lsdem_impulse_stage_kick), the velocities sent to the ghosts; the resting
+        speed (reduced over ranks) and the step's thresholds;
      2. contacts: pair_style lsdem/impulse's manifolds and each grain's against each wall
         at the current poses, glued (report §4.3.3), at most `points` per pair
-        (lsdem_impulse_cap_contacts); method split: each classified resting (approaching
-        slower than the resting speed) or colliding, a resting one warm-started from the
-        grain's LsdemImpulseWarm entries;
-     3. passes, at most `passes` (report: 10): the islands solved (lsdem_impulse_islands,
-        core lsdem_island_solve) -- method split: resting contacts as constraints, then
-        collisions by ETM; method etm: the collisions (grain pairs approaching, walls
-        approaching faster than the resting speed) by ETM -- then every grain against
-        every wall at its predicted pose, resting contacts corrected (report §4.4.1; with
-        method split a guard that rarely acts); a pass with no correction ends the loop,
-        otherwise the corrected velocities go to the ghosts and the collisions they make
-        are resolved in the next pass;
+        (lsdem_impulse_cap_contacts); method split: classified resting or colliding
+        (lsdem_impulse_stage_classify), a resting one warm-started from the grain's
+        LsdemImpulseWarm entries;
+     3. passes, at most `passes` (report: 10): the contacts selected
+        (lsdem_impulse_stage_select) and the islands solved (lsdem_impulse_islands, core
+        lsdem_island_solve) -- method split: resting contacts as constraints, then
+        collisions by ETM; method etm: the collisions by ETM -- then the wall guard
+        (lsdem_impulse_stage_wall_guard, report §4.4.1; with method split a guard that
+        rarely acts); a pass with no correction ends the loop, otherwise the corrected
+        velocities go to the ghosts and the collisions they make are resolved in the next
+        pass;
      4. the contacts' impulses kept per grain (split), the walls' forces reported, the CFL
-        check, damping (eqs 4.44-4.46), drift (eqs 4.38, 4.40).
+        check (lsdem_impulse_stage_cfl), damping and drift (lsdem_impulse_stage_damp_drift).
    Positions and velocities are then those of the step's end, as thermo and dumps print
    them. Between steps the fix carries the positions and velocities and (split) each
    grain's resting impulses, in restart files too: a run continued from a restart file is
@@ -391,15 +395,16 @@ void FixImpulseLsdem::final_integrate()
   memset(&now, 0, sizeof(now));
   now.woken = woken_pending;
   woken_pending = 0;
-  // the step works on its bodies (atoms local and ghost, then walls): gathered here from
-  // the atom arrays, scattered back by damp_and_drift; ghosts' velocities follow their
-  // owners' through forward_velocities
+  // the step works on the solver's arrays (bodies: atoms local and ghost, then walls;
+  // grains: per atom): gathered here from the atom arrays, scattered back after the drift;
+  // ghosts' velocities follow their owners' through forward_velocities
   make_bodies();
-  kick();  // external forces (eqs 4.37, 4.39)
+  kick();  // external forces (eqs 4.37, 4.39), the step's thresholds
   forward_velocities();
   ke_after_kick = group_kinetic_energy();
   double t0 = MPI_Wtime();
-  gather_contacts();  // the pair style's and the walls' manifolds, glued, capped, classified
+  gather_contacts();  // the pair style's and the walls' manifolds, glued, capped
+  classify();         // method split: resting or colliding, resting ones warm-started
   t_detect += MPI_Wtime() - t0;
   solve_contacts();  // islands: resting solve, collisions by ETM; the wall guard
   remember_contacts();
@@ -411,6 +416,7 @@ void FixImpulseLsdem::final_integrate()
   total_dissipated -= contact_work;
   check_cfl();
   damp_and_drift();  // global damping (eqs 4.44-4.46), positions (eqs 4.38, 4.40)
+  scatter_grains();
   if (sleep_after >= 0.0) fall_asleep();
 }
 
@@ -422,7 +428,7 @@ void FixImpulseLsdem::final_integrate()
 void FixImpulseLsdem::solve_contacts()
 {
   bool corrected = true;
-  wall_seen.assign((size_t) atom->nlocal * walls.size(), WallSeen());
+  wall_seen.assign((size_t) atom->nlocal * walls.size(), lsdem_wall_guard_seen());
   for (int pass = 0; pass < max_passes && corrected; pass++) {
     resolve_islands(pass);
     double t0 = MPI_Wtime();
@@ -448,20 +454,17 @@ void FixImpulseLsdem::solve_contacts()
 
 void FixImpulseLsdem::resolve_islands(int pass)
 {
-  const int napproach = select_collisions(pass);
+  coll.resize(method == SPLIT ? 0 : contacts.size());  // the report's: the selected copies
+  int ncoll = 0;
+  const int napproach = lsdem_impulse_stage_select(body.data(), contacts.data(),
+                                                   (int) contacts.size(), &stage, pass == 0,
+                                                   coll.data(), &ncoll);
+  coll.resize(ncoll);
   std::vector<LsdemImpulseContact> &list = method == SPLIT ? contacts : coll;
-  lsdem_island_params ip;
-  ip.etm = etm;
-  ip.rest = resting;
-  // the report's method: ETM on every island with an approaching contact, as selected
-  ip.approach_floor = method == SPLIT ? etm.velocity_tol * wall_prm.rest_speed : 0.0;
-  ip.collide_speed = wall_prm.rest_speed;
-  // what the resting solve leaves approaching is its own residual, not a collision's
-  if (method == SPLIT) ip.etm.min_approach = resting.tolerance * wall_prm.rest_speed;
   LsdemIslandStats st;
   st.clear();
   const std::string mesg = islands->resolve(list.data(), (int) list.size(), body.data(),
-                                            moving.data(), ip, pass == 0, st);
+                                            moving.data(), stage.island, pass == 0, st);
   // the collision impulses of this pass on the walls, as forces on them
   for (LsdemImpulseContact &c : list) {
     if (c.j >= 0) continue;
@@ -499,13 +502,14 @@ void FixImpulseLsdem::resolve_islands(int pass)
 
 /* ----------------------------------------------------------------------
    the step's bodies: every atom (local and ghost) as a grain of the group, or else a body
-   of prescribed velocity; then the walls at their current poses
+   of prescribed velocity, and its grain record; then the walls at their current poses
 ------------------------------------------------------------------------- */
 
 void FixImpulseLsdem::make_bodies()
 {
   const int nall = atom->nlocal + atom->nghost;
   body.resize(nall + walls.size());
+  grain.resize(nall);
   moving.resize(nall);
   std::string bad;
   lsdem_error err;
@@ -522,12 +526,47 @@ void FixImpulseLsdem::make_bodies()
       lsdem_impulse_body_wall(&body[i], atom->tag[i], atom->x[i], atom->v[i], atom->omega[i],
                               nullptr);
     }
+    gather_grain(i);
   }
   for (size_t w = 0; w < walls.size(); w++) {
     const lsdem_pose p = wall_pose_now((int) w);
     lsdem_impulse_body_wall(&body[nall + w], -(int64_t) (w + 1), p.x, p.v, p.omega, nullptr);
   }
   AtomVecLsdem::stop_if_any_rank(lmp, FLERR, bad);
+}
+
+/* atom i's grain record: orientation, moments, mass, bounding radius, shape, groups and
+   its external force and torque (force units through ftm2v) */
+
+void FixImpulseLsdem::gather_grain(int i)
+{
+  lsdem_impulse_grain &g = grain[i];
+  const double ftm2v = force->ftm2v;
+  for (int d = 0; d < 4; d++) g.q[d] = avec->quat[i][d];
+  for (int d = 0; d < 3; d++) {
+    g.inertia[d] = avec->inertia[i][d];
+    g.force[d] = ftm2v * atom->f[i][d];
+    g.torque[d] = ftm2v * atom->torque[i][d];
+  }
+  g.mass = atom->rmass[i];
+  g.radius = atom->radius[i];
+  g.shape = avec->shape_of(i);
+  g.groups = atom->mask[i];
+}
+
+/* the moving grains' state at the step's end back into the atom arrays */
+
+void FixImpulseLsdem::scatter_grains()
+{
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!moving[i]) continue;
+    for (int d = 0; d < 3; d++) {
+      atom->x[i][d] = body[i].x[d];
+      atom->v[i][d] = body[i].v[d];
+      atom->omega[i][d] = body[i].omega[d];
+    }
+    for (int d = 0; d < 4; d++) avec->quat[i][d] = grain[i].q[d];
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -543,41 +582,24 @@ lsdem_pose FixImpulseLsdem::wall_pose_now(int w) const
 }
 
 /* ----------------------------------------------------------------------
-   external forces over dt (eqs 4.37, 4.39); the resting speed with the walls from the
-   largest external acceleration of the group (auto) or the user's
+   external forces over dt (eqs 4.37, 4.39); the resting speed from the largest external
+   acceleration of the group (auto) or the user's, and the step's thresholds from it
 ------------------------------------------------------------------------- */
 
 void FixImpulseLsdem::kick()
 {
-  const double dt = update->dt, ftm2v = force->ftm2v;
-  double amax = 0.0;
-  for (int i = 0; i < atom->nlocal; i++) {
-    if (!moving[i]) continue;
-    const double f[3] = {ftm2v * atom->f[i][0], ftm2v * atom->f[i][1], ftm2v * atom->f[i][2]};
-    const double t[3] = {ftm2v * atom->torque[i][0], ftm2v * atom->torque[i][1],
-                         ftm2v * atom->torque[i][2]};
-    lsdem_impulse_kick(&body[i], f, t, dt);  // a sphere: no rotation (its body has none)
-    amax = std::max(amax, std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) / atom->rmass[i]);
-  }
+  const double amax = lsdem_impulse_stage_kick(body.data(), grain.data(), moving.data(),
+                                               atom->nlocal, update->dt);
   double rest = rest_setting;
   if (rest < 0.0) {
     double all = 0.0;
     MPI_Allreduce(&amax, &all, 1, MPI_DOUBLE, MPI_MAX, world);
-    rest = rest_steps * all * dt;
+    rest = lsdem_impulse_auto_rest_speed(rest_steps, all, update->dt);
   }
-  // lsdem_wall_params_default's rule in terms of the resting speed: depth_tol = 1 % of the
-  // depth a resting grain sinks by in one step
-  wall_prm.rest_speed = rest;
-  wall_prm.depth_tol = 0.005 * rest * dt;
-  wall_prm.mu = 0.0;
-  // the resting solve (method split): overlaps beyond the slop, the depth a resting grain
-  // sinks by in two steps, are taken out at up to the resting speed; what it leaves, the
-  // wall guard leaves alone (twice the slop)
-  resting.dt = dt;
-  resting.ref_speed = rest;
-  resting.slop = rest * dt;
-  resting.max_push = rest;
-  if (method == SPLIT) wall_prm.depth_tol = 2.0 * resting.slop;
+  stage.split = method == SPLIT;
+  stage.wall_etm = wall_etm;
+  stage.dt = update->dt;
+  lsdem_impulse_step_thresholds(&stage, rest, &etm, &resting);
 }
 
 /* ----------------------------------------------------------------------
@@ -635,29 +657,32 @@ void FixImpulseLsdem::add_glued(int i, int j, tagint ta, tagint tb, int bindex,
     c.resting = 0;
     c.P[0] = c.P[1] = c.P[2] = 0.0;
     c.J[0] = c.J[1] = c.J[2] = 0.0;
-    if (method == SPLIT) classify(c, glue);
     contacts.push_back(c);
   }
 }
 
 /* ----------------------------------------------------------------------
-   method split: contact c of owned grain c.i is resting when it approaches slower than the
-   resting speed now, after the kick (the report's rule for walls, §4.4.1, for every
-   contact; a pair that touched at the last step is not required: in a settled heap ~5 %
-   of the contacts per step are pairs that flicker in and out of touch by a node, and
-   each made a collision of its island); a resting contact starts from the impulse
-   of the matching contact of the last step (LsdemImpulseWarm, within a radius of the
-   gluing distance or a tenth of the grain's bounding radius, in the grain's body frame)
+   method split: the contacts classified resting or colliding (lsdem_impulse_stage_classify:
+   by their approach now, after the kick; a pair that touched at the last step is not
+   required: in a settled heap ~5 % of the contacts per step are pairs that flicker in and
+   out of touch by a node, and each made a collision of its island); a resting contact
+   starts from the impulse of the matching contact of the last step (LsdemImpulseWarm,
+   within a radius of the gluing distance or a tenth of the grain's bounding radius, in
+   the grain's body frame)
 ------------------------------------------------------------------------- */
 
-void FixImpulseLsdem::classify(LsdemImpulseContact &c, double glue)
+void FixImpulseLsdem::classify()
 {
-  const double un = lsdem_impulse_normal_velocity(body.data(), &c.c);
-  c.resting = un >= -wall_prm.rest_speed;
-  if (!c.resting) return;
-  double xb[3];
-  body_frame_point(c, xb);
-  warm.take(c.i, c.tb, xb, std::max(glue, 0.1 * atom->radius[c.i]), c.P);
+  if (method != SPLIT) return;
+  lsdem_impulse_stage_classify(body.data(), contacts.data(), (int) contacts.size(),
+                               stage.wall.rest_speed);
+  for (LsdemImpulseContact &c : contacts) {
+    if (!c.resting) continue;
+    double xb[3];
+    body_frame_point(c, xb);
+    const double glue = glue_of_shape[avec->shape[c.i]];
+    warm.take(c.i, (tagint) c.tb, xb, std::max(glue, 0.1 * atom->radius[c.i]), c.P);
+  }
 }
 
 /* contact c's point in the body frame of its owned grain c.i (at this step's pose) */
@@ -717,7 +742,7 @@ void FixImpulseLsdem::remember_contacts()
   for (const LsdemImpulseContact &c : contacts) {
     double xb[3];
     body_frame_point(c, xb);
-    warm.add(c.i, c.tb, xb, c.resting ? c.P : zero);
+    warm.add(c.i, (tagint) c.tb, xb, c.resting ? c.P : zero);
   }
   maxexchange = 3 + LsdemImpulseWarm::DOUBLES * warm.largest();
 }
@@ -756,104 +781,37 @@ void FixImpulseLsdem::add_wall_contacts()
 }
 
 /* ----------------------------------------------------------------------
-   the contacts of this pass's islands: every contact between two grains (an island is a
-   chain of touching grains, report §4.5: impulses propagate along it, so a contact that
-   does not approach now takes part when the solve makes it approach), a wall's when it
-   approaches faster than the resting speed (a collision), and with wall_etm yes its
-   resting contacts too, inelastic (e = 0); other wall contacts are the wall correction's
-   (report §4.4.1). A contact approaches when faster than the ETM tolerance times the
-   resting speed and than the round-off of its velocities (ETM's tolerance is relative to
-   an island's fastest approach: an island whose fastest is round-off would never
-   converge); an island with no approaching contact is left alone. Returns the number of
-   approaching contacts.
-------------------------------------------------------------------------- */
-
-int FixImpulseLsdem::select_collisions(int pass)
-{
-  coll.clear();
-  const double floor = etm.velocity_tol * wall_prm.rest_speed;
-  int napproach = 0;
-  for (LsdemImpulseContact &c : contacts) {
-    double un;
-    const bool approaching = lsdem_impulse_approaching(body.data(), &c.c, floor, &un);
-    if (method == SPLIT) {  // every contact takes part; islands with work are solved: in
-      // the first pass those with a resting or an approaching contact, later only those
-      // that a wall correction made approach (the others' resting contacts are solved)
-      c.approaching = (pass == 0 && c.resting) || approaching;
-      napproach += approaching && !c.resting;
-      continue;
-    }
-    const bool resting = c.j < 0 &&
-        lsdem_wall_classify(un, wall_prm.rest_speed) != LSDEM_WALL_COLLIDING;
-    if (resting && !(wall_etm && approaching)) continue;
-    coll.push_back(c);
-    coll.back().approaching = approaching;
-    if (resting) coll.back().c.restitution = 0.0;
-    napproach += approaching;
-  }
-  return napproach;
-}
-
-/* ----------------------------------------------------------------------
-   every grain against every wall at its predicted pose; resting contacts corrected
-   (lsdem_wall_correct). A grain whose velocities are those it had when last checked in
-   this step, and which was not corrected then, is not checked again: its predicted pose,
-   so its manifold and its result, are the same. Returns the corrections made on this rank.
+   the wall guard (report §4.4.1; lsdem_impulse_stage_wall_guard): every grain against
+   every wall at its predicted pose, resting contacts corrected, their impulses on the
+   walls as forces. Returns the corrections made on this rank.
 ------------------------------------------------------------------------- */
 
 int FixImpulseLsdem::correct_walls()
 {
   int corrected = 0;
+  const int nlocal = atom->nlocal;
   for (size_t w = 0; w < walls.size(); w++) {
-    lsdem_pose wp;  // at the end of the step
-    lsdem_boundary_pose_at(&walls[w]->boundary(), 0.0, &wp);
-    lsdem_detect_params det = walls[w]->wall_detect();
-    det.node_skin = 0.0;
-    lsdem_wall_params prm = wall_prm;
-    prm.mu = walls[w]->wall_friction();
-    for (int i = 0; i < atom->nlocal; i++) {
-      if (!moving[i] || !(atom->mask[i] & walls[w]->groupbit)) continue;
-      WallSeen &seen = wall_seen[(size_t) i * walls.size() + w];
-      if (seen.clear && memcmp(seen.v, body[i].v, sizeof seen.v) == 0 &&
-          memcmp(seen.omega, body[i].omega, sizeof seen.omega) == 0)
-        continue;
-      memcpy(seen.v, body[i].v, sizeof seen.v);
-      memcpy(seen.omega, body[i].omega, sizeof seen.omega);
-      seen.clear = !correct_grain(i, (int) w, wp, det, prm);
-      corrected += !seen.clear;
-    }
+    lsdem_impulse_guard_wall gw;
+    gw.boundary = &walls[w]->boundary();
+    gw.groups = walls[w]->groupbit;
+    lsdem_boundary_pose_at(gw.boundary, 0.0, &gw.pose);  // at the end of the step
+    gw.detect = walls[w]->wall_detect();
+    gw.detect.node_skin = 0.0;
+    gw.prm = stage.wall;
+    gw.prm.mu = walls[w]->wall_friction();
+    lsdem_wall_guard_seen *seen = wall_seen.data() + w * nlocal;
+    lsdem_error err;
+    const int n = lsdem_impulse_stage_wall_guard(body.data(), grain.data(), moving.data(), nlocal,
+                                                 &gw, update->ntimestep, update->dt,
+                                                 wpoints.data(), (int) wpoints.size(), seen, &err);
+    if (n < 0)
+      error->one(FLERR, "Fix impulse/lsdem: step {}, grain {}, wall {}: {}", update->ntimestep,
+                 atom->tag[-1 - n], walls[w]->id, err.msg);
+    for (int i = 0; i < nlocal; i++)
+      if (seen[i].corrected) push_on_wall((int) w, seen[i].impulse);
+    corrected += n;
   }
   return corrected;
-}
-
-/* grain i against wall w (pose wp, detection det, correction prm) at the grain's predicted
-   pose; 1 when it was corrected (a resting contact), its new velocities in its body */
-
-int FixImpulseLsdem::correct_grain(int i, int w, const lsdem_pose &wp,
-                                   const lsdem_detect_params &det, const lsdem_wall_params &prm)
-{
-  const double dt = update->dt;
-  // the centre's predicted position first: the turn of the orientation costs more
-  const double xp[3] = {atom->x[i][0] + dt * body[i].v[0], atom->x[i][1] + dt * body[i].v[1],
-                        atom->x[i][2] + dt * body[i].v[2]};
-  const lsdem_boundary &b = walls[w]->boundary();
-  if (!lsdem_boundary_may_touch(&b, &wp, xp, atom->radius[i])) return 0;
-  lsdem_pose gp;
-  lsdem_impulse_predict_pose(atom->x[i], avec->quat[i], body[i].v, body[i].omega,
-                             avec->inertia[i], dt, &gp);
-  lsdem_manifold m = lsdem_manifold_over(wpoints.data(), (int) wpoints.size());
-  if (lsdem_detect(avec->shape_of(i), &gp, &b.shape, &wp, &det,
-                   update->ntimestep, nullptr, nullptr, &m) == 0)
-    return 0;
-  lsdem_wall_limit_push_out(&m, dt, wall_prm.rest_speed);
-  lsdem_wall_result res;
-  lsdem_error err;
-  if (lsdem_wall_correct(&body[i], &m, dt, &prm, &res, &err) != LSDEM_OK)
-    error->one(FLERR, "Fix impulse/lsdem: step {}, grain {}, wall {}: {}",
-               update->ntimestep, atom->tag[i], walls[w]->id, err.msg);
-  if (res.kind != LSDEM_WALL_RESTING) return 0;
-  push_on_wall(w, res.impulse);
-  return 1;
 }
 
 /* ----------------------------------------------------------------------
@@ -869,17 +827,13 @@ void FixImpulseLsdem::check_cfl()
   } mine = {0.0, comm->me}, worst;
   double info[4] = {0.0, 0.0, 0.0, 0.0};  // tag, speed, radius, x of the worst grain
   const double dt = update->dt;
-  for (int i = 0; i < atom->nlocal; i++) {
-    if (!moving[i]) continue;
-    const double *v = body[i].v;
-    const double speed = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    const double ratio = speed * dt / atom->radius[i];
-    if (!(ratio <= mine.ratio)) {  // NaN counts as the worst
-      mine.ratio = std::isfinite(ratio) ? ratio : HUGE_VAL;
-      info[0] = (double) atom->tag[i];
-      info[1] = speed;
-      info[2] = atom->radius[i];
-    }
+  int i = -1;
+  mine.ratio = lsdem_impulse_stage_cfl(body.data(), grain.data(), moving.data(), atom->nlocal,
+                                       dt, &i);
+  if (i >= 0) {
+    info[0] = (double) atom->tag[i];
+    info[1] = std::sqrt(lsdem_dot3(body[i].v, body[i].v));
+    info[2] = atom->radius[i];
   }
   MPI_Allreduce(&mine, &worst, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
   if (worst.ratio <= cfl || (cfl_warned && !cfl_stop)) return;
@@ -901,28 +855,10 @@ void FixImpulseLsdem::check_cfl()
 
 void FixImpulseLsdem::damp_and_drift()
 {
-  const double dt = update->dt;
   lsdem_error err;
-  for (int i = 0; i < atom->nlocal; i++) {
-    if (!moving[i]) continue;
-    lsdem_impulse_body &b = body[i];
-    const double before = kinetic_energy(i, b.v, b.omega);
-    if (lsdem_impulse_damp(&b, xi, dt, &err) != LSDEM_OK) error->one(FLERR, err.msg);
-    for (int d = 0; d < 3; d++) {  // the step's velocities back into the atom arrays
-      atom->v[i][d] = b.v[d];
-      atom->omega[i][d] = b.omega[d];
-    }
-    total_damped += before - kinetic_energy(i, b.v, b.omega);
-    if (avec->shape_of(i)->sdf.kind == LSDEM_SDF_SPHERE) {
-      for (int d = 0; d < 3; d++) {
-        atom->x[i][d] += dt * atom->v[i][d];
-        atom->omega[i][d] = 0.0;
-      }
-    } else {
-      lsdem_impulse_drift(atom->x[i], avec->quat[i], atom->omega[i], atom->v[i],
-                          avec->inertia[i], dt);
-    }
-  }
+  if (lsdem_impulse_stage_damp_drift(body.data(), grain.data(), moving.data(), atom->nlocal,
+                                     xi, update->dt, &total_damped, &err) != LSDEM_OK)
+    error->one(FLERR, err.msg);
 }
 
 /* ----------------------------------------------------------------------
@@ -1105,10 +1041,8 @@ void FixImpulseLsdem::fall_asleep()
 
 double FixImpulseLsdem::group_kinetic_energy() const
 {
-  double ke = 0.0;
-  for (int i = 0; i < atom->nlocal; i++)
-    if (moving[i]) ke += kinetic_energy(i, body[i].v, body[i].omega);
-  return ke;
+  return lsdem_impulse_stage_kinetic_energy(body.data(), grain.data(), moving.data(),
+                                            atom->nlocal);
 }
 
 /* 1/2 m v^2 + 1/2 omega . I omega of atom i at velocities v, omega (I from its principal
@@ -1116,11 +1050,8 @@ double FixImpulseLsdem::group_kinetic_energy() const
 
 double FixImpulseLsdem::kinetic_energy(int i, const double v[3], const double omega[3]) const
 {
-  double wb[3];
-  lsdem_quat_rotate_inv(avec->quat[i], omega, wb);
-  const double *I = avec->inertia[i];
-  return 0.5 * atom->rmass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) +
-      0.5 * (I[0] * wb[0] * wb[0] + I[1] * wb[1] * wb[1] + I[2] * wb[2] * wb[2]);
+  return lsdem_impulse_kinetic_energy(atom->rmass[i], avec->inertia[i], avec->quat[i], v,
+                                      omega);
 }
 
 /* ----------------------------------------------------------------------
@@ -1387,7 +1318,8 @@ double FixImpulseLsdem::memory_usage()
   double bytes = (double) body.capacity() * sizeof(lsdem_impulse_body) + moving.capacity();
   bytes += (double) (contacts.capacity() + coll.capacity()) * sizeof(LsdemImpulseContact);
   bytes += (double) wpoints.capacity() * sizeof(lsdem_contact_point);
-  bytes += (double) wall_seen.capacity() * sizeof(WallSeen);
+  bytes += (double) wall_seen.capacity() * sizeof(lsdem_wall_guard_seen);
+  bytes += (double) grain.capacity() * sizeof(lsdem_impulse_grain);
   bytes += warm.memory_usage() + 2.0 * atom->nmax * sizeof(double);
   return bytes + islands->memory_usage();
 }

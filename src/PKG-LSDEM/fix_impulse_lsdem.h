@@ -64,7 +64,7 @@ class FixImpulseLsdem : public Fix {
   Method method;             // split: resting contacts as constraints; etm: the report's
   double restitution, friction, xi;
   lsdem_etm_params etm;
-  lsdem_resting_params resting;  // dt, ref_speed, slop, max_push set each step
+  lsdem_resting_params resting;  // the user's; the step's (dt, speeds, slop) in stage
   int max_points;            // contacts kept per pair after gluing (0: all)
   int max_passes;            // wall-correction passes per step (report: 10)
   double rest_setting;       // resting speed with walls; < 0: auto, rest_steps |a| dt
@@ -93,21 +93,16 @@ class FixImpulseLsdem : public Fix {
   std::vector<int> counts, displs;
   std::vector<char> blocked;
 
-  // per-step storage, grown only
+  // per-step storage, grown only: the solver's arrays (core/impulse, the step's stages)
   std::vector<lsdem_impulse_body> body;    // atoms (local, ghost), then the walls
+  std::vector<lsdem_impulse_grain> grain;  // per atom: what the stages need beyond its body
   std::vector<char> moving;                // per atom: in the group
   std::vector<LsdemImpulseContact> contacts, coll;
   std::vector<lsdem_impulse_contact> glued;
   std::vector<int32_t> group, kept;
   std::vector<lsdem_contact_point> wpoints;  // manifold of one grain against one wall
-  lsdem_wall_params wall_prm;                // this step's (mu set per wall)
-  // per local grain and wall: its velocities when last checked this step, and whether it
-  // was clear then (not corrected: the same velocities give the same result)
-  struct WallSeen {
-    double v[3], omega[3];
-    bool clear = false;
-  };
-  std::vector<WallSeen> wall_seen;
+  lsdem_impulse_step stage;                  // this step's method, dt and thresholds
+  std::vector<lsdem_wall_guard_seen> wall_seen;  // per wall, then local grain
 
   // what the step did (this rank), reduced over ranks when output asks
   struct Step {
@@ -141,6 +136,7 @@ class FixImpulseLsdem : public Fix {
   void find_walls();
   void set_glue();
   void make_bodies();
+  void gather_grain(int i);
   void kick();
   void forward_velocities();
   void gather_contacts();
@@ -148,7 +144,7 @@ class FixImpulseLsdem : public Fix {
   void add_wall_contacts();
   void add_glued(int i, int j, tagint ta, tagint tb, int bindex, const lsdem_manifold &m,
                  double mu, double glue);
-  void classify(LsdemImpulseContact &c, double glue);
+  void classify();
   void remember_contacts();
   void report_wall_resting();
   void push_on_wall(int w, const double impulse[3]) const;
@@ -156,12 +152,10 @@ class FixImpulseLsdem : public Fix {
   double group_kinetic_energy() const;
   void solve_contacts();
   void resolve_islands(int pass);
-  int select_collisions(int pass);
   int correct_walls();
-  int correct_grain(int i, int w, const lsdem_pose &wp, const lsdem_detect_params &det,
-                    const lsdem_wall_params &prm);
   void check_cfl();
   void damp_and_drift();
+  void scatter_grains();
   lsdem_pose wall_pose_now(int w) const;
   double kinetic_energy(int i, const double v[3], const double omega[3]) const;
   void reduce_output();

@@ -36,18 +36,9 @@
 
 namespace LAMMPS_NS {
 
-// one glued contact held by this rank (the rank of its master), at the step's poses
-struct LsdemImpulseContact {
-  int i, j;                 // atom index (local or ghost) of a and b; b a wall: -1 - w
-  tagint ta, tb;            // their tags (a wall: -(w + 1))
-  int key;                  // the contact's place among its pair's contacts (gluing order)
-  int approaching;          // 1: it needs solving now (an island without one is left alone):
-                            // it approaches, or it is a resting contact
-  int resting;              // 1: a resting contact (lsdem_island_solve's stage 1)
-  double P[3];              // resting: its accumulated impulse (world; on a, -P on b)
-  double J[3];              // the collision solves' impulses on it this step (world, on a)
-  lsdem_impulse_contact c;  // c.a, c.b: indices into the step's bodies (atoms, then walls)
-};
+// one glued contact held by this rank (the rank of its master), at the step's poses: the
+// core's step contact (i, j: atom indices, local or ghost; b a wall: j = -1 - w)
+typedef lsdem_impulse_step_contact LsdemImpulseContact;
 
 // what one pass did, summed (or the largest) over the islands this rank solved
 struct LsdemIslandStats {

@@ -13,20 +13,37 @@
  *   wall.c      resting contact on rigid walls: the predicted-position velocity
  *               correction of §4.4.1 (Figures 4.4-4.5)
  *   islands.c   contact islands: union-find, labels, the cross-rank label merge (§4.5)
+ *   cap.c       at most a few contacts per pair (the manifold cap)
+ *   sleep.c     the sleep clock of sleeping islands
+ *   resting.c   resting contacts as warm-started constraints (projected Gauss-Seidel)
+ *   island_solve.c  one island's solve: resting contacts, then collisions by ETM
+ *   step.c      the step's stages over the solver's arrays (below)
  *
- * One step (Figure 4.4), as the caller (fix impulse/lsdem) runs it:
- *   1. kick: v, omega += external forces and torques over dt (lsdem_impulse_kick);
- *   2. detect the manifolds of touching pairs and grain-wall pairs at the current poses
- *      (lsdem_detect), glue them (lsdem_impulse_glue), keep the collisions
- *      (lsdem_impulse_select_collisions), build islands (lsdem_islands_build and, across
- *      ranks, lsdem_islands_merge), gather each island on one rank, sort its contacts
- *      by global ids (the tie-breaking order), solve it (lsdem_etm_solve), scatter the
- *      velocities;
- *   3. wall correction: detect each grain against each wall at the predicted pose
- *      (lsdem_impulse_predict_pose) and correct resting contacts (lsdem_wall_correct);
- *      new collisions between grains are resolved again (step 2), and 3 is repeated until
- *      nothing is corrected or a cap (the report used 10);
- *   4. damping (lsdem_impulse_damp), then positions and orientations (lsdem_impulse_drift).
+ * One step (Figure 4.4) as named stages. The caller (fix impulse/lsdem) gathers the solver's
+ * arrays once from its own storage (bodies lsdem_impulse_body, grains lsdem_impulse_grain,
+ * contacts lsdem_impulse_step_contact), runs the stages, does the communication between
+ * them (ghosts' velocities, reductions, islands across ranks) and scatters once:
+ *   1. kick (lsdem_impulse_stage_kick): v, omega += external forces and torques over dt
+ *      (eqs 4.37, 4.39); the largest acceleration gives the resting speed
+ *      (lsdem_impulse_auto_rest_speed), and that the step's thresholds
+ *      (lsdem_impulse_step_thresholds);
+ *   2. contacts: the manifolds of touching pairs and grain-wall pairs at the current poses
+ *      (lsdem_detect), glued (lsdem_impulse_glue, §4.3.3), capped
+ *      (lsdem_impulse_cap_contacts);
+ *   3. classify (lsdem_impulse_stage_classify; method split): resting or colliding, the
+ *      resting ones warm-started from the last step's impulses (the caller's store);
+ *   4. passes: the contacts an island pass takes (lsdem_impulse_stage_select), islands
+ *      (lsdem_islands_build and, across ranks, lsdem_islands_merge), each island's contacts
+ *      sorted by global ids (the tie-breaking order) and solved (lsdem_island_solve: the
+ *      resting solve, then collisions by ETM; the report's method: ETM alone);
+ *   5. wall guard (lsdem_impulse_stage_wall_guard): every grain against every wall at its
+ *      predicted pose (lsdem_impulse_predict_pose), resting contacts corrected
+ *      (lsdem_wall_limit_push_out, lsdem_wall_correct; §4.4.1); while it corrects, the
+ *      collisions it makes are resolved by another pass (4) and 5 repeats, up to a cap
+ *      (the report used 10), after which one more pass closes the step;
+ *   6. CFL check (lsdem_impulse_stage_cfl, §4.3.4);
+ *   7. damp and drift (lsdem_impulse_stage_damp_drift): global damping (eqs 4.44-4.46),
+ *      positions and orientations (eqs 4.38, 4.40).
  *
  * Frames and signs: everything is world frame. A contact's normal n points from body b
  * towards body a (the manifold's convention: B's outward normal, A's nodes inside B); the
@@ -36,6 +53,7 @@
 #ifndef LSDEM_IMPULSE_H
 #define LSDEM_IMPULSE_H
 
+#include "../boundary/lsdem_boundary.h"
 #include "../contact/lsdem_contact.h"
 
 #ifdef __cplusplus
@@ -196,7 +214,9 @@ int lsdem_impulse_cap_contacts(lsdem_impulse_contact *c, int n, int max, int32_t
  * those approaching (u_n < 0); with a wall those approaching faster than rest_speed
  * (u_n < -rest_speed: a collision, lsdem_wall_classify), the slower ones being resting
  * contacts for lsdem_wall_correct (report §4.4.1: "only dynamic collisions are
- * considered"). Returns the number kept. */
+ * considered"). Returns the number kept. The step's selection over islands, which also
+ * keeps the grain pairs that do not approach (an impulse may make them), is
+ * lsdem_impulse_stage_select; both take a wall's collisions by lsdem_wall_classify. */
 int lsdem_impulse_select_collisions(const lsdem_impulse_body *bodies,
                                     lsdem_impulse_contact *contacts, int ncontacts,
                                     double rest_speed);
@@ -542,6 +562,161 @@ lsdem_status lsdem_island_solve(lsdem_impulse_body *bodies, int nbodies,
                                 double (*collision)[3], int warm_start,
                                 const lsdem_island_params *p, void *ws, size_t wsize,
                                 lsdem_island_result *res, lsdem_error *err);
+
+/* ------------------------------------------------------ the step's stages ---- */
+
+/* The stages of one step (step.c) over the solver's arrays, which the caller gathers once
+ * from its own storage and scatters once after the drift: grain k has the step body
+ * body[k] (lsdem_impulse_body_grain; a sphere's with zero inverse inertia: it never turns),
+ * grain[k] what the stages need beyond it, and moving[k] != 0 when it is integrated (else
+ * it is a body of prescribed velocity, which every stage leaves alone). A stage runs over
+ * grains 0..n-1 (the caller's own: on a rank, its owned grains); reductions over ranks are
+ * the caller's. */
+typedef struct {
+  double q[4];                /* orientation, body -> world, scalar first */
+  double inertia[3];          /* principal moments (absolute) */
+  double mass;
+  double radius;              /* bounding radius */
+  double force[3], torque[3]; /* the step's external force and torque (world; the torque
+                                 about the centre of mass) */
+  const lsdem_shape *shape;   /* an analytic sphere (sdf kind LSDEM_SDF_SPHERE) drifts
+                                 without turning */
+  int32_t groups;             /* the caller's group bits: a wall acts on the grains whose
+                                 groups meet its own */
+} lsdem_impulse_grain;
+
+/* One contact of the step as the stages keep it: the island contact c (c.a, c.b: indices
+ * into the step's bodies) with its pair and what the stages decided about it. */
+typedef struct {
+  int32_t i, j;        /* grain of a (the caller's index); of b, or -1 - w for wall w */
+  int64_t ta, tb;      /* their global ids (wall w: -(w + 1)) */
+  int32_t key;         /* the contact's place among its pair's contacts (gluing order) */
+  int32_t approaching; /* 1: its island needs solving now (lsdem_impulse_stage_select) */
+  int32_t resting;     /* 1: a resting contact (lsdem_impulse_stage_classify) */
+  double P[3];         /* resting: its accumulated impulse (world; on a, -P on b) */
+  double J[3];         /* the collision solves' impulses on it this step (world, on a) */
+  lsdem_impulse_contact c;
+} lsdem_impulse_step_contact;
+
+/* What the stages of a step share: the method, dt and the thresholds derived from the
+ * resting speed (lsdem_impulse_step_thresholds). */
+typedef struct {
+  int split;                   /* 1: resting contacts as constraints, collisions by ETM
+                                  (issue 33); 0: the report's method, ETM alone */
+  int wall_etm;                /* report's method: resting wall contacts that approach go
+                                  into ETM too, inelastic (e = 0) */
+  double dt;
+  double approach_floor;       /* a contact approaches below -approach_floor
+                                  (lsdem_impulse_approaching) */
+  lsdem_wall_params wall;      /* the wall guard's (mu: 0, the caller sets it per wall) */
+  lsdem_island_params island;  /* the islands' solve */
+} lsdem_impulse_step;
+
+/* 1/2 m v^2 + 1/2 omega . I omega, I = R I0 R^T from the principal moments and q. */
+double lsdem_impulse_kinetic_energy(double mass, const double inertia[3], const double q[4],
+                                    const double v[3], const double omega[3]);
+/* The moving grains' kinetic energy at their step velocities, summed in grain order. */
+double lsdem_impulse_stage_kinetic_energy(const lsdem_impulse_body *body,
+                                          const lsdem_impulse_grain *grain,
+                                          const char *moving, int n);
+
+/* Stage 1, kick: every moving grain's v, omega += dt f/m, dt I^-1 torque (eqs 4.37, 4.39,
+ * lsdem_impulse_kick). Returns the largest external acceleration |f|/m among them (0 for
+ * none), whose maximum over all grains sets the resting speed. */
+double lsdem_impulse_stage_kick(lsdem_impulse_body *body, const lsdem_impulse_grain *grain,
+                                const char *moving, int n, double dt);
+
+/* The resting speed when the caller does not set one: the speed the largest external
+ * acceleration amax gives in `steps` steps, steps amax dt. */
+double lsdem_impulse_auto_rest_speed(double steps, double amax, double dt);
+
+/* The step's thresholds from the resting speed r (velocity) and s->dt, s->split:
+ *   wall guard: rest_speed r; depth_tol r dt / 200 (lsdem_wall_params_default's rule,
+ *     1 % of |g| dt^2 with r = 2 |g| dt), with split twice the resting slop (what the
+ *     resting solve leaves, the guard leaves alone); mu 0;
+ *   resting solve (from rest, the user's sweeps, tolerance, bias and warm): dt, ref_speed
+ *     r, slop r dt (the depth a resting grain sinks by in two steps; overlaps beyond it
+ *     are taken out at up to max_push r);
+ *   islands (from etm): collide_speed r; split: approach_floor velocity_tol r and ETM's
+ *     min_approach tolerance r (what the resting solve leaves approaching is its own
+ *     residual, not a collision's); the report's method: approach_floor 0 (ETM on every
+ *     island with an approaching contact, as selected);
+ *   selection: approach_floor velocity_tol r (ETM's tolerance, taken relative to r). */
+void lsdem_impulse_step_thresholds(lsdem_impulse_step *s, double rest_speed,
+                                   const lsdem_etm_params *etm,
+                                   const lsdem_resting_params *rest);
+
+/* Stage 3 (split), classify: a contact is resting when it does not approach faster than
+ * the resting speed (lsdem_wall_classify not colliding: the report's rule for walls,
+ * §4.4.1, for every contact), else colliding; sets c[k].resting. The caller warm-starts
+ * the resting ones. */
+void lsdem_impulse_stage_classify(const lsdem_impulse_body *body,
+                                  lsdem_impulse_step_contact *c, int n, double rest_speed);
+
+/* Stage 4, which contacts a pass of the islands' solve takes (the collision selection;
+ * "approaching" as lsdem_impulse_approaching with s->approach_floor):
+ *   split: every contact, flagged approaching when it approaches, or in the first pass
+ *     when it is resting (an island is solved when it has a flagged contact: in the first
+ *     pass those with a resting or an approaching contact, later only those a wall
+ *     correction made approach);
+ *   report's method: the contacts are copied to coll (*ncoll of them, flagged): every
+ *     contact between two grains (an island is a chain of touching grains, §4.5: impulses
+ *     propagate along it, so a contact that does not approach now takes part when the
+ *     solve makes it approach); a wall's when it collides (approaches faster than the
+ *     resting speed, lsdem_wall_classify), and with wall_etm its resting contacts that
+ *     approach, with e = 0; the other wall contacts are the wall guard's (§4.4.1: "only
+ *     dynamic collisions are considered"). coll holds n, and is not touched with split.
+ * Returns the number of colliding contacts that approach (split: not resting). */
+int lsdem_impulse_stage_select(const lsdem_impulse_body *body,
+                               lsdem_impulse_step_contact *contacts, int n,
+                               const lsdem_impulse_step *s, int first_pass,
+                               lsdem_impulse_step_contact *coll, int *ncoll);
+
+/* What the wall guard knows of a grain against a wall within a step (zero it at the step's
+ * start): a grain whose velocities are those it had when last checked and which was clear
+ * then is not checked again (its predicted pose, so its manifold and result, are the same). */
+typedef struct {
+  double v[3], omega[3]; /* the grain's velocities when last checked */
+  int clear;             /* 1: it was clear then */
+  int corrected;         /* 1: corrected by the last pass (lsdem_impulse_stage_wall_guard) */
+  double impulse[3];     /* the impulse it was given then (the wall takes minus it) */
+} lsdem_wall_guard_seen;
+
+/* One wall as the guard meets it in a step. */
+typedef struct {
+  const lsdem_boundary *boundary;
+  int32_t groups;             /* it acts on the grains whose groups meet these bits */
+  lsdem_pose pose;            /* its pose at the step's end */
+  lsdem_detect_params detect; /* the detection against it */
+  lsdem_wall_params prm;      /* the step's (lsdem_impulse_step.wall) with its friction */
+} lsdem_impulse_guard_wall;
+
+/* Stage 5, the wall guard of one wall (report §4.4.1, Figures 4.4-4.5): every moving grain
+ * whose groups meet the wall's, at its predicted pose (lsdem_impulse_predict_pose; first
+ * its centre alone, against the wall's bounding test), is detected against the wall, its
+ * push-out limited (lsdem_wall_limit_push_out) and its resting contact corrected
+ * (lsdem_wall_correct). seen: one per grain (seen[k] for grain k), as above. points,
+ * npoints: manifold storage (a grain's manifold capacity). Returns the number of grains
+ * corrected, or -1 - k when grain k's correction failed (err set). */
+int lsdem_impulse_stage_wall_guard(lsdem_impulse_body *body, const lsdem_impulse_grain *grain,
+                                   const char *moving, int n, const lsdem_impulse_guard_wall *w,
+                                   int64_t step, double dt, lsdem_contact_point *points,
+                                   int npoints, lsdem_wall_guard_seen *seen, lsdem_error *err);
+
+/* Stage 6, the CFL check (report §4.3.4): the largest |v| dt / radius of the moving grains (a
+ * non-finite ratio counts as HUGE_VAL) and its grain in *worst (-1: none, the ratio 0). */
+double lsdem_impulse_stage_cfl(const lsdem_impulse_body *body,
+                               const lsdem_impulse_grain *grain, const char *moving, int n,
+                               double dt, int *worst);
+
+/* Stage 7, damp and drift: every moving grain's v, omega *= 1 - xi dt (eqs 4.44-4.46,
+ * lsdem_impulse_damp), the kinetic energy it takes added to *damped grain by grain; then
+ * x += v dt and q turned (eqs 4.38, 4.40, lsdem_impulse_drift) in body[k].x and grain[k].q
+ * (an analytic sphere: x only, omega set to 0). LSDEM_ERR_ARG unless 0 <= xi dt <= 1. */
+lsdem_status lsdem_impulse_stage_damp_drift(lsdem_impulse_body *body,
+                                            lsdem_impulse_grain *grain, const char *moving,
+                                            int n, double xi, double dt, double *damped,
+                                            lsdem_error *err);
 
 /* ------------------------------------------------------------ sleeping ---- */
 
