@@ -82,7 +82,7 @@ static const char USAGE[] = "fix ID group impulse/lsdem e mu [keyword value ...]
 FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), method(SPLIT), restitution(0.0), friction(0.0), xi(0.0), max_points(-1),
   max_passes(10),
-  rest_setting(-1.0), rest_steps(2.0), glue_setting(-1.0), glue_angle(15.0 * MY_PI / 180.0), cfl(0.5),
+  rest_setting(-1.0), rest_steps(2.0), residual(1e-2), glue_setting(-1.0), glue_angle(15.0 * MY_PI / 180.0), cfl(0.5),
   cfl_stop(0), wall_etm(0), sleep_speed(0.0), sleep_after(-1.0), avec(nullptr), pair(nullptr), islands(nullptr), total_dissipated(0.0),
   total_damped(0.0), total_truncated(0.0), t_detect(0.0), t_islands(0.0), t_etm(0.0),
   t_rest(0.0),
@@ -194,6 +194,11 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
         error->all(FLERR, "fix impulse/lsdem: tolerance = {} must be in (0, 1) (relative "
                    "approach speed left)", val);
       etm.energy_tol = etm.velocity_tol * etm.velocity_tol;
+    } else if (key == "residual") {
+      residual = number();
+      if (!(residual >= 0.0 && residual <= 1.0))
+        error->all(FLERR, "fix impulse/lsdem: residual = {} must be in [0, 1] (fraction of "
+                   "the resting speed that ETM leaves to the next step's resting solve)", val);
     } else if (key == "rest_steps") {
       rest_steps = number();
       if (!(rest_steps > 0.0) || !std::isfinite(rest_steps))
@@ -495,8 +500,9 @@ void FixImpulseLsdem::resolve_islands(int pass)
   AtomVecLsdem::stop_if_any_rank(
       lmp, FLERR, mesg.empty() ? mesg : fmt::format(
           "Fix impulse/lsdem: step {}, pass {}: {}. Fix keywords: iterations (now {}), rounds "
-          "(now {}), alpha, beta, damping", update->ntimestep, pass + 1, mesg,
-          etm.max_iterations, etm.max_rounds));
+          "(now {}), alpha, beta, damping{}", update->ntimestep, pass + 1, mesg,
+          etm.max_iterations, etm.max_rounds,
+          method == SPLIT ? fmt::format(", residual (now {}; smaller)", residual) : ""));
   forward_velocities();
 }
 
@@ -599,6 +605,7 @@ void FixImpulseLsdem::kick()
   stage.split = method == SPLIT;
   stage.wall_etm = wall_etm;
   stage.dt = update->dt;
+  stage.residual = residual;
   lsdem_impulse_step_thresholds(&stage, rest, &etm, &resting);
 }
 

@@ -69,6 +69,7 @@ class FixImpulseLsdem : public Fix {
   int max_passes;            // wall-correction passes per step (report: 10)
   double rest_setting;       // resting speed with walls; < 0: auto, rest_steps |a| dt
   double rest_steps;         // keyword rest_steps
+  double residual;           // keyword residual: ETM's floor, a fraction of the resting speed
   double glue_setting;       // gluing distance; < 0: auto, twice a shape's node spacing
   double glue_angle;         // radians
   double cfl;                // largest |v| dt per bounding radius

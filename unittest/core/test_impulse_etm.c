@@ -437,6 +437,52 @@ static void test_stiff_figure43(void)
   }
 }
 
+/* The floor below which an approach is left alone (min_approach: fix impulse/lsdem's
+ * residual times the resting speed). A line of 12 touching spheres of three sizes, hit at
+ * 1 from the left and at 0.3 from the right, e = 0.65: whatever the floor, momentum is
+ * kept, no energy is made, and no contact is left approaching faster than the floor (or
+ * ETM's own tolerance); a floor of 0.2 of the impact speed takes fewer iterations than
+ * none -- what the floor is for. */
+static void test_min_approach(void)
+{
+  enum { N = 12 };
+  const double floors[3] = {0.0, 0.02, 0.2};
+  long long iterations[3];
+  for (int f = 0; f < 3; f++) {
+    double r[N], v[N];
+    for (int k = 0; k < N; k++) {
+      r[k] = 0.1 + 0.05 * (k % 3);
+      v[k] = k == 0 ? 1.0 : (k == N - 1 ? -0.3 : 0.0);
+    }
+    fx_state s[N];
+    lsdem_impulse_body b[N];
+    lsdem_impulse_contact c[N - 1];
+    line_of_spheres(N, r, v, 0.65, s, b, c);
+    double E0, P0[3], L0[3], E1, P1[3], L1[3];
+    totals(s, b, N, &E0, P0, L0);
+    lsdem_etm_params p;
+    lsdem_etm_params_default(&p);
+    p.min_approach = floors[f];
+    lsdem_etm_result res;
+    lsdem_error err;
+    CHECK(fx_etm(b, N, c, N - 1, &p, &res, &err) == LSDEM_OK && res.converged,
+          "floor %g: %s", floors[f], err.msg);
+    totals(s, b, N, &E1, P1, L1);
+    CHECK_NEAR(P1[0], P0[0], 1e-12 * fabs(P0[0]));
+    CHECK(E1 <= E0 * (1 + 1e-12), "floor %g: energy grew %g -> %g", floors[f], E0, E1);
+    const double limit = fmax(floors[f], p.velocity_tol * res.initial_approach);
+    for (int k = 0; k < N - 1; k++)
+      CHECK(lsdem_impulse_normal_velocity(b, &c[k]) >= -limit * (1 + 1e-12),
+            "floor %g: contact %d approaches at %g", floors[f], k,
+            -lsdem_impulse_normal_velocity(b, &c[k]));
+    iterations[f] = (long long)res.iterations;
+    printf("floor %g: %lld iterations, %d rounds, E1/E0 %.4f\n", floors[f], iterations[f],
+           res.rounds, E1 / E0);
+  }
+  CHECK(iterations[2] < iterations[0], "a floor of 0.2 took %lld iterations, none %lld",
+        iterations[2], iterations[0]);
+}
+
 /* Figure 4.8 right: a small grain (a sphere with 120 nodes) enclosed in a large one (a
  * sphere level set): every node is in contact, normals in every direction. Glued into
  * contacts, with e = 0.3 ETM converges (the relative motion dies by e^2 per round); with
@@ -625,6 +671,7 @@ int main(void)
   test_sliding_flat_block();
   test_permutation();
   test_stiff_figure43();
+  test_min_approach();
   test_enclosed_figure48();
   test_cap_report();
   test_mass_weighting();

@@ -127,6 +127,7 @@ static void test_thresholds(void)
   memset(&s, 0, sizeof s);
   s.dt = dt;
   s.split = 1;
+  s.residual = 0.3;
   lsdem_impulse_step_thresholds(&s, r, &etm, &rest);
   CHECK_REL(s.wall.rest_speed, r, 1e-15);
   CHECK_REL(s.wall.depth_tol, 2.0 * r * dt, 1e-15);
@@ -136,7 +137,7 @@ static void test_thresholds(void)
         "resting solve's settings");
   CHECK_REL(s.approach_floor, 1e-3 * r, 1e-15);
   CHECK_REL(s.island.approach_floor, 1e-3 * r, 1e-15);
-  CHECK_REL(s.island.etm.min_approach, rest.tolerance * r, 1e-15);
+  CHECK_REL(s.island.etm.min_approach, 0.3 * r, 1e-15);
   CHECK(s.island.collide_speed == r, "collide speed");
   s.split = 0;
   lsdem_impulse_step_thresholds(&s, r, &etm, &rest);

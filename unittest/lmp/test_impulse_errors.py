@@ -45,6 +45,8 @@ refuses("points", "fix imp all impulse/lsdem 0.5 0.3 points 0\n", ["points = 0",
 refuses("sweeps", "fix imp all impulse/lsdem 0.5 0.3 sweeps 0\n", ["sweeps = 0", ">= 1"])
 refuses("rest_steps", "fix imp all impulse/lsdem 0.5 0.3 rest_steps 0\n",
         ["rest_steps = 0", "> 0"])
+refuses("residual", "fix imp all impulse/lsdem 0.5 0.3 residual 1.5\n",
+        ["residual = 1.5", "[0, 1]"])
 refuses("sleep_speed", "fix imp all impulse/lsdem 0.5 0.3 sleep 0 0.1\n",
         ["sleep 0 0.1", "speed > 0"])
 refuses("sleep_time", "fix imp all impulse/lsdem 0.5 0.3 sleep 0.1\n",

@@ -606,6 +606,8 @@ typedef struct {
   int wall_etm;                /* report's method: resting wall contacts that approach go
                                   into ETM too, inelastic (e = 0) */
   double dt;
+  double residual;             /* split: ETM leaves approaches slower than residual times
+                                  the resting speed to the next step's resting solve */
   double approach_floor;       /* a contact approaches below -approach_floor
                                   (lsdem_impulse_approaching) */
   lsdem_wall_params wall;      /* the wall guard's (mu: 0, the caller sets it per wall) */
@@ -638,8 +640,8 @@ double lsdem_impulse_auto_rest_speed(double steps, double amax, double dt);
  *     r, slop r dt (the depth a resting grain sinks by in two steps; overlaps beyond it
  *     are taken out at up to max_push r);
  *   islands (from etm): collide_speed r; split: approach_floor velocity_tol r and ETM's
- *     min_approach tolerance r (what the resting solve leaves approaching is its own
- *     residual, not a collision's); the report's method: approach_floor 0 (ETM on every
+ *     min_approach s->residual r (an approach slower than that is left to the next step's
+ *     resting solve, which takes it as resting, not a collision); the report's method: approach_floor 0 (ETM on every
  *     island with an approaching contact, as selected);
  *   selection: approach_floor velocity_tol r (ETM's tolerance, taken relative to r). */
 void lsdem_impulse_step_thresholds(lsdem_impulse_step *s, double rest_speed,

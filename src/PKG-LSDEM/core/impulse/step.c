@@ -68,7 +68,7 @@ void lsdem_impulse_step_thresholds(lsdem_impulse_step *s, double rest_speed,
   s->island.etm = *etm;
   s->island.approach_floor = s->split ? s->approach_floor : 0.0;
   s->island.collide_speed = r;
-  if (s->split) s->island.etm.min_approach = rp->tolerance * r;
+  if (s->split) s->island.etm.min_approach = s->residual * r;
 }
 
 /* u_n < -rest_speed: faster than a resting contact approaches */
