@@ -66,6 +66,13 @@ int shape_print_report(const lsdem_shape_report *r, const char *name)
   return r->warnings;
 }
 
+void shape_write_box(FILE *f, const double lo[3], const double hi[3], const char *style)
+{
+  for (int k = 0; k < 3; k++)
+    fprintf(f, "%.12g %.12g %clo %chi\n", lo[k], hi[k], 'x' + k, 'x' + k);
+  fprintf(f, "\nAtoms # %s\n\n", style);
+}
+
 int shape_write_data(const char *path, const char *title, int n, const int *shape,
                      double density, const double *pos, const double *quat, const double lo[3],
                      const double hi[3])
@@ -76,9 +83,7 @@ int shape_write_data(const char *path, const char *title, int n, const int *shap
     return 1;
   }
   fprintf(f, "%s\n\n%d atoms\n1 atom types\n\n", title, n);
-  for (int k = 0; k < 3; k++)
-    fprintf(f, "%.12g %.12g %clo %chi\n", lo[k], hi[k], 'x' + k, 'x' + k);
-  fprintf(f, "\nAtoms # lsdem\n\n");
+  shape_write_box(f, lo, hi, "lsdem");
   for (int i = 0; i < n; i++) {
     const double *x = pos + 3 * i, *q = quat + 4 * i;
     fprintf(f, "%d 1 %d %.12g %.12g %.12g %.12g %.15g %.15g %.15g %.15g\n", i + 1, shape[i],

@@ -5,6 +5,8 @@
 
 #include "lsdem.h"
 
+#include <stdio.h>
+
 /* A whole-string finite number into *v; positive when `positive` is set. 1 if valid. */
 int parse_number(const char *s, int positive, double *v);
 /* "lsdem-shape CMD: bad WHAT 'VALUE'" on stderr; returns 2 (a usage error). */
@@ -24,6 +26,10 @@ int shape_print_report(const lsdem_shape_report *r, const char *name);
 int shape_write_data(const char *path, const char *title, int n, const int *shape,
                      double density, const double *pos, const double *quat, const double lo[3],
                      const double hi[3]);
+
+/* A data file's box lines (xlo xhi, ...) and the header of its Atoms section of atom
+ * style STYLE ("Atoms # STYLE"). */
+void shape_write_box(FILE *f, const double lo[3], const double hi[3], const char *style);
 
 /* Progress of a long loop on stderr, at every tenth of `total` (and the last), when
  * stderr is a terminal or LSDEM_PROGRESS=1 is set, for loops of at least 20 items:

@@ -191,6 +191,18 @@ int shape_read_grains(const char *path, shape_grain_file *gf)
   return rc;
 }
 
+int shape_ball_types(const shape_grain_file *gf, int type[2], int both_used)
+{
+  if (type[0] == 0) {
+    type[0] = gf->n ? gf->ntypes + 1 : 1;
+    type[1] = type[0] + 1;
+  }
+  int ntypes = gf->n ? gf->ntypes : 0;
+  if (type[0] > ntypes) ntypes = type[0];
+  if (both_used && type[1] > ntypes) ntypes = type[1];
+  return ntypes;
+}
+
 long shape_next_id(const shape_grain_file *gf)
 {
   long id0 = 1;

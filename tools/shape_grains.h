@@ -36,6 +36,12 @@ void shape_free_grains(shape_grain_file *gf);
 /* The first atom ID after the file's largest (1 for an empty file). */
 long shape_next_id(const shape_grain_file *gf);
 
+/* The atom types of a structure's two kinds of balls (membrane: inner and outer layer;
+ * net: free and clamped): type[0] == 0 (not given) becomes the two types after the
+ * file's. Returns the data file's atom type count: the file's, and at least type[0], and
+ * type[1] when both kinds are used. */
+int shape_ball_types(const shape_grain_file *gf, int type[2], int both_used);
+
 /* Check that shape-ID `shape` (1-based) of LIBRARY is an analytic sphere of `radius`, the
  * ball shape of `what`; 0, or 1 after a message saying how to make it ("lsdem-shape CMD:"). */
 int shape_check_sphere(const char *cmd, const char *library, int shape, double radius,

@@ -171,8 +171,7 @@ static int write_data(const membrane_opts *o, const shape_grain_file *gf, const 
   fprintf(f, "LSDEM grains + membrane (lsdem-shape membrane; atom_style hybrid lsdem bond)\n\n");
   fprintf(f, "%ld atoms\n%d atom types\n%d bonds\n%d bond types\n\n", (long) gf->n + m->nspheres,
           ntypes, m->nbonds, bond_types(m));
-  for (int k = 0; k < 3; k++) fprintf(f, "%.12g %.12g %clo %chi\n", lo[k], hi[k], 'x' + k, 'x' + k);
-  fprintf(f, "\nAtoms # hybrid\n\n");
+  shape_write_box(f, lo, hi, "hybrid");
   shape_write_grain_atoms(f, gf);
   for (int i = 0; i < m->nspheres; i++) {
     int layer = m->layer[i];
@@ -269,13 +268,7 @@ int cmd_membrane(int argc, char **argv)
     return 1;
   }
   long id0 = shape_next_id(&gf);
-  if (o.type[0] == 0) {
-    o.type[0] = gf.n ? gf.ntypes + 1 : 1;
-    o.type[1] = o.type[0] + 1;
-  }
-  int ntypes = gf.n ? gf.ntypes : 0;
-  if (o.type[0] > ntypes) ntypes = o.type[0];
-  if (o.mp.outer_factor > 0 && o.type[1] > ntypes) ntypes = o.type[1];
+  const int ntypes = shape_ball_types(&gf, o.type, o.mp.outer_factor > 0);
 
   lsdem_membrane m;
   lsdem_error err;

@@ -221,8 +221,7 @@ static int write_data(const net_opts *o, const shape_grain_file *gf, const lsdem
           (long) gf->n + net->nballs, ntypes, gf->nbonds + net->nbonds, btype);
   if (atype) fprintf(f, "%d angles\n%d angle types\n", gf->nangles + nj, atype);
   fprintf(f, "\n");
-  for (int k = 0; k < 3; k++) fprintf(f, "%.12g %.12g %clo %chi\n", lo[k], hi[k], 'x' + k, 'x' + k);
-  fprintf(f, "\nAtoms # hybrid\n\n");
+  shape_write_box(f, lo, hi, "hybrid");
   shape_write_grain_atoms(f, gf);
   for (int b = 0; b < net->nballs; b++)
     fprintf(f, "%ld %d %.17g %.17g %.17g %d %.17g 1 0 0 0 %ld\n", net->id[b],
@@ -310,13 +309,7 @@ int cmd_net(int argc, char **argv)
     shape_free_grains(&gf);
     return 1;
   }
-  if (o.type[0] == 0) {
-    o.type[0] = gf.n ? gf.ntypes + 1 : 1;
-    o.type[1] = o.type[0] + 1;
-  }
-  int ntypes = gf.n ? gf.ntypes : 0;
-  ntypes = o.type[0] > ntypes ? o.type[0] : ntypes;
-  ntypes = o.type[1] > ntypes ? o.type[1] : ntypes;
+  const int ntypes = shape_ball_types(&gf, o.type, 1);
 
   lsdem_net net;
   lsdem_error err;

@@ -31,7 +31,7 @@ using namespace LAMMPS_NS;
 
 BondLsdemNet::BondLsdemNet(LAMMPS *lmp) :
     Bond(lmp), k(nullptr), r0(nullptr), damp(nullptr), limit(nullptr), mode(nullptr),
-    damping_work(nullptr)
+    damping_work(nullptr), terms(nullptr), maxterms(0), terms_step(-1)
 {
   quantum.q = quantum.inv_q = 0.0;
 }
@@ -49,6 +49,7 @@ BondLsdemNet::~BondLsdemNet()
     memory->destroy(mode);
     memory->destroy(damping_work);
   }
+  if (!copymode) memory->destroy(terms);
 }
 
 /* ----------------------------------------------------------------------
@@ -71,58 +72,102 @@ void BondLsdemNet::break_bond(int n)
 
 /* ---------------------------------------------------------------------- */
 
+double BondLsdemNet::bond_term(int i1, int i2, int type, double *f2, double *stretch) const
+{
+  double **x = atom->x, **v = atom->v;
+  return lsdem_net_bond_force(x[i1], x[i2], v[i1], v[i2], k[type], r0[type], damp[type], f2,
+                              stretch);
+}
+
+void BondLsdemNet::bond_terms(int from, int to)
+{
+  int **bondlist = neighbor->bondlist;
+  for (int n = from; n < to; n++) {
+    if (bondlist[n][2] <= 0) continue;    // broken
+    double *t = &terms[5 * n];
+    t[3] = bond_term(bondlist[n][0], bondlist[n][1], bondlist[n][2], t, &t[4]);
+  }
+}
+
+void BondLsdemNet::all_bond_terms()
+{
+  bond_terms(0, neighbor->nbondlist);
+}
+
+const double *BondLsdemNet::force_on_atom2(int n) const
+{
+  return terms_step == update->ntimestep ? &terms[5 * n] : nullptr;
+}
+
+/* f on atom 1 = fbond * del: the force is axial */
+double BondLsdemNet::virial_fbond(int /*type*/, const double *del, double rsq,
+                                  const double *f2) const
+{
+  return rsq > 0.0 ? -(f2[0] * del[0] + f2[1] * del[1] + f2[2] * del[2]) / rsq : 0.0;
+}
+
+/* ----------------------------------------------------------------------
+   phase two for entry n: rupture, the damping work, the rounded force onto the atoms
+------------------------------------------------------------------------- */
+
+void BondLsdemNet::apply_term(int n)
+{
+  int **bondlist = neighbor->bondlist;
+  const int type = bondlist[n][2];
+  if (type <= 0) return;    // broken
+  double **x = atom->x, **v = atom->v, **f = atom->f;
+  const int i1 = bondlist[n][0], i2 = bondlist[n][1];
+  const int nlocal = atom->nlocal;
+  const int newton_bond = force->newton_bond;
+  double *f2 = &terms[5 * n];
+  if (lsdem_net_bond_breaks(mode[type], limit[type], k[type], r0[type], f2[4])) {
+    break_bond(n);
+    return;
+  }
+  if (damp[type] > 0.0 && !update->setupflag) {
+    // work of the damping force over this step (a bond seen by two ranks counts half on each)
+    const double share = newton_bond || (i1 < nlocal && i2 < nlocal) ? 1.0 : 0.5;
+    damping_work[type] += share * update->dt *
+        lsdem_net_bond_damping_power(x[i1], x[i2], v[i1], v[i2], damp[type]);
+  }
+  lsdem_quantize3(f2, quantum, f2);
+  if (newton_bond || i1 < nlocal)
+    for (int d = 0; d < 3; d++) f[i1][d] -= f2[d];
+  if (newton_bond || i2 < nlocal)
+    for (int d = 0; d < 3; d++) f[i2][d] += f2[d];
+  if (evflag) {
+    const double del[3] = {x[i1][0] - x[i2][0], x[i1][1] - x[i2][1], x[i1][2] - x[i2][2]};
+    const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+    ev_tally(i1, i2, nlocal, newton_bond, f2[3], virial_fbond(type, del, rsq, f2), del[0],
+             del[1], del[2]);
+  }
+}
+
 void BondLsdemNet::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
-
-  double **x = atom->x, **v = atom->v, **f = atom->f;
-  int **bondlist = neighbor->bondlist;
   const int nbondlist = neighbor->nbondlist;
-  const int nlocal = atom->nlocal;
-  const int newton_bond = force->newton_bond;
-
-  for (int n = 0; n < nbondlist; n++) {
-    const int type = bondlist[n][2];
-    if (type <= 0) continue;    // broken
-    const int i1 = bondlist[n][0], i2 = bondlist[n][1];
-    double f2[3], stretch;
-    const double e = lsdem_net_bond_force(x[i1], x[i2], v[i1], v[i2], k[type], r0[type],
-                                          damp[type], f2, &stretch);
-    if (lsdem_net_bond_breaks(mode[type], limit[type], k[type], r0[type], stretch)) {
-      break_bond(n);
-      continue;
-    }
-    if (damp[type] > 0.0 && !update->setupflag) {
-      // work of the damping force over this step (a bond seen by two ranks counts half on each)
-      const double share = newton_bond || (i1 < nlocal && i2 < nlocal) ? 1.0 : 0.5;
-      damping_work[type] += share * update->dt *
-          lsdem_net_bond_damping_power(x[i1], x[i2], v[i1], v[i2], damp[type]);
-    }
-    lsdem_quantize3(f2, quantum, f2);
-    if (newton_bond || i1 < nlocal)
-      for (int d = 0; d < 3; d++) f[i1][d] -= f2[d];
-    if (newton_bond || i2 < nlocal)
-      for (int d = 0; d < 3; d++) f[i2][d] += f2[d];
-    if (evflag) {
-      const double del[3] = {x[i1][0] - x[i2][0], x[i1][1] - x[i2][1], x[i1][2] - x[i2][2]};
-      const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-      // f on atom 1 = fbond * del (the force is axial)
-      const double fbond = rsq > 0.0 ? -(f2[0] * del[0] + f2[1] * del[1] + f2[2] * del[2]) / rsq
-                                     : 0.0;
-      ev_tally(i1, i2, nlocal, newton_bond, e, fbond, del[0], del[1], del[2]);
-    }
+  if (nbondlist > maxterms) {
+    maxterms = nbondlist;
+    memory->destroy(terms);
+    memory->create(terms, 5 * maxterms, "bond:terms");
   }
+  all_bond_terms();
+  terms_step = update->ntimestep;
+  for (int n = 0; n < nbondlist; n++) apply_term(n);
 }
 
 /* ----------------------------------------------------------------------
    the quantum: the stiffest type's force at 100 % strain or its break force, and at
-   least pair_style lsdem's (its contact terms on the balls are in the same sums)
+   least pair_style lsdem's (its contact terms on the balls are in the same sums); under
+   bond_style hybrid, of this style's types only
 ------------------------------------------------------------------------- */
 
 void BondLsdemNet::init_style()
 {
   double scale = 0.0;
   for (int i = 1; i <= atom->nbondtypes; i++) {
+    if (!setflag[i]) continue;
     scale = std::max(scale, k[i] * r0[i]);
     if (mode[i] == LSDEM_NET_BREAK_FORCE) scale = std::max(scale, limit[i]);
     if (damp[i] > 0.0 && !comm->ghost_velocity)
@@ -153,7 +198,28 @@ void BondLsdemNet::allocate()
   memory->create(mode, n + 1, "bond:mode");
   memory->create(setflag, n + 1, "bond:setflag");
   memory->create(damping_work, n + 1, "bond:damping_work");
-  for (int i = 0; i <= n; i++) setflag[i] = 0, damping_work[i] = 0.0;
+  for (int i = 0; i <= n; i++) {
+    setflag[i] = 0;
+    damp[i] = limit[i] = damping_work[i] = 0.0;
+    mode[i] = LSDEM_NET_BREAK_NONE;
+  }
+}
+
+/* coefficients of types [ilo, ihi] */
+void BondLsdemNet::set_types(int ilo, int ihi, double k_one, double r0_one, double damp_one,
+                             double limit_one, int mode_one)
+{
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++) {
+    k[i] = k_one;
+    r0[i] = r0_one;
+    damp[i] = damp_one;
+    limit[i] = limit_one;
+    mode[i] = mode_one;
+    setflag[i] = 1;
+    count++;
+  }
+  if (count == 0) error->all(FLERR, "Incorrect args for bond coefficients");
 }
 
 /* ---------------------------------------------------------------------- */
@@ -207,17 +273,7 @@ void BondLsdemNet::coeff(int narg, char **arg)
     }
   }
 
-  int count = 0;
-  for (int i = ilo; i <= ihi; i++) {
-    k[i] = k_one;
-    r0[i] = r0_one;
-    damp[i] = damp_one;
-    limit[i] = limit_one;
-    mode[i] = mode_one;
-    setflag[i] = 1;
-    count++;
-  }
-  if (count == 0) error->all(FLERR, "Incorrect args for bond coefficients");
+  set_types(ilo, ihi, k_one, r0_one, damp_one, limit_one, mode_one);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -243,19 +299,20 @@ void BondLsdemNet::read_restart(FILE *fp)
 {
   allocate();
   const int n = atom->nbondtypes;
-  if (comm->me == 0) {
-    utils::sfread(FLERR, &k[1], sizeof(double), n, fp, nullptr, error);
-    utils::sfread(FLERR, &r0[1], sizeof(double), n, fp, nullptr, error);
-    utils::sfread(FLERR, &damp[1], sizeof(double), n, fp, nullptr, error);
-    utils::sfread(FLERR, &limit[1], sizeof(double), n, fp, nullptr, error);
-    utils::sfread(FLERR, &mode[1], sizeof(int), n, fp, nullptr, error);
-  }
-  MPI_Bcast(&k[1], n, MPI_DOUBLE, 0, world);
-  MPI_Bcast(&r0[1], n, MPI_DOUBLE, 0, world);
-  MPI_Bcast(&damp[1], n, MPI_DOUBLE, 0, world);
-  MPI_Bcast(&limit[1], n, MPI_DOUBLE, 0, world);
+  restart_doubles(fp, &k[1], n);
+  restart_doubles(fp, &r0[1], n);
+  restart_doubles(fp, &damp[1], n);
+  restart_doubles(fp, &limit[1], n);
+  if (comm->me == 0) utils::sfread(FLERR, &mode[1], sizeof(int), n, fp, nullptr, error);
   MPI_Bcast(&mode[1], n, MPI_INT, 0, world);
   for (int i = 1; i <= n; i++) setflag[i] = 1;
+}
+
+/* n doubles of a restart file: read on rank 0, sent to every rank */
+void BondLsdemNet::restart_doubles(FILE *fp, double *a, int n)
+{
+  if (comm->me == 0) utils::sfread(FLERR, a, sizeof(double), n, fp, nullptr, error);
+  MPI_Bcast(a, n, MPI_DOUBLE, 0, world);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -278,9 +335,23 @@ void BondLsdemNet::write_data(FILE *fp)
 
 double BondLsdemNet::single(int type, double rsq, int /*i*/, int /*j*/, double &fforce)
 {
-  const double r = sqrt(rsq), dr = r - r0[type];
-  fforce = r > 0.0 ? -k[type] * dr / r : 0.0;
+  const double dr = sqrt(rsq) - r0[type];
+  fforce = spring_fbond(type, rsq);
   return 0.5 * k[type] * dr * dr;
+}
+
+/* the axial spring alone as fbond (f on atom 1 = fbond * del): -K (r - r0) / r */
+double BondLsdemNet::spring_fbond(int type, double rsq) const
+{
+  const double r = sqrt(rsq);
+  return r > 0.0 ? -k[type] * (r - r0[type]) / r : 0.0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+double BondLsdemNet::memory_usage()
+{
+  return Bond::memory_usage() + 5.0 * maxterms * sizeof(double);
 }
 
 /* ---------------------------------------------------------------------- */

@@ -1,8 +1,9 @@
 /* test_membrane.c -- the triaxial membrane (core/membrane.c): lattice geometry against its
  * construction rules, watertightness of lateral triangles + caps, areas and enclosed
  * volume against closed forms (prismatoid formula and pi R^2 H), pressure forces (closed
- * surface: zero net force; scaling with p and area), and the bond force against
- * hand-worked configurations. */
+ * surface: zero net force; scaling with p and area), the bond force against
+ * hand-worked configurations, and the membrane bond as a net bond plus its tangential
+ * spring. */
 #include "lsdem.h"
 #include "lsdem_test.h"
 
@@ -269,6 +270,40 @@ static void test_bond_force(const lsdem_membrane *m)
   CHECK_NEAR(mag, ks * (1 - cos(tl)) * sin(tl), 1e-12);
 }
 
+/* The membrane is a net: a membrane bond with its tangential stiffness 0 gives the net
+ * bond's force and energy (lsdem_net_bond_force, undamped) bit for bit, on every generated
+ * bond moved off its rest geometry; with ks > 0 the difference is the tangential spring
+ * alone, perpendicular to the bond. */
+static void test_membrane_is_net(const lsdem_membrane *m)
+{
+  const double kn = 10.0, ks = 7.0, v0[3] = {0.3, -1.1, 0.7}, v1[3] = {-2.0, 0.4, 0.9};
+  int same = 0, perpendicular = 0;
+  unsigned seed = 12345u;
+  for (int b = 0; b < m->nbonds; b++) {
+    const int k = m->bond_kind[b];
+    double y[2][3], fm[3], fn[3], ft[3], stretch;
+    for (int s = 0; s < 2; s++)
+      for (int c = 0; c < 3; c++) {
+        seed = seed * 1103515245u + 12345u;
+        y[s][c] = m->x[3 * m->bond[2 * b + s] + c] + 0.2 * ((seed >> 8) / 16777216.0 - 0.5);
+      }
+    const double rest[2] = {m->kind_rest[2 * k], m->kind_rest[2 * k + 1]};
+    const double em = lsdem_membrane_bond_force(y[0], y[1], P.centre, kn, 0.0, m->kind_r0[k],
+                                                rest, fm);
+    const double en = lsdem_net_bond_force(y[0], y[1], v0, v1, kn, m->kind_r0[k], 0.0, fn,
+                                           &stretch);
+    same += em == en && fm[0] == fn[0] && fm[1] == fn[1] && fm[2] == fn[2];
+    lsdem_membrane_bond_force(y[0], y[1], P.centre, kn, ks, m->kind_r0[k], rest, ft);
+    double u[3], dt[3] = {ft[0] - fn[0], ft[1] - fn[1], ft[2] - fn[2]};
+    lsdem_bond_axis(y[0], y[1], u);
+    perpendicular += fabs(dt[0] * u[0] + dt[1] * u[1] + dt[2] * u[2]) <= 1e-12 * ks;
+  }
+  CHECK(same == m->nbonds, "membrane bonds with ks = 0 equal to net bonds: %d of %d", same,
+        m->nbonds);
+  CHECK(perpendicular == m->nbonds, "tangential springs perpendicular to their bonds: %d of %d",
+        perpendicular, m->nbonds);
+}
+
 static void test_bad_input(void)
 {
   lsdem_membrane m;
@@ -309,6 +344,7 @@ int main(void)
   test_volume_translation(&m);
   test_pressure(&m);
   test_bond_force(&m);
+  test_membrane_is_net(&m);
   test_inset_volume();
   lsdem_membrane_free(&m);
   test_bad_input();

@@ -263,10 +263,11 @@ double lsdem_membrane_volume(const lsdem_membrane *m, const double *x, int layer
  * cylinder's parallel surface): V - rb A + pi rb^2 H. */
 double lsdem_membrane_inset_volume(double V, double A, double H, double rb);
 
-/* Membrane bond force (bond_style lsdem/membrane): with d = xj - xi, u = d/|d|, a local
+/* Membrane bond force (bond_style lsdem/membrane): a net bond (lsdem_bond_axial_force,
+ * undamped) with a tangential spring added. With d = xj - xi, u = d/|d|, a local
  * cylindrical frame at the bond midpoint (r = horizontal unit vector away from the axis
  * through axis[0..1], t = z x r hoop, z):
- *   normal spring      -kn (|d| - r0) u                                on j
+ *   normal spring      -kn (|d| - r0) u   (the net's axial spring)     on j
  *   tangential spring  -ks (e - (e.u) u),  e = (d.t - rest[0]) t + (d.z - rest[1]) z
  * The tangential spring resists the change of the bond's in-surface (hoop, axial) offset
  * from its rest value except along the bond, i.e. shear of the hexagonal pattern; it is
@@ -346,6 +347,16 @@ double lsdem_net_height(const lsdem_net *net, const double x[3], double uv[2]);
  * normal pointing upslope, BEFORE is upslope of the net (retained). Cost: nballs. */
 enum { LSDEM_NET_BESIDE = 0, LSDEM_NET_THROUGH = 1, LSDEM_NET_BEFORE = 2 };
 int lsdem_net_side(const lsdem_net *net, const double *xball, const double x[3]);
+
+/* The axis of a ball bond (nets and the membrane): d = xj - xi; returns L = |d| and
+ * writes u = d / L (u = 0 unless L > 0). */
+double lsdem_bond_axis(const double xi[3], const double xj[3], double u[3]);
+/* The axial spring of every ball bond, the one formula of nets and the membrane: on j
+ *   f_j = -(k stretch + w) u,   stretch = L - r0,
+ * w the axial damping term c (v . u) of a net bond (0: none). Writes fj and returns the
+ * spring energy 0.5 k stretch^2. */
+double lsdem_bond_axial_force(const double u[3], double stretch, double k, double w,
+                              double fj[3]);
 
 /* Net bond force (bond_style lsdem/net), an axial spring with axial viscous damping:
  * with d = xj - xi, L = |d|, u = d / L, v = vj - vi,

@@ -325,24 +325,32 @@ double lsdem_membrane_volume(const lsdem_membrane *m, const double *x, int layer
 
 /* --------------------------------------------------------------- bonds ---- */
 
-double lsdem_membrane_bond_force(const double xi[3], const double xj[3], const double axis[2],
-                                 double kn, double ks, double r0, const double rest[2],
-                                 double fj[3])
+/* the membrane's tangential spring (report §2.3.5, Ksbb): the in-surface offset e of the
+ * bond from its rest value in the cylinder frame at the midpoint, less its part along u */
+static void in_surface_offset(const double xi[3], const double xj[3], const double axis[2],
+                              const double rest[2], const double u[3], double delta[3])
 {
-  double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
-  double len = sqrt(lsdem_dot3(d, d));
-  fj[0] = fj[1] = fj[2] = 0.0;
-  if (len <= 0.0) return 0.0;
-  double u[3] = {d[0] / len, d[1] / len, d[2] / len};
+  const double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
   double t[3];
   midpoint_hoop(xi, xj, axis, t);
   double et = lsdem_dot3(d, t) - rest[0], ez = d[2] - rest[1];
   double e[3] = {et * t[0], et * t[1], et * t[2] + ez};
   double eu = lsdem_dot3(e, u);
-  double delta[3] = {e[0] - eu * u[0], e[1] - eu * u[1], e[2] - eu * u[2]};
-  double stretch = len - r0;
-  for (int k = 0; k < 3; k++) fj[k] = -kn * stretch * u[k] - ks * delta[k];
-  return 0.5 * kn * stretch * stretch + 0.5 * ks * lsdem_dot3(delta, delta);
+  for (int k = 0; k < 3; k++) delta[k] = e[k] - eu * u[k];
+}
+
+double lsdem_membrane_bond_force(const double xi[3], const double xj[3], const double axis[2],
+                                 double kn, double ks, double r0, const double rest[2],
+                                 double fj[3])
+{
+  double u[3], delta[3];
+  const double len = lsdem_bond_axis(xi, xj, u);
+  fj[0] = fj[1] = fj[2] = 0.0;
+  if (len <= 0.0) return 0.0;
+  const double energy = lsdem_bond_axial_force(u, len - r0, kn, 0.0, fj);
+  in_surface_offset(xi, xj, axis, rest, u, delta);
+  for (int k = 0; k < 3; k++) fj[k] -= ks * delta[k];
+  return energy + 0.5 * ks * lsdem_dot3(delta, delta);
 }
 
 double lsdem_membrane_inset_volume(double V, double A, double H, double rb)

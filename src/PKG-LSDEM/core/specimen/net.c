@@ -238,21 +238,35 @@ int lsdem_net_side(const lsdem_net *net, const double *xball, const double x[3])
 
 /* --------------------------------------------------------------- bonds ---- */
 
-/* report §4.4.2: permanent springs between the balls ("K = 0.1"), axial */
+double lsdem_bond_axis(const double xi[3], const double xj[3], double u[3])
+{
+  const double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
+  const double len = sqrt(lsdem_dot3(d, d));
+  for (int m = 0; m < 3; m++) u[m] = len > 0.0 ? d[m] / len : 0.0;
+  return len;
+}
+
+/* report §4.4.2 ("K = 0.1") and §2.3.5 (Knbb): the axial spring of every ball bond, with
+ * the axial damping term w = c (v . u) (0: none) */
+double lsdem_bond_axial_force(const double u[3], double stretch, double k, double w,
+                              double fj[3])
+{
+  const double fmag = k * stretch + w;
+  for (int m = 0; m < 3; m++) fj[m] = -fmag * u[m];
+  return 0.5 * k * stretch * stretch;
+}
+
 double lsdem_net_bond_force(const double xi[3], const double xj[3], const double vi[3],
                             const double vj[3], double k, double r0, double c, double fj[3],
                             double *stretch)
 {
-  double d[3] = {xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]};
-  double len = sqrt(lsdem_dot3(d, d));
+  double u[3];
+  const double len = lsdem_bond_axis(xi, xj, u);
   *stretch = len - r0;
   fj[0] = fj[1] = fj[2] = 0.0;
   if (!(len > 0.0)) return 0.5 * k * r0 * r0;
-  double u[3] = {d[0] / len, d[1] / len, d[2] / len};
   double v[3] = {vj[0] - vi[0], vj[1] - vi[1], vj[2] - vi[2]};
-  double fmag = k * (*stretch) + c * lsdem_dot3(v, u);
-  for (int m = 0; m < 3; m++) fj[m] = -fmag * u[m];
-  return 0.5 * k * (*stretch) * (*stretch);
+  return lsdem_bond_axial_force(u, *stretch, k, c * lsdem_dot3(v, u), fj);
 }
 
 double lsdem_net_bond_damping_power(const double xi[3], const double xj[3], const double vi[3],
