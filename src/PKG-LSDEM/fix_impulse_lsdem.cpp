@@ -82,7 +82,7 @@ static const char USAGE[] = "fix ID group impulse/lsdem e mu [keyword value ...]
 FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), method(SPLIT), restitution(0.0), friction(0.0), xi(0.0), max_points(-1),
   max_passes(10),
-  rest_setting(-1.0), rest_steps(2.0), residual(1e-2), glue_setting(-1.0), glue_angle(15.0 * MY_PI / 180.0), cfl(0.5),
+  rest_setting(-1.0), rest_steps(2.0), residual(0.1), glue_setting(-1.0), glue_angle(15.0 * MY_PI / 180.0), cfl(0.5),
   cfl_stop(0), wall_etm(0), sleep_speed(0.0), sleep_after(-1.0), avec(nullptr), pair(nullptr), islands(nullptr), total_dissipated(0.0),
   total_damped(0.0), total_truncated(0.0), t_detect(0.0), t_islands(0.0), t_etm(0.0),
   t_rest(0.0),

@@ -483,6 +483,110 @@ static void test_min_approach(void)
         iterations[2], iterations[0]);
 }
 
+/* A random island for the floor test: 3-7 bodies, contacts between random pairs (normals
+ * near the line of centres, half of them frictional), from a xorshift64 state (the
+ * recorded islands below are states of this generator). */
+static double xorshift_uniform(uint64_t *st)
+{
+  *st ^= *st << 13;
+  *st ^= *st >> 7;
+  *st ^= *st << 17;
+  return (double)(*st >> 11) * (1.0 / 9007199254740992.0);
+}
+
+static int random_island(uint64_t *st, fx_state *s, lsdem_impulse_body *b, int *nb,
+                         lsdem_impulse_contact *c)
+{
+  int nc = 0;
+  *nb = 3 + (int)(xorshift_uniform(st) * 5);
+  for (int k = 0; k < *nb; k++) {
+    double x[3], v[3], w[3];
+    for (int d = 0; d < 3; d++) x[d] = xorshift_uniform(st);
+    for (int d = 0; d < 3; d++) v[d] = xorshift_uniform(st) - 0.5;
+    for (int d = 0; d < 3; d++) w[d] = xorshift_uniform(st) - 0.5;
+    const double m = 0.2 + 3 * xorshift_uniform(st);
+    s[k] = fx_grain(k + 1, m, 0.05 * m, 0.06 * m, 0.07 * m, x, v, w);
+    fx_body_of(&s[k], &b[k]);
+  }
+  for (int i = 0; i < *nb; i++)
+    for (int j = i + 1; j < *nb; j++) {
+      if (!(xorshift_uniform(st) < 0.6)) continue;
+      double p[3], n[3];
+      for (int d = 0; d < 3; d++) p[d] = 0.5 * (s[i].x[d] + s[j].x[d]);
+      const double mu = xorshift_uniform(st) < 0.5 ? 0.0 : 0.55;
+      for (int d = 2; d >= 0; d--) /* the recorded states' order: friction, then z, y, x */
+        n[d] = s[i].x[d] - s[j].x[d] + 0.2 * (xorshift_uniform(st) - 0.5);
+      c[nc++] = fx_contact(i, j, p, n[0], n[1], n[2], mu, 0.65);
+    }
+  return nc;
+}
+
+/* One random island solved with a floor of 20-95 % of its fastest approach (fix
+ * impulse/lsdem's ETM settings): it must end, keep momentum, make no energy and leave
+ * nothing approaching faster than the floor. Returns its iterations (-1: it did not end). */
+static long long floor_island(uint64_t *st)
+{
+  fx_state s[8];
+  lsdem_impulse_body b[8];
+  lsdem_impulse_contact c[21];
+  int nb;
+  const int nc = random_island(st, s, b, &nb, c);
+  if (nc < 2) return 0;
+  double u0 = 0.0;
+  for (int k = 0; k < nc; k++) u0 = fmax(u0, -lsdem_impulse_normal_velocity(b, &c[k]));
+  lsdem_etm_params p;
+  lsdem_etm_params_default(&p);
+  p.alpha = 1.0;
+  p.velocity_tol = 1e-3;
+  p.energy_tol = 1e-6;
+  p.max_iterations = 100000;
+  p.min_approach = (0.2 + 0.75 * xorshift_uniform(st)) * u0;
+  double E0, P0[3], L0[3], E1, P1[3], L1[3];
+  totals(s, b, nb, &E0, P0, L0);
+  lsdem_etm_result res;
+  lsdem_error err;
+  if (fx_etm(b, nb, c, nc, &p, &res, &err) != LSDEM_OK) {
+    CHECK(0, "island of %d bodies, %d contacts, floor %.3g of %.3g: %s", nb, nc,
+          p.min_approach, u0, err.msg);
+    return -1;
+  }
+  totals(s, b, nb, &E1, P1, L1);
+  for (int d = 0; d < 3; d++) CHECK_NEAR(P1[d], P0[d], 1e-12 * (1.0 + fabs(P0[d])));
+  CHECK(E1 <= E0 * (1 + 1e-12), "energy grew %g -> %g", E0, E1);
+  const double limit = fmax(p.min_approach, p.velocity_tol * res.initial_approach);
+  for (int k = 0; k < nc; k++)
+    CHECK(lsdem_impulse_normal_velocity(b, &c[k]) >= -limit * (1 + 1e-12),
+          "contact %d approaches at %g (floor %g)", k, -lsdem_impulse_normal_velocity(b, &c[k]),
+          limit);
+  return res.iterations;
+}
+
+/* Large floors (fix impulse/lsdem's residual near 1; ETM caps the floor at 0.3 u_0). Two
+ * islands that ran to the iteration cap before the floor's cap and the separation's fixes,
+ * one per cause -- a round whose compression booked a negative total queued contacts that
+ * store nothing (W = 0, share 0); a remainder below its separating speed's round-off was
+ * popped unchanged -- then 5,000 more. */
+static void test_large_floor_ends(void)
+{
+  const uint64_t recorded[2] = {3738474855537777766ULL, 17279849434428146640ULL};
+  for (int r = 0; r < 2; r++) {
+    uint64_t st = recorded[r];
+    const long long it = floor_island(&st);
+    printf("large floor, recorded island %d: %lld iterations\n", r, it);
+  }
+  uint64_t st = 88172645463325252ULL;
+  long long most = 0;
+  int ended = 0;
+  for (int t = 0; t < 5000; t++) {
+    const long long it = floor_island(&st);
+    ended += it >= 0;
+    most = it > most ? it : most;
+  }
+  CHECK(ended == 5000, "%d of 5000 random islands ended", ended);
+  printf("large floors: %d of 5000 random islands end, at most %lld iterations\n", ended,
+         most);
+}
+
 /* Figure 4.8 right: a small grain (a sphere with 120 nodes) enclosed in a large one (a
  * sphere level set): every node is in contact, normals in every direction. Glued into
  * contacts, with e = 0.3 ETM converges (the relative motion dies by e^2 per round); with
@@ -672,6 +776,7 @@ int main(void)
   test_permutation();
   test_stiff_figure43();
   test_min_approach();
+  test_large_floor_ends();
   test_enclosed_figure48();
   test_cap_report();
   test_mass_weighting();

@@ -92,9 +92,14 @@ if check(len(rows) == STEPS // 10 + 1 and len(plain) == len(rows), "the runs ran
     settled = [r for r in rows if 1100 <= r["Step"] <= MOVE]
     check(all(r["f_imp[32]"] == 7 and r["f_imp[25]"] == 0 and r["KinEng"] == 0
               for r in settled), "settled: all 7 asleep, no contact, at rest")
+    # asleep, the floor reads the island's last awake step's resting impulses: those hold the
+    # weight to the resting solve's tolerance, 1e-2 of the resting speed 2 g dt (2e-2 of the
+    # weight); an ETM residual (keyword residual) left to that step moves them within it
     for r in settled:
-        near(-r["f_floor[3]"], 7 * MASS * G, rtol=1e-9,
+        near(-r["f_floor[3]"], 7 * MASS * G, rtol=2e-2,
              msg="step %d: the floor carries all seven" % r["Step"])
+    print("settled: the floor carries %.3e of the weight off" %
+          max(abs(-r["f_floor[3]"] / (7 * MASS * G) - 1) for r in settled))
     ref = {int(r["Step"]): r for r in plain}
     near(at[MOVE]["v_zb"], ref[MOVE]["v_zb"], rtol=1e-9,
          msg="the ball rests where the run without sleeping puts it")

@@ -285,9 +285,10 @@ typedef struct {
   double resting_speed;   /* velocity. Default 0 */
   double *impulse;        /* 3 per contact (NULL: not wanted): each contact's impulses of
                              the solve are added here (world, on a). Default NULL */
-  double min_approach;    /* velocity: a contact approaching slower than this never counts
-                             as approaching, whatever u_0 (the resting solve's residual
-                             is its, not ETM's). Default 0 */
+  double min_approach;    /* velocity: a contact approaching slower than this, or than
+                             0.3 u_0 if that is less, never counts as approaching (fix
+                             impulse/lsdem: what the next step's resting solve takes up).
+                             Default 0 */
 } lsdem_etm_params;
 
 void lsdem_etm_params_default(lsdem_etm_params *p);
