@@ -22,6 +22,8 @@ PairStyle(lsdem/omp,PairLsdemOMP);
 #include "pair_lsdem.h"
 #include "thr_omp.h"
 
+#include <vector>
+
 namespace LAMMPS_NS {
 
 class PairLsdemOMP : public PairLsdem, public ThrOMP {
@@ -30,6 +32,9 @@ class PairLsdemOMP : public PairLsdem, public ThrOMP {
   void compute(int, int) override;
   void init_style() override;
   double memory_usage() override;
+
+ private:
+  std::vector<int> cuts;  // thread t tests the grains ilist[cuts[t]..cuts[t + 1])
 };
 
 }    // namespace LAMMPS_NS
