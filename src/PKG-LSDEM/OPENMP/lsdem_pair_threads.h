@@ -43,7 +43,6 @@ inline void lsdem_count_cuts(int n, int nthreads, std::vector<int> &cuts)
   const int chunk = 1 + n / nthreads;
   cuts.resize(nthreads + 1);
   for (int t = 0; t <= nthreads; t++) cuts[t] = std::min(n, t * chunk);
-  cuts[nthreads] = n;
 }
 
 // n items in order cut into nthreads contiguous runs of about equal summed work(k) (> 0):
@@ -62,6 +61,7 @@ template <class Work> void lsdem_work_cuts(int n, int nthreads, Work work, std::
   }
 }
 
+// the loop over n grains in runs of equal count
 template <class Body> void lsdem_pair_threads(FixOMP *fix, int n, int nthreads, Body body)
 {
   std::vector<int> cuts;
