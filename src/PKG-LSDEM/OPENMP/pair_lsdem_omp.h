@@ -6,9 +6,10 @@
    about equal work (8 per thread; a grain weighs its node tests on the last force call),
    each tested into its own lane (contact path, manifold storage, pair-state lane, contact
    list) by whichever thread comes free first; each thread then applies a share of the
-   lanes' forces to its own force and torque arrays, which LAMMPS's OPENMP package sums. Every term is rounded to the force quanta (pair_lsdem.cpp),
-   so that the sums do not depend on the order: the same bits as pair_style lsdem on any
-   thread count (doc/howto_parallel.rst).
+   lanes' forces to its own force and torque arrays, which LAMMPS's OPENMP package sums.
+   Every term is rounded to the force quanta (pair_lsdem.cpp), so that the sums do not
+   depend on the order: the same bits as pair_style lsdem on any thread count
+   (doc/howto_parallel.rst).
 ------------------------------------------------------------------------- */
 
 #ifdef PAIR_CLASS
