@@ -2,8 +2,7 @@
    LSDEM package: the share of n items that the calling thread of an OpenMP parallel region
    takes: the serial order cut into nthreads contiguous runs, so that thread t's lane holds
    run t and the lanes read in order are the serial order (fix wall/lsdem/omp,
-   fix nve/lsdem/omp; pair_style lsdem/omp: each thread's share of the lanes whose forces it
-   applies; pair_style lsdem/impulse/omp uses the OPENMP package's loop_setup_thr, the same
+   fix nve/lsdem/omp; pair_style lsdem/omp uses the OPENMP package's loop_setup_thr, the same
    cut).
 ------------------------------------------------------------------------- */
 

@@ -8,7 +8,6 @@
 #include "atom.h"
 #include "comm.h"
 #include "lsdem_pair_threads.h"
-#include "lsdem_thread_range.h"
 #include "neigh_list.h"
 #include "neighbor.h"
 #include "suffix.h"
@@ -26,43 +25,33 @@ PairLsdemOMP::PairLsdemOMP(LAMMPS *lmp) : PairLsdem(lmp), ThrOMP(lmp, THR_PAIR)
 
 /* ---------------------------------------------------------------------- */
 
-// runs (lanes) per thread in the contact tests: enough that a thread which comes free takes
-// over the tail of the other's share
-static constexpr int RUNS_PER_THREAD = 8;
-
-static int runs_for(int nthreads)
-{
-  return nthreads > 1 ? RUNS_PER_THREAD * nthreads : 1;
-}
-
 void PairLsdemOMP::init_style()
 {
   PairLsdem::init_style();
-  set_lanes(runs_for(comm->nthreads));
+  set_lanes(comm->nthreads);
 }
 
 /* ----------------------------------------------------------------------
-   pair_style lsdem's force call with its two loops threaded: the tests (runs of grains of
-   equal work, each into its lane, taken by the threads as they come free), then, after the
-   coordination count that zcap needs from every lane, the forces (each thread a share of
-   the lanes, their contacts into its arrays)
+   pair_style lsdem's force call with its two loops threaded: the tests (each thread's
+   grains into its lane), then, after the coordination count that zcap needs from every
+   lane, the forces (each lane's contacts into its thread's arrays)
 ------------------------------------------------------------------------- */
 
 void PairLsdemOMP::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   const int nall = atom->nlocal + atom->nghost;
-  const int nthreads = comm->nthreads;
-  const int nruns = runs_for(nthreads);  // lanes set up for them at init_style
-  begin_force_call(nruns);
+  const int nthreads = comm->nthreads;  // lanes set up for them at init_style
+  const int inum = list->inum;
+  begin_force_call(nthreads);
   update_poses(0, nall);
   if (neighbor->ago == 0 || !master_built) build_master_pairs();
 
   // runs of equal work: a grain weighs 1 + its node tests on the last force call
-  lsdem_work_cuts(list->inum, nruns,
+  lsdem_work_cuts(inum, nthreads,
                   [&](int ii) { return 1.0 + grain_node_tests[list->ilist[ii]]; }, cuts);
-  lsdem_pair_chunks(fix, cuts, [&](int run, int from, int to) {
-    test_pairs(*lanes[run], from, to);
+  lsdem_pair_threads(fix, cuts, [&](int tid, int from, int to, ThrData *) {
+    test_pairs(*lanes[tid], from, to);
   });
   end_force_call();
   if (zcap > 0) coordination(1);
@@ -71,11 +60,12 @@ void PairLsdemOMP::compute(int eflag, int vflag)
 #pragma omp parallel LMP_DEFAULT_NONE LMP_SHARED(eflag, vflag)
 #endif
   {
-    const LsdemThreadRange r(nlanes, comm->nthreads);
-    ThrData *thr = fix->get_thr(r.tid);
+    int ifrom, ito, tid;
+    loop_setup_thr(ifrom, ito, tid, inum, nthreads);
+    ThrData *thr = fix->get_thr(tid);
     thr->timer(Timer::START);
     ev_setup_thr(eflag, vflag, nall, eatom, vatom, nullptr, thr);
-    for (int l = r.from; l < r.to; l++) apply_contacts(*lanes[l], thr->get_f(), thr->get_torque());
+    apply_contacts(*lanes[tid], thr->get_f(), thr->get_torque());
     thr->timer(Timer::PAIR);
     reduce_thr(this, eflag, vflag, thr);  // every thread, inside the region (it syncs them)
   }

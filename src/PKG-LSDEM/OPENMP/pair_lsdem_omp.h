@@ -2,14 +2,13 @@
    LSDEM package: level-set discrete element method for LAMMPS.
 
    pair_style lsdem/omp: pair_style lsdem with the grains of a rank shared among threads
-   (package omp N, or -sf omp). The neighbor list's grains are cut into contiguous runs of
-   about equal work (8 per thread; a grain weighs its node tests on the last force call),
-   each tested into its own lane (contact path, manifold storage, pair-state lane, contact
-   list) by whichever thread comes free first; each thread then applies a share of the
-   lanes' forces to its own force and torque arrays, which LAMMPS's OPENMP package sums.
-   Every term is rounded to the force quanta (pair_lsdem.cpp), so that the sums do not
-   depend on the order: the same bits as pair_style lsdem on any thread count
-   (doc/howto_parallel.rst).
+   (package omp N, or -sf omp). Each thread tests the master pairs of a contiguous run of
+   the neighbor list's grains (runs of about equal work: a grain weighs its node tests on
+   the last force call) in its own lane (contact path, manifold storage, pair-state lane,
+   contact list) and applies their forces to its own force and torque arrays, which
+   LAMMPS's OPENMP package sums. Every term is rounded to the force quanta (pair_lsdem.cpp),
+   so that the sums do not depend on the order: the same bits as pair_style lsdem on any
+   thread count (doc/howto_parallel.rst).
 ------------------------------------------------------------------------- */
 
 #ifdef PAIR_CLASS
@@ -36,7 +35,7 @@ class PairLsdemOMP : public PairLsdem, public ThrOMP {
   double memory_usage() override;
 
  private:
-  std::vector<int> cuts;  // run (lane) l tests the grains ilist[cuts[l]..cuts[l + 1])
+  std::vector<int> cuts;  // thread t tests the grains ilist[cuts[t]..cuts[t + 1])
 };
 
 }    // namespace LAMMPS_NS
