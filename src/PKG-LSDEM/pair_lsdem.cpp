@@ -44,7 +44,7 @@ PairLsdem::PairLsdem(LAMMPS *lmp) :
   Pair(lmp), mode(LSDEM_ROLES_ONEWAY), zcap(0), params(nullptr),
   onerad(nullptr), maxrad(nullptr), kn_max(0.0), kn_law_max(0.0), avec(nullptr), fix_history(nullptr),
   sphere_shear(nullptr),
-  nmax_atom(0), pose(nullptr), shape(nullptr), ncount(nullptr),
+  nmax_atom(0), pose(nullptr), shape(nullptr), ncount(nullptr), grain_node_tests(nullptr),
   master_built(0), nmax_master(0), maxmaster(0), master_first(nullptr), master_num(nullptr),
   master_j(nullptr), master_scale_of(nullptr), nlanes(1), contact_step(-1)
 {
@@ -81,6 +81,7 @@ PairLsdem::~PairLsdem()
   memory->sfree(pose);
   memory->sfree(shape);
   memory->destroy(ncount);
+  memory->destroy(grain_node_tests);
   memory->destroy(master_first);
   memory->destroy(master_num);
   memory->destroy(master_j);
@@ -339,6 +340,8 @@ void PairLsdem::begin_force_call(int n)
   }
   contact_step = update->ntimestep;
   if (atom->nmax > nmax_atom) {
+    memory->grow(grain_node_tests, atom->nmax, "pair:grain_node_tests");
+    std::fill(grain_node_tests + nmax_atom, grain_node_tests + atom->nmax, 0);  // not yet
     nmax_atom = atom->nmax;
     pose = (lsdem_pose *) memory->srealloc(pose, sizeof(lsdem_pose) * nmax_atom, "pair:pose");
     shape = (const lsdem_shape **) memory->srealloc(shape, sizeof(lsdem_shape *) * nmax_atom,
@@ -355,7 +358,8 @@ void PairLsdem::end_force_call()
 }
 
 /* ----------------------------------------------------------------------
-   the master pairs of the local grains ilist[iifrom..iito), by one lane
+   the master pairs of the local grains ilist[iifrom..iito), by one lane, with each
+   grain's node tests into grain_node_tests
 ------------------------------------------------------------------------- */
 
 void PairLsdem::test_pairs(Lane &lane, int iifrom, int iito)
@@ -363,24 +367,35 @@ void PairLsdem::test_pairs(Lane &lane, int iifrom, int iito)
   const int *ilist = list->ilist;
   for (int ii = iifrom; ii < iito; ii++) {
     const int i = ilist[ii];
-    const int *js = master_j + master_first[i];
-    const double *scales = master_scale_of + master_first[i];
-    if (keeps_sphere_slots(i)) {
-      // a sphere master: its springs in its slots, one per master pair, in place
-      lsdem_shear_hist *slot = sphere_shear->slots(i);
-      for (int k = 0; k < master_num[i]; k++) {
-        if (bounding_spheres_overlap(i, js[k])) test_pair(lane, i, js[k], scales[k], &slot[k]);
-        else FixLsdemSphereShear::drop(slot[k]);
-      }
-      continue;
-    }
-    lane.path.begin_atom();
-    for (int k = 0; k < master_num[i]; k++) {
-      const int j = js[k];
-      if (bounding_spheres_overlap(i, j)) test_pair(lane, i, j, scales[k], nullptr);
-    }
-    lane.path.end_atom(i);
+    const bigint before = lane.ntested_nodes;
+    test_grain(lane, i);
+    grain_node_tests[i] = (int) (lane.ntested_nodes - before);
   }
+}
+
+/* ----------------------------------------------------------------------
+   the master pairs of local grain i whose bounding spheres overlap, by one lane
+------------------------------------------------------------------------- */
+
+void PairLsdem::test_grain(Lane &lane, int i)
+{
+  const int *js = master_j + master_first[i];
+  const double *scales = master_scale_of + master_first[i];
+  if (keeps_sphere_slots(i)) {
+    // a sphere master: its springs in its slots, one per master pair, in place
+    lsdem_shear_hist *slot = sphere_shear->slots(i);
+    for (int k = 0; k < master_num[i]; k++) {
+      if (bounding_spheres_overlap(i, js[k])) test_pair(lane, i, js[k], scales[k], &slot[k]);
+      else FixLsdemSphereShear::drop(slot[k]);
+    }
+    return;
+  }
+  lane.path.begin_atom();
+  for (int k = 0; k < master_num[i]; k++) {
+    const int j = js[k];
+    if (bounding_spheres_overlap(i, j)) test_pair(lane, i, j, scales[k], nullptr);
+  }
+  lane.path.end_atom(i);
 }
 
 /* ----------------------------------------------------------------------
@@ -760,7 +775,8 @@ double PairLsdem::radii2cut(double r1, double r2)
 
 double PairLsdem::memory_usage()
 {
-  double bytes = (double) nmax_atom * (sizeof(lsdem_pose) + sizeof(lsdem_shape *) + sizeof(double));
+  double bytes = (double) nmax_atom *
+      (sizeof(lsdem_pose) + sizeof(lsdem_shape *) + sizeof(double) + sizeof(int));
   for (const auto &lane : lanes) bytes += (double) lane->contact.capacity() * sizeof(Contact);
   bytes += (double) nmax_master * 2 * sizeof(int);
   bytes += (double) maxmaster * (sizeof(int) + sizeof(double));

@@ -122,6 +122,9 @@ class PairLsdem : public Pair {
   lsdem_pose *pose;
   const lsdem_shape **shape;
   double *ncount;  // contacts per atom (coordination number, eq 3.15)
+  // per local atom: its master pairs' node tests on the last force call, the measure of
+  // its cost by which pair_style lsdem/omp cuts the grains into threads' runs
+  int *grain_node_tests;
 
   // the neighbor list's pairs (i, j) in which i is master, with their scale; rebuilt in
   // the force call that follows each neighbor list build (neighbor->ago == 0)
@@ -139,6 +142,7 @@ class PairLsdem : public Pair {
   void update_poses(int from, int to);
   void build_master_pairs();
   void test_pairs(Lane &, int iifrom, int iito);
+  void test_grain(Lane &, int i);
   void test_pair(Lane &, int, int, double, lsdem_shear_hist *slot);
   // owned grain i is a sphere keeping its springs in slots (sphere_shear)
   bool keeps_sphere_slots(int i) const

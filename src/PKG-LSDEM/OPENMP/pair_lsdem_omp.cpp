@@ -47,7 +47,10 @@ void PairLsdemOMP::compute(int eflag, int vflag)
   update_poses(0, nall);
   if (neighbor->ago == 0 || !master_built) build_master_pairs();
 
-  lsdem_pair_threads(fix, inum, nthreads, [&](int tid, int from, int to, ThrData *) {
+  // runs of equal work: a grain weighs 1 + its node tests on the last force call
+  lsdem_work_cuts(inum, nthreads,
+                  [&](int ii) { return 1.0 + grain_node_tests[list->ilist[ii]]; }, cuts);
+  lsdem_pair_threads(fix, cuts, [&](int tid, int from, int to, ThrData *) {
     test_pairs(*lanes[tid], from, to);
   });
   end_force_call();
