@@ -503,6 +503,9 @@ typedef struct {
   double work;      /* kinetic energy the resting impulses added, warm start included
                        (negative: dissipated), the exact sum of dP . (u- + u+) / 2 */
   double warm_work; /* of which the warm start */
+  int cold;         /* 1: the solve added more energy than the bias may (sum of m
+                       max_push^2 over the island's grains) and was done again from the
+                       entry state, cold and without the shock sweep */
 } lsdem_resting_result;
 
 size_t lsdem_resting_workspace_size(int nbodies, int ncontacts);

@@ -54,7 +54,8 @@ size_t lsdem_resting_workspace_size(int nbodies, int ncontacts)
   const size_t nc = (size_t)(ncontacts > 0 ? ncontacts : 0);
   const size_t nb = (size_t)(nbodies > 0 ? nbodies : 0);
   return align64(nc * sizeof(row)) + align64((4 * nb + 4) * sizeof(int32_t)) +
-         align64(3 * nc * sizeof(int32_t)) + 64;
+         align64(3 * nc * sizeof(int32_t)) + align64(6 * nb * sizeof(double)) +
+         align64(3 * nc * sizeof(double)) + 64;
 }
 
 /* The normal speed a resting contact is driven to: the part of its overlap beyond the
@@ -340,6 +341,65 @@ static void shock_sweep(lsdem_impulse_body *bodies, const lsdem_impulse_contact 
   }
 }
 
+/* The sweeps (until the residual is below tolerance x ref_speed, at most max_sweeps), then
+ * the shock sweep if shock. */
+static void sweep_island(lsdem_impulse_body *bodies, int nbodies,
+                         const lsdem_impulse_contact *contacts, const int32_t *which, int nwhich,
+                         const row *rows, double (*impulse)[3], const lsdem_resting_params *p,
+                         int shock, const shock_ws *sw, lsdem_resting_result *res)
+{
+  const double stop = p->tolerance * p->ref_speed;
+  for (int s = 0; s < p->max_sweeps; s++) {
+    double worst = 0.0;
+    for (int k = 0; k < nwhich; k++)
+      worst = fmax(worst, update_contact(bodies, &contacts[which[k]], &rows[k],
+                                         impulse[which[k]], &res->work));
+    res->sweeps = s + 1;
+    res->residual = worst;
+    if (worst <= stop) break;
+  }
+  if (shock) {
+    shock_order(bodies, nbodies, contacts, which, nwhich, sw);
+    shock_sweep(bodies, contacts, which, rows, sw->order, nwhich, sw->level, p, impulse,
+                &res->work);
+  }
+}
+
+/* The most kinetic energy a resting solve may add: its bias pushing overlaps out, each
+ * moving body at most at max_push, sum m max_push^2 (twice 1/2 m v^2: a body pushed by
+ * several contacts). */
+static double bias_energy_bound(const lsdem_impulse_body *bodies, int nbodies,
+                                const lsdem_resting_params *p)
+{
+  double mass = 0.0;
+  for (int i = 0; i < nbodies; i++)
+    if (!lsdem_impulse_body_is_wall(&bodies[i])) mass += 1.0 / bodies[i].inv_mass;
+  return mass * p->max_push * p->max_push;
+}
+
+/* The island's state at entry: velocities (6 per body) and accumulated impulses (3 per
+ * contact of which). */
+static void save_state(const lsdem_impulse_body *bodies, int nbodies, const int32_t *which,
+                       int nwhich, double (*impulse)[3], double *vel, double *imp)
+{
+  for (int i = 0; i < nbodies; i++) {
+    memcpy(vel + 6 * i, bodies[i].v, 3 * sizeof(double));
+    memcpy(vel + 6 * i + 3, bodies[i].omega, 3 * sizeof(double));
+  }
+  for (int k = 0; k < nwhich; k++) memcpy(imp + 3 * k, impulse[which[k]], 3 * sizeof(double));
+}
+
+static void restore_state(lsdem_impulse_body *bodies, int nbodies, const int32_t *which,
+                          int nwhich, double (*impulse)[3], const double *vel,
+                          const double *imp)
+{
+  for (int i = 0; i < nbodies; i++) {
+    memcpy(bodies[i].v, vel + 6 * i, 3 * sizeof(double));
+    memcpy(bodies[i].omega, vel + 6 * i + 3, 3 * sizeof(double));
+  }
+  for (int k = 0; k < nwhich; k++) memcpy(impulse[which[k]], imp + 3 * k, 3 * sizeof(double));
+}
+
 lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
                                  const lsdem_impulse_contact *contacts, int ncontacts,
                                  const int32_t *which, int nwhich, double (*impulse)[3],
@@ -368,6 +428,8 @@ lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
   sw.count = sw.start + nbodies + 1; /* nbodies + 3 >= levels + 3 */
   sw.adj = (int32_t *)((char *)sw.level + align64((4 * (size_t)nbodies + 4) * sizeof(int32_t)));
   sw.order = sw.adj + 2 * (size_t)nwhich;
+  double *saved = (double *)((char *)sw.adj + align64(3 * (size_t)nwhich * sizeof(int32_t)));
+  double *saved_imp = saved + align64(6 * (size_t)nbodies * sizeof(double)) / sizeof(double);
   for (int k = 0; k < nwhich; k++) {
     const int32_t w = which[k];
     if (w < 0 || w >= ncontacts)
@@ -381,6 +443,7 @@ lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
   }
 
   /* warm start: last step's accumulated impulses, re-projected on this step's cones */
+  save_state(bodies, nbodies, which, nwhich, impulse, saved, saved_imp);
   for (int k = 0; warm_start && k < nwhich; k++) {
     double *P = impulse[which[k]];
     for (int i = 0; i < 3; i++) P[i] *= p->warm;
@@ -390,21 +453,19 @@ lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
     res->warm_work += apply_total(bodies, c, &rows[k], P);
   }
 
-  const double stop = p->tolerance * p->ref_speed;
-  for (int s = 0; s < p->max_sweeps; s++) {
-    double worst = 0.0;
-    for (int k = 0; k < nwhich; k++)
-      worst = fmax(worst, update_contact(bodies, &contacts[which[k]], &rows[k],
-                                         impulse[which[k]], &res->work));
-    res->sweeps = s + 1;
-    res->residual = worst;
-    if (worst <= stop) break;
-  }
-  if (p->shock) {
-    shock_order(bodies, nbodies, contacts, which, nwhich, &sw);
-    shock_sweep(bodies, contacts, which, rows, sw.order, nwhich, sw.level, p, impulse,
-                &res->work);
-  }
+  sweep_island(bodies, nbodies, contacts, which, nwhich, rows, impulse, p, p->shock, &sw, res);
   res->work += res->warm_work;
+  /* A solve that adds more energy than its bias may -- a warm start the sweeps could not
+   * relax (too few sweeps for a stiff pile), or the shock sweep handing a frozen side's
+   * speed up a pile (its one-sided impulses, warm-started, grow step by step) -- is done
+   * again from the entry state: cold (no warm start) and without the shock sweep. */
+  if (res->work > bias_energy_bound(bodies, nbodies, p)) {
+    restore_state(bodies, nbodies, which, nwhich, impulse, saved, saved_imp);
+    for (int k = 0; warm_start && k < nwhich; k++)
+      for (int d = 0; d < 3; d++) impulse[which[k]][d] = 0.0;
+    memset(res, 0, sizeof *res);
+    res->cold = 1;
+    sweep_island(bodies, nbodies, contacts, which, nwhich, rows, impulse, p, 0, &sw, res);
+  }
   return LSDEM_OK;
 }
