@@ -206,6 +206,9 @@ void PairLsdem::init_style()
   kn_max = stiffest_node_spring();
   // the flat-contact node counts depend on the shape alone: kept over runs
   if ((int) flat_nodes.size() != avec->nshapes()) flat_nodes.assign(avec->nshapes(), -1.0);
+  node_scale.resize(avec->nshapes());
+  for (int s = 0; s < avec->nshapes(); s++)
+    node_scale[s] = lsdem_contact_node_scale(lsdem_library_shape(avec->library(), s));
   LsdemContactOptions::sum_quanta(kn_max, avec, force_q, torque_q);
 
   // history where friction is on or node lists are kept; none at all when mu == 0
@@ -443,8 +446,9 @@ void PairLsdem::build_master_pairs()
     master_first[i] = n;
     for (int jj = 0; jj < numneigh[i]; jj++) {
       const int j = firstneigh[i][jj] & NEIGHMASK;
-      const double scale = lsdem_contact_roles(shape[i], atom->tag[i], shape[j], atom->tag[j],
-                                               mode);
+      const double scale =
+          lsdem_contact_roles(shape[i], node_scale[avec->shape[i]], atom->tag[i], shape[j],
+                              node_scale[avec->shape[j]], atom->tag[j], mode);
       if (scale == 0.0) continue;
       master_j[n] = j;
       master_scale_of[n++] = scale;

@@ -98,6 +98,7 @@ class PairLsdem : public Pair {
   double kn_max;                  // stiffest per-node normal spring (quanta, membrane)
   double kn_law_max;              // stiffest type pair's kn (per node or per area)
   std::vector<double> flat_nodes; // per library shape: lsdem_flat_contact_nodes, -1 = not yet
+  std::vector<double> node_scale; // per library shape: lsdem_contact_node_scale (roles)
   lsdem_quantum force_q, torque_q;  // order-free sums of the grains' forces and torques
 
   class AtomVecLsdem *avec;

@@ -260,19 +260,24 @@ static void test_roles(void)
   static double node[3] = {1, 0, 0};
   const lsdem_shape grain = fix_shape(fix_sdf(LSDEM_SDF_BOX, 1, 1, 1), 1, node, 1.8);
   const lsdem_shape ball = fix_shape(fix_sdf(LSDEM_SDF_SPHERE, 1, 0, 0), 0, NULL, 1.0);
-  CHECK(lsdem_contact_roles(&grain, 3, &grain, 5, LSDEM_ROLES_ONEWAY) == 1.0 &&
-            lsdem_contact_roles(&grain, 5, &grain, 3, LSDEM_ROLES_ONEWAY) == 0.0,
+  const double kg = lsdem_contact_node_scale(&grain), kb = lsdem_contact_node_scale(&ball);
+  CHECK(lsdem_contact_roles(&grain, kg, 3, &grain, kg, 5, LSDEM_ROLES_ONEWAY) == 1.0 &&
+            lsdem_contact_roles(&grain, kg, 5, &grain, kg, 3, LSDEM_ROLES_ONEWAY) == 0.0,
         "oneway: the lower id tests");
-  CHECK(lsdem_contact_roles(&grain, 5, &grain, 3, LSDEM_ROLES_TWOWAY) == 0.5 &&
-            lsdem_contact_roles(&grain, 3, &grain, 5, LSDEM_ROLES_TWOWAY) == 0.5,
+  CHECK(lsdem_contact_roles(&grain, 1.0, 9, &grain, 2.0, 1, LSDEM_ROLES_ONEWAY) == 1.0 &&
+            lsdem_contact_roles(&grain, 2.0, 1, &grain, 1.0, 9, LSDEM_ROLES_ONEWAY) == 0.0 &&
+            lsdem_contact_roles(&grain, 2.0, 1, &grain, 1.0, 9, LSDEM_ROLES_ONEWAY_ID) == 1.0,
+        "oneway: the finer nodes test whatever the ids (oneway_id: the lower id)");
+  CHECK(lsdem_contact_roles(&grain, kg, 5, &grain, kg, 3, LSDEM_ROLES_TWOWAY) == 0.5 &&
+            lsdem_contact_roles(&grain, kg, 3, &grain, kg, 5, LSDEM_ROLES_TWOWAY) == 0.5,
         "twoway: both, halved");
-  CHECK(lsdem_contact_roles(&ball, 9, &grain, 1, LSDEM_ROLES_TWOWAY) == 1.0 &&
-            lsdem_contact_roles(&grain, 1, &ball, 9, LSDEM_ROLES_TWOWAY) == 0.0,
+  CHECK(lsdem_contact_roles(&ball, kb, 9, &grain, kg, 1, LSDEM_ROLES_TWOWAY) == 1.0 &&
+            lsdem_contact_roles(&grain, kg, 1, &ball, kb, 9, LSDEM_ROLES_TWOWAY) == 0.0,
         "a sphere against a grain: the sphere tests");
-  CHECK(lsdem_contact_roles(&ball, 2, &ball, 4, LSDEM_ROLES_TWOWAY) == 1.0 &&
-            lsdem_contact_roles(&ball, 4, &ball, 2, LSDEM_ROLES_TWOWAY) == 0.0,
+  CHECK(lsdem_contact_roles(&ball, kb, 2, &ball, kb, 4, LSDEM_ROLES_TWOWAY) == 1.0 &&
+            lsdem_contact_roles(&ball, kb, 4, &ball, kb, 2, LSDEM_ROLES_TWOWAY) == 0.0,
         "two spheres: the lower id");
-  CHECK(lsdem_contact_roles(&grain, 4, &grain, 4, LSDEM_ROLES_TWOWAY) == 0.0, "self image");
+  CHECK(lsdem_contact_roles(&grain, kg, 4, &grain, kg, 4, LSDEM_ROLES_TWOWAY) == 0.0, "self image");
 }
 
 /* ------------------------------------------------------------- records ---- */

@@ -309,9 +309,12 @@ double lsdem_contact_node_scale(const lsdem_shape *s);
  *   - a sphere against a grain with nodes: the sphere tests (1 lookup), the grain not;
  *   - two analytic spheres: the lower id (closed form, symmetric);
  *   - two grains with nodes: one direction by the finer nodes (ONEWAY) or the lower id
- *     (ONEWAY_ID), or both, each 1/2 (TWOWAY). */
-double lsdem_contact_roles(const lsdem_shape *a, int64_t id_a, const lsdem_shape *b,
-                           int64_t id_b, lsdem_roles_rule rule);
+ *     (ONEWAY_ID), or both, each 1/2 (TWOWAY).
+ * scale_a, scale_b: the grains' lsdem_contact_node_scale, computed once per shape by the
+ * caller (the rule runs for every neighbour pair at every reneighbouring). */
+double lsdem_contact_roles(const lsdem_shape *a, double scale_a, int64_t id_a,
+                           const lsdem_shape *b, double scale_b, int64_t id_b,
+                           lsdem_roles_rule rule);
 
 /* ------------------------------------------- history in exchange and restart records ---- */
 

@@ -10,16 +10,17 @@ double lsdem_contact_node_scale(const lsdem_shape *s)
   return cbrt(s->volume) / sqrt(s->nnodes > 0 ? (double)s->nnodes : 1.0) * s->radius;
 }
 
-double lsdem_contact_roles(const lsdem_shape *a, int64_t id_a, const lsdem_shape *b,
-                           int64_t id_b, lsdem_roles_rule rule)
+double lsdem_contact_roles(const lsdem_shape *a, double scale_a, int64_t id_a,
+                           const lsdem_shape *b, double scale_b, int64_t id_b,
+                           lsdem_roles_rule rule)
 {
   if (id_a == id_b) return 0.0;
   const int sa = a->sdf.kind == LSDEM_SDF_SPHERE, sb = b->sdf.kind == LSDEM_SDF_SPHERE;
   if (sa != sb) return sa ? 1.0 : 0.0; /* the sphere: one lookup, no node loop */
   if (!sa && rule == LSDEM_ROLES_TWOWAY) return 0.5;
   if (!sa && rule == LSDEM_ROLES_ONEWAY) {
-    const double ka = lsdem_contact_node_scale(a), kb = lsdem_contact_node_scale(b);
-    if (ka != kb) return ka < kb ? 1.0 : 0.0; /* the same shapes: equal, the id decides */
+    /* the same shapes: equal scales, the id decides */
+    if (scale_a != scale_b) return scale_a < scale_b ? 1.0 : 0.0;
   }
   return id_a < id_b ? 1.0 : 0.0;
 }
