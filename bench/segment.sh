@@ -10,7 +10,8 @@
 #   voxels) x artifacts (clean: partial volume and blur only; all: cupping 15 %, rings,
 #   inclusions, noise SNR 8, air around the specimen; zero: all, and the corners outside the
 #   field of view 0) x SEEDS, the default pipeline; one row per scan into sand.txt, then the
-#   mean per D50 and artifacts and recovery.png (bench/segment_summary.py).
+#   mean per D50 and artifacts and recovery.png (bench/segment_summary.py), and how well the
+#   check's warning "likely two grains joined" names the labels that hold two true grains.
 # Rows: key=value figures of synthetic_scan.py score (one-to-one = IoU >= 0.5).
 set -euo pipefail
 top=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -58,9 +59,10 @@ if [ "${PART:-sand}" = sand ]; then
         $py "$top/tools/synthetic_sand.py" make sand --size "$size" --d50 "$d50" \
           --seed "$seed" "${opts[@]}" >/dev/null
         "$build/lsdem-segment" sand.tif s.lslib --voxel 1e-4 --nodes 50 --quiet \
-          --labels found.raw 2>/dev/null >/dev/null
+          --labels found.raw 2>warnings.txt >/dev/null
+        named=$(sed -n 's/.*likely two grains joined: //p' warnings.txt)
         line="d50=$d50 artifacts=$art seed=$seed size=$size $($py "$top/tools/synthetic_scan.py" \
-          score sand.truth.raw found.raw "$size")"
+          score sand.truth.raw found.raw "$size" --named "$named")"
         echo "$line" | tee -a sand.txt
       done
     done

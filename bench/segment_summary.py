@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """segment_summary.py SAND.txt OUT.png -- the mean of bench/segment.sh's sand rows per D50
-and artifacts (printed as a Markdown table), and one-to-one recovery and mean |volume
-error| against D50 as a PNG (matplotlib)."""
+and artifacts (printed as a Markdown table), the labels lsdem-segment's check named as two
+grains joined against those that are (summed over the seeds), and one-to-one recovery and
+mean |volume error| against D50 as a PNG (matplotlib)."""
 import sys
 from collections import defaultdict
 
@@ -9,13 +10,14 @@ import numpy as np
 
 FIGS = ("fraction", "small", "vol_err_mean_abs", "vol_err_mean", "centroid_err",
         "axis_err_deg", "merged", "split", "true")
+NAMED = ("merged_labels", "named", "named_merged", "good_labels", "named_good")
 
 
 def main(rows_file, png):
     groups = defaultdict(list)
     for line in open(rows_file):
         kv = dict(w.split("=", 1) for w in line.split())
-        groups[(float(kv["d50"]), kv["artifacts"])].append({k: float(kv[k]) for k in FIGS})
+        groups[(float(kv["d50"]), kv["artifacts"])].append({k: float(kv[k]) for k in FIGS + NAMED})
     print("| D50 | artifacts | seeds | grains | one-to-one | smallest third | mean abs volume "
           "error | mean volume error | centroid error | major-axis error | merged | split |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
@@ -29,6 +31,16 @@ def main(rows_file, png):
               % (d50, art, len(rows), m["true"], 100 * m["fraction"], 100 * lo,
                  100 * m["small"], 100 * m["vol_err_mean_abs"], 100 * m["vol_err_mean"],
                  m["centroid_err"], m["axis_err_deg"], m["merged"], m["split"]))
+    print("\n| D50 | artifacts | labels holding two grains | named by the check (recall) | "
+          "named that hold two (precision) | good labels named |")
+    print("|---|---|---|---|---|---|")
+    for (d50, art), rows in sorted(groups.items()):
+        s = {k: sum(r[k] for r in rows) for k in NAMED}
+        print("| %g | %s | %d | %d (%.0f %%) | %d of %d (%.0f %%) | %d of %d (%.1f %%) |"
+              % (d50, art, s["merged_labels"], s["named_merged"],
+                 100 * s["named_merged"] / max(s["merged_labels"], 1), s["named_merged"],
+                 s["named"], 100 * s["named_merged"] / max(s["named"], 1), s["named_good"],
+                 s["good_labels"], 100 * s["named_good"] / max(s["good_labels"], 1)))
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

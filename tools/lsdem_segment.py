@@ -37,7 +37,13 @@ python3-skimage, python3-scipy) the usual way for sand scans, and the labels go 
   6. marker-controlled watershed of the negated map, inside the solid phase;
   7. regions whose common saddle reaches --merge-ratio of the smaller peak are joined;
   8. small fragments (fewer than --min-voxels, default 5 % of a sphere of diameter D) are
-     merged into the neighbour they share most faces with, or dropped when they touch none.
+     merged into the neighbour they share most faces with, or dropped when they touch none;
+  9. check: a label that is not one convex body is named in a warning (its id in --labels
+     and in the shape's name, label_<L>): one whose convex hull leaves a hollow of more
+     than 4 % of its volume, at least 1.5 voxels and 0.2 times its inscribed radius deep
+     (the crease about the contact of two grains; a grain alone is nearly convex); larger
+     than the median label it likely holds two grains, smaller it is likely a piece of a
+     grain split in two.
 
 --report DIR writes report.txt (the progress lines and warnings), histogram.png (the scan
 and the normalised scan in the region, the phases' levels and the threshold) and the middle
@@ -56,6 +62,7 @@ import time
 
 import numpy as np
 from scipy import ndimage as ndi
+from scipy.spatial import ConvexHull, QhullError
 from skimage import filters, morphology, segmentation
 
 TYPES = {"u8": "<u1", "u16": "<u2", "u32": "<u4", "i8": "<i1", "i16": "<i2", "i32": "<i4",
@@ -71,6 +78,10 @@ MIN_PURE = 100        # this many sampled per fitted coefficient (else nearer th
 RING_WINDOW = 9       # half-voxel bins: rings are narrower than a median over 4.5 voxels
 GREY_WEIGHT = 4.0     # voxels: the distance map lowered by this times 1 - normalised grey
 WEIGHT_SIGMA = 0.7    # voxels: the Gaussian that takes the noise out of that weight
+HOLLOW_DEPTH = 1.5    # voxels: a hollow of a label's convex hull counts this deep or more
+HOLLOW_DEPTH_SHARE = 0.2  # and this share of the label's inscribed radius,
+HOLLOW_SHARE = 0.04   # when it holds more than this share of the label's volume
+CORNERS8 = np.array([[a, b, c] for a in (-0.5, 0.5) for b in (-0.5, 0.5) for c in (-0.5, 0.5)])
 
 
 def fail(msg):
@@ -417,6 +428,63 @@ def merge_fragments(labels, min_voxels):
     return out, merged, dropped
 
 
+def hollow(mine):
+    """The largest hollow of a region (bool array with a background voxel on every side):
+    the 6-connected voxels inside its convex hull (of the voxels as cubes) but not in it
+    that lie at least HOLLOW_DEPTH voxels and HOLLOW_DEPTH_SHARE times its inscribed radius
+    inside the hull. Returns its size over the region's."""
+    rin = ndi.distance_transform_edt(mine).max()
+    centres = np.argwhere(mine & ~ndi.binary_erosion(mine)).astype(np.float64)
+    try:  # the hull's corners are those of the voxels at the corners of the centres' hull
+        centres = centres[ConvexHull(centres).vertices]
+    except QhullError:  # the centres lie in a plane or a line: all of them
+        pass
+    eq = ConvexHull((centres[:, None, :] + CORNERS8[None]).reshape(-1, 3)).equations
+    # the hull row by row along x: eq[:, 2] x <= -(eq[:, 0] z + eq[:, 1] y + eq[:, 3])
+    nz, ny, nx = mine.shape
+    z, y = (c.ravel().astype(np.float64) for c in np.indices((nz, ny)))
+    rhs = 1e-9 - (np.outer(z, eq[:, 0]) + np.outer(y, eq[:, 1]) + eq[:, 3])
+    a = eq[:, 2]
+    with np.errstate(divide="ignore"):
+        hi = np.where(a > 0, rhs / a, np.inf).min(axis=1)
+        lo = np.where(a < 0, rhs / a, -np.inf).max(axis=1)
+    lo[(rhs[:, a == 0] < 0).any(axis=1)] = np.inf  # a facet parallel to x excludes the row
+    x = np.arange(nx)
+    hull = ((x >= lo[:, None]) & (x <= hi[:, None])).reshape(mine.shape)
+    deep = hull & ~mine & (ndi.distance_transform_edt(hull) >=
+                           max(HOLLOW_DEPTH, HOLLOW_DEPTH_SHARE * rin))
+    parts, n = ndi.label(deep)
+    return (np.bincount(parts.ravel())[1:].max() if n else 0) / np.count_nonzero(mine)
+
+
+def check_labels(labels, say):
+    """Step 9: the labels that are not one convex body, in two lists of label ids: larger
+    than the median label (likely two grains joined) and smaller (likely a piece of a split
+    grain); both named in a warning."""
+    sizes = np.bincount(labels.ravel())
+    joined, pieces = [], []
+    if sizes.size < 2:
+        return joined, pieces
+    median = np.median(sizes[1:])
+    for l, box in enumerate(ndi.find_objects(labels), start=1):
+        if box is None:
+            continue
+        sl = tuple(slice(max(b.start - 1, 0), b.stop + 1) for b in box)
+        if hollow(np.pad(labels[sl] == l, 1)) > HOLLOW_SHARE:
+            (joined if sizes[l] >= median else pieces).append(l)
+    for ids, what in ((joined, "larger than the median label: likely two grains joined"),
+                      (pieces, "smaller than the median label: likely a piece of a grain "
+                               "split in two")):
+        if ids:
+            warn(say, "%d label%s not one convex body (a hollow of the convex hull over %g %% "
+                 "of the volume), %s: %s" % (len(ids), "s are" if len(ids) > 1 else " is",
+                                             100 * HOLLOW_SHARE, what,
+                                             " ".join(map(str, ids))))
+    say("check: %d labels look like two grains joined, %d like pieces of a split grain"
+        % (len(joined), len(pieces)))
+    return joined, pieces
+
+
 def denoise(grey, args, say):
     """Edge-preserving denoising (--denoise): a median of the 3x3x3 neighbourhood, or a
     Gaussian of --sigma voxels, or none."""
@@ -539,6 +607,7 @@ def segment(grey, args, say, mask=None, report=None):
     info.update(markers=nmark, merged=merged, dropped=dropped, grains=int(labels.max()))
     say("fragments below %d voxels: %d merged into a neighbour, %d dropped; %d grains"
         % (min_voxels, merged, dropped, labels.max()))
+    info["joined_grains"], info["pieces"] = check_labels(labels, say)
     if report:
         report.slice("labels", labels)
     return labels.astype(np.uint32), info

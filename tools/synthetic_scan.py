@@ -7,8 +7,9 @@ segmentation against them (doc/lsdem_segment.rst, "How well it segments").
       PREFIX.tif        the scan: uint16, one page per z slice, uncompressed (compress it
                         with libtiff's tiffcp, e.g. tiffcp -c lzw)
       PREFIX.truth.raw  the grains it was made from: uint32 labels, x fastest
-  synthetic_scan.py score PREFIX.truth.raw FOUND.raw N
-      prints one line of key=value figures (see score())
+  synthetic_scan.py score PREFIX.truth.raw FOUND.raw N [--named "L1 L2 ..."]
+      prints one line of key=value figures (see score()); --named: the label ids that
+      lsdem-segment's check named as likely two grains joined, scored against the truth
 
 Grains are randomly oriented ellipsoids (semi-axes 6 to 12 voxels) with a bumpy surface,
 placed one after the other at random where they overlap earlier grains by at most a
@@ -124,14 +125,18 @@ def moments(labels, n):
     return v, c, np.linalg.eigh(cov)[1][:, :, -1]
 
 
-def score(truth, found):
+def score(truth, found, named=()):
     """One-to-one recovery: a true grain is recovered when the found label holding most of
     it overlaps it with an intersection over union of at least 0.5 (so each holds more than
     half of the other: the pairing is unique both ways). Of the others, a grain is merged
     when its label holds more than half of it and of another true grain as well, split when
     no label holds more than half of it. Of the recovered grains: volume error
     (found - true) / true, centroid distance (voxels), angle between the major principal
-    axes (degrees); `small` is the recovered share of the smallest third of the grains."""
+    axes (degrees); `small` is the recovered share of the smallest third of the grains.
+    Of the found labels: `merged_labels` hold more than half of two or more true grains,
+    `good_labels` are the one-to-one match of a true grain and hold no other (a merged label
+    can be the one-to-one match of the larger of its grains); of the labels `named` (ids of
+    found), how many are merged labels and how many good ones."""
     t, f = truth.ravel().astype(np.int64), found.ravel().astype(np.int64)
     nt, nf = t.max() + 1, f.max() + 1
     both = (t > 0) & (f > 0)
@@ -149,6 +154,11 @@ def score(truth, found):
     dc = np.linalg.norm(cf[best[ok]] - ct[ok], axis=1)
     dax = np.degrees(np.arccos(np.clip(np.abs((af[best[ok]] * at[ok]).sum(axis=1)), 0, 1)))
     small = real & (vt <= np.percentile(vt[real], 100 / 3)) if real.any() else real
+    two = held[1:].sum(axis=0) >= 2  # [j]: label j holds more than half of two true grains
+    good = np.zeros(nf, bool)
+    good[best[ok]] = True
+    good &= ~two  # a grain's one-to-one match that holds half of a smaller one as well
+    named = np.asarray(named, np.int64)
     nan = float("nan")
     return {"true": int(real.sum()), "found": int(np.count_nonzero(vf[1:])),
             "recovered": int(ok.sum()), "fraction": float(ok.sum()) / max(real.sum(), 1),
@@ -158,7 +168,10 @@ def score(truth, found):
             "vol_err_max_abs": float(np.abs(rel).max()) if rel.size else nan,
             "centroid_err": float(dc.mean()) if rel.size else nan,
             "axis_err_deg": float(dax.mean()) if rel.size else nan,
-            "merged": int(merged.sum()), "split": int(split.sum())}
+            "merged": int(merged.sum()), "split": int(split.sum()),
+            "merged_labels": int(two[1:].sum()), "good_labels": int(good[1:].sum()),
+            "named": int(named.size), "named_merged": int(two[named].sum()),
+            "named_good": int(good[named].sum())}
 
 
 def main():
@@ -181,6 +194,7 @@ def main():
     s.add_argument("truth")
     s.add_argument("found")
     s.add_argument("n", type=int)
+    s.add_argument("--named", default="", help="label ids named as two grains joined")
     a = p.parse_args()
     if a.cmd == "make":
         import tifffile
@@ -194,7 +208,8 @@ def main():
                  (labels > 0).mean()))
     else:
         shape = (a.n, a.n, a.n)
-        r = score(np.fromfile(a.truth, "<u4").reshape(shape), np.fromfile(a.found, "<u4").reshape(shape))
+        r = score(np.fromfile(a.truth, "<u4").reshape(shape), np.fromfile(a.found, "<u4").reshape(shape),
+                  [int(w) for w in a.named.split()])
         print(" ".join("%s=%s" % (k, ("%.4f" % v) if isinstance(v, float) else v) for k, v in r.items()))
 
 

@@ -12,6 +12,10 @@ expectations, all from the truth labels the scan was made from:
   * at D50 = 14 voxels with all the artifacts, one-to-one recovery (IoU >= 0.5) and volume
     error within the margins below what bench/segment.sh measured; a Gaussian smoothing of 1
     voxel, the old default, recovers fewer;
+  * the check (step 9): two overlapping balls leave a hollow in their convex hull, one ball
+    or one box none; on the scan, the labels it names as two grains joined are mostly labels
+    that hold two true grains (precision), name at least half of those (recall), and few
+    labels that are one true grain each;
   * the command line with --report writes the report, the histogram and the stage slices.
 """
 import os
@@ -93,12 +97,43 @@ for lo in range(0, int(SPECIMEN * N / 2) - 4, 8):
 
 # ---- recovery against the truth ----------------------------------------------------------
 labels, info, lines = segment(grey)
-r = synthetic_scan.score(truth, labels)
+r = synthetic_scan.score(truth, labels, info["joined_grains"])
 print("default: %s" % r)
 check(r["fraction"] >= 0.94, "recovered one-to-one %.3f (bench at D50 14: 0.964-0.980)" % r["fraction"])
 check(r["vol_err_mean_abs"] <= 0.06 and abs(r["vol_err_mean"]) <= 0.04,
       "volume error %.3f, bias %.3f (bench: 0.034, -0.003)" % (r["vol_err_mean_abs"],
                                                                  r["vol_err_mean"]))
+
+# ---- the check: labels that are not one convex body ----------------------------------------
+z, y, x = np.ogrid[0:44, 0:28, 0:28]
+ball = lambda cz: (z - cz) ** 2 + (y - 14) ** 2 + (x - 14) ** 2 <= 64  # radius 8
+share_one = lsdem_segment.hollow(ball(14))
+share_two = lsdem_segment.hollow(ball(14) | ball(28))  # 14 apart: a waist of radius 3.9
+box = np.zeros((12, 16, 20), bool)
+box[1:-1, 1:-1, 1:-1] = True
+share_box = lsdem_segment.hollow(box)
+print("hollow over volume: one ball %.4f, two %.4f, a box %.4f" % (share_one, share_two,
+                                                                   share_box))
+check(share_one == 0 and share_box == 0,
+      "a convex body has a hollow: ball %g, box %g" % (share_one, share_box))
+check(share_two > lsdem_segment.HOLLOW_SHARE, "two balls: hollow %.4f" % share_two)
+named = r["named"]
+pieces = synthetic_scan.score(truth, labels, info["pieces"])
+print("check: %d labels named as two grains joined, %d of them hold two true grains (of %d "
+      "such labels), %d are one true grain (of %d); %d named as pieces, %d of them good"
+      % (named, r["named_merged"], r["merged_labels"], r["named_good"], r["good_labels"],
+         pieces["named"], pieces["named_good"]))
+check(r["merged_labels"] >= 2 and 2 * r["named_merged"] >= r["merged_labels"],
+      "the check named %d of the %d labels holding two grains (bench at D50 14: all)"
+      % (r["named_merged"], r["merged_labels"]))
+check(2 * r["named_merged"] > named and r["named_good"] <= 0.02 * r["good_labels"],
+      "the check named %d labels, %d holding two grains, %d good ones of %d"
+      % (named, r["named_merged"], r["named_good"], r["good_labels"]))
+check(any("likely two grains joined: " + " ".join(map(str, info["joined_grains"])) in l
+          for l in lines), "no warning naming the labels:\n%s" % "\n".join(lines))
+check(pieces["named_good"] + r["named_good"] <= 0.03 * r["good_labels"],
+      "%d good labels named as pieces" % pieces["named_good"])
+
 labels, _, _ = segment(grey, "--denoise", "gaussian", "--sigma", "1")
 r_g = synthetic_scan.score(truth, labels)
 print("--denoise gaussian --sigma 1: %s" % r_g)
@@ -119,7 +154,8 @@ check("region of interest (mask mask.tif): %.3f" % cyl.mean() in p.stdout,
       "--mask: the region is not the mask:\n%s" % p.stdout[-2000:])
 pngs = sorted(f for f in os.listdir("report") if f.endswith(".png"))
 text = open(os.path.join("report", "report.txt")).read()
-check("histogram.png" in pngs and len(pngs) >= 7 and "threshold" in text and "grain size" in text,
+check("histogram.png" in pngs and len(pngs) >= 7 and "threshold" in text and "grain size" in text
+      and "check: " in text,
       "report: %s\n%s" % (pngs, text))
 check("node volume" not in p.stdout, "from-labels flags node volumes of well-segmented grains:\n"
       "%s" % p.stdout[-2000:])
