@@ -1,0 +1,135 @@
+/* ball.c -- the ball guard of impulse mode: net balls against grains at the predicted
+ * poses, overlaps closed by equal and opposite impulses (report §4.4.2, Figure 4.4). The
+ * rule is in lsdem_impulse.h (lsdem_impulse_ball_guard_detect). World frame; a pair's
+ * point acts on each body with its arm about that body's PREDICTED centroid, applied at the
+ * same arm from the current one (as wall.c does). */
+#include "lsdem_impulse.h"
+
+#include <math.h>
+#include <string.h>
+
+/* the body's bounding spheres at the predicted centres x + v dt overlap */
+static int predicted_spheres_overlap(const lsdem_impulse_body *a, const lsdem_impulse_grain *ga,
+                                     const lsdem_impulse_body *b, const lsdem_impulse_grain *gb,
+                                     double dt)
+{
+  double d[3];
+  for (int i = 0; i < 3; i++) d[i] = (a->x[i] + dt * a->v[i]) - (b->x[i] + dt * b->v[i]);
+  const double rsum = ga->radius + gb->radius;
+  return lsdem_dot3(d, d) < rsum * rsum;
+}
+
+static void predicted_pose(const lsdem_impulse_body *b, const lsdem_impulse_grain *g,
+                           double dt, lsdem_pose *pose)
+{
+  lsdem_impulse_predict_pose(b->x, g->q, b->v, b->omega, g->inertia, dt, pose);
+}
+
+/* Pair q at the predicted poses: 1 when its deepest point (after the push-out limit) is
+ * deeper than p->depth_tol, with that point's depth, normal (b to a) and arms in q. */
+static int detect_pair(const lsdem_impulse_body *body, const lsdem_impulse_grain *grain,
+                       lsdem_ball_guard_pair *q, const lsdem_detect_params *det,
+                       const lsdem_wall_params *p, double dt, int64_t step,
+                       lsdem_contact_point *points, int npoints)
+{
+  const lsdem_impulse_body *a = &body[q->a], *b = &body[q->b];
+  const lsdem_impulse_grain *ga = &grain[q->a], *gb = &grain[q->b];
+  if (!predicted_spheres_overlap(a, ga, b, gb, dt)) return 0;
+  /* the master's nodes (a ball: its centre) in the slave's level set */
+  const int a_master = lsdem_contact_roles(ga->shape, a->id, gb->shape, b->id,
+                                           LSDEM_ROLES_ONEWAY) > 0.5;
+  const lsdem_impulse_grain *gm = a_master ? ga : gb, *gs = a_master ? gb : ga;
+  lsdem_pose pm, ps;
+  predicted_pose(a_master ? a : b, gm, dt, &pm);
+  predicted_pose(a_master ? b : a, gs, dt, &ps);
+  lsdem_manifold m = lsdem_manifold_over(points, npoints);
+  if (lsdem_detect(gm->shape, &pm, gs->shape, &ps, det, step, NULL, NULL, &m) == 0) return 0;
+  lsdem_wall_limit_push_out(&m, dt, p->rest_speed);
+  int k = 0;
+  for (int j = 1; j < m.n; j++)
+    if (m.point[j].depth > m.point[k].depth) k = j;
+  const lsdem_contact_point *deep = &m.point[k];
+  if (!(deep->depth > p->depth_tol)) return 0;
+  const double sign = a_master ? 1.0 : -1.0; /* the manifold's normal points to the master */
+  const lsdem_pose *pa = a_master ? &pm : &ps, *pb = a_master ? &ps : &pm;
+  q->depth = deep->depth;
+  for (int i = 0; i < 3; i++) {
+    q->normal[i] = sign * deep->normal[i];
+    q->arm_a[i] = deep->point[i] - pa->x[i];
+    q->arm_b[i] = deep->point[i] - pb->x[i];
+  }
+  return 1;
+}
+
+int lsdem_impulse_ball_guard_detect(const lsdem_impulse_body *body,
+                                    const lsdem_impulse_grain *grain,
+                                    lsdem_ball_guard_pair *pairs, int n,
+                                    const lsdem_detect_params *det, const lsdem_wall_params *p,
+                                    double dt, int64_t step, lsdem_contact_point *points,
+                                    int npoints, int32_t *count)
+{
+  int overlapping = 0;
+  for (int k = 0; k < n; k++) {
+    lsdem_ball_guard_pair *q = &pairs[k];
+    q->overlapping = detect_pair(body, grain, q, det, p, dt, step, points, npoints);
+    if (!q->overlapping) {
+      q->depth = 0.0;
+      continue;
+    }
+    count[q->a]++;
+    count[q->b]++;
+    overlapping++;
+  }
+  return overlapping;
+}
+
+/* n . M n of body b at arm r with its inverse mass and inertia times c (mass splitting):
+ * c (1/m + n . (I^-1 (r x n)) x r)  (eq 4.8) */
+static double split_response(const lsdem_impulse_body *b, const double r[3], const double n[3],
+                             int32_t c)
+{
+  double p[3], M[9], Mn[3];
+  for (int i = 0; i < 3; i++) p[i] = b->x[i] + r[i];
+  lsdem_impulse_point_response(b, p, M);
+  lsdem_mat_vec(M, n, Mn);
+  return (double)c * lsdem_dot3(n, Mn);
+}
+
+void lsdem_ball_guard_impulse(const lsdem_impulse_body *body, const lsdem_ball_guard_pair *q,
+                              const int32_t *count, double dt, double P[3])
+{
+  P[0] = P[1] = P[2] = 0.0;
+  if (!q->overlapping) return;
+  /* n . K n with K the sum of the two split point responses (eq 4.13) */
+  const double keff = split_response(&body[q->a], q->arm_a, q->normal, count[q->a]) +
+                      split_response(&body[q->b], q->arm_b, q->normal, count[q->b]);
+  if (!(keff > 0.0)) return; /* two bodies of infinite mass */
+  const double lambda = q->depth / (dt * keff); /* Delta u_n = d / dt */
+  for (int i = 0; i < 3; i++) P[i] = lambda * q->normal[i];
+}
+
+/* impulse P on body b at arm r from its predicted centroid (eqs 4.31-4.32) */
+static void apply_at_arm(lsdem_impulse_body *b, const double r[3], const double P[3])
+{
+  double p[3];
+  for (int i = 0; i < 3; i++) p[i] = b->x[i] + r[i];
+  lsdem_impulse_apply(b, p, P);
+}
+
+int lsdem_impulse_ball_guard_correct(lsdem_impulse_body *body,
+                                     const lsdem_ball_guard_pair *pairs, int n,
+                                     const int32_t *count, double dt, int nown)
+{
+  int corrected = 0;
+  for (int k = 0; k < n; k++) {
+    const lsdem_ball_guard_pair *q = &pairs[k];
+    double P[3];
+    lsdem_ball_guard_impulse(body, q, count, dt, P);
+    if (P[0] == 0.0 && P[1] == 0.0 && P[2] == 0.0) continue;
+    const double minus[3] = {-P[0], -P[1], -P[2]};
+    if (q->a < nown) apply_at_arm(&body[q->a], q->arm_a, P);
+    if (q->b < nown) apply_at_arm(&body[q->b], q->arm_b, minus);
+    corrected += q->a < nown;
+  }
+  return corrected;
+}
