@@ -25,8 +25,45 @@ static void predicted_pose(const lsdem_impulse_body *b, const lsdem_impulse_grai
   lsdem_impulse_predict_pose(b->x, g->q, b->v, b->omega, g->inertia, dt, pose);
 }
 
-/* Pair q at the predicted poses: 1 when its deepest point (after the push-out limit) is
- * deeper than p->depth_tol, with that point's depth, normal (b to a) and arms in q. */
+static void current_pose(const lsdem_impulse_body *b, const lsdem_impulse_grain *g,
+                         lsdem_pose *pose)
+{
+  lsdem_quat_to_matrix(g->q, pose->R);
+  for (int i = 0; i < 3; i++) {
+    pose->x[i] = b->x[i];
+    pose->v[i] = b->v[i];
+    pose->omega[i] = b->omega[i];
+  }
+}
+
+/* the deepest overlap of master gm (body bm) in slave gs (bs) at their current poses (0:
+ * none) */
+static double current_overlap(const lsdem_impulse_body *bm, const lsdem_impulse_grain *gm,
+                              const lsdem_impulse_body *bs, const lsdem_impulse_grain *gs,
+                              const lsdem_detect_params *det, int64_t step,
+                              lsdem_contact_point *points, int npoints)
+{
+  lsdem_pose pm, ps;
+  current_pose(bm, gm, &pm);
+  current_pose(bs, gs, &ps);
+  lsdem_manifold m = lsdem_manifold_over(points, npoints);
+  double deepest = 0.0;
+  lsdem_detect(gm->shape, &pm, gs->shape, &ps, det, step, NULL, NULL, &m);
+  for (int j = 0; j < m.n; j++) deepest = fmax(deepest, m.point[j].depth);
+  return deepest;
+}
+
+/* the predicted overlap d less what of the overlap d0 the pair has now exceeds the push-out
+ * cap (lsdem_push_out_cap): d - d0 + cap dt when d0 / dt > cap */
+static double limit_push_out(double d, double d0, double dt, double rest_speed)
+{
+  const double cap = lsdem_push_out_cap(d0, dt, rest_speed);
+  return d0 / dt > cap ? fmin(d, d - d0 + cap * dt) : d;
+}
+
+/* Pair q at the predicted poses: 1 when its deepest point (after the push-out limit of the
+ * overlap it has now) is deeper than p->depth_tol, with that point's depth, normal (b to a)
+ * and arms in q. */
 static int detect_pair(const lsdem_impulse_body *body, const lsdem_impulse_grain *grain,
                        lsdem_ball_guard_pair *q, const lsdem_detect_params *det,
                        const lsdem_wall_params *p, double dt, int64_t step,
@@ -44,19 +81,22 @@ static int detect_pair(const lsdem_impulse_body *body, const lsdem_impulse_grain
   predicted_pose(a_master ? b : a, gs, dt, &ps);
   lsdem_manifold m = lsdem_manifold_over(points, npoints);
   if (lsdem_detect(gm->shape, &pm, gs->shape, &ps, det, step, NULL, NULL, &m) == 0) return 0;
-  lsdem_wall_limit_push_out(&m, dt, p->rest_speed);
   int k = 0;
   for (int j = 1; j < m.n; j++)
     if (m.point[j].depth > m.point[k].depth) k = j;
-  const lsdem_contact_point *deep = &m.point[k];
-  if (!(deep->depth > p->depth_tol)) return 0;
+  const lsdem_contact_point deep = m.point[k]; /* m's storage is reused below */
+  if (!(deep.depth > p->depth_tol)) return 0;
+  const double d0 = current_overlap(a_master ? a : b, gm, a_master ? b : a, gs, det, step,
+                                    points, npoints);
+  const double depth = limit_push_out(deep.depth, d0, dt, p->rest_speed);
+  if (!(depth > p->depth_tol)) return 0;
   const double sign = a_master ? 1.0 : -1.0; /* the manifold's normal points to the master */
   const lsdem_pose *pa = a_master ? &pm : &ps, *pb = a_master ? &ps : &pm;
-  q->depth = deep->depth;
+  q->depth = depth;
   for (int i = 0; i < 3; i++) {
-    q->normal[i] = sign * deep->normal[i];
-    q->arm_a[i] = deep->point[i] - pa->x[i];
-    q->arm_b[i] = deep->point[i] - pb->x[i];
+    q->normal[i] = sign * deep.normal[i];
+    q->arm_a[i] = deep.point[i] - pa->x[i];
+    q->arm_b[i] = deep.point[i] - pb->x[i];
   }
   return 1;
 }

@@ -427,8 +427,12 @@ lsdem_wall_contact_kind lsdem_wall_classify(double u_n, double rest_speed);
  * through the overlap under the external acceleration a = rest_speed / (2 dt): the kinetic
  * energy it gives is at most the work gravity would do over the overlap. This scales the
  * manifold's depths (m, at the predicted pose, arms about the predicted centroid) so that
- * u_n becomes that cap; the rest of the overlap goes in the next steps. */
+ * u_n becomes that cap (lsdem_push_out_cap); the rest of the overlap goes in the next
+ * steps. */
 void lsdem_wall_limit_push_out(lsdem_manifold *m, double dt, double rest_speed);
+/* The push-out cap of an overlap d0 the body has now: max(rest_speed, sqrt(2 a d0)),
+ * a = rest_speed / (2 dt) (above). */
+double lsdem_push_out_cap(double d0, double dt, double rest_speed);
 
 typedef struct {
   lsdem_wall_contact_kind kind;
@@ -746,9 +750,12 @@ typedef struct {
 
 /* Detection of the ball guard: pairs[k] at the predicted poses of its bodies (first their
  * bounding spheres' centres; the master by lsdem_contact_roles, one-way: a ball against a
- * grain is its centre looked up in the grain's level set), its push-out limited as the
- * wall guard's (lsdem_wall_limit_push_out with p->rest_speed) and its deepest point kept
- * when deeper than p->depth_tol (p->mu is not used); count[i] (the caller zeroes it, one
+ * grain is its centre looked up in the grain's level set), its deepest point kept when
+ * deeper than p->depth_tol (p->mu is not used). An overlap d0 the pair has now (detected
+ * at the current poses: the wall guard's linear estimate d + u_n dt fails for a ball
+ * sliding round a grain, whose normal turns within the step) is taken out no faster than
+ * the wall guard's cap (lsdem_push_out_cap with p->rest_speed): the depth becomes
+ * d - d0 + cap dt when d0 / dt exceeds the cap (the step's new overlap closed at once); count[i] (the caller zeroes it, one
  * per body) is raised by one for each body of an overlapping pair. points, npoints:
  * manifold storage (the master's capacity). Returns the number of overlapping pairs. */
 int lsdem_impulse_ball_guard_detect(const lsdem_impulse_body *body,
