@@ -884,8 +884,8 @@ int FixImpulseLsdem::correct_balls(int pass)
   det.node_stride = 1;
   det.node_skin = 0.0;
   lsdem_impulse_ball_guard_detect(body.data(), grain.data(), ball_pairs.data(),
-                                  (int) ball_pairs.size(), &det, &stage.wall, update->dt,
-                                  update->ntimestep, wpoints.data(), (int) wpoints.size(),
+                                  (int) ball_pairs.size(), &det, &stage.wall, restitution,
+                                  update->dt, update->ntimestep, wpoints.data(), (int) wpoints.size(),
                                   ball_count.data());
   if (pass == 0)
     for (const lsdem_ball_guard_pair &q : ball_pairs)
@@ -898,7 +898,7 @@ int FixImpulseLsdem::correct_balls(int pass)
   t_comm += MPI_Wtime() - t1;
   const int n = lsdem_impulse_ball_guard_correct(body.data(), ball_pairs.data(),
                                                  (int) ball_pairs.size(), ball_count.data(),
-                                                 update->dt, atom->nlocal);
+                                                 atom->nlocal);
   now.ball_corrections += n;
   return n;
 }

@@ -5,7 +5,8 @@
  *     mass closing d in one step), equal and opposite (momentum kept to round-off), the
  *     overlap at the new predicted poses gone, whichever body is the master;
  *   - a grain approaching a ball fast (a collision, which the wall guard leaves to ETM)
- *     that the advance would carry into it: caught, the predicted gap closed to zero;
+ *     that the advance would carry into it: caught, it bounces as a collision of
+ *     restitution e does (the relative approach -V becomes e V);
  *   - a box lying on three balls (parallel normals): a stiff box is lifted in one pass by
  *     exactly d/dt, the balls fixed (bodies of infinite mass) or free (the relative speed
  *     d/dt per pair, the momentum kept), where the sum of three unsplit pair corrections
@@ -41,10 +42,19 @@ static void make_body(lsdem_impulse_body *b, lsdem_impulse_grain *g, int64_t id,
     CHECK(lsdem_impulse_body_wall(b, id, x, v, z, &err) == LSDEM_OK, "%s", err.msg);
 }
 
-static const double DT = 1e-3;
+static const double DT = 1e-3, E = 0.5; /* time step, restitution */
 /* rest_speed, depth_tol, mu: the overlaps below stay under the push-out limit (rest_speed
  * dt), so that the lift is d/dt; the last test takes a deep one */
 static const lsdem_wall_params PRM = {1.0, 1e-9, 0.0};
+
+static lsdem_ball_guard_pair guard_pair(int32_t a, int32_t b)
+{
+  lsdem_ball_guard_pair q;
+  memset(&q, 0, sizeof q);
+  q.a = a;
+  q.b = b;
+  return q;
+}
 
 /* one pass of the guard over pairs (detect, then correct bodies below nown); returns the
  * pairs corrected, the counts in count (nbodies) */
@@ -54,8 +64,8 @@ static int guard_pass(lsdem_impulse_body *body, const lsdem_impulse_grain *grain
   lsdem_contact_point pts[8];
   lsdem_detect_params det = {1, 0.0};
   memset(count, 0, sizeof(int32_t) * (size_t)nbodies);
-  lsdem_impulse_ball_guard_detect(body, grain, pairs, n, &det, &PRM, DT, 0, pts, 8, count);
-  return lsdem_impulse_ball_guard_correct(body, pairs, n, count, DT, nown);
+  lsdem_impulse_ball_guard_detect(body, grain, pairs, n, &det, &PRM, E, DT, 0, pts, 8, count);
+  return lsdem_impulse_ball_guard_correct(body, pairs, n, count, nown);
 }
 
 /* the overlap of two spheres at their predicted centres x + v dt */
@@ -81,7 +91,7 @@ static void test_two_spheres(int64_t id_ball, int64_t id_grain)
   lsdem_impulse_grain grain[2];
   make_body(&body[0], &grain[0], id_ball, m, 0.4 * m * r * r, xb, z, &sb);
   make_body(&body[1], &grain[1], id_grain, M, 0.4 * M * R * R, xg, z, &sg);
-  lsdem_ball_guard_pair pair = {0, 1, 0, 0.0, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  lsdem_ball_guard_pair pair = guard_pair(0, 1);
   int32_t count[2];
   CHECK(guard_pass(body, grain, 2, &pair, 1, 2, count) == 1, "ids %lld %lld: not corrected",
         (long long)id_ball, (long long)id_grain);
@@ -107,7 +117,7 @@ static void test_two_spheres(int64_t id_ball, int64_t id_grain)
 
 /* A grain approaching a resting ball at 50 rest speeds, 0.2 of its speed's step away: the
  * advance would carry it 0.8 v dt into the ball. The wall guard calls that a collision and
- * leaves it; the ball guard closes the predicted gap. A ball outside nown (a ghost) keeps
+ * leaves it; the ball guard gives it the bounce of restitution e. A ball outside nown (a ghost) keeps
  * its velocity, and the pair is not counted (its owner counts it). */
 static void test_fast_approach(void)
 {
@@ -120,13 +130,15 @@ static void test_fast_approach(void)
   lsdem_impulse_grain grain[2];
   make_body(&body[0], &grain[0], 1, m, 0.4 * m * r * r, xb, zero, &sb);
   make_body(&body[1], &grain[1], 2, M, 0.4 * M * R * R, xg, vg, &sg);
-  lsdem_ball_guard_pair pair = {0, 1, 0, 0.0, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  lsdem_ball_guard_pair pair = guard_pair(0, 1);
   int32_t count[2];
   CHECK(guard_pass(body, grain, 2, &pair, 1, 2, count) == 1, "fast approach not caught");
   CHECK_REL(pair.depth, 0.8 * V * DT, 1e-9);
-  const double lambda = 0.8 * V * m * M / (m + M);
+  /* a collision: the approach -V becomes e V (more than the 0.8 V that closes the gap) */
+  const double lambda = (1.0 + E) * V * m * M / (m + M);
   CHECK_REL(body[0].v[2], -lambda / m, 1e-9);
   CHECK_REL(body[1].v[2], -V + lambda / M, 1e-9);
+  CHECK_REL(body[1].v[2] - body[0].v[2], E * V, 1e-9);
   /* the pair counted by the owner of a: listed with the grain as a (both owned), once;
    * with nothing owned (nown = 0), not counted and nothing changed */
   make_body(&body[0], &grain[0], 1, m, 0.4 * m * r * r, xb, zero, &sb);
@@ -168,7 +180,7 @@ static void test_box_on_three_balls(int free_balls, int stiff)
     const double xb[3] = {xbox[0] - 0.3 + 0.3 * k, 0.0, xbox[2] - h[2] - r + d};
     make_body(&body[1 + k], &grain[1 + k], 1 + k, free_balls ? m : 0.0, 0.4 * m * r * r, xb,
               zero, &sb);
-    pairs[k] = (lsdem_ball_guard_pair){1 + k, 0, 0, 0.0, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    pairs[k] = guard_pair(1 + k, 0);
   }
   int32_t count[4];
   CHECK(guard_pass(body, grain, 4, pairs, 3, 4, count) == 3, "not every pair corrected");
@@ -212,7 +224,7 @@ static void test_deep_overlap_limited(void)
   lsdem_impulse_grain grain[2];
   make_body(&body[0], &grain[0], 1, m, 0.4 * m * r * r, xb, zero, &sb);
   make_body(&body[1], &grain[1], 2, 0.0, 0.0, xg, zero, &sg);
-  lsdem_ball_guard_pair pair = {0, 1, 0, 0.0, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  lsdem_ball_guard_pair pair = guard_pair(0, 1);
   int32_t count[2];
   CHECK(guard_pass(body, grain, 2, &pair, 1, 2, count) == 1, "deep overlap not corrected");
   const double rs = PRM.rest_speed;

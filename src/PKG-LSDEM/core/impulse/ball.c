@@ -61,12 +61,22 @@ static double limit_push_out(double d, double d0, double dt, double rest_speed)
   return d0 / dt > cap ? fmin(d, d - d0 + cap * dt) : d;
 }
 
+/* the rise of the relative normal velocity u_n (< 0: approaching; the master's relative to
+ * the slave's along the slave's normal: the same for a and b) that closes the overlap d, or
+ * for a collision (u_n < -rest_speed) gives it restitution e:
+ * max(d / dt, -(1 + e) u_n) */
+static double lift(double d, double u_n, double rest_speed, double e, double dt)
+{
+  const int collision = lsdem_wall_classify(u_n, rest_speed) == LSDEM_WALL_COLLIDING;
+  return collision ? fmax(d / dt, -(1.0 + e) * u_n) : d / dt;
+}
+
 /* Pair q at the predicted poses: 1 when its deepest point (after the push-out limit of the
  * overlap it has now) is deeper than p->depth_tol, with that point's depth, normal (b to a)
  * and arms in q. */
 static int detect_pair(const lsdem_impulse_body *body, const lsdem_impulse_grain *grain,
                        lsdem_ball_guard_pair *q, const lsdem_detect_params *det,
-                       const lsdem_wall_params *p, double dt, int64_t step,
+                       const lsdem_wall_params *p, double e, double dt, int64_t step,
                        lsdem_contact_point *points, int npoints)
 {
   const lsdem_impulse_body *a = &body[q->a], *b = &body[q->b];
@@ -93,6 +103,7 @@ static int detect_pair(const lsdem_impulse_body *body, const lsdem_impulse_grain
   const double sign = a_master ? 1.0 : -1.0; /* the manifold's normal points to the master */
   const lsdem_pose *pa = a_master ? &pm : &ps, *pb = a_master ? &ps : &pm;
   q->depth = depth;
+  q->lift = lift(depth, lsdem_dot3(deep.vrel, deep.normal), p->rest_speed, e, dt);
   for (int i = 0; i < 3; i++) {
     q->normal[i] = sign * deep.normal[i];
     q->arm_a[i] = deep.point[i] - pa->x[i];
@@ -105,15 +116,15 @@ int lsdem_impulse_ball_guard_detect(const lsdem_impulse_body *body,
                                     const lsdem_impulse_grain *grain,
                                     lsdem_ball_guard_pair *pairs, int n,
                                     const lsdem_detect_params *det, const lsdem_wall_params *p,
-                                    double dt, int64_t step, lsdem_contact_point *points,
-                                    int npoints, int32_t *count)
+                                    double e, double dt, int64_t step,
+                                    lsdem_contact_point *points, int npoints, int32_t *count)
 {
   int overlapping = 0;
   for (int k = 0; k < n; k++) {
     lsdem_ball_guard_pair *q = &pairs[k];
-    q->overlapping = detect_pair(body, grain, q, det, p, dt, step, points, npoints);
+    q->overlapping = detect_pair(body, grain, q, det, p, e, dt, step, points, npoints);
     if (!q->overlapping) {
-      q->depth = 0.0;
+      q->depth = q->lift = 0.0;
       continue;
     }
     count[q->a]++;
@@ -136,7 +147,7 @@ static double split_response(const lsdem_impulse_body *b, const double r[3], con
 }
 
 void lsdem_ball_guard_impulse(const lsdem_impulse_body *body, const lsdem_ball_guard_pair *q,
-                              const int32_t *count, double dt, double P[3])
+                              const int32_t *count, double P[3])
 {
   P[0] = P[1] = P[2] = 0.0;
   if (!q->overlapping) return;
@@ -144,7 +155,7 @@ void lsdem_ball_guard_impulse(const lsdem_impulse_body *body, const lsdem_ball_g
   const double keff = split_response(&body[q->a], q->arm_a, q->normal, count[q->a]) +
                       split_response(&body[q->b], q->arm_b, q->normal, count[q->b]);
   if (!(keff > 0.0)) return; /* two bodies of infinite mass */
-  const double lambda = q->depth / (dt * keff); /* Delta u_n = d / dt */
+  const double lambda = q->lift / keff; /* Delta u_n = n . K P = lift */
   for (int i = 0; i < 3; i++) P[i] = lambda * q->normal[i];
 }
 
@@ -158,13 +169,13 @@ static void apply_at_arm(lsdem_impulse_body *b, const double r[3], const double 
 
 int lsdem_impulse_ball_guard_correct(lsdem_impulse_body *body,
                                      const lsdem_ball_guard_pair *pairs, int n,
-                                     const int32_t *count, double dt, int nown)
+                                     const int32_t *count, int nown)
 {
   int corrected = 0;
   for (int k = 0; k < n; k++) {
     const lsdem_ball_guard_pair *q = &pairs[k];
     double P[3];
-    lsdem_ball_guard_impulse(body, q, count, dt, P);
+    lsdem_ball_guard_impulse(body, q, count, P);
     if (P[0] == 0.0 && P[1] == 0.0 && P[2] == 0.0) continue;
     const double minus[3] = {-P[0], -P[1], -P[2]};
     if (q->a < nown) apply_at_arm(&body[q->a], q->arm_a, P);

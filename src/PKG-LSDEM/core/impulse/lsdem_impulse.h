@@ -727,11 +727,16 @@ int lsdem_impulse_stage_wall_guard(lsdem_impulse_body *body, const lsdem_impulse
  * normal impulse P = lambda n on a and -P on b (eqs 4.31-4.32) that raises the point's
  * relative normal velocity by d/dt, so that the overlap the advance would leave closes
  * (§4.4.1: x^{t+1} = x^t + v* dt with v* corrected at x' = x + v dt):
- *   Delta u_n = n . K P = d / dt,  lambda = d / (dt n . K n)  (K: eqs 4.8, 4.13)
+ *   Delta u_n = n . K P = d / dt,  lambda = (d / dt) / (n . K n)  (K: eqs 4.8, 4.13)
  * A ball is not a wall: the grain takes -P, so momentum and angular momentum are kept.
- * Unlike the wall guard's, the correction does not depend on the approach speed: a fast
- * grain that the advance would carry between two balls is caught too. Normal only (the
- * collisions' friction is ETM's).
+ * Unlike the wall guard, it also takes the pairs that approach faster than the resting
+ * speed (u_n < -rest_speed at the deepest point, lsdem_wall_classify: a collision within
+ * the step, which ETM did not see at the current poses), so that a fast grain is not
+ * carried between two balls; such a pair bounces as a collision of restitution e would
+ * (its normal velocity to -e u_n; e is eq 4.1's, a velocity ratio for one frictionless
+ * contact), or more if that does not close the overlap:
+ *   Delta u_n = max(d / dt, -(1 + e) u_n)   (a collision),   d / dt   (otherwise)
+ * Normal only (the collisions' friction is ETM's).
  * Every pair of a pass is corrected from the same state (Jacobi: lambda depends on the
  * geometry and masses alone, not on the velocities the other pairs change), with each
  * body's mass split among its overlapping pairs (its inverse mass and inertia times their
@@ -744,6 +749,7 @@ typedef struct {
   /* set by lsdem_impulse_ball_guard_detect */
   int32_t overlapping; /* 1: deeper than depth_tol at the predicted poses */
   double depth;      /* the deepest point's overlap there (after the push-out limit) */
+  double lift;       /* the rise of its relative normal velocity the correction makes */
   double normal[3];  /* its unit normal, from b towards a */
   double arm_a[3], arm_b[3]; /* its arms about a's and b's predicted centroids */
 } lsdem_ball_guard_pair;
@@ -755,21 +761,22 @@ typedef struct {
  * at the current poses: the wall guard's linear estimate d + u_n dt fails for a ball
  * sliding round a grain, whose normal turns within the step) is taken out no faster than
  * the wall guard's cap (lsdem_push_out_cap with p->rest_speed): the depth becomes
- * d - d0 + cap dt when d0 / dt exceeds the cap (the step's new overlap closed at once); count[i] (the caller zeroes it, one
+ * d - d0 + cap dt when d0 / dt exceeds the cap (the step's new overlap closed at once).
+ * The lift: d / dt, or for a collision max(d / dt, -(1 + e) u_n) (e: restitution, [0, 1]); count[i] (the caller zeroes it, one
  * per body) is raised by one for each body of an overlapping pair. points, npoints:
  * manifold storage (the master's capacity). Returns the number of overlapping pairs. */
 int lsdem_impulse_ball_guard_detect(const lsdem_impulse_body *body,
                                     const lsdem_impulse_grain *grain,
                                     lsdem_ball_guard_pair *pairs, int n,
                                     const lsdem_detect_params *det, const lsdem_wall_params *p,
-                                    double dt, int64_t step, lsdem_contact_point *points,
-                                    int npoints, int32_t *count);
+                                    double e, double dt, int64_t step,
+                                    lsdem_contact_point *points, int npoints, int32_t *count);
 
-/* The pair's impulse lambda n on a (eqs 4.8, 4.13 with each body's inverse mass and inertia
- * times its count; 0 when the pair does not overlap or both bodies have infinite mass),
- * returned in P. */
+/* The pair's impulse lambda n on a, lambda = lift / (n . K n) (eqs 4.8, 4.13 with each
+ * body's inverse mass and inertia times its count; 0 when the pair does not overlap or both
+ * bodies have infinite mass), returned in P. */
 void lsdem_ball_guard_impulse(const lsdem_impulse_body *body, const lsdem_ball_guard_pair *q,
-                              const int32_t *count, double dt, double P[3]);
+                              const int32_t *count, double P[3]);
 
 /* The correction: every overlapping pair's impulse (lsdem_ball_guard_impulse) on its bodies
  * whose index is below nown (the caller's own: a ghost's change comes from its owner, which
@@ -777,7 +784,7 @@ void lsdem_ball_guard_impulse(const lsdem_impulse_body *body, const lsdem_ball_g
  * below nown (summed over ranks that own each a once: every pair counted once). */
 int lsdem_impulse_ball_guard_correct(lsdem_impulse_body *body,
                                      const lsdem_ball_guard_pair *pairs, int n,
-                                     const int32_t *count, double dt, int nown);
+                                     const int32_t *count, int nown);
 
 /* Stage 6, the CFL check (report §4.3.4): the largest |v| dt / radius of the moving grains (a
  * non-finite ratio counts as HUGE_VAL) and its grain in *worst (-1: none, the ratio 0). */
