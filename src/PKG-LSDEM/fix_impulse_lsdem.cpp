@@ -446,15 +446,15 @@ void FixImpulseLsdem::solve_contacts()
   for (int pass = 0; pass < max_passes && corrected; pass++) {
     resolve_islands(pass);
     double t0 = MPI_Wtime();
-    int mine = correct_walls();
+    const int walls_mine = correct_walls();
     t_walls += MPI_Wtime() - t0;
-    if (balls_bit) mine += correct_balls(pass);
+    const int mine = walls_mine + (balls_bit ? correct_balls(pass) : 0);
     int all = 0;
     t0 = MPI_Wtime();
     MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_SUM, world);
     t_comm += MPI_Wtime() - t0;
     now.passes++;
-    now.corrections += mine;
+    now.corrections += walls_mine;
     corrected = all > 0;
     if (corrected) forward_velocities();
   }
