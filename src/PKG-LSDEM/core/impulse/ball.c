@@ -8,7 +8,7 @@
 #include <math.h>
 #include <string.h>
 
-/* the body's bounding spheres at the predicted centres x + v dt overlap */
+/* the bodies' bounding spheres at the predicted centres x + v dt overlap */
 static int predicted_spheres_overlap(const lsdem_impulse_body *a, const lsdem_impulse_grain *ga,
                                      const lsdem_impulse_body *b, const lsdem_impulse_grain *gb,
                                      double dt)
