@@ -187,39 +187,68 @@ static int write_data(const membrane_opts *o, const shape_grain_file *gf, const 
   return shape_close_out("membrane", f, path);
 }
 
+/* The triangles file through the core's codec (lsdem_membrane_file_print): vertices, lateral
+ * triangles and cap edges by atom ID, with the lateral areas as generated (the pressure
+ * split's reference). */
 static int write_triangles(const membrane_opts *o, const lsdem_membrane *m, long id0)
 {
-  char path[4096];
-  FILE *f = shape_open_out("membrane", o->prefix, ".tri", path, sizeof path);
-  if (!f) return 1;
-  int layers = m->nrings[1] ? 2 : 1;
-  fprintf(f, "lsdem-membrane-triangles 1\n# written by lsdem-shape membrane; atom IDs of %s.data\n",
-          o->prefix);
-  fprintf(f, "axis %.15g %.15g\nspecimen_radius %.15g\nsphere_radius %.15g %.15g\nlayers %d\n",
-          o->mp.centre[0], o->mp.centre[1], o->mp.specimen_radius, m->sphere_radius[0],
-          m->sphere_radius[1], layers);
-  double area[2] = {0.0, 0.0}; /* lateral areas as generated: the pressure split's reference */
+  char path[4096], about[4200];
+  lsdem_membrane_file mf;
+  memset(&mf, 0, sizeof mf);
+  mf.axis[0] = o->mp.centre[0];
+  mf.axis[1] = o->mp.centre[1];
+  mf.specimen_radius = o->mp.specimen_radius;
+  mf.sphere_radius[0] = m->sphere_radius[0];
+  mf.sphere_radius[1] = m->sphere_radius[1];
+  mf.layers = m->nrings[1] ? 2 : 1;
   for (int t = 0; t < m->ntris; t++) {
     double S[3];
     lsdem_triangle_area_vector(m->x + 3 * m->tri[3 * t], m->x + 3 * m->tri[3 * t + 1],
                                m->x + 3 * m->tri[3 * t + 2], S);
-    area[m->tri_layer[t]] += sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]);
+    mf.lateral_areas[m->tri_layer[t]] += sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]);
   }
-  fprintf(f, "lateral_areas %.15g %.15g\n", area[0], area[1]);
-  fprintf(f, "vertices %d\n", m->nspheres);
-  for (int i = 0; i < m->nspheres; i++) {
-    int mol = sphere_molecule(m, i);
-    fprintf(f, "%ld %d %d\n", id0 + i, m->layer[i], mol == 3 ? 0 : mol);
+  mf.nvertices = m->nspheres;
+  mf.ntriangles = m->ntris;
+  mf.ncap_edges = m->ncap_edges;
+  mf.vertex = malloc((size_t) (m->nspheres + 1) * sizeof(long));
+  mf.vertex_layer = malloc((size_t) (m->nspheres + 1) * sizeof(int));
+  mf.vertex_end = malloc((size_t) (m->nspheres + 1) * sizeof(int));
+  mf.triangle = malloc((size_t) (3 * m->ntris + 1) * sizeof(long));
+  mf.triangle_layer = m->tri_layer;
+  mf.cap_edge = malloc((size_t) (2 * m->ncap_edges + 1) * sizeof(long));
+  mf.cap_layer = m->cap_layer;
+  mf.cap_end = malloc((size_t) (m->ncap_edges + 1) * sizeof(int));
+  int failed = !mf.vertex || !mf.vertex_layer || !mf.vertex_end || !mf.triangle ||
+               !mf.cap_edge || !mf.cap_end;
+  if (failed) fprintf(stderr, "lsdem-shape membrane: out of memory\n");
+  FILE *f = failed ? NULL : shape_open_out("membrane", o->prefix, ".tri", path, sizeof path);
+  if (f) {
+    for (int i = 0; i < m->nspheres; i++) {
+      const int mol = sphere_molecule(m, i);
+      mf.vertex[i] = id0 + i;
+      mf.vertex_layer[i] = m->layer[i];
+      mf.vertex_end[i] = mol == 3 ? 0 : mol;
+    }
+    for (int k = 0; k < 3 * m->ntris; k++) mf.triangle[k] = id0 + m->tri[k];
+    for (int e = 0; e < m->ncap_edges; e++) {
+      mf.cap_edge[2 * e] = id0 + m->cap_edge[2 * e];
+      mf.cap_edge[2 * e + 1] = id0 + m->cap_edge[2 * e + 1];
+      mf.cap_end[e] = m->cap_end[e] + 1;
+    }
+    snprintf(about, sizeof about, "written by lsdem-shape membrane; atom IDs of %s.data",
+             o->prefix);
+    lsdem_membrane_file_print(f, &mf, about);
+    failed = shape_close_out("membrane", f, path);
+  } else {
+    failed = 1;
   }
-  fprintf(f, "triangles %d\n", m->ntris);
-  for (int t = 0; t < m->ntris; t++)
-    fprintf(f, "%ld %ld %ld %d\n", id0 + m->tri[3 * t], id0 + m->tri[3 * t + 1],
-            id0 + m->tri[3 * t + 2], m->tri_layer[t]);
-  fprintf(f, "cap_edges %d\n", m->ncap_edges);
-  for (int e = 0; e < m->ncap_edges; e++)
-    fprintf(f, "%ld %ld %d %d\n", id0 + m->cap_edge[2 * e], id0 + m->cap_edge[2 * e + 1],
-            m->cap_layer[e], m->cap_end[e] + 1);
-  return shape_close_out("membrane", f, path);
+  free(mf.vertex);
+  free(mf.vertex_layer);
+  free(mf.vertex_end);
+  free(mf.triangle);
+  free(mf.cap_edge);
+  free(mf.cap_end);
+  return failed;
 }
 
 static int write_include(const membrane_opts *o, const lsdem_membrane *m)

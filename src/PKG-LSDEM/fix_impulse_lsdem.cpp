@@ -72,7 +72,8 @@ enum {
   V_ROUNDS, V_KE, V_ABSORBED, V_DISSIPATED, V_RELEASED, V_TOTAL_DISSIPATED, V_TOTAL_DAMPED,
   V_T_DETECT, V_T_ISLANDS, V_T_ETM, V_T_WALLS, V_T_COMM, V_DEPTH, V_WALL_DEPTH,
   V_RESTING, V_SWEEPS, V_ETM_ISLANDS, V_CONTACTS, V_PAIRS, V_PER_PAIR, V_RESTING_WORK,
-  V_CONTACT_WORK, V_ETM_ROUNDS, V_T_REST, V_SLEEPING, V_WOKEN, V_SIZE
+  V_CONTACT_WORK, V_ETM_ROUNDS, V_T_REST, V_SLEEPING, V_WOKEN, V_BALL_CORRECTIONS,
+  V_BALL_DEPTH, V_SIZE
 };
 
 static const char USAGE[] = "fix ID group impulse/lsdem e mu [keyword value ...]";
@@ -83,11 +84,12 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), method(SPLIT), restitution(0.0), friction(0.0), xi(0.0), max_points(-1),
   max_passes(10),
   rest_setting(-1.0), rest_steps(2.0), residual(0.1), glue_setting(-1.0), glue_angle(15.0 * MY_PI / 180.0), cfl(0.5),
-  cfl_stop(0), wall_etm(0), sleep_speed(0.0), sleep_after(-1.0), avec(nullptr), pair(nullptr), islands(nullptr), total_dissipated(0.0),
+  cfl_stop(0), wall_etm(0), sleep_speed(0.0), sleep_after(-1.0), balls_bit(0), avec(nullptr), pair(nullptr), islands(nullptr), total_dissipated(0.0),
   total_damped(0.0), total_truncated(0.0), t_detect(0.0), t_islands(0.0), t_etm(0.0),
   t_rest(0.0),
   t_walls(0.0), t_comm(0.0), pair_seconds0(0.0), reduced_step(-1), cfl_warned(false),
-  sleep_clock(nullptr), sleep_label(nullptr), sending_sleep(false), woken_pending(0)
+  sleep_clock(nullptr), sleep_label(nullptr), sending_sleep(false), sending_counts(false),
+  woken_pending(0)
 {
   if (narg < 5) error->all(FLERR, "Illegal fix impulse/lsdem command: {}", USAGE);
   time_integrate = 1;
@@ -234,6 +236,12 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
                      "it) and a time >= 0 (an island sleeps when all its grains were slow "
                      "this long)", val, arg[iarg + 2]);
       }
+    } else if (key == "balls") {
+      const int g = lmp->group->find(val);
+      if (g < 0)
+        error->all(FLERR, "fix impulse/lsdem: balls group {} does not exist (the net's balls: "
+                   "group net of lsdem-shape net's PREFIX.in)", val);
+      balls_bit = lmp->group->bitmask[g];
     } else if (key == "cfl") {
       cfl = number();
       if (!(cfl > 0.0) || !std::isfinite(cfl))
@@ -434,17 +442,19 @@ void FixImpulseLsdem::solve_contacts()
 {
   bool corrected = true;
   wall_seen.assign((size_t) atom->nlocal * walls.size(), lsdem_wall_guard_seen());
+  if (balls_bit) find_ball_pairs();
   for (int pass = 0; pass < max_passes && corrected; pass++) {
     resolve_islands(pass);
     double t0 = MPI_Wtime();
-    const int mine = correct_walls();
+    const int walls_mine = correct_walls();
     t_walls += MPI_Wtime() - t0;
+    const int mine = walls_mine + (balls_bit ? correct_balls(pass) : 0);
     int all = 0;
     t0 = MPI_Wtime();
     MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_SUM, world);
     t_comm += MPI_Wtime() - t0;
     now.passes++;
-    now.corrections += mine;
+    now.corrections += walls_mine;
     corrected = all > 0;
     if (corrected) forward_velocities();
   }
@@ -822,6 +832,78 @@ int FixImpulseLsdem::correct_walls()
 }
 
 /* ----------------------------------------------------------------------
+   the ball guard's pairs (keyword balls): from the pair style's full neighbor list, every
+   pair of a ball and an atom outside the balls group with a moving body, listed once on a
+   rank that owns one of them (by the owned ball, or by the owned grain when its ball is a
+   ghost), a = the ball, b = the grain, sorted by their tags so that each body's impulses
+   are summed in the same order on any rank count
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::find_ball_pairs()
+{
+  ball_pairs.clear();
+  const NeighList *list = pair->list;
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    const int *js = list->firstneigh[i];
+    for (int k = 0; k < list->numneigh[i]; k++) {
+      const int j = js[k] & NEIGHMASK;
+      const bool ball_i = mask[i] & balls_bit, ball_j = mask[j] & balls_bit;
+      if (ball_i == ball_j || !(moving[i] || moving[j])) continue;
+      if (!ball_i && j < nlocal) continue;  // both owned: listed by the ball
+      lsdem_ball_guard_pair q;
+      q.a = ball_i ? i : j;
+      q.b = ball_i ? j : i;
+      ball_pairs.push_back(q);
+    }
+  }
+  const tagint *tag = atom->tag;
+  std::sort(ball_pairs.begin(), ball_pairs.end(),
+            [tag](const lsdem_ball_guard_pair &p, const lsdem_ball_guard_pair &q) {
+              return tag[p.a] != tag[q.a] ? tag[p.a] < tag[q.a] : tag[p.b] < tag[q.b];
+            });
+}
+
+/* ----------------------------------------------------------------------
+   the ball guard (report §4.4.2, Figure 4.4; lsdem_impulse_ball_guard_detect and _correct):
+   the wall guard's corrections to the ghosts first (the pairs see the same velocities on
+   every rank), each pair at the predicted poses, the owners' counts of overlapping pairs to
+   the ghosts (mass splitting), the impulses on the owned bodies. Returns the pairs
+   corrected (each counted by its ball's owner).
+------------------------------------------------------------------------- */
+
+int FixImpulseLsdem::correct_balls(int pass)
+{
+  forward_velocities();
+  const double t0 = MPI_Wtime();
+  const int nall = atom->nlocal + atom->nghost;
+  ball_count.assign(nall, 0);
+  lsdem_detect_params det;
+  det.node_stride = 1;
+  det.node_skin = 0.0;
+  lsdem_impulse_ball_guard_detect(body.data(), grain.data(), ball_pairs.data(),
+                                  (int) ball_pairs.size(), &det, &stage.wall, restitution,
+                                  update->dt, update->ntimestep, wpoints.data(), (int) wpoints.size(),
+                                  ball_count.data());
+  if (pass == 0)
+    for (const lsdem_ball_guard_pair &q : ball_pairs)
+      now.ball_depth = std::max(now.ball_depth, q.depth);
+  t_walls += MPI_Wtime() - t0;
+  const double t1 = MPI_Wtime();
+  sending_counts = true;
+  LsdemCompat::forward_comm(comm, this, 1);
+  sending_counts = false;
+  t_comm += MPI_Wtime() - t1;
+  const int n = lsdem_impulse_ball_guard_correct(body.data(), ball_pairs.data(),
+                                                 (int) ball_pairs.size(), ball_count.data(),
+                                                 atom->nlocal);
+  now.ball_corrections += n;
+  return n;
+}
+
+/* ----------------------------------------------------------------------
    CFL: a grain that would move more than cfl x its bounding radius in one step can pass
    through another (report §4.3.4); warn (once per run) or stop
 ------------------------------------------------------------------------- */
@@ -1068,7 +1150,7 @@ double FixImpulseLsdem::kinetic_energy(int i, const double v[3], const double om
 void FixImpulseLsdem::reduce_output()
 {
   if (reduced_step == update->ntimestep) return;
-  double sum[21], max[13];
+  double sum[21], max[14];
   double ke = 0.0;
   for (int i = 0; i < atom->nlocal; i++)
     if (atom->mask[i] & groupbit) ke += kinetic_energy(i, atom->v[i], atom->omega[i]);
@@ -1094,7 +1176,7 @@ void FixImpulseLsdem::reduce_output()
   for (int i = 0; i < atom->nlocal; i++) sleeping += asleep(i);
   sum[18] = sleeping;
   sum[19] = now.woken;
-  sum[20] = 0.0;
+  sum[20] = now.ball_corrections;
   max[0] = now.largest;
   max[1] = now.passes;
   max[2] = now.rounds;
@@ -1108,9 +1190,10 @@ void FixImpulseLsdem::reduce_output()
   max[10] = now.max_sweeps;
   max[11] = now.etm_rounds;
   max[12] = t_rest;
-  double s[21], m[13];
+  max[13] = now.ball_depth;
+  double s[21], m[14];
   MPI_Allreduce(sum, s, 21, MPI_DOUBLE, MPI_SUM, world);
-  MPI_Allreduce(max, m, 13, MPI_DOUBLE, MPI_MAX, world);
+  MPI_Allreduce(max, m, 14, MPI_DOUBLE, MPI_MAX, world);
   reduced[V_ISLANDS] = s[0];
   reduced[V_CROSS] = s[1];
   reduced[V_ITERATIONS] = s[2];
@@ -1144,6 +1227,8 @@ void FixImpulseLsdem::reduce_output()
   reduced[V_T_REST] = m[12];
   reduced[V_SLEEPING] = s[18];
   reduced[V_WOKEN] = s[19];
+  reduced[V_BALL_CORRECTIONS] = s[20];
+  reduced[V_BALL_DEPTH] = m[13];
   reduced_step = update->ntimestep;
 }
 
@@ -1164,7 +1249,9 @@ void FixImpulseLsdem::reduce_output()
    when dissipated), 30 ETM compression-separation rounds (the most of any island), 31
    seconds since the run's setup in the resting solve (17: the islands' assembly and ETM,
    without it). 13 is
-   minus the sum of 29 since the start
+   minus the sum of 29 since the start. 34 ball-grain pairs corrected by the ball guard
+   (keyword balls; all passes) and 35 the deepest ball-grain overlap it found at the
+   predicted poses (first pass; length)
 ------------------------------------------------------------------------- */
 
 double FixImpulseLsdem::compute_vector(int n)
@@ -1285,6 +1372,10 @@ int FixImpulseLsdem::pack_forward_comm(int n, int *list, double *buf, int, int *
     for (int k = 0; k < n; k++) buf[k] = sleep_label[list[k]];
     return n;
   }
+  if (sending_counts) {
+    for (int k = 0; k < n; k++) buf[k] = ball_count[list[k]];
+    return n;
+  }
   int m = 0;
   for (int k = 0; k < n; k++) {
     const int j = list[k];
@@ -1299,6 +1390,10 @@ void FixImpulseLsdem::unpack_forward_comm(int n, int first, double *buf)
   if (islands->exchanging()) return islands->unpack_forward(n, first, buf);
   if (sending_sleep) {
     for (int k = 0; k < n; k++) sleep_label[first + k] = buf[k];
+    return;
+  }
+  if (sending_counts) {
+    for (int k = 0; k < n; k++) ball_count[first + k] = (int32_t) buf[k];
     return;
   }
   int m = 0;

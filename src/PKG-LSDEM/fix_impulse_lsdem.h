@@ -78,6 +78,7 @@ class FixImpulseLsdem : public Fix {
   double sleep_speed;        // keyword sleep: a grain is slow below this surface speed
   double sleep_after;        // ... and an island sleeps when all its grains were slow this
                              // long (time units); < 0: no sleeping (the default)
+  int balls_bit;             // keyword balls: the net balls' group bit (0: no ball guard)
 
   // what it works with (found at init)
   class AtomVecLsdem *avec;
@@ -90,6 +91,7 @@ class FixImpulseLsdem : public Fix {
   // in (its smallest tag when it fell asleep; 0: awake), ghosts' sent in pre_force
   double *sleep_clock, *sleep_label;
   bool sending_sleep;        // forward communication carries sleep_label
+  bool sending_counts;       // forward communication carries ball_count
   std::vector<int64_t> wake_mine, wake_all, ready_mine, ready_all;
   std::vector<int> counts, displs;
   std::vector<char> blocked;
@@ -104,6 +106,8 @@ class FixImpulseLsdem : public Fix {
   std::vector<lsdem_contact_point> wpoints;  // manifold of one grain against one wall
   lsdem_impulse_step stage;                  // this step's method, dt and thresholds
   std::vector<lsdem_wall_guard_seen> wall_seen;  // per wall, then local grain
+  std::vector<lsdem_ball_guard_pair> ball_pairs;  // ball-grain pairs of the step (balls)
+  std::vector<int32_t> ball_count;                // per atom: its overlapping ball pairs
 
   // what the step did (this rank), reduced over ranks when output asks
   struct Step {
@@ -114,6 +118,8 @@ class FixImpulseLsdem : public Fix {
     double absorbed, dissipated, released, resting_work, contact_work;
     double depth, wall_depth;  // deepest grain-grain and grain-wall penetration
     int woken;                 // grains woken (pre_force) before this step
+    int ball_corrections;      // ball-grain pairs corrected (all passes)
+    double ball_depth;         // deepest ball-grain overlap at the predicted poses (pass 1)
   } now;
   int woken_pending;           // grains woken in this step's pre_force (now is reset later)
   // this rank's share since start; damped: by global damping and by putting grains to sleep
@@ -154,6 +160,8 @@ class FixImpulseLsdem : public Fix {
   void solve_contacts();
   void resolve_islands(int pass);
   int correct_walls();
+  void find_ball_pairs();
+  int correct_balls(int pass);
   void check_cfl();
   void damp_and_drift();
   void scatter_grains();

@@ -137,94 +137,39 @@ int FixMembraneLsdem::setmask()
 }
 
 /* ----------------------------------------------------------------------
-   triangles file (doc/fix_membrane_lsdem.rst), read on rank 0
+   triangles file (doc/fix_membrane_lsdem.rst), read on rank 0 by the core's codec of the
+   bonded-ball structures' files (lsdem_membrane_file_read, the net file's line reader)
 ------------------------------------------------------------------------- */
 
 std::string FixMembraneLsdem::read_file()
 {
-  FILE *fp = fopen(file.c_str(), "r");
-  if (!fp) return fmt::format("cannot open triangles file {}", file);
-  char line[1024], key[64];
-  int lineno = 0, version = 0;
-  auto next = [&]() -> bool {
-    while (fgets(line, sizeof(line), fp)) {
-      lineno++;
-      char *h = strchr(line, '#');
-      if (h) *h = '\0';
-      if (strspn(line, " \t\r\n") != strlen(line)) return true;
-    }
-    return false;
-  };
-  std::string failure;
-  auto bad = [&](const char *what) {
-    if (failure.empty()) failure = fmt::format("{} line {}: {}", file, lineno, what);
-  };
-  if (!next() || sscanf(line, "lsdem-membrane-triangles %d", &version) != 1 || version != 1)
-    bad("expected 'lsdem-membrane-triangles 1' (a file from lsdem-shape membrane)");
-  int nv = -1, nt = -1, ne = -1;
-  while (failure.empty() && next()) {
-    if (sscanf(line, "%63s", key) != 1) continue;
-    std::string k = key;
-    long long a, b, c;
-    int l, e;
-    if (k == "axis") {
-      if (sscanf(line, "%*s %lf %lf", &axis[0], &axis[1]) != 2) bad("axis cx cy");
-    } else if (k == "specimen_radius") {
-      if (sscanf(line, "%*s %lf", &specimen_radius) != 1) bad("specimen_radius Rs");
-    } else if (k == "sphere_radius") {
-      if (sscanf(line, "%*s %lf %lf", &sphere_radius[0], &sphere_radius[1]) != 2)
-        bad("sphere_radius rb rb_outer");
-    } else if (k == "lateral_areas") {
-      if (sscanf(line, "%*s %lf %lf", &area0[0], &area0[1]) != 2 || area0[0] <= 0.0 ||
-          area0[1] < 0.0)
-        bad("lateral_areas A_inner A_outer");
-    } else if (k == "layers") {
-      if (sscanf(line, "%*s %d", &nlayers) != 1 || nlayers < 1 || nlayers > 2) bad("layers 1|2");
-    } else if (k == "vertices") {
-      if (sscanf(line, "%*s %d", &nv) != 1 || nv < 3) bad("vertices N");
-      for (int v = 0; v < nv && failure.empty(); v++) {
-        if (!next() || sscanf(line, "%lld %d %d", &a, &l, &e) != 3 || l < 0 || l > 1 || e < 0 ||
-            e > 2)
-          bad("expected 'atom-ID layer end'");
-        vtag.push_back((tagint) a);
-        int r = ROLE_MEMBRANE | (l == 0 ? ROLE_INNER : 0) | (e == 0 ? ROLE_MIDDLE : 0);
-        role_of[(tagint) a] = r;
-      }
-    } else if (k == "triangles") {
-      if (sscanf(line, "%*s %d", &nt) != 1 || nt < 1) bad("triangles N");
-      for (int t = 0; t < nt && failure.empty(); t++) {
-        if (!next() || sscanf(line, "%lld %lld %lld %d", &a, &b, &c, &l) != 4 || l < 0 || l > 1)
-          bad("expected 'id1 id2 id3 layer'");
-        tri.push_back((tagint) a);
-        tri.push_back((tagint) b);
-        tri.push_back((tagint) c);
-        tri_layer.push_back(l);
-      }
-    } else if (k == "cap_edges") {
-      if (sscanf(line, "%*s %d", &ne) != 1 || ne < 0) bad("cap_edges N");
-      for (int t = 0; t < ne && failure.empty(); t++) {
-        if (!next() || sscanf(line, "%lld %lld %d %d", &a, &b, &l, &e) != 4 || l < 0 || l > 1 ||
-            e < 1 || e > 2)
-          bad("expected 'id1 id2 layer end(1 bottom, 2 top)'");
-        cap.push_back((tagint) a);
-        cap.push_back((tagint) b);
-        cap_layer.push_back(l);
-        cap_end.push_back(e - 1);
-      }
-    } else bad("unknown keyword");
+  lsdem_membrane_file mf;
+  lsdem_error err;
+  if (lsdem_membrane_file_read(file.c_str(), &mf, &err) != LSDEM_OK) return err.msg;
+  for (int k = 0; k < 2; k++) {
+    axis[k] = mf.axis[k];
+    sphere_radius[k] = mf.sphere_radius[k];
+    area0[k] = mf.lateral_areas[k];
   }
-  fclose(fp);
-  if (!failure.empty()) return failure;
-  if (nv < 0 || nt < 0 || ne < 0 || nlayers < 1 || specimen_radius <= 0.0 ||
-      sphere_radius[0] <= 0.0 || area0[0] <= 0.0 || (nlayers == 2 && area0[1] <= 0.0))
-    return fmt::format("{} is incomplete (needs axis, specimen_radius, sphere_radius, "
-                       "lateral_areas, layers, vertices, triangles, cap_edges)", file);
-  for (tagint t : tri)
-    if (!role_of.count(t))
-      return fmt::format("{}: triangle vertex {} is not in the vertices list", file, t);
-  for (tagint t : cap)
-    if (!role_of.count(t))
-      return fmt::format("{}: cap edge vertex {} is not in the vertices list", file, t);
+  specimen_radius = mf.specimen_radius;
+  nlayers = mf.layers;
+  for (int v = 0; v < mf.nvertices; v++) {
+    const tagint a = (tagint) mf.vertex[v];
+    vtag.push_back(a);
+    role_of[a] = ROLE_MEMBRANE | (mf.vertex_layer[v] == 0 ? ROLE_INNER : 0) |
+        (mf.vertex_end[v] == 0 ? ROLE_MIDDLE : 0);
+  }
+  for (int t = 0; t < mf.ntriangles; t++) {
+    for (int c = 0; c < 3; c++) tri.push_back((tagint) mf.triangle[3 * t + c]);
+    tri_layer.push_back(mf.triangle_layer[t]);
+  }
+  for (int e = 0; e < mf.ncap_edges; e++) {
+    cap.push_back((tagint) mf.cap_edge[2 * e]);
+    cap.push_back((tagint) mf.cap_edge[2 * e + 1]);
+    cap_layer.push_back(mf.cap_layer[e]);
+    cap_end.push_back(mf.cap_end[e] - 1);
+  }
+  lsdem_membrane_file_free(&mf);
   return "";
 }
 

@@ -3,8 +3,9 @@
  * clamp flags on the chosen edges, an orthonormal frame for a tilted plane), the side of a
  * sagged net a point is on (worked by hand), the bond force
  * against a central difference of its energy and the damping against its definition, the
- * rupture criteria on either side of the limit, and the net file codec (round trip; a bond
- * to a missing ball, a repeated ball and a bad header refused with the line named). */
+ * rupture criteria on either side of the limit, and the codec of the net file (round trip; a
+ * bond to a missing ball, a repeated ball and a bad header refused with the line named) and
+ * of the membrane's triangles file (round trip; bad files refused, named). */
 #include "lsdem.h"
 #include "lsdem_test.h"
 
@@ -277,6 +278,64 @@ static void test_file(void)
   CHECK(strstr(err.msg, "line 1") != NULL, "message: %s", err.msg);
 }
 
+/* The membrane's triangles file through the same codec: a file printed and read back gives
+ * every value and ID (doubles to the printed 15 digits: the values here have fewer); a
+ * triangle naming a vertex the file does not list, an unknown keyword, a missing section, a
+ * bad row and a missing file are refused with the file (and line) named. */
+static void test_membrane_file(void)
+{
+  long vertex[4] = {11, 12, 13, 14}, triangle[6] = {11, 12, 13, 12, 13, 14}, cap[2] = {11, 14};
+  int vlayer[4] = {0, 0, 1, 1}, vend[4] = {1, 0, 0, 2}, tlayer[2] = {0, 1}, clayer[1] = {1},
+      cend[1] = {2};
+  lsdem_membrane_file mf = {{0.5, -0.25}, 3.5, {0.125, 0.25}, {12.5, 14.75}, 2, 4, 2, 1,
+                            vertex, vlayer, vend, triangle, tlayer, cap, clayer, cend};
+  FILE *f = fopen("mem_rt.tri", "w");
+  lsdem_membrane_file_print(f, &mf, "a test file");
+  fclose(f);
+  lsdem_membrane_file back;
+  lsdem_error err;
+  CHECK(lsdem_membrane_file_read("mem_rt.tri", &back, &err) == LSDEM_OK, "%s", err.msg);
+  CHECK(back.axis[0] == 0.5 && back.axis[1] == -0.25 && back.specimen_radius == 3.5 &&
+            back.sphere_radius[0] == 0.125 && back.sphere_radius[1] == 0.25 &&
+            back.lateral_areas[0] == 12.5 && back.lateral_areas[1] == 14.75 && back.layers == 2,
+        "scalars after the round trip");
+  CHECK(back.nvertices == 4 && back.ntriangles == 2 && back.ncap_edges == 1, "counts");
+  for (int v = 0; v < 4; v++)
+    CHECK(back.vertex[v] == vertex[v] && back.vertex_layer[v] == vlayer[v] &&
+              back.vertex_end[v] == vend[v], "vertex %d", v);
+  for (int k = 0; k < 6; k++) CHECK(back.triangle[k] == triangle[k], "triangle corner %d", k);
+  CHECK(back.triangle_layer[1] == 1 && back.cap_edge[0] == 11 && back.cap_edge[1] == 14 &&
+            back.cap_layer[0] == 1 && back.cap_end[0] == 2, "triangle layer, cap edge");
+  lsdem_membrane_file_free(&back);
+
+  const char *head = "lsdem-membrane-triangles 1\naxis 0 0\nspecimen_radius 1\n"
+                     "sphere_radius 0.1 0\nlayers 1\nlateral_areas 6 0\n"
+                     "vertices 3\n1 0 1\n2 0 0\n3 0 2\n";
+  char text[1024];
+  snprintf(text, sizeof text, "%striangles 1\n1 2 9 0\ncap_edges 0\n", head);
+  write_text("mem_missing.tri", text);
+  CHECK(lsdem_membrane_file_read("mem_missing.tri", &back, &err) == LSDEM_ERR_FORMAT,
+        "a missing vertex");
+  CHECK(strstr(err.msg, "mem_missing.tri") && strstr(err.msg, "vertex 9"), "message: %s",
+        err.msg);
+  snprintf(text, sizeof text, "%sbogus 1\n", head);
+  write_text("mem_key.tri", text);
+  CHECK(lsdem_membrane_file_read("mem_key.tri", &back, &err) == LSDEM_ERR_FORMAT, "keyword");
+  CHECK(strstr(err.msg, "line 11: unknown keyword") != NULL, "message: %s", err.msg);
+  write_text("mem_short.tri", head);
+  CHECK(lsdem_membrane_file_read("mem_short.tri", &back, &err) == LSDEM_ERR_FORMAT, "sections");
+  CHECK(strstr(err.msg, "is incomplete") != NULL, "message: %s", err.msg);
+  snprintf(text, sizeof text, "%s", head);
+  strcpy(strstr(text, "3 0 2\n"), "3 0 3\n");
+  write_text("mem_row.tri", text);
+  CHECK(lsdem_membrane_file_read("mem_row.tri", &back, &err) == LSDEM_ERR_FORMAT, "bad end");
+  CHECK(strstr(err.msg, "line 10: expected 'atom-ID layer end'") != NULL, "message: %s",
+        err.msg);
+  CHECK(lsdem_membrane_file_read("mem_none.tri", &back, &err) == LSDEM_ERR_IO, "no file");
+  CHECK(strstr(err.msg, "cannot open triangles file mem_none.tri") != NULL, "message: %s",
+        err.msg);
+}
+
 int main(void)
 {
   test_counts(LSDEM_NET_SQUARE, 5, 4);
@@ -291,5 +350,6 @@ int main(void)
   test_bend();
   test_breaks();
   test_file();
+  test_membrane_file();
   return lsdem_test_summary();
 }

@@ -12,6 +12,7 @@
  *   integrate.c symplectic Euler (eqs 4.37-4.40) and global damping (eqs 4.44-4.46)
  *   wall.c      resting contact on rigid walls: the predicted-position velocity
  *               correction of §4.4.1 (Figures 4.4-4.5)
+ *   ball.c      the same check for net balls against grains, two-sided (§4.4.2, Fig. 4.4)
  *   islands.c   contact islands: union-find, labels, the cross-rank label merge (§4.5)
  *   cap.c       at most a few contacts per pair (the manifold cap)
  *   sleep.c     the sleep clock of sleeping islands
@@ -38,9 +39,12 @@
  *      resting solve, then collisions by ETM; the report's method: ETM alone);
  *   5. wall guard (lsdem_impulse_stage_wall_guard): every grain against every wall at its
  *      predicted pose (lsdem_impulse_predict_pose), resting contacts corrected
- *      (lsdem_wall_limit_push_out, lsdem_wall_correct; §4.4.1); while it corrects, the
- *      collisions it makes are resolved by another pass (4) and 5 repeats, up to a cap
- *      (the report used 10), after which one more pass closes the step;
+ *      (lsdem_wall_limit_push_out, lsdem_wall_correct; §4.4.1), then, when the caller
+ *      names net balls, the ball guard (lsdem_impulse_ball_guard_detect,
+ *      lsdem_impulse_ball_guard_correct; §4.4.2, Figure 4.4): every ball-grain pair at the
+ *      predicted poses, overlaps closed by equal and opposite impulses; while they
+ *      correct, the collisions they make are resolved by another pass (4) and 5 repeats,
+ *      up to a cap (the report used 10), after which one more pass closes the step;
  *   6. CFL check (lsdem_impulse_stage_cfl, §4.3.4);
  *   7. damp and drift (lsdem_impulse_stage_damp_drift): global damping (eqs 4.44-4.46),
  *      positions and orientations (eqs 4.38, 4.40).
@@ -423,8 +427,12 @@ lsdem_wall_contact_kind lsdem_wall_classify(double u_n, double rest_speed);
  * through the overlap under the external acceleration a = rest_speed / (2 dt): the kinetic
  * energy it gives is at most the work gravity would do over the overlap. This scales the
  * manifold's depths (m, at the predicted pose, arms about the predicted centroid) so that
- * u_n becomes that cap; the rest of the overlap goes in the next steps. */
+ * u_n becomes that cap (lsdem_push_out_cap); the rest of the overlap goes in the next
+ * steps. */
 void lsdem_wall_limit_push_out(lsdem_manifold *m, double dt, double rest_speed);
+/* The push-out cap of an overlap d0 the body has now: max(rest_speed, sqrt(2 a d0)),
+ * a = rest_speed / (2 dt) (above). */
+double lsdem_push_out_cap(double d0, double dt, double rest_speed);
 
 typedef struct {
   lsdem_wall_contact_kind kind;
@@ -708,6 +716,75 @@ int lsdem_impulse_stage_wall_guard(lsdem_impulse_body *body, const lsdem_impulse
                                    const char *moving, int n, const lsdem_impulse_guard_wall *w,
                                    int64_t step, double dt, lsdem_contact_point *points,
                                    int npoints, lsdem_wall_guard_seen *seen, lsdem_error *err);
+
+/* Stage 5b, the ball guard (report §4.4.2 and Figure 4.4: "membrane sphere velocity was
+ * corrected after it advanced to the next time step to ensure impenetrability"; the order
+ * matters, "as the grain may otherwise pass through the membrane"). After the collisions
+ * are resolved, each pair of a net ball and a grain is tested at the PREDICTED poses
+ * x' = x + v dt (lsdem_impulse_predict_pose), as the wall guard tests a grain against a
+ * wall (§4.4.1). A pair that overlaps there deeper than depth_tol gets, at its deepest
+ * point p (normal n from b towards a, arms r_a, r_b about the predicted centroids), the
+ * normal impulse P = lambda n on a and -P on b (eqs 4.31-4.32) that raises the point's
+ * relative normal velocity by d/dt, so that the overlap the advance would leave closes
+ * (§4.4.1: x^{t+1} = x^t + v* dt with v* corrected at x' = x + v dt):
+ *   Delta u_n = n . K P = d / dt,  lambda = (d / dt) / (n . K n)  (K: eqs 4.8, 4.13)
+ * A ball is not a wall: the grain takes -P, so momentum and angular momentum are kept.
+ * Unlike the wall guard, it also takes the pairs that approach faster than the resting
+ * speed (u_n < -rest_speed at the deepest point, lsdem_wall_classify: a collision within
+ * the step, which ETM did not see at the current poses), so that a fast grain is not
+ * carried between two balls; such a pair bounces as a collision of restitution e would
+ * (its normal velocity to -e u_n; e is eq 4.1's, a velocity ratio for one frictionless
+ * contact), or more if that does not close the overlap:
+ *   Delta u_n = max(d / dt, -(1 + e) u_n)   (a collision),   d / dt   (otherwise)
+ * Normal only (the collisions' friction is ETM's).
+ * Every pair of a pass is corrected from the same state (Jacobi: lambda depends on the
+ * geometry and masses alone, not on the velocities the other pairs change), with each
+ * body's mass split among its overlapping pairs (its inverse mass and inertia times their
+ * number c, "mass splitting", Tonge, Benevolenski and Voroshilov 2012): a grain on c balls
+ * is pushed once, not c times (c parallel contacts whose arms add no turn together raise
+ * each one's u_n by exactly d/dt; with a turn a pass lifts less, and the next goes on). The
+ * caller repeats the passes (islands, walls, balls) until nothing is corrected or a cap. */
+typedef struct {
+  int32_t a, b;      /* bodies: indices into the step's bodies and grains, a != b */
+  /* set by lsdem_impulse_ball_guard_detect */
+  int32_t overlapping; /* 1: deeper than depth_tol at the predicted poses */
+  double depth;      /* the deepest point's overlap there (after the push-out limit) */
+  double lift;       /* the rise of its relative normal velocity the correction makes */
+  double normal[3];  /* its unit normal, from b towards a */
+  double arm_a[3], arm_b[3]; /* its arms about a's and b's predicted centroids */
+} lsdem_ball_guard_pair;
+
+/* Detection of the ball guard: pairs[k] at the predicted poses of its bodies (first their
+ * bounding spheres' centres; the master by lsdem_contact_roles, one-way: a ball against a
+ * grain is its centre looked up in the grain's level set), its deepest point kept when
+ * deeper than p->depth_tol (p->mu is not used). An overlap d0 the pair has now (detected
+ * at the current poses: the wall guard's linear estimate d + u_n dt fails for a ball
+ * sliding round a grain, whose normal turns within the step) is taken out no faster than
+ * the wall guard's cap (lsdem_push_out_cap with p->rest_speed): the depth becomes
+ * d - d0 + cap dt when d0 / dt exceeds the cap (the step's new overlap closed at once).
+ * The lift: d / dt, or for a collision max(d / dt, -(1 + e) u_n) (e: restitution, [0, 1]); count[i] (the caller zeroes it, one
+ * per body) is raised by one for each body of an overlapping pair. points, npoints:
+ * manifold storage (the master's capacity). Returns the number of overlapping pairs. */
+int lsdem_impulse_ball_guard_detect(const lsdem_impulse_body *body,
+                                    const lsdem_impulse_grain *grain,
+                                    lsdem_ball_guard_pair *pairs, int n,
+                                    const lsdem_detect_params *det, const lsdem_wall_params *p,
+                                    double e, double dt, int64_t step,
+                                    lsdem_contact_point *points, int npoints, int32_t *count);
+
+/* The pair's impulse lambda n on a, lambda = lift / (n . K n) (eqs 4.8, 4.13 with each
+ * body's inverse mass and inertia times its count; 0 when the pair does not overlap or both
+ * bodies have infinite mass), returned in P. */
+void lsdem_ball_guard_impulse(const lsdem_impulse_body *body, const lsdem_ball_guard_pair *q,
+                              const int32_t *count, double P[3]);
+
+/* The correction: every overlapping pair's impulse (lsdem_ball_guard_impulse) on its bodies
+ * whose index is below nown (the caller's own: a ghost's change comes from its owner, which
+ * lists the same pair), in pair order. Returns the number of pairs corrected whose a is
+ * below nown (summed over ranks that own each a once: every pair counted once). */
+int lsdem_impulse_ball_guard_correct(lsdem_impulse_body *body,
+                                     const lsdem_ball_guard_pair *pairs, int n,
+                                     const int32_t *count, int nown);
 
 /* Stage 6, the CFL check (report §4.3.4): the largest |v| dt / radius of the moving grains (a
  * non-finite ratio counts as HUGE_VAL) and its grain in *worst (-1: none, the ratio 0). */

@@ -15,6 +15,12 @@ void lsdem_wall_params_default(lsdem_wall_params *p, double gravity, double dt, 
   p->mu = mu;
 }
 
+double lsdem_push_out_cap(double d0, double dt, double rest_speed)
+{
+  const double accel = rest_speed / (2.0 * dt);
+  return fmax(rest_speed, sqrt(2.0 * accel * d0));
+}
+
 void lsdem_wall_limit_push_out(lsdem_manifold *m, double dt, double rest_speed)
 {
   if (m->n == 0) return;
@@ -24,8 +30,7 @@ void lsdem_wall_limit_push_out(lsdem_manifold *m, double dt, double rest_speed)
   const lsdem_contact_point *p = &m->point[k];
   const double un = lsdem_dot3(p->vrel, p->normal);
   const double d0 = fmax(p->depth + un * dt, 0.0);
-  const double accel = rest_speed / (2.0 * dt);
-  const double cap = fmax(rest_speed, sqrt(2.0 * accel * d0));
+  const double cap = lsdem_push_out_cap(d0, dt, rest_speed);
   if (!(d0 / dt > cap) || !(p->depth > 0.0)) return;
   const double scale = fmax(cap - un, 0.0) * dt / p->depth; /* u_n + d' / dt = cap */
   for (int j = 0; j < m->n; j++) m->point[j].depth *= scale;

@@ -5,6 +5,8 @@
 
 #include "../base/lsdem_base.h"
 
+#include <stdio.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -408,6 +410,42 @@ int lsdem_net_bond_breaks(int mode, double limit, double k, double r0, double st
  * naming the line). */
 lsdem_status lsdem_net_write(const char *path, const lsdem_net *net, lsdem_error *err);
 lsdem_status lsdem_net_read(const char *path, lsdem_net *net, lsdem_error *err);
+
+/* The triaxial membrane's file (net_file.c, the same codec and line reader as the net
+ * file): the triangles file lsdem-shape membrane writes and fix membrane/lsdem reads
+ * (doc/fix_membrane_lsdem.rst):
+ *   lsdem-membrane-triangles 1
+ *   # comments anywhere
+ *   axis CX CY
+ *   specimen_radius RS
+ *   sphere_radius RB RB_OUTER
+ *   layers 1|2
+ *   lateral_areas A_INNER A_OUTER
+ *   vertices N       then N lines: atom-ID layer(0|1) end(0 middle, 1 bottom, 2 top)
+ *   triangles N      then N lines: atom-ID atom-ID atom-ID layer
+ *   cap_edges N      then N lines: atom-ID atom-ID layer end(1 bottom, 2 top)
+ * Keywords in any order after the first line. Reading checks every value's range, that
+ * every keyword came, and that triangles and cap edges name vertices of the file
+ * (LSDEM_ERR_FORMAT naming the file and line). */
+typedef struct {
+  double axis[2], specimen_radius, sphere_radius[2], lateral_areas[2];
+  int layers, nvertices, ntriangles, ncap_edges;
+  long *vertex;      /* nvertices atom IDs */
+  int *vertex_layer; /* 0 inner, 1 outer */
+  int *vertex_end;   /* 0 middle, 1 bottom, 2 top */
+  long *triangle;    /* 3 per triangle: atom IDs */
+  int *triangle_layer;
+  long *cap_edge;    /* 2 per edge: atom IDs */
+  int *cap_layer;
+  int *cap_end;      /* 1 bottom, 2 top */
+} lsdem_membrane_file;
+
+/* Prints the file to f (the caller opens and closes it), `about` (NULL: none) as a comment
+ * line after the first. */
+void lsdem_membrane_file_print(FILE *f, const lsdem_membrane_file *mf, const char *about);
+lsdem_status lsdem_membrane_file_read(const char *path, lsdem_membrane_file *mf,
+                                      lsdem_error *err);
+void lsdem_membrane_file_free(lsdem_membrane_file *mf);
 
 #ifdef __cplusplus
 }

@@ -1,5 +1,7 @@
-/* net_file.c -- the net file codec: the one text format lsdem-shape net writes and fix
- * net/lsdem reads (format in lsdem_specimen.h, "Net files"). */
+/* net_file.c -- the codec of the bonded-ball structures' files, one line reader for both
+ * formats: the net file lsdem-shape net writes and fix net/lsdem reads, and the triaxial
+ * membrane's triangles file lsdem-shape membrane writes and fix membrane/lsdem reads
+ * (formats in lsdem_specimen.h, "Net files" and "The triaxial membrane's file"). */
 #include "lsdem_specimen.h"
 #include "../base/lsdem_vec3.h"
 
@@ -58,13 +60,17 @@ static int next_line(reader *r)
   return 0;
 }
 
-/* "KEY a b c" with n numbers into v; 1 if the line is that. */
-static int keyed(reader *r, const char *key, int n, double *v)
+/* The first word of the current line into word (cap 32); returns where the rest starts, or
+ * NULL for none. */
+static const char *line_key(const reader *r, char word[32])
 {
-  char word[32];
   int used = 0;
-  if (!next_line(r) || sscanf(r->buf, "%31s%n", word, &used) != 1 || strcmp(word, key)) return 0;
-  const char *s = r->buf + used;
+  return sscanf(r->buf, "%31s%n", word, &used) == 1 ? r->buf + used : NULL;
+}
+
+/* n numbers from s into v; 1 if there are that many. */
+static int numbers(const char *s, int n, double *v)
+{
   for (int k = 0; k < n; k++) {
     char *end;
     v[k] = strtod(s, &end);
@@ -72,6 +78,14 @@ static int keyed(reader *r, const char *key, int n, double *v)
     s = end;
   }
   return 1;
+}
+
+/* "KEY a b c" with n numbers into v; 1 if the next line is that. */
+static int keyed(reader *r, const char *key, int n, double *v)
+{
+  char word[32];
+  const char *rest = next_line(r) ? line_key(r, word) : NULL;
+  return rest && !strcmp(word, key) && numbers(rest, n, v);
 }
 
 static lsdem_status header(reader *r, lsdem_net *net, lsdem_error *err)
@@ -117,6 +131,7 @@ static lsdem_status section(reader *r, const char *key, int *n, lsdem_error *err
   return LSDEM_OK;
 }
 
+/* IDs sorted with their indices: pairs (id, index) by id */
 static int by_id(const void *a, const void *b)
 {
   long x = *(const long *) a, y = *(const long *) b;
@@ -206,5 +221,223 @@ lsdem_status lsdem_net_read(const char *path, lsdem_net *net, lsdem_error *err)
   lsdem_status st = read_body(&r, net, err);
   fclose(r.f);
   if (st != LSDEM_OK) lsdem_net_free(net);
+  return st;
+}
+
+/* ------------------------------------------------- the membrane's file ---- */
+
+void lsdem_membrane_file_print(FILE *f, const lsdem_membrane_file *mf, const char *about)
+{
+  fprintf(f, "lsdem-membrane-triangles 1\n");
+  if (about) fprintf(f, "# %s\n", about);
+  fprintf(f, "axis %.15g %.15g\nspecimen_radius %.15g\nsphere_radius %.15g %.15g\nlayers %d\n",
+          mf->axis[0], mf->axis[1], mf->specimen_radius, mf->sphere_radius[0],
+          mf->sphere_radius[1], mf->layers);
+  fprintf(f, "lateral_areas %.15g %.15g\n", mf->lateral_areas[0], mf->lateral_areas[1]);
+  fprintf(f, "vertices %d\n", mf->nvertices);
+  for (int i = 0; i < mf->nvertices; i++)
+    fprintf(f, "%ld %d %d\n", mf->vertex[i], mf->vertex_layer[i], mf->vertex_end[i]);
+  fprintf(f, "triangles %d\n", mf->ntriangles);
+  for (int t = 0; t < mf->ntriangles; t++)
+    fprintf(f, "%ld %ld %ld %d\n", mf->triangle[3 * t], mf->triangle[3 * t + 1],
+            mf->triangle[3 * t + 2], mf->triangle_layer[t]);
+  fprintf(f, "cap_edges %d\n", mf->ncap_edges);
+  for (int e = 0; e < mf->ncap_edges; e++)
+    fprintf(f, "%ld %ld %d %d\n", mf->cap_edge[2 * e], mf->cap_edge[2 * e + 1], mf->cap_layer[e],
+            mf->cap_end[e]);
+}
+
+void lsdem_membrane_file_free(lsdem_membrane_file *mf)
+{
+  free(mf->vertex);
+  free(mf->vertex_layer);
+  free(mf->vertex_end);
+  free(mf->triangle);
+  free(mf->triangle_layer);
+  free(mf->cap_edge);
+  free(mf->cap_layer);
+  free(mf->cap_end);
+  memset(mf, 0, sizeof(*mf));
+}
+
+static lsdem_status bad_line(const reader *r, const char *what, lsdem_error *err)
+{
+  return lsdem_fail(err, LSDEM_ERR_FORMAT, "triangles file %s line %d: %s", r->path, r->line,
+                    what);
+}
+
+/* the count after a section's keyword (rest of the line), >= least and < 10^9 */
+static int section_count(const char *rest, int least, int *n)
+{
+  double v;
+  if (!numbers(rest, 1, &v) || !(v >= least && v < 1e9) || v != (int) v) return 0;
+  *n = (int) v;
+  return 1;
+}
+
+/* n rows of `cols` atom IDs and `nints` small integers each in [lo[k], hi[k]] */
+static lsdem_status read_rows(reader *r, int n, int cols, long *ids, int nints, int **ints,
+                              const int *lo, const int *hi, const char *what, lsdem_error *err)
+{
+  for (int row = 0; row < n; row++) {
+    if (!next_line(r)) return bad_line(r, what, err);
+    const char *s = r->buf;
+    for (int c = 0; c < cols + nints; c++) {
+      char *end;
+      const long v = strtol(s, &end, 10);
+      if (end == s) return bad_line(r, what, err);
+      s = end;
+      if (c < cols) ids[(size_t) cols * row + c] = v;
+      else if (v < lo[c - cols] || v > hi[c - cols]) return bad_line(r, what, err);
+      else ints[c - cols][row] = (int) v;
+    }
+  }
+  return LSDEM_OK;
+}
+
+static void *alloc_array(int n, size_t size)
+{
+  return malloc((size_t) (n > 0 ? n : 1) * size);
+}
+
+/* the sections of vertices, triangles and cap edges */
+static lsdem_status read_vertices(reader *r, const char *rest, lsdem_membrane_file *mf,
+                                  lsdem_error *err)
+{
+  static const int lo[2] = {0, 0}, hi[2] = {1, 2};
+  if (mf->vertex || !section_count(rest, 3, &mf->nvertices))
+    return bad_line(r, "vertices N (N >= 3, once)", err);
+  mf->vertex = alloc_array(mf->nvertices, sizeof(long));
+  mf->vertex_layer = alloc_array(mf->nvertices, sizeof(int));
+  mf->vertex_end = alloc_array(mf->nvertices, sizeof(int));
+  if (!mf->vertex || !mf->vertex_layer || !mf->vertex_end)
+    return lsdem_fail(err, LSDEM_ERR_NOMEM, "triangles file %s: out of memory", r->path);
+  int *ints[2] = {mf->vertex_layer, mf->vertex_end};
+  return read_rows(r, mf->nvertices, 1, mf->vertex, 2, ints, lo, hi,
+                   "expected 'atom-ID layer end'", err);
+}
+
+static lsdem_status read_triangles(reader *r, const char *rest, lsdem_membrane_file *mf,
+                                   lsdem_error *err)
+{
+  static const int lo[1] = {0}, hi[1] = {1};
+  if (mf->triangle || !section_count(rest, 1, &mf->ntriangles))
+    return bad_line(r, "triangles N (N >= 1, once)", err);
+  mf->triangle = alloc_array(mf->ntriangles, 3 * sizeof(long));
+  mf->triangle_layer = alloc_array(mf->ntriangles, sizeof(int));
+  if (!mf->triangle || !mf->triangle_layer)
+    return lsdem_fail(err, LSDEM_ERR_NOMEM, "triangles file %s: out of memory", r->path);
+  int *ints[1] = {mf->triangle_layer};
+  return read_rows(r, mf->ntriangles, 3, mf->triangle, 1, ints, lo, hi,
+                   "expected 'id1 id2 id3 layer'", err);
+}
+
+static lsdem_status read_cap_edges(reader *r, const char *rest, lsdem_membrane_file *mf,
+                                   lsdem_error *err)
+{
+  static const int lo[2] = {0, 1}, hi[2] = {1, 2};
+  if (mf->cap_edge || !section_count(rest, 0, &mf->ncap_edges))
+    return bad_line(r, "cap_edges N (N >= 0, once)", err);
+  mf->cap_edge = alloc_array(mf->ncap_edges, 2 * sizeof(long));
+  mf->cap_layer = alloc_array(mf->ncap_edges, sizeof(int));
+  mf->cap_end = alloc_array(mf->ncap_edges, sizeof(int));
+  if (!mf->cap_edge || !mf->cap_layer || !mf->cap_end)
+    return lsdem_fail(err, LSDEM_ERR_NOMEM, "triangles file %s: out of memory", r->path);
+  int *ints[2] = {mf->cap_layer, mf->cap_end};
+  return read_rows(r, mf->ncap_edges, 2, mf->cap_edge, 2, ints, lo, hi,
+                   "expected 'id1 id2 layer end(1 bottom, 2 top)'", err);
+}
+
+/* a keyword line of scalars: axis, specimen_radius, sphere_radius, lateral_areas, layers;
+ * seen: bit per keyword; 0 when the word is none of them */
+static int read_scalars(const char *word, const char *rest, lsdem_membrane_file *mf,
+                        int *seen, int *ok)
+{
+  static const char *keys[] = {"axis", "specimen_radius", "sphere_radius", "lateral_areas",
+                               "layers"};
+  static const int counts[] = {2, 1, 2, 2, 1};
+  double layers = 0.0;
+  double *dest[] = {mf->axis, &mf->specimen_radius, mf->sphere_radius, mf->lateral_areas,
+                    &layers};
+  for (int k = 0; k < 5; k++) {
+    if (strcmp(word, keys[k])) continue;
+    *ok = numbers(rest, counts[k], dest[k]);
+    if (k == 3) *ok &= mf->lateral_areas[0] > 0.0 && mf->lateral_areas[1] >= 0.0;
+    if (k == 4) {
+      *ok &= (layers == 1.0 || layers == 2.0);
+      mf->layers = (int) layers;
+    }
+    *seen |= 1 << k;
+    return 1;
+  }
+  return 0;
+}
+
+/* every triangle and cap edge names a vertex of the file */
+static lsdem_status check_vertices(const reader *r, const lsdem_membrane_file *mf,
+                                   lsdem_error *err)
+{
+  long *sorted = alloc_array(mf->nvertices, 2 * sizeof(long));
+  if (!sorted) return lsdem_fail(err, LSDEM_ERR_NOMEM, "triangles file %s: out of memory", r->path);
+  for (int v = 0; v < mf->nvertices; v++) {
+    sorted[2 * v] = mf->vertex[v];
+    sorted[2 * v + 1] = v;
+  }
+  qsort(sorted, (size_t) mf->nvertices, 2 * sizeof(long), by_id);
+  lsdem_status st = LSDEM_OK;
+  for (int k = 0; k < 3 * mf->ntriangles && st == LSDEM_OK; k++)
+    if (ball_index(sorted, mf->nvertices, mf->triangle[k]) < 0)
+      st = lsdem_fail(err, LSDEM_ERR_FORMAT, "triangles file %s: triangle vertex %ld is not in "
+                      "the vertices list", r->path, mf->triangle[k]);
+  for (int k = 0; k < 2 * mf->ncap_edges && st == LSDEM_OK; k++)
+    if (ball_index(sorted, mf->nvertices, mf->cap_edge[k]) < 0)
+      st = lsdem_fail(err, LSDEM_ERR_FORMAT, "triangles file %s: cap edge vertex %ld is not in "
+                      "the vertices list", r->path, mf->cap_edge[k]);
+  free(sorted);
+  return st;
+}
+
+static lsdem_status read_membrane_body(reader *r, lsdem_membrane_file *mf, lsdem_error *err)
+{
+  double version;
+  if (!next_line(r) || sscanf(r->buf, "lsdem-membrane-triangles %lf", &version) != 1 ||
+      version != 1.0)
+    return bad_line(r, "expected 'lsdem-membrane-triangles 1' (a file from lsdem-shape "
+                    "membrane)", err);
+  int seen = 0;
+  while (next_line(r)) {
+    char word[32];
+    const char *rest = line_key(r, word);
+    if (!rest) continue;
+    int ok = 1;
+    lsdem_status st = LSDEM_OK;
+    if (read_scalars(word, rest, mf, &seen, &ok)) {
+      if (!ok) return bad_line(r, "expected axis CX CY, specimen_radius RS, sphere_radius RB "
+                               "RB_OUTER, lateral_areas A_INNER (> 0) A_OUTER (>= 0) or "
+                               "layers 1|2", err);
+    } else if (!strcmp(word, "vertices")) st = read_vertices(r, rest, mf, err);
+    else if (!strcmp(word, "triangles")) st = read_triangles(r, rest, mf, err);
+    else if (!strcmp(word, "cap_edges")) st = read_cap_edges(r, rest, mf, err);
+    else return bad_line(r, "unknown keyword", err);
+    if (st != LSDEM_OK) return st;
+  }
+  if (seen != 31 || !mf->vertex || !mf->triangle || !mf->cap_edge ||
+      !(mf->specimen_radius > 0.0) || !(mf->sphere_radius[0] > 0.0) ||
+      (mf->layers == 2 && !(mf->lateral_areas[1] > 0.0)))
+    return lsdem_fail(err, LSDEM_ERR_FORMAT, "triangles file %s is incomplete (needs axis, "
+                      "specimen_radius > 0, sphere_radius > 0, lateral_areas, layers, vertices, "
+                      "triangles, cap_edges)", r->path);
+  return check_vertices(r, mf, err);
+}
+
+lsdem_status lsdem_membrane_file_read(const char *path, lsdem_membrane_file *mf,
+                                      lsdem_error *err)
+{
+  memset(mf, 0, sizeof(*mf));
+  reader r = {fopen(path, "r"), path, 0, {0}};
+  if (!r.f) return lsdem_fail(err, LSDEM_ERR_IO, "cannot open triangles file %s", path);
+  const lsdem_status st = read_membrane_body(&r, mf, err);
+  fclose(r.f);
+  if (st != LSDEM_OK) lsdem_membrane_file_free(mf);
   return st;
 }
