@@ -83,8 +83,9 @@ static int detect_pair(const lsdem_impulse_body *body, const lsdem_impulse_grain
   const lsdem_impulse_grain *ga = &grain[q->a], *gb = &grain[q->b];
   if (!predicted_spheres_overlap(a, ga, b, gb, dt)) return 0;
   /* the master's nodes (a ball: its centre) in the slave's level set */
-  const int a_master = lsdem_contact_roles(ga->shape, a->id, gb->shape, b->id,
-                                           LSDEM_ROLES_ONEWAY) > 0.5;
+  const int a_master =
+      lsdem_contact_roles(ga->shape, lsdem_contact_node_scale(ga->shape), a->id, gb->shape,
+                          lsdem_contact_node_scale(gb->shape), b->id, LSDEM_ROLES_ONEWAY) > 0.5;
   const lsdem_impulse_grain *gm = a_master ? ga : gb, *gs = a_master ? gb : ga;
   lsdem_pose pm, ps;
   predicted_pose(a_master ? a : b, gm, dt, &pm);
