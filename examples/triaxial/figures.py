@@ -19,10 +19,13 @@ cyclic run, cycles.csv. Writes into DIR (examples/triaxial/README.md maps them t
   fabric_surfaces.png   the long axes' second-order density 1 + D:nn inside and outside the
                         band at the last snapshot (Figures 3.21-3.22)
   rose_inside.png, rose_outside.png   the long axes' spherical histograms (Figures 3.23-3.24)
+  rose_normals_inside.png, rose_normals_outside.png   the same of the grain contacts' normals
+                        (inside: both grains in the band, as fix network/lsdem's keyword band)
   cycles.png, loops.csv the loading-unloading cycles (Figure 3.25; plot.py --cycles)
 and the numbers: slice_<step>.csv (the slice's samples: s, z, x, y, shear strain, rotation
-angle), chains.csv (strong-chain statistics per snapshot), fabric.csv (long-axis fabric inside
-and outside the band per snapshot), summary.txt (band, theories, chains).
+angle), chains.csv (strong-chain statistics per snapshot), fabric.csv (long-axis and
+contact-normal fabric inside and outside the band per snapshot), summary.txt (band,
+theories, chains).
 
 The slice: the vertical plane through the band of the last snapshot that has one, containing
 its dip direction (so the band shows at its true dip), through the centroid of the grains
@@ -439,18 +442,47 @@ def draw_fabric(snap, out):
     plt.close(fig)
 
 
+def band_contact_normals(snap):
+    """The grain-grain contact normals of the snapshot's network inside the band (both
+    grains in band 1) and outside it (the other grain-grain lines): fix network/lsdem's
+    rule for its keyword band."""
+    arr, _ = read_vtp(snap["vtp"])
+    g = snap["grains"]
+    kinds = classify_lines(arr["id_a"], arr["id_b"], set(g[:, ID]))
+    band_ids = set(g[g[:, BAND] == 1, ID])
+    both = np.array([a in band_ids and b in band_ids for a, b in zip(arr["id_a"], arr["id_b"])],
+                    dtype=bool)
+    grain = kinds == "grain"
+    return arr["normal"][grain & both], arr["normal"][grain & ~both]
+
+
 def fabric_rows(snaps):
-    """Long-axis anisotropy inside and outside the band at every snapshot."""
+    """Long-axis and contact-normal anisotropy inside and outside the band at every
+    snapshot."""
     rows = []
     for snap in snaps:
         g = snap["grains"]
         inside = g[:, BAND] == 1
+        n_in, n_out = band_contact_normals(snap)
         rows.append({"step": snap["step"], "eps_a": snap["eps_a"],
                      "inside_grains": int(inside.sum()),
                      "inside_anisotropy": fabric_deviator(g[inside, AXIS])[1],
                      "outside_grains": int((~inside).sum()),
-                     "outside_anisotropy": fabric_deviator(g[~inside, AXIS])[1]})
+                     "outside_anisotropy": fabric_deviator(g[~inside, AXIS])[1],
+                     "inside_contacts": len(n_in),
+                     "inside_normal_anisotropy": fabric_deviator(n_in)[1],
+                     "outside_contacts": len(n_out),
+                     "outside_normal_anisotropy": fabric_deviator(n_out)[1]})
     return rows
+
+
+def draw_contact_roses(snap, out):
+    """The grain contacts' normals as spherical histograms inside and outside the band at
+    the last snapshot (the contact-normal counterpart of Figures 3.23-3.24)."""
+    for name, normals in zip(("inside", "outside"), band_contact_normals(snap)):
+        counts = rose.histogram([tuple(x) for x in normals], 6, 4)
+        rose.draw(os.path.join(out, "rose_normals_%s.png" % name), counts, 6, 4, len(normals),
+                  "contact normals %s the band, eps_a %s" % (name, pct(snap["eps_a"])))
 
 
 def write_rows(path, rows):
@@ -504,6 +536,7 @@ def draw_snapshots(snaps, out):
     write_rows(os.path.join(out, "chains.csv"), chains)
     write_rows(os.path.join(out, "fabric.csv"), fabric_rows(snaps))
     draw_fabric(snaps[-1], out)
+    draw_contact_roses(snaps[-1], out)
     return p0, t, chains
 
 

@@ -56,7 +56,8 @@ p = subprocess.run([sys.executable, os.path.join(EXAMPLE, "figures.py"), "."],
                    stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
 check(p.returncode == 0, "figures.py: %s" % p.stdout[-3000:])
 for png in ("response", "band", "strain_slices", "rotation_slices", "band_grains", "chains",
-            "fabric_surfaces", "rose_inside", "rose_outside"):
+            "fabric_surfaces", "rose_inside", "rose_outside", "rose_normals_inside",
+            "rose_normals_outside"):
     path = os.path.join("figures", png + ".png")
     ok = os.path.exists(path) and open(path, "rb").read(8) == b"\x89PNG\r\n\x1a\n"
     check(ok, "%s is a PNG" % path)
@@ -136,4 +137,42 @@ for s in snaps:
          msg="step %d: grain strong share" % st)
     near(c["grain_strong_angle_deg"], np.degrees(np.arccos(cosz[strong])).mean(), rtol=1e-9,
          msg="step %d: strong normals' angle from the vertical" % st)
+
+# 5. the contact-normal fabric inside and outside the band (fabric.csv): recounted from the
+#    network's XML and dump.band's band numbers, inside = both grains in band 1
+fabric = {int(float(r["step"])): {k: float(v) for k, v in r.items()}
+          for r in csv.DictReader(open(os.path.join("figures", "fabric.csv")))}
+
+
+def anisotropy(normals):
+    """sqrt(3/2 D:D), D = 15/2 (<n n> - I/3) (Kanatani), written out by components."""
+    if not normals:
+        return float("nan")
+    D = [[7.5 * (sum(n[i] * n[j] for n in normals) / len(normals) - (i == j) / 3.0)
+          for j in range(3)] for i in range(3)]
+    return math.sqrt(1.5 * sum(D[i][j] ** 2 for i in range(3) for j in range(3)))
+
+
+for s in snaps:
+    st = int(s["step"])
+    g = grains_of(st)
+    grain_ids = set(int(v) for v in g[:, 0])
+    band_ids = set(int(v) for v in g[g[:, 6] == 1, 0])
+    cells = {a.get("Name"): a.text.split() for a in
+             ET.parse("chains_%d.vtp" % st).getroot().iter("DataArray") if a.get("Name")}
+    sides = {"inside": [], "outside": []}
+    for k, (a, b) in enumerate(zip(cells["id_a"], cells["id_b"])):
+        a, b = int(a), int(b)
+        if a in grain_ids and b in grain_ids:
+            n = [float(v) for v in cells["normal"][3 * k:3 * k + 3]]
+            sides["inside" if a in band_ids and b in band_ids else "outside"].append(n)
+    for side, normals in sides.items():
+        check(fabric[st][side + "_contacts"] == len(normals),
+              "step %d: %d grain contacts %s the band" % (st, len(normals), side))
+        a = anisotropy(normals)
+        if math.isnan(a):
+            check(math.isnan(fabric[st][side + "_normal_anisotropy"]), "step %d: no %s contacts" % (st, side))
+        else:
+            near(fabric[st][side + "_normal_anisotropy"], a, rtol=1e-9,
+                 msg="step %d: contact-normal anisotropy %s the band" % (st, side))
 finish()
