@@ -478,7 +478,8 @@ lsdem_status lsdem_wall_correct(lsdem_impulse_body *grain, const lsdem_manifold 
  * cone (P . n >= 0, |P_t| <= mu P . n: eqs 4.15-4.16 on the total), applying the
  * difference; so a contact's total impulse can shrink again (a load that moves away),
  * unlike ETM's monotone increments. Overlaps are taken out at a rate: the target normal
- * speed is bias (depth - slop) / dt, at most max_push (lsdem_resting_target), so a
+ * speed is bias (depth - slop) / dt, at most max_push, on a wall at most the wall guard's
+ * push-out cap of the excess (lsdem_push_out_cap; lsdem_resting_target), so a
  * resting pile keeps its overlaps near the slop instead of sinking, and keeps touching
  * (so its contacts stay resting, their impulses warm). */
 typedef struct {
@@ -491,7 +492,9 @@ typedef struct {
   double bias;      /* in [0, 1]: the fraction of the overlap beyond slop removed per step.
                        Default 0.2 */
   double slop;      /* overlap left alone (length). Default 0 */
-  double max_push;  /* cap on the target normal speed (velocity). Default unbounded */
+  double max_push;  /* cap on the target normal speed (velocity); a deep overlap on a
+                       wall's is sqrt(max_push excess / dt) (lsdem_push_out_cap).
+                       Default unbounded */
   double warm;      /* in [0, 1]: the fraction of last step's impulse re-applied. Default 1 */
   int shock;        /* 1: after the sweeps, one shock-propagation sweep: contacts ordered by the breadth-first level of their bodies
                        from the walls, the lower side frozen (infinite mass), so that a
@@ -503,7 +506,7 @@ typedef struct {
 } lsdem_resting_params;
 
 void lsdem_resting_params_default(lsdem_resting_params *p);
-double lsdem_resting_target(const lsdem_resting_params *p, double depth);
+double lsdem_resting_target(const lsdem_resting_params *p, double depth, int on_wall);
 
 typedef struct {
   int sweeps;       /* sweeps run */
@@ -511,8 +514,9 @@ typedef struct {
   double work;      /* kinetic energy the resting impulses added, warm start included
                        (negative: dissipated), the exact sum of dP . (u- + u+) / 2 */
   double warm_work; /* of which the warm start */
-  int cold;         /* 1: the solve added more energy than the bias may (sum of m
-                       max_push^2 over the island's grains) and was done again from the
+  int cold;         /* 1: the solve added more energy than the bias may (sum of m v^2
+                       over the island's grains, v the largest of max_push and the
+                       contacts' target speeds) and was done again from the
                        entry state, cold and without the shock sweep */
 } lsdem_resting_result;
 
@@ -650,7 +654,7 @@ double lsdem_impulse_auto_rest_speed(double steps, double amax, double dt);
  *     resting solve leaves, the guard leaves alone); mu 0;
  *   resting solve (from rest, the user's sweeps, tolerance, bias and warm): dt, ref_speed
  *     r, slop r dt (the depth a resting grain sinks by in two steps; overlaps beyond it
- *     are taken out at up to max_push r);
+ *     are taken out at up to max_push r, a deep one on a wall at the wall guard's cap);
  *   islands (from etm): collide_speed r; split: approach_floor velocity_tol r and ETM's
  *     min_approach s->residual r (an approach slower than that is left to the next step's
  *     resting solve, which takes it as resting, not a collision); the report's method: approach_floor 0 (ETM on every

@@ -59,12 +59,17 @@ size_t lsdem_resting_workspace_size(int nbodies, int ncontacts)
 }
 
 /* The normal speed a resting contact is driven to: the part of its overlap beyond the
- * slop, taken out at the rate bias / dt (Baumgarte's stabilisation), at most max_push. */
-double lsdem_resting_target(const lsdem_resting_params *p, double depth)
+ * slop, taken out at the rate bias / dt (Baumgarte's stabilisation), at most max_push; on
+ * a wall at most the wall guard's push-out cap for that excess (lsdem_push_out_cap:
+ * max_push, or sqrt(max_push excess / dt) for a deep overlap), so that the solve and the
+ * guard take a wall overlap out at the same speed and do not undo each other's pushes. */
+double lsdem_resting_target(const lsdem_resting_params *p, double depth, int on_wall)
 {
   if (!(p->dt > 0.0) || !(p->bias > 0.0)) return 0.0;
   const double excess = depth - p->slop;
-  return excess > 0.0 ? fmin(p->bias * excess / p->dt, p->max_push) : 0.0;
+  if (!(excess > 0.0)) return 0.0;
+  const double cap = on_wall ? lsdem_push_out_cap(excess, p->dt, p->max_push) : p->max_push;
+  return fmin(p->bias * excess / p->dt, cap);
 }
 
 /* Two unit tangents completing n (world), from the axis least aligned with n. */
@@ -130,7 +135,8 @@ static void make_row(const lsdem_impulse_body *bodies, const lsdem_impulse_conta
     lsdem_impulse_point_velocity(a, c->point, r->vx);
     for (int i = 0; i < 3; i++) r->vx[i] = -r->vx[i];
   }
-  r->target = lsdem_resting_target(p, c->depth);
+  r->target = lsdem_resting_target(p, c->depth, lsdem_impulse_body_is_wall(a) ||
+                                                     lsdem_impulse_body_is_wall(b));
 }
 
 /* The relative velocity of the contact along the row's direction d. */
@@ -366,15 +372,16 @@ static void sweep_island(lsdem_impulse_body *bodies, int nbodies,
 }
 
 /* The most kinetic energy a resting solve may add: its bias pushing overlaps out, each
- * moving body at most at max_push, sum m max_push^2 (twice 1/2 m v^2: a body pushed by
- * several contacts). */
+ * moving body at most at the island's fastest target (never below max_push), sum m v^2
+ * (twice 1/2 m v^2: a body pushed by several contacts). */
 static double bias_energy_bound(const lsdem_impulse_body *bodies, int nbodies,
-                                const lsdem_resting_params *p)
+                                const row *rows, int nrows, const lsdem_resting_params *p)
 {
-  double mass = 0.0;
+  double mass = 0.0, push = p->max_push;
   for (int i = 0; i < nbodies; i++)
     if (!lsdem_impulse_body_is_wall(&bodies[i])) mass += 1.0 / bodies[i].inv_mass;
-  return mass * p->max_push * p->max_push;
+  for (int k = 0; k < nrows; k++) push = fmax(push, rows[k].target);
+  return mass * push * push;
 }
 
 /* The island's state at entry: velocities (6 per body) and accumulated impulses (3 per
@@ -459,7 +466,7 @@ lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
    * relax (too few sweeps for a stiff pile), or the shock sweep handing a frozen side's
    * speed up a pile (its one-sided impulses, warm-started, grow step by step) -- is done
    * again from the entry state: cold (no warm start) and without the shock sweep. */
-  if (res->work > bias_energy_bound(bodies, nbodies, p)) {
+  if (res->work > bias_energy_bound(bodies, nbodies, rows, nwhich, p)) {
     restore_state(bodies, nbodies, which, nwhich, impulse, saved, saved_imp);
     for (int k = 0; warm_start && k < nwhich; k++)
       for (int d = 0; d < 3; d++) impulse[which[k]][d] = 0.0;
