@@ -4,7 +4,7 @@
 # Called by `./lsdem example avalanche` (which sets LSDEM_LMP and LSDEM_SHAPE_TOOL).
 # Environment: NGRAINS (400), RUNOUT (inclination of the run-out plane, 0 or 3 degrees; 0),
 # VALLEY (the valley's cross-section, U or V; U), SEED (the packing's, 7), METHOD (penalty
-# or impulse: 16 times the penalty step), NP (2),
+# or impulse: MULT times the penalty step, 16), NP (2),
 # TIME (simulated time at most, 10: the run stops once the grains are at rest), VTK
 # (simulated time between ParaView frames of the grains, 1.0), OUT (output folder, out/),
 # NETS (0; 1 or 2: protection nets across the run-out, make_nets.sh, whose optional
@@ -15,7 +15,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 . "$here/../common.sh"
 py=/usr/bin/python3
 n=${NGRAINS:-400} runout=${RUNOUT:-0} seed=${SEED:-7} method=${METHOD:-penalty} np=${NP:-2}
-t_end=${TIME:-10} vtk=${VTK:-1.0} nets=${NETS:-0}
+t_end=${TIME:-10} vtk=${VTK:-1.0} nets=${NETS:-0} mult=${MULT:-16}
 out=${OUT:-$here/out}
 case "$method" in penalty|impulse) ;; *) echo "run.sh: METHOD must be penalty or impulse, not '$method'" >&2; exit 2 ;; esac
 enter_out "$out"
@@ -37,7 +37,7 @@ rm -rf vtk
 start=$SECONDS
 "${mpi[@]}" "$lmp" -in "$here/in.avalanche" -var method "$method" -var dt "$dt" \
   -var time "$t_end" -var vtkevery "$vtk" -var edge_x "$edge_x" -var edge_y "$edge_y" \
-  -var nets "$nets" \
+  -var nets "$nets" -var mult "$mult" \
   -log log.lammps -screen none
 echo "lmp took $((SECONDS - start)) s"
 grep -E "^Loop time|^end:|^net [12]:" log.lammps
