@@ -11,10 +11,10 @@
      1. kick (lsdem_impulse_stage_kick), the velocities sent to the ghosts; the resting
         speed (reduced over ranks) and the step's thresholds;
      2. contacts: pair_style lsdem/impulse's manifolds and each grain's against each wall
-        at the current poses, glued (report §4.3.3), at most `points` per pair
-        (lsdem_impulse_cap_contacts); method split: classified resting or colliding
-        (lsdem_impulse_stage_classify), a resting one warm-started from the grain's
-        LsdemImpulseWarm entries;
+        at the current poses (the wall's own detection, fix wall/lsdem each_manifold),
+        glued (report §4.3.3), at most `points` per pair (lsdem_impulse_cap_contacts);
+        method split: classified resting or colliding (lsdem_impulse_stage_classify), a
+        resting one warm-started from the grain's LsdemImpulseWarm entries;
      3. passes, at most `passes` (report: 10): the contacts selected
         (lsdem_impulse_stage_select) and the islands solved (lsdem_impulse_islands, core
         lsdem_island_solve) -- method split: resting contacts as constraints, then
