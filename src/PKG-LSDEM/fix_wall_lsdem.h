@@ -111,9 +111,6 @@ class FixWallLsdem : public Fix {
   virtual void visit_all(const lsdem_pose &w);  // the candidates, by lanes_for_call() lanes
   void begin_force_call(int nlanes, lsdem_pose &w);
   void visit_candidates(Lane &, int from, int to, const lsdem_pose &w);
-  template <class Visit>
-  void each_candidate(Lane &, int from, int to, const lsdem_pose &w, const char *take,
-                      Visit visit);
   void end_force_call();
   int ncand;   // candidate grains of this step (visit_candidates' range)
 
@@ -161,6 +158,9 @@ class FixWallLsdem : public Fix {
                      bool through_band);
   void test_points(Lane &, int, const lsdem_pose &p, const lsdem_pose &w);
   void make_points(const char *path);
+  template <class Visit>
+  void each_candidate(Lane &, int from, int to, const lsdem_pose &w, const char *take,
+                      Visit visit);
   bool candidates_can_last() const;
   bool candidates_hold(const lsdem_pose &w) const;
   void find_candidates(const lsdem_pose &w);
