@@ -103,7 +103,7 @@ class FixImpulseLsdem : public Fix {
   std::vector<LsdemImpulseContact> contacts, coll;
   std::vector<lsdem_impulse_contact> glued;
   std::vector<int32_t> group, kept;
-  std::vector<lsdem_contact_point> wpoints;  // the wall guard's manifold of one grain
+  std::vector<lsdem_contact_point> wpoints;  // the guards' manifold of one grain
   lsdem_impulse_step stage;                  // this step's method, dt and thresholds
   std::vector<lsdem_wall_guard_seen> wall_seen;  // per wall, then local grain
   std::vector<lsdem_ball_guard_pair> ball_pairs;  // ball-grain pairs of the step (balls)
