@@ -11,10 +11,10 @@
      1. kick (lsdem_impulse_stage_kick), the velocities sent to the ghosts; the resting
         speed (reduced over ranks) and the step's thresholds;
      2. contacts: pair_style lsdem/impulse's manifolds and each grain's against each wall
-        at the current poses, glued (report §4.3.3), at most `points` per pair
-        (lsdem_impulse_cap_contacts); method split: classified resting or colliding
-        (lsdem_impulse_stage_classify), a resting one warm-started from the grain's
-        LsdemImpulseWarm entries;
+        at the current poses (the wall's own detection, fix wall/lsdem each_manifold),
+        glued (report §4.3.3), at most `points` per pair (lsdem_impulse_cap_contacts);
+        method split: classified resting or colliding (lsdem_impulse_stage_classify), a
+        resting one warm-started from the grain's LsdemImpulseWarm entries;
      3. passes, at most `passes` (report: 10): the contacts selected
         (lsdem_impulse_stage_select) and the islands solved (lsdem_impulse_islands, core
         lsdem_island_solve) -- method split: resting contacts as constraints, then
@@ -41,7 +41,6 @@
 #include "fix_wall_lsdem.h"
 #include "force.h"
 #include "group.h"
-#include "lsdem_contact_path.h"
 #include "lsdem_lammps_compat.h"
 #include "math_const.h"
 #include "memory.h"
@@ -545,7 +544,7 @@ void FixImpulseLsdem::make_bodies()
     gather_grain(i);
   }
   for (size_t w = 0; w < walls.size(); w++) {
-    const lsdem_pose p = wall_pose_now((int) w);
+    const lsdem_pose p = walls[w]->pose_at(step_start());
     lsdem_impulse_body_wall(&body[nall + w], -(int64_t) (w + 1), p.x, p.v, p.omega, nullptr);
   }
   AtomVecLsdem::stop_if_any_rank(lmp, FLERR, bad);
@@ -586,15 +585,14 @@ void FixImpulseLsdem::scatter_grains()
 }
 
 /* ----------------------------------------------------------------------
-   wall w where the grains' current poses meet it: it moved to the end of this step in
-   initial_integrate (fix wall/lsdem), the grains move in final_integrate
+   the time of the grains' current poses, as a wall's pose_at takes it: the walls moved to
+   the end of this step in initial_integrate (fix wall/lsdem), the grains move in
+   final_integrate, so they are still at the step's start, -dt
 ------------------------------------------------------------------------- */
 
-lsdem_pose FixImpulseLsdem::wall_pose_now(int w) const
+double FixImpulseLsdem::step_start() const
 {
-  lsdem_pose p;
-  lsdem_boundary_pose_at(&walls[w]->boundary(), -update->dt, &p);
-  return p;
+  return -update->dt;
 }
 
 /* ----------------------------------------------------------------------
@@ -775,25 +773,18 @@ void FixImpulseLsdem::add_pair_contacts()
   }
 }
 
+/* each moving grain's manifold against each wall, by the wall's own detection (fix
+   wall/lsdem's each_manifold) at the grains' current poses */
+
 void FixImpulseLsdem::add_wall_contacts()
 {
   const int nall = atom->nlocal + atom->nghost;
   for (size_t w = 0; w < walls.size(); w++) {
-    const lsdem_boundary &b = walls[w]->boundary();
-    const lsdem_pose wp = wall_pose_now((int) w);
-    lsdem_detect_params det = walls[w]->wall_detect();
-    det.node_skin = 0.0;
-    for (int i = 0; i < atom->nlocal; i++) {
-      if (!moving[i] || !(atom->mask[i] & walls[w]->groupbit)) continue;
-      if (!lsdem_boundary_may_touch(&b, &wp, atom->x[i], atom->radius[i])) continue;
-      lsdem_pose gp;
-      LsdemContactPath::pose_of(atom, avec, i, gp);
-      lsdem_manifold m = lsdem_manifold_over(wpoints.data(), (int) wpoints.size());
-      if (lsdem_detect(avec->shape_of(i), &gp, &b.shape, &wp, &det,
-                       update->ntimestep, nullptr, nullptr, &m) > 0)
-        add_glued(i, -1 - (int) w, atom->tag[i], -(tagint) (w + 1), nall + (int) w, m,
-                  walls[w]->wall_friction(), glue_of_shape[avec->shape[i]]);
-    }
+    const double mu = walls[w]->wall_friction();
+    walls[w]->each_manifold(step_start(), moving.data(), [&](int i, const lsdem_manifold &m) {
+      add_glued(i, -1 - (int) w, atom->tag[i], -(tagint) (w + 1), nall + (int) w, m, mu,
+                glue_of_shape[avec->shape[i]]);
+    });
   }
 }
 
@@ -808,14 +799,7 @@ int FixImpulseLsdem::correct_walls()
   int corrected = 0;
   const int nlocal = atom->nlocal;
   for (size_t w = 0; w < walls.size(); w++) {
-    lsdem_impulse_guard_wall gw;
-    gw.boundary = &walls[w]->boundary();
-    gw.groups = walls[w]->groupbit;
-    lsdem_boundary_pose_at(gw.boundary, 0.0, &gw.pose);  // at the end of the step
-    gw.detect = walls[w]->wall_detect();
-    gw.detect.node_skin = 0.0;
-    gw.prm = stage.wall;
-    gw.prm.mu = walls[w]->wall_friction();
+    const lsdem_impulse_guard_wall gw = walls[w]->guard_wall(0.0, stage.wall);  // step's end
     lsdem_wall_guard_seen *seen = wall_seen.data() + w * nlocal;
     lsdem_error err;
     const int n = lsdem_impulse_stage_wall_guard(body.data(), grain.data(), moving.data(), nlocal,
@@ -1039,14 +1023,10 @@ void FixImpulseLsdem::collect_wakers()
     if (asleep(i) && !still(atom->v[i], atom->omega[i]))
       wake_mine.push_back((int64_t) sleep_label[i]);
   for (FixWallLsdem *w : walls) {
-    const lsdem_boundary &b = w->boundary();
-    lsdem_pose wp;
-    lsdem_boundary_pose_at(&b, 0.0, &wp);
+    const lsdem_pose wp = w->pose_at(0.0);
     if (still(wp.v, wp.omega)) continue;
     for (int i = 0; i < atom->nlocal; i++)
-      if (asleep(i) && (atom->mask[i] & w->groupbit) &&
-          lsdem_boundary_may_touch(&b, &wp, atom->x[i], atom->radius[i]))
-        wake_mine.push_back((int64_t) sleep_label[i]);
+      if (asleep(i) && w->reaches(i, wp)) wake_mine.push_back((int64_t) sleep_label[i]);
   }
 }
 

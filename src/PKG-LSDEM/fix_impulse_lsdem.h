@@ -103,7 +103,7 @@ class FixImpulseLsdem : public Fix {
   std::vector<LsdemImpulseContact> contacts, coll;
   std::vector<lsdem_impulse_contact> glued;
   std::vector<int32_t> group, kept;
-  std::vector<lsdem_contact_point> wpoints;  // manifold of one grain against one wall
+  std::vector<lsdem_contact_point> wpoints;  // the guards' manifold of one grain
   lsdem_impulse_step stage;                  // this step's method, dt and thresholds
   std::vector<lsdem_wall_guard_seen> wall_seen;  // per wall, then local grain
   std::vector<lsdem_ball_guard_pair> ball_pairs;  // ball-grain pairs of the step (balls)
@@ -165,7 +165,7 @@ class FixImpulseLsdem : public Fix {
   void check_cfl();
   void damp_and_drift();
   void scatter_grains();
-  lsdem_pose wall_pose_now(int w) const;
+  double step_start() const;
   double kinetic_energy(int i, const double v[3], const double omega[3]) const;
   void reduce_output();
 };

@@ -513,12 +513,24 @@ void FixWallLsdem::reduce_pivot_load()
 
 /* ----------------------------------------------------------------------
    cheap rejection: the grain's bounding sphere, widened by margin, does not reach the
-   wall
+   wall at pose w
 ------------------------------------------------------------------------- */
 
-bool FixWallLsdem::may_touch(int i, double margin) const
+bool FixWallLsdem::may_touch(int i, const lsdem_pose &w, double margin) const
 {
-  return lsdem_boundary_may_touch(&bnd, &bnd.pose, atom->x[i], atom->radius[i] + margin);
+  return lsdem_boundary_may_touch(&bnd, &w, atom->x[i], atom->radius[i] + margin);
+}
+
+bool FixWallLsdem::reaches(int i, const lsdem_pose &w) const
+{
+  return (atom->mask[i] & groupbit) && may_touch(i, w, 0.0);
+}
+
+lsdem_pose FixWallLsdem::pose_at(double s) const
+{
+  lsdem_pose w;
+  lsdem_boundary_pose_at(&bnd, s, &w);
+  return w;
 }
 
 /* ----------------------------------------------------------------------
@@ -537,15 +549,15 @@ bool FixWallLsdem::candidates_can_last() const
 
 /* ----------------------------------------------------------------------
    the candidates found at the last reneighbouring still cover every grain that can
-   touch: since then no grain moved more than half the neighbour skin and the wall
-   translated by at most as much
+   touch the wall at pose w: since then no grain moved more than half the neighbour skin
+   and the wall translated by at most as much
 ------------------------------------------------------------------------- */
 
-bool FixWallLsdem::candidates_hold() const
+bool FixWallLsdem::candidates_hold(const lsdem_pose &w) const
 {
   if (cand_built < 0 || cand_built != neighbor->lastcall || cand_nlocal != atom->nlocal)
     return false;
-  const double *x = bnd.pose.x;
+  const double *x = w.x;
   double moved2 = 0.0;
   for (int d = 0; d < 3; d++) moved2 += (x[d] - cand_wall_x[d]) * (x[d] - cand_wall_x[d]);
   const double half = 0.5 * neighbor->skin;
@@ -553,13 +565,13 @@ bool FixWallLsdem::candidates_hold() const
 }
 
 /* ----------------------------------------------------------------------
-   grains to visit: within reach of the wall, or keeping history with it (group
+   grains to visit: within reach of the wall at pose w, or keeping history with it (group
    membership is tested at the visit: groups may be dynamic); the reach is widened by
    the neighbour skin when the list can last until the next reneighbouring, else the
    list is for this step
 ------------------------------------------------------------------------- */
 
-void FixWallLsdem::find_candidates()
+void FixWallLsdem::find_candidates(const lsdem_pose &w)
 {
   const int nlocal = atom->nlocal;
   if (nlocal > maxcand) {
@@ -571,11 +583,11 @@ void FixWallLsdem::find_candidates()
   const double margin = keep ? neighbor->skin : 0.0;
   ncand = 0;
   for (int i = 0; i < nlocal; i++)
-    if (may_touch(i, margin) || lanes[0]->path.keeps_state(i))
+    if (may_touch(i, w, margin) || lanes[0]->path.keeps_state(i))
       cand[ncand++] = i;
   cand_built = keep ? neighbor->lastcall : -1;
   cand_nlocal = nlocal;
-  for (int d = 0; d < 3; d++) cand_wall_x[d] = bnd.pose.x[d];
+  for (int d = 0; d < 3; d++) cand_wall_x[d] = w.x[d];
 }
 
 /* ----------------------------------------------------------------------
@@ -728,9 +740,30 @@ void FixWallLsdem::begin_force_call(int n, lsdem_pose &w)
     lane.contact.clear();
     lane.crossing.clear();
   }
-  if (!candidates_hold()) find_candidates();
+  w = pose_at(0.0);
+  if (!candidates_hold(w)) find_candidates(w);
   lanes[0]->path.begin_step(n);
-  lsdem_boundary_pose_at(&bnd, 0.0, &w);
+}
+
+/* ----------------------------------------------------------------------
+   candidates [from, to) by the lane's path against the wall at pose w: a grain the wall
+   reaches (and take[i] != 0 when take is given) is tested, visit(i, true); one that keeps
+   a pair state from the last step but is not tested is visited too, visit(i, false), and
+   loses the state; both between the path's begin_atom and end_atom
+------------------------------------------------------------------------- */
+
+template <class Visit>
+void FixWallLsdem::each_candidate(Lane &lane, int from, int to, const lsdem_pose &w,
+                                  const char *take, Visit visit)
+{
+  for (int c = from; c < to; c++) {
+    const int i = cand[c];
+    const bool test = (!take || take[i]) && reaches(i, w);
+    if (!test && !lane.path.keeps_state(i)) continue;  // far, nothing kept
+    lane.path.begin_atom();
+    visit(i, test);
+    lane.path.end_atom(i);
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -744,11 +777,7 @@ void FixWallLsdem::visit_candidates(Lane &lane, int from, int to, const lsdem_po
 {
   const int *mask = atom->mask;
   const bigint step = update->ntimestep;
-  for (int c = from; c < to; c++) {
-    const int i = cand[c];
-    const bool test = (mask[i] & groupbit) && may_touch(i, 0.0);
-    if (!test && !lane.path.keeps_state(i)) continue;  // far, nothing kept
-    lane.path.begin_atom();
+  each_candidate(lane, from, to, w, nullptr, [&](int i, bool test) {
     if (test) {
       const bool began = map_every > 0 && !lane.path.touched(i, WALL_PARTNER);  // maps only
       lsdem_pose p;
@@ -759,8 +788,46 @@ void FixWallLsdem::visit_candidates(Lane &lane, int from, int to, const lsdem_po
       if (twoway) test_points(lane, i, p, w);
     }
     if ((mask[i] & groupbit) && lane.crossing.empty()) lane.crossing = crossing(i, w);
-    lane.path.end_atom(i);
-  }
+  });
+}
+
+/* ----------------------------------------------------------------------
+   fix impulse/lsdem's call in place of the force call: the force path's visit with
+   detection alone (LsdemContactPath::detect, the pair's node list kept), the wall at its
+   pose s after now
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::each_manifold(double s, const char *take, const ManifoldVisit &visit)
+{
+  const lsdem_pose w = pose_at(s);
+  if (!candidates_hold(w)) find_candidates(w);
+  Lane &lane = *lanes[0];
+  const bigint step = update->ntimestep;
+  lane.path.begin_step();
+  each_candidate(lane, 0, ncand, w, take, [&](int i, bool test) {
+    if (!test) return;
+    lsdem_pose p;
+    LsdemContactPath::pose_of(atom, avec, i, p);
+    if (lane.path.detect(i, WALL_PARTNER, avec->shape_of(i), p, &bnd.shape, w, prm.detect,
+                         step) > 0)
+      visit(i, lane.path.manifold());
+  });
+  lane.path.end_step();
+}
+
+/* ---------------------------------------------------------------------- */
+
+lsdem_impulse_guard_wall FixWallLsdem::guard_wall(double s, const lsdem_wall_params &step) const
+{
+  lsdem_impulse_guard_wall g;
+  g.boundary = &bnd;
+  g.groups = groupbit;
+  g.pose = pose_at(s);
+  g.detect = prm.detect;
+  g.detect.node_skin = 0.0;
+  g.prm = step;
+  g.prm.mu = opts.law.mu;
+  return g;
 }
 
 /* ----------------------------------------------------------------------

@@ -24,6 +24,7 @@ FixStyle(wall/lsdem,FixWallLsdem);
 #include "lsdem_contact_path.h"
 #include "lsdem_kernel.h"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -64,12 +65,26 @@ class FixWallLsdem : public Fix {
   void restart(char *) override;
 
   // for fix impulse/lsdem, which takes the wall over (report §4.4.1): the wall (its level
-  // set, its pose now: moved in initial_integrate, whether it pivots), its friction and
-  // detection parameters; passive = no penalty forces of its own
+  // set, its pose now: moved in initial_integrate, whether it pivots), its friction;
+  // passive = no penalty forces of its own
   const lsdem_boundary &boundary() const { return bnd; }
   double wall_friction() const { return opts.law.mu; }
-  const lsdem_detect_params &wall_detect() const { return prm.detect; }
   void set_passive(bool on) { passive = on; }
+  // the wall's pose s after now (lsdem_boundary_pose_at; s = -dt: at the step's start)
+  lsdem_pose pose_at(double s) const;
+  // the wall acts on grain i at pose w: i is of the wall's group and its bounding sphere
+  // may reach the wall (lsdem_boundary_may_touch); the force path's rule
+  bool reaches(int i, const lsdem_pose &w) const;
+  // the wall's contacts as manifolds (detection, no law) at its pose s after now, by the
+  // force path's visit (candidates, reaches, the contact path with its pair states: node
+  // lists): visit(i, manifold) for each owned grain i with take[i] != 0 whose nodes touch
+  // the wall. Once a step, in place of the force call (it writes the step's pair states).
+  typedef std::function<void(int, const lsdem_manifold &)> ManifoldVisit;
+  void each_manifold(double s, const char *take, const ManifoldVisit &visit);
+  // the wall as the wall guard meets it (lsdem_impulse_stage_wall_guard) with the step's
+  // parameters `step`: at its pose s after now, its group, its detection (without node
+  // lists: the guard looks at predicted poses, which no pair state follows), its friction
+  lsdem_impulse_guard_wall guard_wall(double s, const lsdem_wall_params &step) const;
   bool tests_points() const { return twoway; }  // keyword twoway yes
   // fix impulse/lsdem: the force its contacts put on this wall this step (added to the
   // wall's force output; passive walls start each step from zero)
@@ -143,16 +158,19 @@ class FixWallLsdem : public Fix {
                      bool through_band);
   void test_points(Lane &, int, const lsdem_pose &p, const lsdem_pose &w);
   void make_points(const char *path);
+  template <class Visit>
+  void each_candidate(Lane &, int from, int to, const lsdem_pose &w, const char *take,
+                      Visit visit);
   bool candidates_can_last() const;
-  bool candidates_hold() const;
-  void find_candidates();
+  bool candidates_hold(const lsdem_pose &w) const;
+  void find_candidates(const lsdem_pose &w);
   int parse_pivot(int, int, char **, double[3]);
   void reduce_pivot_load();
   void update_velocity();
   void check_plane_in_box() const;
   void check_band_width() const;
 
-  bool may_touch(int, double margin) const;
+  bool may_touch(int, const lsdem_pose &w, double margin) const;
   std::string crossing(int, const lsdem_pose &wall) const;
   std::string tunnelled(int, double depth) const;
   void find_thinnest();

@@ -316,31 +316,6 @@ static void test_validation(void)
         "infinite wall velocity");
 }
 
-/* lsdem_impulse_select_collisions: grains approaching at all, walls faster than rest. */
-static void test_select_collisions(void)
-{
-  const double z[3] = {0, 0, 0}, xa[3] = {0, 0, 1}, xb[3] = {0, 0, 2.2};
-  const double va[3] = {0, 0, -0.05}, vb[3] = {0, 0, -0.06};
-  fx_state sa = fx_sphere(1, 0.5, xa, va), sb = fx_sphere(2, 0.5, xb, vb);
-  lsdem_impulse_body b[3];
-  fx_body_of(&sa, &b[0]);
-  fx_body_of(&sb, &b[1]);
-  fx_wall(&b[2], -1, z, z);
-  const double p0[3] = {0, 0, 0.5}, p1[3] = {0, 0, 1.6};
-  lsdem_impulse_contact c[2] = {fx_contact(0, 2, p0, 0, 0, 1, 0, 1),  /* u_n = -0.05 */
-                                fx_contact(1, 0, p1, 0, 0, 1, 0, 1)}; /* u_n = -0.01 */
-  lsdem_impulse_contact work[2];
-  memcpy(work, c, sizeof c);
-  CHECK(lsdem_impulse_select_collisions(b, work, 2, 0.1) == 1 && work[0].a == 1,
-        "slow wall contact left to the wall correction");
-  memcpy(work, c, sizeof c);
-  CHECK(lsdem_impulse_select_collisions(b, work, 2, 0.01) == 2, "fast wall contact kept");
-  b[1].v[2] = 0.0; /* the grain pair separates: u_n = +0.05 */
-  memcpy(work, c, sizeof c);
-  CHECK(lsdem_impulse_select_collisions(b, work, 2, 0.01) == 1 && work[0].a == 0,
-        "separating grains dropped");
-}
-
 /* The indexed heap against brute force: top = least (key, index), collect = every
  * key <= limit (each once), invariants after each operation. */
 static void test_queue(void)
@@ -449,7 +424,6 @@ int main(void)
   test_glue_rule();
   test_glue_box_on_plane();
   test_validation();
-  test_select_collisions();
   test_queue();
   test_islands();
   test_islands_merge();

@@ -92,6 +92,27 @@ static void wall_passes(scene *sc)
   }
 }
 
+/* The contacts ETM resolves, kept in place: the report's selection (stage 4,
+ * lsdem_impulse_stage_select without split), here of wall contacts alone: those that
+ * collide, approaching faster than the resting speed. Returns how many. */
+static int select_collisions(const scene *sc, lsdem_impulse_contact *c, int n)
+{
+  static lsdem_impulse_step_contact all[SC_MAX_CONTACTS], coll[SC_MAX_CONTACTS];
+  lsdem_impulse_step s;
+  memset(&s, 0, sizeof s);
+  s.wall = sc->wall;
+  for (int k = 0; k < n; k++) {
+    memset(&all[k], 0, sizeof all[k]);
+    all[k].i = c[k].a;
+    all[k].j = -1 - (c[k].b - sc->ng);
+    all[k].c = c[k];
+  }
+  int ncoll = 0;
+  lsdem_impulse_stage_select(sc->body, all, n, &s, 1, coll, &ncoll);
+  for (int k = 0; k < ncoll; k++) c[k] = coll[k].c;
+  return ncoll;
+}
+
 static void scene_step(scene *sc)
 {
   const double zero[3] = {0, 0, 0};
@@ -107,7 +128,7 @@ static void scene_step(scene *sc)
   int n = 0;
   for (int i = 0; i < sc->ng; i++)
     for (int j = 0; j < sc->nw; j++) n = wall_contacts(sc, i, j, c, n);
-  n = lsdem_impulse_select_collisions(sc->body, c, n, sc->wall.rest_speed);
+  n = select_collisions(sc, c, n);
   if (n > 0) {
     lsdem_etm_result res;
     lsdem_error err;

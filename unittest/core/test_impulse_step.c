@@ -235,6 +235,43 @@ static void test_classify_select(void)
         c[2].approaching, c[3].approaching);
 }
 
+/* The report's method's selection on a grain falling onto a wall and a second grain
+ * falling onto it: a wall contact is a collision (kept for ETM) only when it approaches
+ * faster than the resting speed, a slower one is the wall guard's; the grain pair is kept
+ * and is a collision (flagged approaching) only when it approaches. */
+static void test_select_collisions(void)
+{
+  const double z[3] = {0, 0, 0}, xa[3] = {0, 0, 1}, xb[3] = {0, 0, 2.2};
+  const double va[3] = {0, 0, -0.05}, vb[3] = {0, 0, -0.06};
+  fx_state sa = fx_sphere(1, 0.5, xa, va), sb = fx_sphere(2, 0.5, xb, vb);
+  lsdem_impulse_body b[3];
+  fx_body_of(&sa, &b[0]);
+  fx_body_of(&sb, &b[1]);
+  fx_wall(&b[2], -1, z, z);
+  const double p0[3] = {0, 0, 0.5}, p1[3] = {0, 0, 1.6};
+  lsdem_impulse_step_contact c[2], coll[2];
+  memset(c, 0, sizeof c);
+  c[0].i = 0;
+  c[0].j = -1;
+  c[0].c = fx_contact(0, 2, p0, 0, 0, 1, 0, 1); /* u_n = -0.05 */
+  c[1].i = 1;
+  c[1].j = 0;
+  c[1].c = fx_contact(1, 0, p1, 0, 0, 1, 0, 1); /* u_n = -0.01 */
+  lsdem_impulse_step s;
+  memset(&s, 0, sizeof s);
+  int ncoll = -1;
+  s.wall.rest_speed = 0.1;
+  lsdem_impulse_stage_select(b, c, 2, &s, 1, coll, &ncoll);
+  CHECK(ncoll == 1 && coll[0].c.a == 1, "slow wall contact left to the wall correction");
+  s.wall.rest_speed = 0.01;
+  lsdem_impulse_stage_select(b, c, 2, &s, 1, coll, &ncoll);
+  CHECK(ncoll == 2, "fast wall contact kept");
+  b[1].v[2] = 0.0; /* the grain pair separates: u_n = +0.05 */
+  const int nap = lsdem_impulse_stage_select(b, c, 2, &s, 1, coll, &ncoll);
+  CHECK(nap == 1 && coll[0].c.a == 0 && coll[0].approaching && !coll[1].approaching,
+        "separating grains no collision");
+}
+
 /* The wall guard on a sphere of radius R at rest with its centre h above the plane z = 0
  * (overlap d0 = R - h; at rest the predicted pose is the pose): the deepest point rises
  * by d0/dt when that is below the push-out limit, else to the limit max(r, sqrt(r d0/dt))
@@ -336,6 +373,7 @@ int main(void)
   test_damp_drift_decay();
   test_thresholds();
   test_classify_select();
+  test_select_collisions();
   test_wall_guard();
   test_cfl();
   return lsdem_test_summary();

@@ -183,20 +183,3 @@ int lsdem_impulse_approaching(const lsdem_impulse_body *bodies, const lsdem_impu
   if (u_n) *u_n = un;
   return un < -fmax(floor, noise);
 }
-
-int lsdem_impulse_select_collisions(const lsdem_impulse_body *bodies,
-                                    lsdem_impulse_contact *contacts, int ncontacts,
-                                    double rest_speed)
-{
-  int kept = 0;
-  for (int k = 0; k < ncontacts; k++) {
-    const lsdem_impulse_contact *c = &contacts[k];
-    const double un = lsdem_impulse_normal_velocity(bodies, c);
-    const int wall = lsdem_impulse_body_is_wall(&bodies[c->a]) ||
-                     lsdem_impulse_body_is_wall(&bodies[c->b]);
-    const int keep =
-        wall ? lsdem_wall_classify(un, rest_speed) == LSDEM_WALL_COLLIDING : un < 0.0;
-    if (keep) contacts[kept++] = *c;
-  }
-  return kept;
-}

@@ -214,17 +214,6 @@ int lsdem_impulse_glue(const lsdem_manifold *m, int32_t a, int32_t b, double mu,
  * for the kept contacts' original indices i when n > max). */
 int lsdem_impulse_cap_contacts(lsdem_impulse_contact *c, int n, int max, int32_t *scratch);
 
-/* Keeps, in place and in order, the contacts that ETM must resolve: between two grains
- * those approaching (u_n < 0); with a wall those approaching faster than rest_speed
- * (u_n < -rest_speed: a collision, lsdem_wall_classify), the slower ones being resting
- * contacts for lsdem_wall_correct (report §4.4.1: "only dynamic collisions are
- * considered"). Returns the number kept. The step's selection over islands, which also
- * keeps the grain pairs that do not approach (an impulse may make them), is
- * lsdem_impulse_stage_select; both take a wall's collisions by lsdem_wall_classify. */
-int lsdem_impulse_select_collisions(const lsdem_impulse_body *bodies,
-                                    lsdem_impulse_contact *contacts, int ncontacts,
-                                    double rest_speed);
-
 /* ------------------------------------------------------- one increment ---- */
 
 /* The impulse P that raises the relative normal velocity of a contact by du_n > 0,

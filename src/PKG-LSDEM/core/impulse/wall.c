@@ -21,13 +21,19 @@ double lsdem_push_out_cap(double d0, double dt, double rest_speed)
   return fmax(rest_speed, sqrt(2.0 * accel * d0));
 }
 
-void lsdem_wall_limit_push_out(lsdem_manifold *m, double dt, double rest_speed)
+/* The manifold's deepest point (ties: the first). */
+static int deepest_point(const lsdem_manifold *m)
 {
-  if (m->n == 0) return;
   int k = 0;
   for (int j = 1; j < m->n; j++)
     if (m->point[j].depth > m->point[k].depth) k = j;
-  const lsdem_contact_point *p = &m->point[k];
+  return k;
+}
+
+void lsdem_wall_limit_push_out(lsdem_manifold *m, double dt, double rest_speed)
+{
+  if (m->n == 0) return;
+  const lsdem_contact_point *p = &m->point[deepest_point(m)];
   const double un = lsdem_dot3(p->vrel, p->normal);
   const double d0 = fmax(p->depth + un * dt, 0.0);
   const double cap = lsdem_push_out_cap(d0, dt, rest_speed);
@@ -48,14 +54,6 @@ static void same_arm(const lsdem_impulse_body *g, const lsdem_manifold *m,
                      const double p[3], double out[3])
 {
   for (int i = 0; i < 3; i++) out[i] = p[i] - m->xa[i] + g->x[i];
-}
-
-static int deepest_point(const lsdem_manifold *m)
-{
-  int k = 0;
-  for (int j = 1; j < m->n; j++)
-    if (m->point[j].depth > m->point[k].depth) k = j;
-  return k;
 }
 
 /* A distribution of normal impulse over the contact points, per unit lambda: its linear
