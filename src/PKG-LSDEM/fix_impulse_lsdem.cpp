@@ -89,7 +89,7 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
   t_rest(0.0),
   t_walls(0.0), t_comm(0.0), pair_seconds0(0.0), reduced_step(-1), cfl_warned(false),
   sleep_clock(nullptr), sleep_label(nullptr), sending_sleep(false), sending_counts(false),
-  sending_anchor(false), has_outside(false), woken_pending(0)
+  sending_anchor(false), has_outside(false), integrated_bits(0), woken_pending(0)
 {
   if (narg < 5) error->all(FLERR, "Illegal fix impulse/lsdem command: {}", USAGE);
   time_integrate = 1;
@@ -309,7 +309,16 @@ void FixImpulseLsdem::init()
     error->all(FLERR, "Fix impulse/lsdem: damping xi * timestep = {} * {} = {} must be <= 1 "
                "(report eq 4.46)", xi, update->dt, xi * update->dt);
   if (sleep_after < 0.0) pair->set_sleeping(nullptr);
-  has_outside = lmp->group->count(igroup) < atom->natoms;
+  // the atoms whose f gets the contacts' impulses: those no time integrator moves (clamped
+  // net balls); an atom another fix integrates keeps its f as it was (a force added here
+  // would enter that fix's next half-kick)
+  integrated_bits = 0;
+  for (int f = 0; f < modify->nfix; f++)
+    if (modify->fix[f]->time_integrate) integrated_bits |= modify->fix[f]->groupbit;
+  int mine = 0, any = 0;
+  for (int i = 0; i < atom->nlocal; i++) mine |= outside(i) ? 1 : 0;
+  MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, world);
+  has_outside = any != 0;
   check_integrators();
   find_walls();
   set_glue();
@@ -726,8 +735,8 @@ void FixImpulseLsdem::push_on_wall(int w, const double impulse[3]) const
 }
 
 /* ----------------------------------------------------------------------
-   the anchors' share (atoms outside the group: clamped net balls, any atom this fix does
-   not integrate, which the contacts treat as bodies of prescribed velocity): the impulse a
+   the anchors' share (atoms outside the group that no other fix integrates either: clamped
+   net balls, which the contacts treat as bodies of prescribed velocity): the impulse a
    contact gives such an atom (impulse on a: +impulse; on b: -impulse) becomes a force on
    it, impulse / (dt ftm2v), so that its f (fix net/lsdem's anchor reaction, dumps) reads
    the load the grains put on it, as a wall's force output does
@@ -735,7 +744,7 @@ void FixImpulseLsdem::push_on_wall(int w, const double impulse[3]) const
 
 bool FixImpulseLsdem::outside(int i) const
 {
-  return !(atom->mask[i] & groupbit);
+  return !(atom->mask[i] & integrated_bits);
 }
 
 void FixImpulseLsdem::push_on_atoms(const LsdemImpulseContact &c, const double impulse[3])

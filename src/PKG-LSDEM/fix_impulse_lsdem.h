@@ -93,7 +93,8 @@ class FixImpulseLsdem : public Fix {
   bool sending_sleep;        // forward communication carries sleep_label
   bool sending_counts;       // forward communication carries ball_count
   bool sending_anchor;       // reverse communication carries anchor_f (ghosts' to owners)
-  bool has_outside;          // some atom is outside the group (init): anchors' forces kept
+  bool has_outside;          // some atom is integrated by no fix (init): anchors' forces kept
+  int integrated_bits;       // the groups of every time integrator, this fix's included
   std::vector<int64_t> wake_mine, wake_all, ready_mine, ready_all;
   std::vector<int> counts, displs;
   std::vector<char> blocked;
