@@ -1,4 +1,4 @@
-"""fix impulse/lsdem: the impulses the grains give the atoms outside its group (clamped net
+"""fix impulse/lsdem: the impulses the grains give the atoms no fix integrates (clamped net
 balls: anchors) enter those atoms' f as impulse / dt, so fix net/lsdem's anchor reaction
 (outputs 1-3, -sum f over the clamped balls; 9 its peak) reads the load the grains put on
 the anchors. A small net of four balls (radius 0.1, spacing 0.25), all clamped (no free
@@ -12,6 +12,8 @@ ball, so no bond pulls), and one spherical grain (radius 0.3) over the middle of
    split) gives an anchor force of its weight m g, within 1 %, at the last step and on
    average over the last 100; with the report's method (method etm: the grain chatters,
    ETM's impulses come in some steps and not others) on average over the last 100;
+   Balls that another fix integrates (fix nve/lsdem) are left alone: their f stays the
+   bonds' (here 0);
 3. every run gives the same bits on 1 and 2 ranks (the ranks split the square between its
    balls: the grain's contacts reach ghost balls, whose share goes to their owners)."""
 import os
@@ -118,6 +120,13 @@ for name, case, extra, keys, steps in CASES:
                   % (case, last, weight))
         check(abs(mean - weight) <= 0.01 * weight, "rest %s: mean anchor force %g, weight %g"
               % (case, mean, weight))
+
+# 2b. an atom another fix integrates keeps its f (its next half-kick would read a force
+# added here): the clamped balls held by fix nve/lsdem (no force moves them) read nothing
+held = run("rest", GRAVITY + "\nfix hold net_clamp nve/lsdem", "", 100, 1, "held")
+seen = max(abs(r["f_net[%d]" % d]) for r in held for d in (1, 2, 3))
+print("rest held by fix nve/lsdem: largest anchor force component %g" % seen)
+check(seen == 0.0, "held: the balls fix nve/lsdem integrates got forces (%g)" % seen)
 
 # 3. the same bits on 2 ranks
 for name, case, extra, keys, steps in CASES:
