@@ -3,8 +3,9 @@
 pull on the clamped balls and the grains' contacts on them (bench/README.md, "The avalanche,
 impulse against penalty"). fix net/lsdem's anchor force is -sum f over the clamped balls
 (doc/fix_net_lsdem.rst): with the penalty method f holds the bond forces and the grains'
-contact forces on those balls; with the impulse method the contacts are impulses that never
-enter f, so only the bonds' part is counted. This script recomputes the bonds' part from the
+contact forces on those balls; with the impulse method the contacts are impulses, which
+fix impulse/lsdem adds to the clamped balls' f as impulse / dt (before branch anchor they
+never entered f, and only the bonds' part was counted). This script recomputes the bonds' part from the
 balls' positions and velocities as bond_style lsdem/net does (core/specimen/net.c,
 lsdem_net_bond_force: k (L - r0) + c (v_j - v_i).u along u) and reads the total from f.
     anchor_split.py RUNDIR NETS [M...]

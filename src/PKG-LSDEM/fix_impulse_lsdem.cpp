@@ -88,7 +88,7 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
   t_rest(0.0),
   t_walls(0.0), t_comm(0.0), pair_seconds0(0.0), reduced_step(-1), cfl_warned(false),
   sleep_clock(nullptr), sleep_label(nullptr), sending_sleep(false), sending_counts(false),
-  woken_pending(0)
+  sending_anchor(false), has_outside(false), integrated_bits(0), woken_pending(0)
 {
   if (narg < 5) error->all(FLERR, "Illegal fix impulse/lsdem command: {}", USAGE);
   time_integrate = 1;
@@ -98,7 +98,7 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
   extvector = 0;
   restart_global = 1;
   comm_forward = 6;
-  comm_reverse = 1;
+  comm_reverse = 3;  // islands' labels and flags (1); the anchors' forces (3)
   restart_peratom = 1;
   create_attribute = 1;
   maxexchange_dynamic = 1;
@@ -308,6 +308,16 @@ void FixImpulseLsdem::init()
     error->all(FLERR, "Fix impulse/lsdem: damping xi * timestep = {} * {} = {} must be <= 1 "
                "(report eq 4.46)", xi, update->dt, xi * update->dt);
   if (sleep_after < 0.0) pair->set_sleeping(nullptr);
+  // the atoms whose f gets the contacts' impulses: those no time integrator moves (clamped
+  // net balls); an atom another fix integrates keeps its f as it was (a force added here
+  // would enter that fix's next half-kick)
+  integrated_bits = 0;
+  for (int f = 0; f < modify->nfix; f++)
+    if (modify->fix[f]->time_integrate) integrated_bits |= modify->fix[f]->groupbit;
+  int mine = 0, any = 0;
+  for (int i = 0; i < atom->nlocal; i++) mine |= outside(i) ? 1 : 0;
+  MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, world);
+  has_outside = any != 0;
   check_integrators();
   find_walls();
   set_glue();
@@ -411,6 +421,7 @@ void FixImpulseLsdem::final_integrate()
   // grains: per atom): gathered here from the atom arrays, scattered back after the drift;
   // ghosts' velocities follow their owners' through forward_velocities
   make_bodies();
+  anchor_terms.clear();
   kick();  // external forces (eqs 4.37, 4.39), the step's thresholds
   forward_velocities();
   ke_after_kick = group_kinetic_energy();
@@ -421,6 +432,7 @@ void FixImpulseLsdem::final_integrate()
   solve_contacts();  // islands: resting solve, collisions by ETM; the wall guard
   remember_contacts();
   report_wall_resting();
+  report_anchor_forces();
   // what every stage of the contacts did to the kinetic energy (ETM's restitution and
   // friction, the resting solve, the wall guard): measured, not summed from the parts
   const double contact_work = group_kinetic_energy() - ke_after_kick;
@@ -479,10 +491,11 @@ void FixImpulseLsdem::resolve_islands(int pass)
   st.clear();
   const std::string mesg = islands->resolve(list.data(), (int) list.size(), body.data(),
                                             moving.data(), stage.island, pass == 0, st);
-  // the collision impulses of this pass on the walls, as forces on them
+  // the collision impulses of this pass on the walls and on the atoms outside the group
+  // (clamped balls), as forces on them (with method etm list holds this pass's copies)
   for (LsdemImpulseContact &c : list) {
-    if (c.j >= 0) continue;
-    push_on_wall(-1 - c.j, c.J);
+    if (c.j < 0) push_on_wall(-1 - c.j, c.J);
+    else if (has_outside) push_on_atoms(c, c.J);
     c.J[0] = c.J[1] = c.J[2] = 0.0;
   }
   if (pass == 0) {
@@ -720,6 +733,74 @@ void FixImpulseLsdem::push_on_wall(int w, const double impulse[3]) const
 }
 
 /* ----------------------------------------------------------------------
+   the anchors' share (atoms outside the group that no other fix integrates either: clamped
+   net balls, which the contacts treat as bodies of prescribed velocity): the impulse a
+   contact gives such an atom (impulse on a: +impulse; on b: -impulse) becomes a force on
+   it, impulse / (dt ftm2v), so that its f (fix net/lsdem's anchor reaction, dumps) reads
+   the load the grains put on it, as a wall's force output does
+------------------------------------------------------------------------- */
+
+bool FixImpulseLsdem::outside(int i) const
+{
+  return !(atom->mask[i] & integrated_bits);
+}
+
+void FixImpulseLsdem::push_on_atoms(const LsdemImpulseContact &c, const double impulse[3])
+{
+  if (impulse[0] == 0.0 && impulse[1] == 0.0 && impulse[2] == 0.0) return;
+  if (outside(c.i)) push_on_atom(c.i, impulse);
+  if (c.j >= 0 && outside(c.j)) {
+    const double minus[3] = {-impulse[0], -impulse[1], -impulse[2]};
+    push_on_atom(c.j, minus);
+  }
+}
+
+/* impulse on atom i (local or ghost) as a force term, kept for report_anchor_forces */
+
+void FixImpulseLsdem::push_on_atom(int i, const double impulse[3])
+{
+  const double to_force = 1.0 / (update->dt * force->ftm2v);
+  AnchorTerm t;
+  t.i = i;
+  for (int d = 0; d < 3; d++) t.f[d] = to_force * impulse[d];
+  anchor_terms.push_back(t);
+}
+
+/* ----------------------------------------------------------------------
+   the step's force terms on the atoms outside the group into their f: each term rounded
+   to a power-of-two quantum of the largest term of the step (over all ranks;
+   lsdem_quantum_for), so that a ball's sum -- its own contacts' terms and those its ghost
+   copies gathered on other ranks, added to it by a reverse communication -- is exact and
+   the same in any order, on any rank count. Collective.
+------------------------------------------------------------------------- */
+
+void FixImpulseLsdem::report_anchor_forces()
+{
+  if (!has_outside) return;
+  const double t0 = MPI_Wtime();
+  double big = 0.0, scale = 0.0;
+  for (const AnchorTerm &t : anchor_terms)
+    for (int d = 0; d < 3; d++) big = std::max(big, std::fabs(t.f[d]));
+  MPI_Allreduce(&big, &scale, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (scale == 0.0) {  // no impulse on such an atom anywhere this step
+    t_comm += MPI_Wtime() - t0;
+    return;
+  }
+  const lsdem_quantum q = lsdem_quantum_for(scale);
+  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  anchor_f.assign(3 * (size_t) nall, 0.0);
+  for (const AnchorTerm &t : anchor_terms)
+    for (int d = 0; d < 3; d++) anchor_f[3 * (size_t) t.i + d] += lsdem_quantize(t.f[d], q);
+  sending_anchor = true;
+  LsdemCompat::reverse_comm(comm, this, 3);
+  sending_anchor = false;
+  for (int i = 0; i < nlocal; i++)
+    if (outside(i))
+      for (int d = 0; d < 3; d++) atom->f[i][d] += anchor_f[3 * (size_t) i + d];
+  t_comm += MPI_Wtime() - t0;
+}
+
+/* ----------------------------------------------------------------------
    the force of the step's resting contacts on each wall, -(impulse on the grains) / dt,
    into the wall's force output (the collision solves' and the wall guard's are added as
    they act): a base pressure or a platen servo reads what the grains do to the wall
@@ -727,8 +808,11 @@ void FixImpulseLsdem::push_on_wall(int w, const double impulse[3]) const
 
 void FixImpulseLsdem::report_wall_resting()
 {
-  for (const LsdemImpulseContact &c : contacts)
-    if (c.j < 0 && c.resting) push_on_wall(-1 - c.j, c.P);
+  for (const LsdemImpulseContact &c : contacts) {
+    if (!c.resting) continue;
+    if (c.j < 0) push_on_wall(-1 - c.j, c.P);
+    else if (has_outside) push_on_atoms(c, c.P);
+  }
   if (sleep_after >= 0.0) report_sleeping_walls();
 }
 
@@ -884,6 +968,19 @@ int FixImpulseLsdem::correct_balls(int pass)
                                                  (int) ball_pairs.size(), ball_count.data(),
                                                  atom->nlocal);
   now.ball_corrections += n;
+  // the impulse on an owned body outside the group (a clamped ball), as a force on it (a
+  // pair may be listed on two ranks; each body's share is its owner's)
+  if (has_outside)
+    for (const lsdem_ball_guard_pair &q : ball_pairs) {
+      const bool on_a = q.a < atom->nlocal && outside(q.a);
+      const bool on_b = q.b < atom->nlocal && outside(q.b);
+      if (!q.overlapping || !(on_a || on_b)) continue;
+      double P[3];
+      lsdem_ball_guard_impulse(body.data(), &q, ball_count.data(), P);
+      const double minus[3] = {-P[0], -P[1], -P[2]};
+      if (on_a) push_on_atom(q.a, P);
+      if (on_b) push_on_atom(q.b, minus);
+    }
   return n;
 }
 
@@ -1385,11 +1482,23 @@ void FixImpulseLsdem::unpack_forward_comm(int n, int first, double *buf)
 
 int FixImpulseLsdem::pack_reverse_comm(int n, int first, double *buf)
 {
+  if (sending_anchor) {  // the ghosts' anchor forces, added to their owners'
+    int m = 0;
+    for (int i = first; i < first + n; i++)
+      for (int d = 0; d < 3; d++) buf[m++] = anchor_f[3 * (size_t) i + d];
+    return m;
+  }
   return islands->pack_reverse(n, first, buf);
 }
 
 void FixImpulseLsdem::unpack_reverse_comm(int n, int *list, double *buf)
 {
+  if (sending_anchor) {
+    int m = 0;
+    for (int k = 0; k < n; k++)
+      for (int d = 0; d < 3; d++) anchor_f[3 * (size_t) list[k] + d] += buf[m++];
+    return;
+  }
   islands->unpack_reverse(n, list, buf);
 }
 

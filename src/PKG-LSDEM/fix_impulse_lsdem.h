@@ -92,6 +92,9 @@ class FixImpulseLsdem : public Fix {
   double *sleep_clock, *sleep_label;
   bool sending_sleep;        // forward communication carries sleep_label
   bool sending_counts;       // forward communication carries ball_count
+  bool sending_anchor;       // reverse communication carries anchor_f (ghosts' to owners)
+  bool has_outside;          // some atom is integrated by no fix (init): anchors' forces kept
+  int integrated_bits;       // the groups of every time integrator, this fix's included
   std::vector<int64_t> wake_mine, wake_all, ready_mine, ready_all;
   std::vector<int> counts, displs;
   std::vector<char> blocked;
@@ -108,6 +111,14 @@ class FixImpulseLsdem : public Fix {
   std::vector<lsdem_wall_guard_seen> wall_seen;  // per wall, then local grain
   std::vector<lsdem_ball_guard_pair> ball_pairs;  // ball-grain pairs of the step (balls)
   std::vector<int32_t> ball_count;                // per atom: its overlapping ball pairs
+  // the step's impulses on atoms outside the group (clamped balls: anchors) as forces,
+  // one term per contact, pass and kind; summed rounded (anchor_f, 3 per atom) into f
+  struct AnchorTerm {
+    int i;
+    double f[3];
+  };
+  std::vector<AnchorTerm> anchor_terms;
+  std::vector<double> anchor_f;
 
   // what the step did (this rank), reduced over ranks when output asks
   struct Step {
@@ -155,6 +166,10 @@ class FixImpulseLsdem : public Fix {
   void remember_contacts();
   void report_wall_resting();
   void push_on_wall(int w, const double impulse[3]) const;
+  bool outside(int i) const;
+  void push_on_atoms(const LsdemImpulseContact &c, const double impulse[3]);
+  void push_on_atom(int i, const double impulse[3]);
+  void report_anchor_forces();
   void body_frame_point(const LsdemImpulseContact &c, double xb[3]) const;
   double group_kinetic_energy() const;
   void solve_contacts();
