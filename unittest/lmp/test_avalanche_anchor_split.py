@@ -12,30 +12,17 @@ bonds' reaction at the last step: the script's must equal it (to 1e-6, or 1e-3 f
 unloaded net 2: the dump's digits). And the split must
 matter: at that step the grains' contacts are more than 1 % of net 1's reaction."""
 import os
-import shutil
 import subprocess
 import sys
 
 import numpy as np
 
-from lsdemtest import HERE, SHAPE_TOOL, check, near, finish, run_lmp
+from lsdemtest import HERE, check, near, finish, run_lmp
+from avalanche_scene import EX, make_scene
 
 TOP = os.path.normpath(os.path.join(HERE, "..", ".."))
-EX = os.path.join(TOP, "examples", "avalanche")
 NGRAINS, NSTEPS, WINDOW, DT = 100, 5400, 20, 0.00028
-for f in ("grains.lslib", "valley.band", "valley.asc"):
-    shutil.copy(os.path.join(EX, f), f)
-lines = open(os.path.join(EX, "source.data")).read().split("\n")
-a = lines.index("Atoms # lsdem")
-rows = sorted([l.split() for l in lines[a + 2:] if l.strip()], key=lambda r: float(r[4]))[:NGRAINS]
-with open("source.data", "w") as f:
-    f.write("\n".join(lines[:a]).replace("400 atoms", "%d atoms" % NGRAINS) + "\nAtoms # lsdem\n\n")
-    for i, r in enumerate(rows):
-        f.write(" ".join([str(i + 1)] + r[1:]) + "\n")
-p = subprocess.run(["bash", os.path.join(EX, "make_nets.sh"), ".", "2", "-1", "-3.5", "0.6", "2.5"],
-                   env=dict(os.environ, LSDEM_SHAPE_TOOL=SHAPE_TOOL), stdout=subprocess.PIPE,
-                   stderr=subprocess.STDOUT, text=True)
-check(p.returncode == 0, "make_nets.sh failed:\n" + p.stdout)
+make_scene(NGRAINS)
 
 # the example's deck, then the bonds' reaction at its last step from LAMMPS
 with open("in.split", "w") as f:

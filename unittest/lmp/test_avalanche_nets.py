@@ -15,34 +15,14 @@ with their forces; netK.net: each net's frame, footprint and ball IDs):
 and the scene does what it is built for: the flow reaches both nets, net 1 lets grains
 past, and every grain is upslope of net 2 or through it (none past it around or over it)."""
 import os
-import shutil
 
 import numpy as np
 
-from lsdemtest import HERE, SHAPE_TOOL, check, near, finish, run_lmp
-import subprocess
+from lsdemtest import check, near, finish, run_lmp
+from avalanche_scene import EX, make_scene
 
-EX = os.path.normpath(os.path.join(HERE, "..", "..", "examples", "avalanche"))
 NGRAINS, EVERY, ROWS = 100, 357, 22
-for f in ("grains.lslib", "valley.band", "valley.asc"):
-    shutil.copy(os.path.join(EX, f), f)
-
-# the NGRAINS grains of source.data nearest the slope's foot (lowest x), renumbered
-lines = open(os.path.join(EX, "source.data")).read().split("\n")
-a = lines.index("Atoms # lsdem")
-rows = [l.split() for l in lines[a + 2:] if l.strip()]
-rows = sorted(rows, key=lambda r: float(r[4]))[:NGRAINS]
-head = "\n".join(lines[:a]).replace("400 atoms", "%d atoms" % NGRAINS)
-with open("source.data", "w") as f:
-    f.write(head + "\nAtoms # lsdem\n\n")
-    for i, r in enumerate(rows):
-        f.write(" ".join([str(i + 1)] + r[1:]) + "\n")
-
-p = subprocess.run(["bash", os.path.join(EX, "make_nets.sh"), ".", "2", "-1", "-3.5", "0.6", "2.5"],
-                   env=dict(os.environ, LSDEM_SHAPE_TOOL=SHAPE_TOOL), stdout=subprocess.PIPE,
-                   stderr=subprocess.STDOUT, text=True)
-check(p.returncode == 0, "make_nets.sh failed:\n" + p.stdout)
-print(p.stdout.strip())
+print(make_scene(NGRAINS))
 rc, log = run_lmp(os.path.join(EX, "in.avalanche"), np=2,
                   vars={"nets": 2, "nsteps": EVERY * ROWS, "vtkevery": 10})
 for f in ("nets.csv", "nets_end.dump", "vtk/nets.pvd", "vtk/nets_end.pvd", "deposit.dump"):
