@@ -92,10 +92,8 @@ static int detect_pair(const lsdem_impulse_body *body, const lsdem_impulse_grain
   predicted_pose(a_master ? b : a, gs, dt, &ps);
   lsdem_manifold m = lsdem_manifold_over(points, npoints);
   if (lsdem_detect(gm->shape, &pm, gs->shape, &ps, det, step, NULL, NULL, &m) == 0) return 0;
-  int k = 0;
-  for (int j = 1; j < m.n; j++)
-    if (m.point[j].depth > m.point[k].depth) k = j;
-  const lsdem_contact_point deep = m.point[k]; /* m's storage is reused below */
+  /* a copy: m's storage is reused below */
+  const lsdem_contact_point deep = m.point[lsdem_manifold_deepest(&m)];
   if (!(deep.depth > p->depth_tol)) return 0;
   const double d0 = current_overlap(a_master ? a : b, gm, a_master ? b : a, gs, det, step,
                                     points, npoints);

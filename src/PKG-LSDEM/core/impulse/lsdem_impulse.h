@@ -419,6 +419,8 @@ lsdem_wall_contact_kind lsdem_wall_classify(double u_n, double rest_speed);
  * u_n becomes that cap (lsdem_push_out_cap); the rest of the overlap goes in the next
  * steps. */
 void lsdem_wall_limit_push_out(lsdem_manifold *m, double dt, double rest_speed);
+/* The index of the manifold's deepest point (ties: the first; 0 for an empty manifold). */
+int lsdem_manifold_deepest(const lsdem_manifold *m);
 /* The push-out cap of an overlap d0 the body has now: max(rest_speed, sqrt(2 a d0)),
  * a = rest_speed / (2 dt) (above). */
 double lsdem_push_out_cap(double d0, double dt, double rest_speed);

@@ -21,8 +21,7 @@ double lsdem_push_out_cap(double d0, double dt, double rest_speed)
   return fmax(rest_speed, sqrt(2.0 * accel * d0));
 }
 
-/* The manifold's deepest point (ties: the first). */
-static int deepest_point(const lsdem_manifold *m)
+int lsdem_manifold_deepest(const lsdem_manifold *m)
 {
   int k = 0;
   for (int j = 1; j < m->n; j++)
@@ -33,7 +32,7 @@ static int deepest_point(const lsdem_manifold *m)
 void lsdem_wall_limit_push_out(lsdem_manifold *m, double dt, double rest_speed)
 {
   if (m->n == 0) return;
-  const lsdem_contact_point *p = &m->point[deepest_point(m)];
+  const lsdem_contact_point *p = &m->point[lsdem_manifold_deepest(m)];
   const double un = lsdem_dot3(p->vrel, p->normal);
   const double d0 = fmax(p->depth + un * dt, 0.0);
   const double cap = lsdem_push_out_cap(d0, dt, rest_speed);
@@ -163,7 +162,7 @@ lsdem_status lsdem_wall_correct(lsdem_impulse_body *grain, const lsdem_manifold 
                       (long long)grain->id, dt, p->rest_speed, p->depth_tol, p->mu);
   res->kind = LSDEM_WALL_CLEAR;
   if (m->n == 0) return LSDEM_OK;
-  const int k = deepest_point(m);
+  const int k = lsdem_manifold_deepest(m);
   const lsdem_contact_point *deep = &m->point[k];
   res->deepest = k;
   res->depth = deep->depth;
