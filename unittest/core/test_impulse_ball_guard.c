@@ -65,7 +65,7 @@ static int guard_pass(lsdem_impulse_body *body, const lsdem_impulse_grain *grain
   lsdem_detect_params det = {1, 0.0};
   memset(count, 0, sizeof(int32_t) * (size_t)nbodies);
   lsdem_impulse_ball_guard_detect(body, grain, pairs, n, &det, &PRM, E, DT, 0, pts, 8, count);
-  return lsdem_impulse_ball_guard_correct(body, pairs, n, count, nown);
+  return lsdem_impulse_ball_guard_correct(body, pairs, n, count, nown, NULL);
 }
 
 /* the overlap of two spheres at their predicted centres x + v dt */

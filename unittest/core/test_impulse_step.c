@@ -48,8 +48,8 @@ static void test_kick_drift_gravity(void)
   double amax = 0.0, damped = 0.0;
   lsdem_error err;
   for (int s = 0; s < n; s++) {
-    amax = lsdem_impulse_stage_kick(body, grain, moving, 2, dt);
-    CHECK(lsdem_impulse_stage_damp_drift(body, grain, moving, 2, 0.0, dt, &damped, &err) ==
+    amax = lsdem_impulse_stage_kick(body, grain, moving, 2, dt, NULL);
+    CHECK(lsdem_impulse_stage_damp_drift(body, grain, moving, 2, 0.0, dt, &damped, NULL, &err) ==
               LSDEM_OK,
           "%s", err.msg);
   }
@@ -88,7 +88,7 @@ static void test_damp_drift_decay(void)
   double damped = 0.0;
   lsdem_error err;
   for (int s = 0; s < n; s++)
-    CHECK(lsdem_impulse_stage_damp_drift(body, grain, moving, 1, xi, dt, &damped, &err) ==
+    CHECK(lsdem_impulse_stage_damp_drift(body, grain, moving, 1, xi, dt, &damped, NULL, &err) ==
               LSDEM_OK,
           "%s", err.msg);
   const double h = 1.0 - xi * dt, hn = pow(h, n);
@@ -102,13 +102,13 @@ static void test_damp_drift_decay(void)
   CHECK(fabs(hn - exp(-xi * n * dt)) < 2.0 * xi * xi * n * dt * dt,
         "decay %g far from exp(-xi t) %g", hn, exp(-xi * n * dt));
   /* the sphere: translation damped and drifted, omega 0 after the drift */
-  CHECK(lsdem_impulse_stage_damp_drift(body + 1, grain + 1, moving, 1, xi, dt, &damped, &err) ==
+  CHECK(lsdem_impulse_stage_damp_drift(body + 1, grain + 1, moving, 1, xi, dt, &damped, NULL, &err) ==
             LSDEM_OK,
         "%s", err.msg);
   CHECK(body[1].omega[0] == 0.0 && body[1].omega[1] == 0.0 && body[1].omega[2] == 0.0,
         "a sphere kept its spin");
   CHECK_REL(body[1].x[2], dt * v0[2] * h, 1e-15);
-  CHECK(lsdem_impulse_stage_damp_drift(body, grain, moving, 1, 2.0 / dt, dt, &damped, &err) ==
+  CHECK(lsdem_impulse_stage_damp_drift(body, grain, moving, 1, 2.0 / dt, dt, &damped, NULL, &err) ==
             LSDEM_ERR_ARG,
         "xi dt = 2 accepted");
 }
