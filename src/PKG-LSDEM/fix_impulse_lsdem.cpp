@@ -1383,7 +1383,11 @@ void FixImpulseLsdem::reduce_output()
    without it). 13 is
    minus the sum of 29 since the start. 34 ball-grain pairs corrected by the ball guard
    (keyword balls; all passes) and 35 the deepest ball-grain overlap it found at the
-   predicted poses (first pass; length)
+   predicted poses (first pass; length). The energy audit (close_audit): 36-42 the work
+   booked by the kick, ETM, the wall guard, the ball guard, damping, the drift's free
+   rotation and sleeping (28: the resting solve's), 43 the moving grains' kinetic-energy
+   change over the step, 44 the relative residual of 43 against the terms' sum, 45 its
+   largest since setup
 ------------------------------------------------------------------------- */
 
 double FixImpulseLsdem::compute_vector(int n)
