@@ -29,7 +29,7 @@ TOL = 1e-9
 # damping, drift, sleeping; the measured change; the residual and its largest
 TERMS = {"kick": 36, "etm": 37, "resting": 28, "wall": 38, "ball": 39, "damping": 40,
          "drift": 41, "sleep": 42}
-COLUMNS = " ".join("f_imp[%d]" % k for k in list(TERMS.values()) + [43, 44, 45, 29, 9])
+COLUMNS = " ".join("f_imp[%d]" % k for k in list(TERMS.values()) + [43, 44, 45, 29, 9, 3])
 
 
 def data(name, atoms, box="-2 2 xlo xhi\n-2 2 ylo yhi\n-1 4 zlo zhi\n"):
@@ -44,8 +44,9 @@ def data(name, atoms, box="-2 2 xlo xhi\n-2 2 ylo yhi\n-1 4 zlo zhi\n"):
 
 def scene(name, lib, atoms, fix, steps, dt=1e-3, extra="", np=1, mu_floor=0.5):
     """The grains under gravity on a floor, fix imp ... (fix: its arguments after
-    impulse/lsdem); thermo every step. The thermo rows."""
-    deck = (header(lib, data(name, atoms))
+    impulse/lsdem); thermo every step; on np ranks split along x. The thermo rows."""
+    grid = "processors %d 1 1\nread_data" % np
+    deck = (header(lib, data(name, atoms)).replace("read_data", grid)
             + "fix floor all wall/lsdem plane 0 0 0 0 0 1 1.0e4 0 %r\n" % mu_floor
             + "fix grav all gravity %r vector 0 0 -1\n" % G + extra
             + "fix imp all impulse/lsdem %s\ntimestep %r\n" % (fix, dt)
@@ -103,14 +104,29 @@ for method in ("split", "etm"):
           + (["resting"] if method == "split" else ["wall"]))
 
 # spheres thrown sideways on the frictional floor, and a column of four settling on it
+# beside a row of two across x = 0
 atoms = [(-1.0 + 0.5 * k, 0.5, R - 1e-6, Q0) for k in range(3)]
-atoms += [(0.0, -0.5, R - 1e-6 + k * (2 * R - 1e-6), Q0) for k in range(4)]
+atoms += [(0.1, -0.5, R - 1e-6 + k * (2 * R - 1e-6), Q0) for k in range(4)]
+atoms += [(0.1 - k * (2 * R - 1e-6), -0.5, R - 1e-6, Q0) for k in (1, 2)]
 extra = "group thrown id 1 2 3\nvelocity thrown set 0.8 0.3 0\n"
 for method in ("split", "etm"):
     rows = scene("slide_" + method, BALL, atoms, "0.5 0.5 method %s" % method, 300,
                  extra=extra)
     audit("sliding spheres and a column (%s)" % method, rows,
           ["kick", "resting" if method == "split" else "wall"])
+    # on 2 ranks the row crosses the ranks' boundary (x = 0): its island spans them and is
+    # solved on one (the host books its work); the values are the same sums
+    rows2 = scene("slide2_" + method, BALL, atoms, "0.5 0.5 method %s" % method, 300,
+                  extra=extra, np=2)
+    check(rows2 and max(r["f_imp[3]"] for r in rows2) > 0, "no island spans the ranks")
+    audit("sliding spheres and a column (%s), 2 ranks" % method, rows2,
+          ["kick", "resting" if method == "split" else "wall"])
+    if rows and len(rows2) == len(rows):
+        diff = max(abs(a["f_imp[%d]" % k] - b["f_imp[%d]" % k])
+                   / max(a["f_imp[9]"], abs(a["f_imp[36]"]), 1e-300)
+                   for a, b in zip(rows, rows2) for k in list(TERMS.values()) + [43])
+        check(diff <= 1e-12, "%s: the audit's values differ on 1 and 2 ranks by %.3g"
+              % (method, diff))
 
 # boxes (principal moments all different) dropped tilted and spinning onto the floor (their
 # drift term stays below 1e-9 of the step's energy: the spinning box below has it larger)
