@@ -277,6 +277,21 @@ static void test_select_collisions(void)
  * by d0/dt when that is below the push-out limit, else to the limit max(r, sqrt(r d0/dt))
  * (lsdem_wall_limit_push_out with a = r / (2 dt)); the impulse is m times the lift. A
  * grain approaching faster than r is a collision, ETM's: the guard leaves it alone. */
+/* The guard's wall: the plane z = 0 (in plane), acting on group 1, with parameters prm. */
+static void plane_wall(lsdem_boundary *plane, lsdem_impulse_guard_wall *w,
+                       lsdem_wall_params prm)
+{
+  const double p0[3] = {0, 0, 0}, nz[3] = {0, 0, 1};
+  lsdem_error err;
+  CHECK(lsdem_boundary_plane(plane, p0, nz, &err) == LSDEM_OK, "%s", err.msg);
+  memset(w, 0, sizeof *w);
+  w->boundary = plane;
+  w->groups = 1;
+  lsdem_boundary_pose_at(plane, 0.0, &w->pose);
+  w->detect.node_stride = 1;
+  w->prm = prm;
+}
+
 static void guard_once(double d0, double v0z, double *vz, double *impulse, int *corrected)
 {
   const double R = 0.1, dt = 1e-3, m = 1.0, I[3] = {0.004, 0.004, 0.004};
@@ -290,16 +305,9 @@ static void guard_once(double d0, double v0z, double *vz, double *impulse, int *
   grain[1].groups = 2; /* not in the wall's group */
   const char moving[2] = {1, 1};
   lsdem_boundary plane;
-  const double p0[3] = {0, 0, 0}, nz[3] = {0, 0, 1};
-  lsdem_error err;
-  CHECK(lsdem_boundary_plane(&plane, p0, nz, &err) == LSDEM_OK, "%s", err.msg);
   lsdem_impulse_guard_wall w;
-  memset(&w, 0, sizeof w);
-  w.boundary = &plane;
-  w.groups = 1;
-  lsdem_boundary_pose_at(&plane, 0.0, &w.pose);
-  w.detect.node_stride = 1;
-  w.prm = (lsdem_wall_params){0.02, 1e-8, 0.5};
+  plane_wall(&plane, &w, (lsdem_wall_params){0.02, 1e-8, 0.5});
+  lsdem_error err;
   lsdem_contact_point pts[4];
   lsdem_wall_guard_seen seen[2];
   memset(seen, 0, sizeof seen);
@@ -421,15 +429,8 @@ static void test_audit_bookings(void)
   CHECK(fabs(turn) > 1e-9 * e0, "the free rotation's energy change %.3g is round-off", turn);
   /* the wall guard: the ellipsoid tilted, 1e-4 into the plane z = 0, sliding */
   lsdem_boundary plane;
-  const double p0[3] = {0, 0, 0}, nz[3] = {0, 0, 1};
-  CHECK(lsdem_boundary_plane(&plane, p0, nz, &err) == LSDEM_OK, "%s", err.msg);
   lsdem_impulse_guard_wall w;
-  memset(&w, 0, sizeof w);
-  w.boundary = &plane;
-  w.groups = 1;
-  lsdem_boundary_pose_at(&plane, 0.0, &w.pose);
-  w.detect.node_stride = 1;
-  w.prm = (lsdem_wall_params){0.05, 1e-8, 0.5};
+  plane_wall(&plane, &w, (lsdem_wall_params){0.05, 1e-8, 0.5});
   const double qt[4] = {0.9961946980917455, 0.08715574274765817, 0, 0}; /* 10 deg about x */
   memcpy(g.q, qt, sizeof qt);
   double R[9], lowest = HUGE_VAL;

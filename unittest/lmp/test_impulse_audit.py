@@ -18,8 +18,8 @@ test), and the contact stages' bookings add up to value 29, the contacts' change
 - balls of a net under a grain (keyword balls: the ball guard), on 1 and 2 ranks."""
 import os
 
-from impulse_decks import header, library
-from lsdemtest import run_lmp, thermo, check, finish, shape_tool
+from impulse_decks import header, library, net_scene
+from lsdemtest import run_lmp, thermo, check, finish
 
 G, R = 9.81, 0.1
 BALL = library("ball.lslib", "sphere", R, nodes=20, analytic=True)
@@ -158,28 +158,7 @@ if rows:
 
 # the ball guard: a sphere (radius 0.3) thrown at 3 into a free net of 81 balls (radius
 # 0.1, no gravity), on 1 and 2 ranks (the balls' works summed over their owners)
-shape_tool("analytic", "netball.lslib", "sphere", 0.1, "--analytic")
-shape_tool("analytic", "grain.lslib", "sphere", 0.3, "--analytic")
-shape_tool("merge", "net.lslib", "netball.lslib", "grain.lslib")
-with open("one.data", "w") as f:
-    f.write("one grain\n\n1 atoms\n1 atom types\n\n-1 3 xlo xhi\n-1 3 ylo yhi\n-6 3 zlo zhi\n\n"
-            "Atoms # lsdem\n\n1 1 2 1.0 1.06 0.97 0.5 1 0 0 0\n")
-shape_tool("net", "net", "--library", "net.lslib", "--shape", 1, "--rb", 0.1, "--lattice",
-           "square", "--spacing", 0.25, "--size", 2, 2, "--clamp", "none", "--mass", 0.01,
-           "--k", 1.0, "--grains", "one.data")
-HERE = os.getcwd()
-NET = """units lj
-atom_style hybrid lsdem library {here}/net.lslib bond
-atom_modify map array
-boundary f f f
-newton on
-read_data {here}/net.data
-include {here}/net.in
-neighbor 0.1 bin
-neigh_modify delay 0 every 1 check yes
-pair_style lsdem/impulse
-pair_coeff * *
-velocity grains set 0 0 -3
+NET = net_scene() + """velocity grains set 0 0 -3
 group moving union grains net_free
 fix imp moving impulse/lsdem 0.5 0.3 rest 0.05 balls net damping 1
 timestep 0.01
@@ -189,7 +168,7 @@ thermo 1
 run 60
 """
 for np in (1, 2):
-    _, log = run_lmp(NET.format(here=HERE, columns=COLUMNS), np=np,
+    _, log = run_lmp(NET.format(columns=COLUMNS), np=np,
                      cwd=os.path.abspath("net%d" % np))
     rows = thermo(log)
     audit("grain into a net, %d rank%s" % (np, "s" if np > 1 else ""), rows,
