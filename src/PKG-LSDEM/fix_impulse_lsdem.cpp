@@ -24,7 +24,9 @@
         velocities go to the ghosts and the collisions they make are resolved in the next
         pass;
      4. the contacts' impulses kept per grain (split), the walls' forces reported, the CFL
-        check (lsdem_impulse_stage_cfl), damping and drift (lsdem_impulse_stage_damp_drift).
+        check (lsdem_impulse_stage_cfl), damping and drift (lsdem_impulse_stage_damp_drift);
+     5. (keyword sleep) islands fall asleep; the energy audit (close_audit): the moving
+        grains' kinetic-energy change against each stage's own booking of its work.
    Positions and velocities are then those of the step's end, as thermo and dumps print
    them. Between steps the fix carries the positions and velocities and (split) each
    grain's resting impulses, in restart files too: a run continued from a restart file is
