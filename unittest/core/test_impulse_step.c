@@ -102,7 +102,8 @@ static void test_damp_drift_decay(void)
   CHECK(fabs(hn - exp(-xi * n * dt)) < 2.0 * xi * xi * n * dt * dt,
         "decay %g far from exp(-xi t) %g", hn, exp(-xi * n * dt));
   /* the sphere: translation damped and drifted, omega 0 after the drift */
-  CHECK(lsdem_impulse_stage_damp_drift(body + 1, grain + 1, moving, 1, xi, dt, &damped, NULL, &err) ==
+  CHECK(lsdem_impulse_stage_damp_drift(body + 1, grain + 1, moving, 1, xi, dt, &damped, NULL,
+                                        &err) ==
             LSDEM_OK,
         "%s", err.msg);
   CHECK(body[1].omega[0] == 0.0 && body[1].omega[1] == 0.0 && body[1].omega[2] == 0.0,

@@ -1,7 +1,7 @@
 /* step.c -- the stages of an impulse step over the solver's arrays (lsdem_impulse.h, "the
  * step's stages"): kick, thresholds, classify, selection, wall guard, CFL, damp and drift;
- * and the energy audit's sum and residual. The per-body physics is integrate.c's and wall.c's; here are the loops and the rules
- * that decide what each body and contact takes. */
+ * and the energy audit's sum and residual. The per-body physics is integrate.c's and
+ * wall.c's; here are the loops and the rules that decide what each body and contact takes. */
 #include "lsdem_impulse.h"
 
 #include <math.h>
