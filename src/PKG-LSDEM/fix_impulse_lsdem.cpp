@@ -24,7 +24,9 @@
         velocities go to the ghosts and the collisions they make are resolved in the next
         pass;
      4. the contacts' impulses kept per grain (split), the walls' forces reported, the CFL
-        check (lsdem_impulse_stage_cfl), damping and drift (lsdem_impulse_stage_damp_drift).
+        check (lsdem_impulse_stage_cfl), damping and drift (lsdem_impulse_stage_damp_drift);
+     5. (keyword sleep) islands fall asleep; the energy audit (close_audit): the moving
+        grains' kinetic-energy change against each stage's own booking of its work.
    Positions and velocities are then those of the step's end, as thermo and dumps print
    them. Between steps the fix carries the positions and velocities and (split) each
    grain's resting impulses, in restart files too: a run continued from a restart file is
@@ -72,7 +74,8 @@ enum {
   V_T_DETECT, V_T_ISLANDS, V_T_ETM, V_T_WALLS, V_T_COMM, V_DEPTH, V_WALL_DEPTH,
   V_RESTING, V_SWEEPS, V_ETM_ISLANDS, V_CONTACTS, V_PAIRS, V_PER_PAIR, V_RESTING_WORK,
   V_CONTACT_WORK, V_ETM_ROUNDS, V_T_REST, V_SLEEPING, V_WOKEN, V_BALL_CORRECTIONS,
-  V_BALL_DEPTH, V_SIZE
+  V_BALL_DEPTH, V_KICK_WORK, V_ETM_WORK, V_WALL_WORK, V_BALL_WORK, V_DAMP_WORK,
+  V_DRIFT_WORK, V_SLEEP_WORK, V_KE_CHANGE, V_AUDIT, V_AUDIT_WORST, V_SIZE
 };
 
 static const char USAGE[] = "fix ID group impulse/lsdem e mu [keyword value ...]";
@@ -94,6 +97,8 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
   time_integrate = 1;
   vector_flag = 1;
   size_vector = V_SIZE;
+  audit_residual = audit_worst = 0.0;
+  memset(audit_all, 0, sizeof(audit_all));
   global_freq = 1;
   extvector = 0;
   restart_global = 1;
@@ -404,6 +409,8 @@ void FixImpulseLsdem::setup(int /*vflag*/)
   memset(&now, 0, sizeof(now));
   reduced_step = -1;
   cfl_warned = false;
+  audit_residual = audit_worst = 0.0;
+  memset(audit_all, 0, sizeof(audit_all));
 }
 
 /* ---------------------------------------------------------------------- */
@@ -421,6 +428,7 @@ void FixImpulseLsdem::final_integrate()
   // grains: per atom): gathered here from the atom arrays, scattered back after the drift;
   // ghosts' velocities follow their owners' through forward_velocities
   make_bodies();
+  now.ke_start = group_kinetic_energy();
   anchor_terms.clear();
   kick();  // external forces (eqs 4.37, 4.39), the step's thresholds
   forward_velocities();
@@ -442,6 +450,7 @@ void FixImpulseLsdem::final_integrate()
   damp_and_drift();  // global damping (eqs 4.44-4.46), positions (eqs 4.38, 4.40)
   scatter_grains();
   if (sleep_after >= 0.0) fall_asleep();
+  close_audit();
 }
 
 /* ----------------------------------------------------------------------
@@ -514,6 +523,8 @@ void FixImpulseLsdem::resolve_islands(int pass)
   now.dissipated += st.dissipated;
   now.released += st.released;
   now.resting_work += st.resting_work;
+  now.audit.resting += st.resting_work;
+  now.audit.etm += st.etm_work;
   total_truncated += st.truncated;
   t_islands += st.t_islands;
   t_etm += st.t_etm - st.t_rest;
@@ -616,7 +627,7 @@ double FixImpulseLsdem::step_start() const
 void FixImpulseLsdem::kick()
 {
   const double amax = lsdem_impulse_stage_kick(body.data(), grain.data(), moving.data(),
-                                               atom->nlocal, update->dt);
+                                               atom->nlocal, update->dt, &now.audit.kick);
   double rest = rest_setting;
   if (rest < 0.0) {
     double all = 0.0;
@@ -893,7 +904,10 @@ int FixImpulseLsdem::correct_walls()
       error->one(FLERR, "Fix impulse/lsdem: step {}, grain {}, wall {}: {}", update->ntimestep,
                  atom->tag[-1 - n], walls[w]->id, err.msg);
     for (int i = 0; i < nlocal; i++)
-      if (seen[i].corrected) push_on_wall((int) w, seen[i].impulse);
+      if (seen[i].corrected) {
+        push_on_wall((int) w, seen[i].impulse);
+        now.audit.wall += seen[i].work;
+      }
     corrected += n;
   }
   return corrected;
@@ -966,7 +980,7 @@ int FixImpulseLsdem::correct_balls(int pass)
   t_comm += MPI_Wtime() - t1;
   const int n = lsdem_impulse_ball_guard_correct(body.data(), ball_pairs.data(),
                                                  (int) ball_pairs.size(), ball_count.data(),
-                                                 atom->nlocal);
+                                                 atom->nlocal, &now.audit.ball);
   now.ball_corrections += n;
   // the impulse on an owned body outside the group (a clamped ball), as a force on it (a
   // pair may be listed on two ranks; each body's share is its owner's)
@@ -1026,9 +1040,42 @@ void FixImpulseLsdem::check_cfl()
 void FixImpulseLsdem::damp_and_drift()
 {
   lsdem_error err;
+  double damped = 0.0;
   if (lsdem_impulse_stage_damp_drift(body.data(), grain.data(), moving.data(), atom->nlocal,
-                                     xi, update->dt, &total_damped, &err) != LSDEM_OK)
+                                     xi, update->dt, &damped, &now.audit.drift, &err) != LSDEM_OK)
     error->one(FLERR, err.msg);
+  total_damped += damped;
+  now.audit.damping = -damped;
+}
+
+/* ----------------------------------------------------------------------
+   the energy audit of the step (lsdem_impulse_audit): the moving grains' kinetic energy
+   at the step's end (after sleeping) against its start and the stages' bookings, summed
+   over ranks (one reduction per step), the relative residual and its largest since setup
+------------------------------------------------------------------------- */
+
+double FixImpulseLsdem::moving_kinetic_energy() const
+{
+  double ke = 0.0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (moving[i]) ke += kinetic_energy(i, atom->v[i], atom->omega[i]);
+  return ke;
+}
+
+void FixImpulseLsdem::close_audit()
+{
+  now.ke_end = moving_kinetic_energy();
+  const lsdem_impulse_audit &a = now.audit;
+  double mine[10] = {now.ke_start, now.ke_end, a.kick,   a.etm,   a.resting,
+                     a.wall,       a.ball,       a.damping, a.drift, a.sleep};
+  double *all = audit_all;
+  const double t0 = MPI_Wtime();
+  MPI_Allreduce(mine, all, 10, MPI_DOUBLE, MPI_SUM, world);
+  t_comm += MPI_Wtime() - t0;
+  const lsdem_impulse_audit sum = {all[2], all[3], all[4], all[5],
+                                   all[6], all[7], all[8], all[9]};
+  audit_residual = lsdem_impulse_audit_residual(all[0], all[1], &sum);
+  if (!(audit_residual <= audit_worst)) audit_worst = audit_residual;  // NaN included
 }
 
 /* ----------------------------------------------------------------------
@@ -1196,7 +1243,9 @@ void FixImpulseLsdem::fall_asleep()
     if (!moving[i] || sleep_clock[i] < sleep_after) continue;
     const auto it = std::lower_bound(ready_all.begin(), ready_all.end(), label[i]);
     if (blocked[it - ready_all.begin()]) continue;
-    total_damped += kinetic_energy(i, atom->v[i], atom->omega[i]);
+    const double ke = kinetic_energy(i, atom->v[i], atom->omega[i]);
+    total_damped += ke;
+    now.audit.sleep -= ke;
     sleep_label[i] = (double) label[i];
     for (int d = 0; d < 3; d++) atom->v[i][d] = atom->omega[i][d] = 0.0;
   }
@@ -1306,6 +1355,14 @@ void FixImpulseLsdem::reduce_output()
   reduced[V_WOKEN] = s[19];
   reduced[V_BALL_CORRECTIONS] = s[20];
   reduced[V_BALL_DEPTH] = m[13];
+  // the energy audit, reduced by close_audit every step (audit_all: KE start, end, terms)
+  const int terms[] = {V_KICK_WORK, V_ETM_WORK, -1, V_WALL_WORK, V_BALL_WORK, V_DAMP_WORK,
+                       V_DRIFT_WORK, V_SLEEP_WORK};  // -1: the resting solve's, value 28
+  for (int k = 0; k < 8; k++)
+    if (terms[k] >= 0) reduced[terms[k]] = audit_all[2 + k];
+  reduced[V_KE_CHANGE] = audit_all[1] - audit_all[0];
+  reduced[V_AUDIT] = audit_residual;
+  reduced[V_AUDIT_WORST] = audit_worst;
   reduced_step = update->ntimestep;
 }
 
@@ -1328,7 +1385,11 @@ void FixImpulseLsdem::reduce_output()
    without it). 13 is
    minus the sum of 29 since the start. 34 ball-grain pairs corrected by the ball guard
    (keyword balls; all passes) and 35 the deepest ball-grain overlap it found at the
-   predicted poses (first pass; length)
+   predicted poses (first pass; length). The energy audit (close_audit): 36-42 the work
+   booked by the kick, ETM, the wall guard, the ball guard, damping, the drift's free
+   rotation and sleeping (28: the resting solve's), 43 the moving grains' kinetic-energy
+   change over the step, 44 the relative residual of 43 against the terms' sum, 45 its
+   largest since setup
 ------------------------------------------------------------------------- */
 
 double FixImpulseLsdem::compute_vector(int n)

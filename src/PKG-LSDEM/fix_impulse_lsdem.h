@@ -131,7 +131,15 @@ class FixImpulseLsdem : public Fix {
     int woken;                 // grains woken (pre_force) before this step
     int ball_corrections;      // ball-grain pairs corrected (all passes)
     double ball_depth;         // deepest ball-grain overlap at the predicted poses (pass 1)
+    // the energy audit: the moving grains' kinetic energy at the step's start and end
+    // (this rank's owned grains) and each stage's own booking of its work
+    double ke_start, ke_end;
+    lsdem_impulse_audit audit;
   } now;
+  // the audit over all ranks, every step: the last step's residual and the largest since
+  // the run's setup (relative to the step's energy scale)
+  // the step's audit sums over ranks: KE at start and end, then the terms (close_audit)
+  double audit_residual, audit_worst, audit_all[10];
   int woken_pending;           // grains woken in this step's pre_force (now is reset later)
   // this rank's share since start; damped: by global damping and by putting grains to sleep
   double total_dissipated, total_damped, total_truncated;
@@ -140,7 +148,7 @@ class FixImpulseLsdem : public Fix {
   double t_rest;                                           // of t_etm: resting stages
   double pair_seconds0;
   bigint reduced_step;
-  double reduced[40];
+  double reduced[48];
   bool cfl_warned;
 
   void check_integrators();
@@ -179,6 +187,8 @@ class FixImpulseLsdem : public Fix {
   int correct_balls(int pass);
   void check_cfl();
   void damp_and_drift();
+  double moving_kinetic_energy() const;
+  void close_audit();
   void scatter_grains();
   double step_start() const;
   double kinetic_energy(int i, const double v[3], const double omega[3]) const;

@@ -46,6 +46,7 @@ struct LsdemIslandStats {
   int islands, cross, largest, rounds, etm_islands, max_sweeps, largest_contacts, etm_rounds;
   bigint resting, contacts;    // resting contacts solved; contacts of the islands solved
   double absorbed, dissipated, released, truncated, resting_work;
+  double etm_work;             // the collision impulses' exact work (lsdem_etm_result.work)
   double t_islands, t_etm, t_comm;  // seconds
   double t_rest;                    // of t_etm: the resting stage
   void clear();

@@ -109,6 +109,19 @@ static inline void fx_random_quat(double q[4])
   lsdem_quat_normalize(q);
 }
 
+/* n random grains (ids 1..n) in s and their bodies in b: centres, velocities and spins in
+ * (-1, 1]^3, masses in (0.5, 1.5], principal moments in (0.1, 1.1], random orientations. */
+static inline void fx_random_grains(fx_state *s, lsdem_impulse_body *b, int n)
+{
+  for (int k = 0; k < n; k++) {
+    const double x[3] = {srand1(), srand1(), srand1()}, v[3] = {srand1(), srand1(), srand1()},
+                 w[3] = {srand1(), srand1(), srand1()};
+    s[k] = fx_grain(k + 1, 0.5 + urand(), 0.1 + urand(), 0.1 + urand(), 0.1 + urand(), x, v, w);
+    fx_random_quat(s[k].q);
+    fx_body_of(&s[k], &b[k]);
+  }
+}
+
 /* A contact between a and b at p with normal n (normalised here). */
 static inline lsdem_impulse_contact fx_contact(int a, int b, const double p[3], double n0,
                                                double n1, double n2, double mu, double e)

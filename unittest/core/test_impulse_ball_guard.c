@@ -65,7 +65,20 @@ static int guard_pass(lsdem_impulse_body *body, const lsdem_impulse_grain *grain
   lsdem_detect_params det = {1, 0.0};
   memset(count, 0, sizeof(int32_t) * (size_t)nbodies);
   lsdem_impulse_ball_guard_detect(body, grain, pairs, n, &det, &PRM, E, DT, 0, pts, 8, count);
-  return lsdem_impulse_ball_guard_correct(body, pairs, n, count, nown);
+  /* the energy audit: the impulses' booked work is the kinetic energy change of the bodies
+   * they moved (those below nown), to round-off */
+  double before = 0.0, after = 0.0, work = 0.0;
+  for (int i = 0; i < nown; i++)
+    before += lsdem_impulse_kinetic_energy(grain[i].mass, grain[i].inertia, grain[i].q,
+                                           body[i].v, body[i].omega);
+  const int corrected = lsdem_impulse_ball_guard_correct(body, pairs, n, count, nown, &work);
+  for (int i = 0; i < nown; i++)
+    after += lsdem_impulse_kinetic_energy(grain[i].mass, grain[i].inertia, grain[i].q,
+                                          body[i].v, body[i].omega);
+  CHECK(fabs((after - before) - work) <= 1e-12 * fmax(fmax(before, after), fabs(work)),
+        "ball guard: booked %.17g, dKE %.17g", work, after - before);
+  CHECK(corrected == 0 || work != 0.0 || after == before, "a correction booked no work");
+  return corrected;
 }
 
 /* the overlap of two spheres at their predicted centres x + v dt */

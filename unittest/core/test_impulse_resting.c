@@ -247,13 +247,7 @@ static void test_energy_audit(void)
     enum { NB = 6, NC = 14 };
     fx_state s[NB];
     lsdem_impulse_body b[NB + 1];
-    for (int k = 0; k < NB; k++) {
-      const double x[3] = {srand1(), srand1(), srand1()}, v[3] = {srand1(), srand1(), srand1()},
-                   w[3] = {srand1(), srand1(), srand1()};
-      s[k] = fx_grain(k + 1, 0.5 + urand(), 0.1 + urand(), 0.1 + urand(), 0.1 + urand(), x, v, w);
-      fx_random_quat(s[k].q);
-      fx_body_of(&s[k], &b[k]);
-    }
+    fx_random_grains(s, b, NB);
     const double zero[3] = {0, 0, 0}, wv[3] = {0.1, 0, 0};
     fx_wall(&b[NB], -1, zero, wv);
     lsdem_impulse_contact c[NC];

@@ -48,8 +48,8 @@ static void test_kick_drift_gravity(void)
   double amax = 0.0, damped = 0.0;
   lsdem_error err;
   for (int s = 0; s < n; s++) {
-    amax = lsdem_impulse_stage_kick(body, grain, moving, 2, dt);
-    CHECK(lsdem_impulse_stage_damp_drift(body, grain, moving, 2, 0.0, dt, &damped, &err) ==
+    amax = lsdem_impulse_stage_kick(body, grain, moving, 2, dt, NULL);
+    CHECK(lsdem_impulse_stage_damp_drift(body, grain, moving, 2, 0.0, dt, &damped, NULL, &err) ==
               LSDEM_OK,
           "%s", err.msg);
   }
@@ -88,7 +88,7 @@ static void test_damp_drift_decay(void)
   double damped = 0.0;
   lsdem_error err;
   for (int s = 0; s < n; s++)
-    CHECK(lsdem_impulse_stage_damp_drift(body, grain, moving, 1, xi, dt, &damped, &err) ==
+    CHECK(lsdem_impulse_stage_damp_drift(body, grain, moving, 1, xi, dt, &damped, NULL, &err) ==
               LSDEM_OK,
           "%s", err.msg);
   const double h = 1.0 - xi * dt, hn = pow(h, n);
@@ -102,13 +102,14 @@ static void test_damp_drift_decay(void)
   CHECK(fabs(hn - exp(-xi * n * dt)) < 2.0 * xi * xi * n * dt * dt,
         "decay %g far from exp(-xi t) %g", hn, exp(-xi * n * dt));
   /* the sphere: translation damped and drifted, omega 0 after the drift */
-  CHECK(lsdem_impulse_stage_damp_drift(body + 1, grain + 1, moving, 1, xi, dt, &damped, &err) ==
+  CHECK(lsdem_impulse_stage_damp_drift(body + 1, grain + 1, moving, 1, xi, dt, &damped, NULL,
+                                        &err) ==
             LSDEM_OK,
         "%s", err.msg);
   CHECK(body[1].omega[0] == 0.0 && body[1].omega[1] == 0.0 && body[1].omega[2] == 0.0,
         "a sphere kept its spin");
   CHECK_REL(body[1].x[2], dt * v0[2] * h, 1e-15);
-  CHECK(lsdem_impulse_stage_damp_drift(body, grain, moving, 1, 2.0 / dt, dt, &damped, &err) ==
+  CHECK(lsdem_impulse_stage_damp_drift(body, grain, moving, 1, 2.0 / dt, dt, &damped, NULL, &err) ==
             LSDEM_ERR_ARG,
         "xi dt = 2 accepted");
 }
@@ -277,6 +278,21 @@ static void test_select_collisions(void)
  * by d0/dt when that is below the push-out limit, else to the limit max(r, sqrt(r d0/dt))
  * (lsdem_wall_limit_push_out with a = r / (2 dt)); the impulse is m times the lift. A
  * grain approaching faster than r is a collision, ETM's: the guard leaves it alone. */
+/* The guard's wall: the plane z = 0 (in plane), acting on group 1, with parameters prm. */
+static void plane_wall(lsdem_boundary *plane, lsdem_impulse_guard_wall *w,
+                       lsdem_wall_params prm)
+{
+  const double p0[3] = {0, 0, 0}, nz[3] = {0, 0, 1};
+  lsdem_error err;
+  CHECK(lsdem_boundary_plane(plane, p0, nz, &err) == LSDEM_OK, "%s", err.msg);
+  memset(w, 0, sizeof *w);
+  w->boundary = plane;
+  w->groups = 1;
+  lsdem_boundary_pose_at(plane, 0.0, &w->pose);
+  w->detect.node_stride = 1;
+  w->prm = prm;
+}
+
 static void guard_once(double d0, double v0z, double *vz, double *impulse, int *corrected)
 {
   const double R = 0.1, dt = 1e-3, m = 1.0, I[3] = {0.004, 0.004, 0.004};
@@ -290,16 +306,9 @@ static void guard_once(double d0, double v0z, double *vz, double *impulse, int *
   grain[1].groups = 2; /* not in the wall's group */
   const char moving[2] = {1, 1};
   lsdem_boundary plane;
-  const double p0[3] = {0, 0, 0}, nz[3] = {0, 0, 1};
-  lsdem_error err;
-  CHECK(lsdem_boundary_plane(&plane, p0, nz, &err) == LSDEM_OK, "%s", err.msg);
   lsdem_impulse_guard_wall w;
-  memset(&w, 0, sizeof w);
-  w.boundary = &plane;
-  w.groups = 1;
-  lsdem_boundary_pose_at(&plane, 0.0, &w.pose);
-  w.detect.node_stride = 1;
-  w.prm = (lsdem_wall_params){0.02, 1e-8, 0.5};
+  plane_wall(&plane, &w, (lsdem_wall_params){0.02, 1e-8, 0.5});
+  lsdem_error err;
   lsdem_contact_point pts[4];
   lsdem_wall_guard_seen seen[2];
   memset(seen, 0, sizeof seen);
@@ -367,6 +376,97 @@ static void test_cfl(void)
         "no moving grain");
 }
 
+/* The energy audit's bookings of the stages (lsdem_impulse_audit), each against the
+ * kinetic energy measured here before and after it (lsdem_impulse_kinetic_energy, at the
+ * grain's orientation then), to 1e-12 of the energy: the kick of a tumbling ellipsoid under
+ * a force and a torque; the free rotation of a spin about no principal axis (the drift's
+ * truncation error, well above round-off); damping from its scale factor; the wall guard
+ * on an ellipsoid sinking, tilted and sliding, into a plane with friction (normal and
+ * friction impulses). Then the residual's rule. */
+static fix_grain ellipsoid_grain;
+
+static double grain_energy(const lsdem_impulse_body *b, const lsdem_impulse_grain *g)
+{
+  return lsdem_impulse_kinetic_energy(g->mass, g->inertia, g->q, b->v, b->omega);
+}
+
+static void test_audit_bookings(void)
+{
+  const double a[3] = {0.2, 0.12, 0.08}, m = 1.3, I[3] = {0.0078, 0.0121, 0.0156};
+  const lsdem_sdf ell = fix_sdf(LSDEM_SDF_ELLIPSOID, a[0], a[1], a[2]);
+  fix_make_grain(&ellipsoid_grain, a, &ell);
+  const double x0[3] = {0, 0, 1};
+  lsdem_impulse_body b;
+  lsdem_impulse_grain g;
+  make_grain(&b, &g, 1, m, I, x0, &ellipsoid_grain.plain);
+  const char moving[1] = {1};
+  lsdem_error err;
+  double rel;
+  /* kick */
+  const double q0[4] = {0.8, 0.2, -0.4, 0.4}, v0[3] = {0.3, -0.2, 0.5}, w0[3] = {4, -2, 3};
+  const double f[3] = {0.5, 1.0, -12.0}, tau[3] = {0.2, -0.3, 0.1}, dt = 2e-3;
+  memcpy(g.q, q0, sizeof q0);
+  lsdem_quat_normalize(g.q);
+  CHECK(lsdem_impulse_body_grain(&b, 1, m, I, g.q, x0, v0, w0, &err) == LSDEM_OK, "%s", err.msg);
+  memcpy(g.force, f, sizeof f);
+  memcpy(g.torque, tau, sizeof tau);
+  double e0 = grain_energy(&b, &g), work = 0.0;
+  lsdem_impulse_stage_kick(&b, &g, moving, 1, dt, &work);
+  rel = fabs(grain_energy(&b, &g) - e0 - work) / e0;
+  CHECK(rel <= 1e-12 && fabs(work) > 1e-4 * e0, "kick: booked %.17g, dKE %.17g", work,
+        grain_energy(&b, &g) - e0);
+  /* damping and drift: a fast spin about no principal axis */
+  const double spin[3] = {20, -35, 50};
+  memcpy(b.omega, spin, sizeof spin);
+  e0 = grain_energy(&b, &g);
+  double damped = 0.0, turn = 0.0;
+  CHECK(lsdem_impulse_stage_damp_drift(&b, &g, moving, 1, 0.5, dt, &damped, &turn, &err) ==
+            LSDEM_OK, "%s", err.msg);
+  const double e1 = grain_energy(&b, &g); /* at the turned orientation */
+  rel = fabs(e1 - e0 + damped - turn) / e0;
+  CHECK(rel <= 1e-12, "damp and drift: dKE %.17g, booked -%.17g + %.17g", e1 - e0, damped,
+        turn);
+  CHECK_REL(damped, e0 * (1.0 - (1.0 - 0.5 * dt) * (1.0 - 0.5 * dt)), 1e-12);
+  CHECK(fabs(turn) > 1e-9 * e0, "the free rotation's energy change %.3g is round-off", turn);
+  /* the wall guard: the ellipsoid tilted, 1e-4 into the plane z = 0, sliding */
+  lsdem_boundary plane;
+  lsdem_impulse_guard_wall w;
+  plane_wall(&plane, &w, (lsdem_wall_params){0.05, 1e-8, 0.5});
+  const double qt[4] = {0.9961946980917455, 0.08715574274765817, 0, 0}; /* 10 deg about x */
+  memcpy(g.q, qt, sizeof qt);
+  double R[9], lowest = HUGE_VAL;
+  lsdem_quat_to_matrix(g.q, R);
+  for (int k = 0; k < FIX_GRAIN_NODES; k++) {
+    const double *n = ellipsoid_grain.nodes + 3 * k;
+    lowest = fmin(lowest, R[6] * n[0] + R[7] * n[1] + R[8] * n[2]);
+  }
+  const double x1[3] = {0, 0, -lowest - 1e-4}, v1[3] = {0.4, 0.1, -0.01}, w1[3] = {0.5, 1, -2};
+  CHECK(lsdem_impulse_body_grain(&b, 1, m, I, g.q, x1, v1, w1, &err) == LSDEM_OK, "%s", err.msg);
+  lsdem_contact_point pts[FIX_GRAIN_NODES];
+  lsdem_wall_guard_seen seen;
+  memset(&seen, 0, sizeof seen);
+  e0 = grain_energy(&b, &g);
+  const int n = lsdem_impulse_stage_wall_guard(&b, &g, moving, 1, &w, 0, dt, pts,
+                                               FIX_GRAIN_NODES, &seen, &err);
+  rel = fabs(grain_energy(&b, &g) - e0 - seen.work) / e0;
+  printf("audit bookings: drift %.3g of the energy; wall guard %.3g, residual %.3g\n",
+         turn / e0, seen.work / e0, rel);
+  CHECK(n == 1 && seen.corrected, "the wall guard did not correct (%d)", n);
+  CHECK(rel <= 1e-12 && fabs(seen.work) > 1e-3 * e0, "wall guard: booked %.17g, dKE %.17g",
+        seen.work, grain_energy(&b, &g) - e0);
+  /* the residual: relative to the largest of the energies and the terms' magnitudes */
+  lsdem_impulse_audit au;
+  memset(&au, 0, sizeof au);
+  au.kick = 0.75;
+  au.etm = -0.25;
+  CHECK(lsdem_impulse_audit_residual(1.0, 1.5, &au) == 0.0, "an exact audit");
+  au.damping = -0.125;
+  CHECK_REL(lsdem_impulse_audit_residual(1.0, 1.5, &au), 0.125 / 1.5, 1e-15);
+  CHECK_REL(lsdem_impulse_audit_residual(0.0, 0.0, &au), 0.375 / 1.125, 1e-15);
+  memset(&au, 0, sizeof au);
+  CHECK(lsdem_impulse_audit_residual(0.0, 0.0, &au) == 0.0, "all zero");
+}
+
 int main(void)
 {
   test_kick_drift_gravity();
@@ -376,5 +476,6 @@ int main(void)
   test_select_collisions();
   test_wall_guard();
   test_cfl();
+  test_audit_bookings();
   return lsdem_test_summary();
 }

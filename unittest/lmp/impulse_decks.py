@@ -90,3 +90,34 @@ def energy(atoms):
 
 def norm(v):
     return math.sqrt(sum(c * c for c in v))
+
+
+NET_HEAD = """units lj
+atom_style hybrid lsdem library {here}/netlib.lslib bond
+atom_modify map array
+boundary f f f
+newton on
+read_data {here}/net.data
+include {here}/net.in
+neighbor 0.1 bin
+neigh_modify delay 0 every 1 check yes
+pair_style lsdem/impulse
+pair_coeff * *
+"""
+
+
+def net_scene():
+    """A spherical grain (radius 0.3, group grains) at (1.06, 0.97, 0.5) above a free square
+    net of 81 balls (radius 0.1, spacing 0.25, mass 0.01, k 1, no clamps; groups net,
+    net_free), made in the current folder by lsdem-shape net. Returns the deck's head: up
+    to the pair style, nothing moving yet."""
+    shape_tool("analytic", "netball.lslib", "sphere", 0.1, "--analytic")
+    shape_tool("analytic", "netgrain.lslib", "sphere", 0.3, "--analytic")
+    shape_tool("merge", "netlib.lslib", "netball.lslib", "netgrain.lslib")
+    with open("one.data", "w") as f:
+        f.write("one grain\n\n1 atoms\n1 atom types\n\n-1 3 xlo xhi\n-1 3 ylo yhi\n"
+                "-6 3 zlo zhi\n\nAtoms # lsdem\n\n1 1 2 1.0 1.06 0.97 0.5 1 0 0 0\n")
+    shape_tool("net", "net", "--library", "netlib.lslib", "--shape", 1, "--rb", 0.1,
+               "--lattice", "square", "--spacing", 0.25, "--size", 2, 2, "--clamp", "none",
+               "--mass", 0.01, "--k", 1.0, "--grains", "one.data")
+    return NET_HEAD.format(here=os.getcwd())

@@ -13,45 +13,14 @@ the end of every step:
 4. the guard's run gives the same bits on 1 and 2 ranks (the pairs' impulses summed in
    the order of their atom IDs, the owners' counts sent to the ghosts)."""
 import math
-import os
 
-from lsdemtest import run_lmp, shape_tool, check, near, finish
+from impulse_decks import net_scene
+from lsdemtest import run_lmp, check, near, finish
 
-shape_tool("analytic", "ball.lslib", "sphere", 0.1, "--analytic")
-shape_tool("analytic", "grain.lslib", "sphere", 0.3, "--analytic")
-shape_tool("merge", "lib.lslib", "ball.lslib", "grain.lslib")
-open("one.data", "w").write("""one grain
-
-1 atoms
-1 atom types
-
--1 3 xlo xhi
--1 3 ylo yhi
--6 3 zlo zhi
-
-Atoms # lsdem
-
-1 1 2 1.0 1.06 0.97 0.5 1 0 0 0
-""")
-shape_tool("net", "net", "--library", "lib.lslib", "--shape", 1, "--rb", 0.1, "--lattice",
-           "square", "--spacing", 0.25, "--size", 2, 2, "--clamp", "none", "--mass", 0.01,
-           "--k", 1.0, "--grains", "one.data")
-
-HERE = os.getcwd()
+HEAD = net_scene()
 REST, DT = 0.05, 0.01
 TOL = 2 * REST * DT  # the guard's depth tolerance with method split (2 x the slop r dt)
-DECK = """units lj
-atom_style hybrid lsdem library {here}/lib.lslib bond
-atom_modify map array
-boundary f f f
-newton on
-read_data {here}/net.data
-include {here}/net.in
-neighbor 0.1 bin
-neigh_modify delay 0 every 1 check yes
-pair_style lsdem/impulse
-pair_coeff * *
-velocity grains set 0 0 -10
+DECK = HEAD + """velocity grains set 0 0 -10
 group moving union grains net_free
 fix move moving impulse/lsdem 0.5 0.3 rest {rest} {balls}
 timestep {dt}
@@ -83,7 +52,7 @@ def frames(path):
 
 
 def run(name, balls, np=1):
-    rc, log = run_lmp(DECK.format(here=HERE, rest=REST, dt=DT, name=name, balls=balls), np=np,
+    rc, log = run_lmp(DECK.format(rest=REST, dt=DT, name=name, balls=balls), np=np,
                       cwd=name, log="log." + name)
     fr = frames(name + "/dump." + name)
     worst = 0.0

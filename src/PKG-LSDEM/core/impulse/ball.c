@@ -158,18 +158,19 @@ void lsdem_ball_guard_impulse(const lsdem_impulse_body *body, const lsdem_ball_g
   for (int i = 0; i < 3; i++) P[i] = lambda * q->normal[i];
 }
 
-/* impulse P on body b at arm r from its predicted centroid (eqs 4.31-4.32) */
-static void apply_at_arm(lsdem_impulse_body *b, const double r[3], const double P[3])
+/* impulse P on body b at arm r from its predicted centroid (eqs 4.31-4.32); its work */
+static double apply_at_arm(lsdem_impulse_body *b, const double r[3], const double P[3])
 {
   double p[3];
   for (int i = 0; i < 3; i++) p[i] = b->x[i] + r[i];
-  lsdem_impulse_apply(b, p, P);
+  return lsdem_impulse_apply_work(b, p, P);
 }
 
 int lsdem_impulse_ball_guard_correct(lsdem_impulse_body *body,
                                      const lsdem_ball_guard_pair *pairs, int n,
-                                     const int32_t *count, int nown)
+                                     const int32_t *count, int nown, double *work)
 {
+  double w = 0.0;
   int corrected = 0;
   for (int k = 0; k < n; k++) {
     const lsdem_ball_guard_pair *q = &pairs[k];
@@ -177,9 +178,10 @@ int lsdem_impulse_ball_guard_correct(lsdem_impulse_body *body,
     lsdem_ball_guard_impulse(body, q, count, P);
     if (P[0] == 0.0 && P[1] == 0.0 && P[2] == 0.0) continue;
     const double minus[3] = {-P[0], -P[1], -P[2]};
-    if (q->a < nown) apply_at_arm(&body[q->a], q->arm_a, P);
-    if (q->b < nown) apply_at_arm(&body[q->b], q->arm_b, minus);
+    if (q->a < nown) w += apply_at_arm(&body[q->a], q->arm_a, P);
+    if (q->b < nown) w += apply_at_arm(&body[q->b], q->arm_b, minus);
     corrected += q->a < nown;
   }
+  if (work) *work += w;
   return corrected;
 }

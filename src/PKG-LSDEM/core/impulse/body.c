@@ -71,6 +71,26 @@ void lsdem_impulse_apply(lsdem_impulse_body *b, const double p[3], const double 
   }
 }
 
+double lsdem_impulse_work(const lsdem_impulse_body *b, const double J[3], const double L[3])
+{
+  if (lsdem_impulse_body_is_wall(b)) return 0.0;
+  double dw[3];
+  lsdem_mat_vec(b->inv_inertia, L, dw); /* eq 4.32 */
+  /* 1/2 m |v + J/m|^2 - 1/2 m |v|^2 and 1/2 (w + dw) . I (w + dw) - 1/2 w . I w, I dw = L */
+  return lsdem_dot3(J, b->v) + 0.5 * b->inv_mass * lsdem_dot3(J, J) + lsdem_dot3(L, b->omega) +
+         0.5 * lsdem_dot3(L, dw);
+}
+
+double lsdem_impulse_apply_work(lsdem_impulse_body *b, const double p[3], const double P[3])
+{
+  double r[3], L[3];
+  lsdem_sub3(p, b->x, r);
+  lsdem_cross3(r, P, L);
+  const double work = lsdem_impulse_work(b, P, L);
+  lsdem_impulse_apply(b, p, P);
+  return work;
+}
+
 /* Column j of eq 4.8's (1/m - r~ I^-1 r~) is the point velocity change of a unit impulse
  * e_j: e_j/m + (I^-1 (r x e_j)) x r. Symmetrised, so that K is exactly symmetric. */
 void lsdem_impulse_point_response(const lsdem_impulse_body *b, const double p[3],

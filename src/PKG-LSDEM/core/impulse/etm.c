@@ -13,7 +13,8 @@
  * the others that push on its bodies. The energy booked per contact is the work of its
  * normal impulse over the group's velocity change, P_n (u_n before + u_n after) / 2 (eq
  * 4.21 for impulses applied together): in sum exactly the kinetic energy the group
- * converted.
+ * converted. The energy audit books more: each impulse's whole work on its body as it is
+ * applied (lsdem_impulse_apply_work), friction and a moving wall's share included.
  *
  * Keys: compression u~ = w u_n, w = m_a m_b / (m_a + m_b) (§4.4.3) or 1, most negative
  * first; separation -W, largest energy first. Every velocity a key depends on is
@@ -66,6 +67,7 @@ struct lsdem_etm {
   int64_t iterations;
   int rounds;
   double absorbed, dissipated, released, truncated;
+  double work; /* the kinetic energy the impulses gave the moving bodies, exact */
 };
 
 void lsdem_etm_params_default(lsdem_etm_params *p)
@@ -195,8 +197,9 @@ static void apply_group(lsdem_etm *s, int32_t ng)
   for (int32_t g = 0; g < ng; g++) {
     const lsdem_impulse_contact *ct = &s->contacts[s->group[g]];
     const double *P = &s->P[3 * g], minus[3] = {-P[0], -P[1], -P[2]};
-    lsdem_impulse_apply(&s->bodies[ct->a], ct->point, P);
-    lsdem_impulse_apply(&s->bodies[ct->b], ct->point, minus);
+    /* each impulse's exact work on its body, friction included (eqs 4.31-4.32) */
+    s->work += lsdem_impulse_apply_work(&s->bodies[ct->a], ct->point, P);
+    s->work += lsdem_impulse_apply_work(&s->bodies[ct->b], ct->point, minus);
     s->moved[ct->a] = s->moved[ct->b] = 1;
     if (s->p.impulse)
       for (int i = 0; i < 3; i++) s->p.impulse[3 * s->group[g] + i] += P[i];
@@ -566,6 +569,7 @@ void lsdem_etm_report(const lsdem_etm *s, lsdem_etm_result *r)
   r->dissipated = s->dissipated;
   r->released = s->released;
   r->truncated = s->truncated;
+  r->work = s->work;
 }
 
 /* --------------------------------------------------------------- solve ---- */

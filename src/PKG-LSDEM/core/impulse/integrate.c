@@ -55,9 +55,13 @@ static void advance_world(double q[4], const double omega[3], double dt)
  * angular velocity is omega now: L = R I0 R^T omega is kept, and q turns by the angular
  * velocity of L at mid-step (explicit midpoint; a constant omega for the whole step
  * drifts the energy secularly, 20 % in 2e5 steps of a tumbling top, the midpoint keeps it
- * within 1e-7). omega becomes that of L at the new orientation. */
-static void rotate_free(double q[4], double omega[3], const double inertia[3], double dt)
+ * within 1e-7). omega becomes that of L at the new orientation. Returns the kinetic energy
+ * change, 1/2 L . (omega' - omega) (L kept: 1/2 omega . I omega = 1/2 L . omega at either
+ * orientation): the midpoint's truncation error, 0 to round-off for an isotropic body or
+ * a spin about a principal axis. */
+static double rotate_free(double q[4], double omega[3], const double inertia[3], double dt)
 {
+  const double w0[3] = {omega[0], omega[1], omega[2]};
   double wb[3], L[3], qh[4] = {q[0], q[1], q[2], q[3]}, wh[3];
   lsdem_quat_rotate_inv(q, omega, wb);
   for (int i = 0; i < 3; i++) wb[i] *= inertia[i];
@@ -66,13 +70,15 @@ static void rotate_free(double q[4], double omega[3], const double inertia[3], d
   omega_of_momentum(qh, inertia, L, wh);
   advance_world(q, wh, dt);
   omega_of_momentum(q, inertia, L, omega);
+  const double dw[3] = {omega[0] - w0[0], omega[1] - w0[1], omega[2] - w0[2]};
+  return 0.5 * lsdem_dot3(L, dw);
 }
 
-void lsdem_impulse_drift(double x[3], double q[4], double omega[3], const double v[3],
-                         const double inertia[3], double dt)
+double lsdem_impulse_drift(double x[3], double q[4], double omega[3], const double v[3],
+                           const double inertia[3], double dt)
 {
   for (int i = 0; i < 3; i++) x[i] += dt * v[i]; /* eq 4.38 */
-  rotate_free(q, omega, inertia, dt);            /* eq 4.40 */
+  return rotate_free(q, omega, inertia, dt);     /* eq 4.40 */
 }
 
 void lsdem_impulse_predict_pose(const double x[3], const double q[4], const double v[3],

@@ -107,6 +107,16 @@ static inline void lsdem_impulse_point_velocity(const lsdem_impulse_body *b,
 /* Impulse P applied at p: v += P/m (eq 4.31), omega += I^-1 ((p - x) x P) (eq 4.32).
  * No effect on a wall. */
 void lsdem_impulse_apply(lsdem_impulse_body *b, const double p[3], const double P[3]);
+/* The energy audit (fix impulse/lsdem): the kinetic energy a linear impulse J and an
+ * angular impulse L (about the centre of mass; world) give body b at its current v and
+ * omega, J . v + |J|^2 / 2m + L . omega + L . I^-1 L / 2 -- the exact change of
+ * 1/2 m v^2 + 1/2 omega . I omega under eqs 4.31-4.32 (0 for a wall). The kick's
+ * (J = f dt, L = torque dt) is f . v dt + |f|^2 dt^2 / 2m plus the torque's. */
+double lsdem_impulse_work(const lsdem_impulse_body *b, const double J[3], const double L[3]);
+/* lsdem_impulse_apply (the same velocities, bit for bit), returning the impulse's work on
+ * b (lsdem_impulse_work with L = (p - x) x P): impulses applied one after the other each
+ * booked so sum to the body's kinetic energy change exactly (to round-off). */
+double lsdem_impulse_apply_work(lsdem_impulse_body *b, const double p[3], const double P[3]);
 /* The change of the point velocity at p per unit impulse there, as a matrix:
  * (1/m) 1 - r~ I^-1 r~ with r = p - x (eq 4.8); symmetric, 0 for a wall. */
 void lsdem_impulse_point_response(const lsdem_impulse_body *b, const double p[3],
@@ -300,6 +310,9 @@ typedef struct {
   double dissipated;       /* lost at restitution: (1 - e^2) of it (eq 4.1) */
   double released;         /* given back in separation (eqs 4.29-4.30) */
   double truncated;        /* stored energy dropped below energy_tol */
+  double work;             /* the kinetic energy the solve's impulses gave the moving
+                              bodies (negative: taken), friction included: each impulse's
+                              exact work as applied (lsdem_impulse_apply_work) */
 } lsdem_etm_result;
 
 /* The solver's state on one island; lives in the caller's workspace. */
@@ -365,9 +378,13 @@ lsdem_status lsdem_impulse_damp(lsdem_impulse_body *b, double xi, double dt,
  * gyroscopic term of Euler's equations that eq 4.39 leaves out): by the angular velocity
  * of L at mid-step (explicit midpoint, lsdem_quat_advance), energy kept to O(dt^2)
  * without drift, exact for an isotropic body or a spin about a principal axis; omega
- * becomes that of L at the new orientation. inertia: principal moments. */
-void lsdem_impulse_drift(double x[3], double q[4], double omega[3], const double v[3],
-                         const double inertia[3], double dt);
+ * becomes that of L at the new orientation. inertia: principal moments. Returns the
+ * kinetic energy change of the turn, 1/2 L . (omega' - omega) (the energy audit): the
+ * midpoint's truncation error (energy is not kept exactly by the discrete turn of an
+ * anisotropic tumbling body), 0 to round-off for an isotropic body or a principal-axis
+ * spin. The translation changes no kinetic energy. */
+double lsdem_impulse_drift(double x[3], double q[4], double omega[3], const double v[3],
+                           const double inertia[3], double dt);
 /* The predicted pose of §4.4.1, x' = x + v dt and q' where lsdem_impulse_drift would
  * take them, carrying the current v and omega (so that a manifold detected there has the
  * current relative velocities). */
@@ -433,6 +450,8 @@ typedef struct {
   double impulse[3]; /* the impulse given to the grain (0 unless resting); the wall's
                         reaction, divided by dt, is the force on the wall */
   int sliding;       /* resting: friction reached mu times the normal impulse */
+  double work;       /* the kinetic energy the correction gave the grain (normal and
+                        friction; exact, lsdem_impulse_work); 0 unless resting */
 } lsdem_wall_result;
 
 /* The correction (Figure 4.5), for manifold m of the grain (A) against the wall (B) at
@@ -631,9 +650,10 @@ double lsdem_impulse_stage_kinetic_energy(const lsdem_impulse_body *body,
 
 /* Stage 1, kick: every moving grain's v, omega += dt f/m, dt I^-1 torque (eqs 4.37, 4.39,
  * lsdem_impulse_kick). Returns the largest external acceleration |f|/m among them (0 for
- * none), whose maximum over all grains sets the resting speed. */
+ * none), whose maximum over all grains sets the resting speed. work (NULL: not wanted) is
+ * raised by the kick's exact work, lsdem_impulse_work of f dt and torque dt per grain. */
 double lsdem_impulse_stage_kick(lsdem_impulse_body *body, const lsdem_impulse_grain *grain,
-                                const char *moving, int n, double dt);
+                                const char *moving, int n, double dt, double *work);
 
 /* The resting speed when the caller does not set one: the speed the largest external
  * acceleration amax gives in `steps` steps, steps amax dt. */
@@ -689,6 +709,8 @@ typedef struct {
   int clear;             /* 1: it was clear then */
   int corrected;         /* 1: corrected by the last pass (lsdem_impulse_stage_wall_guard) */
   double impulse[3];     /* the impulse it was given then (the wall takes minus it) */
+  double work;           /* the kinetic energy that correction gave it (lsdem_wall_result);
+                            0 when not corrected by the last pass */
 } lsdem_wall_guard_seen;
 
 /* One wall as the guard meets it in a step. */
@@ -776,10 +798,12 @@ void lsdem_ball_guard_impulse(const lsdem_impulse_body *body, const lsdem_ball_g
 /* The correction: every overlapping pair's impulse (lsdem_ball_guard_impulse) on its bodies
  * whose index is below nown (the caller's own: a ghost's change comes from its owner, which
  * lists the same pair), in pair order. Returns the number of pairs corrected whose a is
- * below nown (summed over ranks that own each a once: every pair counted once). */
+ * below nown (summed over ranks that own each a once: every pair counted once). work (NULL:
+ * not wanted) is raised by the impulses' exact work on those bodies
+ * (lsdem_impulse_apply_work; the energy audit). */
 int lsdem_impulse_ball_guard_correct(lsdem_impulse_body *body,
                                      const lsdem_ball_guard_pair *pairs, int n,
-                                     const int32_t *count, int nown);
+                                     const int32_t *count, int nown, double *work);
 
 /* Stage 6, the CFL check (report §4.3.4): the largest |v| dt / radius of the moving grains (a
  * non-finite ratio counts as HUGE_VAL) and its grain in *worst (-1: none, the ratio 0). */
@@ -788,13 +812,39 @@ double lsdem_impulse_stage_cfl(const lsdem_impulse_body *body,
                                double dt, int *worst);
 
 /* Stage 7, damp and drift: every moving grain's v, omega *= 1 - xi dt (eqs 4.44-4.46,
- * lsdem_impulse_damp), the kinetic energy it takes added to *damped grain by grain; then
- * x += v dt and q turned (eqs 4.38, 4.40, lsdem_impulse_drift) in body[k].x and grain[k].q
- * (an analytic sphere: x only, omega set to 0). LSDEM_ERR_ARG unless 0 <= xi dt <= 1. */
+ * lsdem_impulse_damp), the kinetic energy it takes added to *damped grain by grain, from
+ * the scale factor: KE (1 - (1 - xi dt)^2); then x += v dt and q turned (eqs 4.38, 4.40,
+ * lsdem_impulse_drift) in body[k].x and grain[k].q (an analytic sphere: x only, omega set
+ * to 0), the kinetic energy change of the turn (lsdem_impulse_drift's; a sphere's: minus
+ * its rotational energy) added to *drift (NULL: not wanted). LSDEM_ERR_ARG unless
+ * 0 <= xi dt <= 1. */
 lsdem_status lsdem_impulse_stage_damp_drift(lsdem_impulse_body *body,
                                             lsdem_impulse_grain *grain, const char *moving,
                                             int n, double xi, double dt, double *damped,
-                                            lsdem_error *err);
+                                            double *drift, lsdem_error *err);
+
+/* The energy audit of a step: the moving grains' kinetic energy change over the step
+ * (translation and rotation, measured) against the work each stage books by its own
+ * arithmetic -- never by measuring the energy around the stage:
+ *   kick     lsdem_impulse_stage_kick: f . v dt + |f|^2 dt^2 / 2m plus the torque's;
+ *   etm      lsdem_etm_result.work: each collision impulse's work as applied;
+ *   resting  lsdem_resting_result.work: each increment's dP . u + dP . K dP / 2;
+ *   wall     lsdem_wall_result.work: the correction's normal and friction impulses;
+ *   ball     lsdem_impulse_ball_guard_correct's: each impulse's work as applied;
+ *   damping  minus the damped energy, KE (1 - (1 - xi dt)^2) per grain (eqs 4.44-4.45);
+ *   drift    the free rotation's 1/2 L . (omega' - omega) (lsdem_impulse_drift);
+ *   sleep    minus the energy of the grains put to sleep (the caller's).
+ * Each is exact in real arithmetic, so the residual is round-off. Units: energy. */
+typedef struct {
+  double kick, etm, resting, wall, ball, damping, drift, sleep;
+} lsdem_impulse_audit;
+
+/* The terms' sum, and the sum of their magnitudes in *scale (NULL: not wanted). */
+double lsdem_impulse_audit_sum(const lsdem_impulse_audit *a, double *scale);
+/* |(ke_after - ke_before) - sum of the terms| relative to the step's energy scale, the
+ * largest of ke_before, ke_after and the sum of the terms' magnitudes (0 when all are 0). */
+double lsdem_impulse_audit_residual(double ke_before, double ke_after,
+                                    const lsdem_impulse_audit *a);
 
 /* ------------------------------------------------------------ sleeping ---- */
 

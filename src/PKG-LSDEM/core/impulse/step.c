@@ -1,7 +1,7 @@
 /* step.c -- the stages of an impulse step over the solver's arrays (lsdem_impulse.h, "the
- * step's stages"): kick, thresholds, classify, selection, wall guard, CFL, damp and drift.
- * The per-body physics is integrate.c's and wall.c's; here are the loops and the rules
- * that decide what each body and contact takes. */
+ * step's stages"): kick, thresholds, classify, selection, wall guard, CFL, damp and drift;
+ * and the energy audit's sum and residual. The per-body physics is integrate.c's and
+ * wall.c's; here are the loops and the rules that decide what each body and contact takes. */
 #include "lsdem_impulse.h"
 
 #include <math.h>
@@ -32,13 +32,22 @@ double lsdem_impulse_stage_kinetic_energy(const lsdem_impulse_body *body,
   return ke;
 }
 
+/* the kick's exact work: the impulse f dt and angular impulse torque dt (eqs 4.37, 4.39) */
+static double kick_work(const lsdem_impulse_body *b, const lsdem_impulse_grain *g, double dt)
+{
+  const double J[3] = {dt * g->force[0], dt * g->force[1], dt * g->force[2]};
+  const double L[3] = {dt * g->torque[0], dt * g->torque[1], dt * g->torque[2]};
+  return lsdem_impulse_work(b, J, L);
+}
+
 double lsdem_impulse_stage_kick(lsdem_impulse_body *body, const lsdem_impulse_grain *grain,
-                                const char *moving, int n, double dt)
+                                const char *moving, int n, double dt, double *work)
 {
   double amax = 0.0;
   for (int k = 0; k < n; k++) {
     if (!moving[k]) continue;
     const lsdem_impulse_grain *g = &grain[k];
+    if (work) *work += kick_work(&body[k], g, dt);
     lsdem_impulse_kick(&body[k], g->force, g->torque, dt); /* eqs 4.37, 4.39 */
     amax = fmax(amax, sqrt(lsdem_dot3(g->force, g->force)) / g->mass);
   }
@@ -142,6 +151,7 @@ int lsdem_impulse_stage_wall_guard(lsdem_impulse_body *body, const lsdem_impulse
   for (int k = 0; k < n; k++) {
     lsdem_wall_guard_seen *sk = &seen[k];
     sk->corrected = 0;
+    sk->work = 0.0;
     if (!moving[k] || !(grain[k].groups & w->groups)) continue;
     lsdem_impulse_body *b = &body[k];
     if (sk->clear && memcmp(sk->v, b->v, sizeof sk->v) == 0 &&
@@ -154,7 +164,10 @@ int lsdem_impulse_stage_wall_guard(lsdem_impulse_body *body, const lsdem_impulse
     if (r < 0) return -1 - k;
     sk->clear = !r;
     sk->corrected = r;
-    if (r) memcpy(sk->impulse, res.impulse, sizeof sk->impulse);
+    if (r) {
+      memcpy(sk->impulse, res.impulse, sizeof sk->impulse);
+      sk->work = res.work;
+    }
     corrected += r;
   }
   return corrected;
@@ -177,32 +190,67 @@ double lsdem_impulse_stage_cfl(const lsdem_impulse_body *body,
   return largest;
 }
 
-/* x += v dt and q turned over dt (eqs 4.38, 4.40); an analytic sphere does not turn */
-static void drift(lsdem_impulse_body *b, lsdem_impulse_grain *g, double dt)
+/* x += v dt and q turned over dt (eqs 4.38, 4.40); an analytic sphere does not turn, and
+ * loses its rotational energy (0 in fix impulse/lsdem: its step body never spins). Returns
+ * the kinetic energy change. */
+static double drift(lsdem_impulse_body *b, lsdem_impulse_grain *g, double dt)
 {
   if (g->shape->sdf.kind == LSDEM_SDF_SPHERE) {
+    const double zero[3] = {0.0, 0.0, 0.0};
+    const double spin = lsdem_impulse_kinetic_energy(g->mass, g->inertia, g->q, zero, b->omega);
     for (int d = 0; d < 3; d++) {
       b->x[d] += dt * b->v[d];
       b->omega[d] = 0.0;
     }
-  } else {
-    lsdem_impulse_drift(b->x, g->q, b->omega, b->v, g->inertia, dt);
+    return -spin;
   }
+  return lsdem_impulse_drift(b->x, g->q, b->omega, b->v, g->inertia, dt);
+}
+
+/* the kinetic energy global damping takes from a grain of energy ke: v and omega scaled
+ * by 1 - xi dt (eqs 4.44-4.45) scale it by (1 - xi dt)^2 */
+static double damping_taken(double ke, double xi, double dt)
+{
+  const double h = xi * dt;
+  return ke * h * (2.0 - h);
 }
 
 lsdem_status lsdem_impulse_stage_damp_drift(lsdem_impulse_body *body,
                                             lsdem_impulse_grain *grain, const char *moving,
                                             int n, double xi, double dt, double *damped,
-                                            lsdem_error *err)
+                                            double *drift_work, lsdem_error *err)
 {
   for (int k = 0; k < n; k++) {
     if (!moving[k]) continue;
     lsdem_impulse_body *b = &body[k];
-    const double before = grain_kinetic_energy(b, &grain[k]);
+    const double before = xi != 0.0 ? grain_kinetic_energy(b, &grain[k]) : 0.0;
     const lsdem_status st = lsdem_impulse_damp(b, xi, dt, err); /* eqs 4.44-4.46 */
     if (st != LSDEM_OK) return st;
-    *damped += before - grain_kinetic_energy(b, &grain[k]);
-    drift(b, &grain[k], dt);
+    *damped += damping_taken(before, xi, dt);
+    const double turn = drift(b, &grain[k], dt);
+    if (drift_work) *drift_work += turn;
   }
   return LSDEM_OK;
+}
+
+double lsdem_impulse_audit_sum(const lsdem_impulse_audit *a, double *scale)
+{
+  const double t[8] = {a->kick, a->etm, a->resting, a->wall,
+                       a->ball, a->damping, a->drift, a->sleep};
+  double sum = 0.0, mag = 0.0;
+  for (int k = 0; k < 8; k++) {
+    sum += t[k];
+    mag += fabs(t[k]);
+  }
+  if (scale) *scale = mag;
+  return sum;
+}
+
+double lsdem_impulse_audit_residual(double ke_before, double ke_after,
+                                    const lsdem_impulse_audit *a)
+{
+  double mag;
+  const double sum = lsdem_impulse_audit_sum(a, &mag);
+  const double scale = fmax(fmax(ke_before, ke_after), mag);
+  return scale > 0.0 ? fabs((ke_after - ke_before) - sum) / scale : 0.0;
 }

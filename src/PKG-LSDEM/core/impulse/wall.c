@@ -116,10 +116,11 @@ static double shape_response(const lsdem_impulse_body *g, const lsdem_manifold *
 
 /* Coulomb friction at the shape's centre c once the normal correction (dv, dw) is made:
  * stop the slip there if that takes at most mu jn, else mu jn against it (eqs
- * 4.18-4.19). Adds the impulse to J; returns 1 when at the Coulomb limit with slip. */
+ * 4.18-4.19). Adds the impulse to J and its work to *work; returns 1 when at the Coulomb
+ * limit with slip. */
 static int apply_friction(lsdem_impulse_body *g, const lsdem_manifold *m,
                           const impulse_shape *s, const double dv[3], const double dw[3],
-                          double jn, double mu, double J[3])
+                          double jn, double mu, double J[3], double *work)
 {
   double rc[3], nbar[3], u[3], ut[3];
   const double fl = sqrt(lsdem_dot3(s->F, s->F));
@@ -143,7 +144,7 @@ static int apply_friction(lsdem_impulse_body *g, const lsdem_manifold *m,
     P[i] = jt * t[i];
     J[i] += P[i];
   }
-  lsdem_impulse_apply(g, cp, P);
+  *work += lsdem_impulse_apply_work(g, cp, P);
   return need > mu * jn;
 }
 
@@ -180,6 +181,9 @@ lsdem_status lsdem_wall_correct(lsdem_impulse_body *grain, const lsdem_manifold 
     keff = shape_response(grain, m, k, &s, dv, dw);
   }
   const double lambda = deep->depth / (dt * keff); /* deepest point: u_n += d / dt */
+  const double J[3] = {lambda * s.F[0], lambda * s.F[1], lambda * s.F[2]};
+  const double L[3] = {lambda * s.tau[0], lambda * s.tau[1], lambda * s.tau[2]};
+  res->work = lsdem_impulse_work(grain, J, L); /* the normal impulse's, eqs 4.31-4.32 */
   for (int i = 0; i < 3; i++) {
     dv[i] *= lambda;
     dw[i] *= lambda;
@@ -188,6 +192,6 @@ lsdem_status lsdem_wall_correct(lsdem_impulse_body *grain, const lsdem_manifold 
     res->impulse[i] = lambda * s.F[i];
   }
   const double jn = lambda * sqrt(lsdem_dot3(s.F, s.F));
-  res->sliding = apply_friction(grain, m, &s, dv, dw, jn, p->mu, res->impulse);
+  res->sliding = apply_friction(grain, m, &s, dv, dw, jn, p->mu, res->impulse, &res->work);
   return LSDEM_OK;
 }
