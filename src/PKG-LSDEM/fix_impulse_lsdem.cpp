@@ -285,8 +285,13 @@ FixImpulseLsdem::~FixImpulseLsdem()
     atom->delete_callback(id, Atom::GROW);
     atom->delete_callback(id, Atom::RESTART);
   }
-  for (FixWallLsdem *w : walls)
-    if (modify && modify->find_fix(w->id) >= 0) w->set_passive(false);
+  // the walls still defined are made active again; a wall fix deleted before this one
+  // (LAMMPS's teardown deletes fixes in order) is no longer in the list and is not touched:
+  // pointers are compared, never dereferenced before they are found
+  if (modify)
+    for (FixWallLsdem *w : walls)
+      for (int k = 0; k < modify->nfix; k++)
+        if (modify->fix[k] == w) w->set_passive(false);
 }
 
 int FixImpulseLsdem::setmask()
