@@ -171,11 +171,6 @@ void FixFieldLsdem::init()
     membrane_tags.erase(std::unique(membrane_tags.begin(), membrane_tags.end()),
                         membrane_tags.end());
   }
-  if (domain->triclinic && (domain->xperiodic || domain->yperiodic || domain->zperiodic) &&
-      (domain->xy != 0.0 || domain->xz != 0.0 || domain->yz != 0.0))
-    error->all(FLERR, "Fix field/lsdem: a periodic box must be orthogonal when the fields are "
-               "written (tilt factors 0; a box sheared from the reference to an orthogonal "
-               "one is fine)");
 }
 
 /* ---------------------------------------------------------------------- */
@@ -290,6 +285,11 @@ std::vector<double> FixFieldLsdem::branch_rows() const
 
 void FixFieldLsdem::write_fields()
 {
+  if (domain->triclinic && (domain->xperiodic || domain->yperiodic || domain->zperiodic) &&
+      (domain->xy != 0.0 || domain->xz != 0.0 || domain->yz != 0.0))
+    error->all(FLERR, "Fix field/lsdem: a periodic box must be orthogonal when the fields are "
+               "written at step {} (tilt factors 0; a box sheared from the reference to an orthogonal "
+               "one is fine)", update->ntimestep);
   const std::vector<double> grains = lsdem_gather_sorted(world, grain_rows(), GRAIN_ROW);
   const std::vector<double> branches = lsdem_gather_sorted(world, branch_rows(), BRANCH_ROW);
   const std::vector<double> nodes = lsdem_gather_sorted(world, membrane_rows(), 4);
