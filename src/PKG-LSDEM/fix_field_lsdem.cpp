@@ -288,8 +288,8 @@ void FixFieldLsdem::write_fields()
   if (domain->triclinic && (domain->xperiodic || domain->yperiodic || domain->zperiodic) &&
       (domain->xy != 0.0 || domain->xz != 0.0 || domain->yz != 0.0))
     error->all(FLERR, "Fix field/lsdem: a periodic box must be orthogonal when the fields are "
-               "written at step {} (tilt factors 0; a box sheared from the reference to an orthogonal "
-               "one is fine)", update->ntimestep);
+               "written at step {} (tilt factors 0; a box sheared from the reference to an "
+               "orthogonal one is fine)", update->ntimestep);
   const std::vector<double> grains = lsdem_gather_sorted(world, grain_rows(), GRAIN_ROW);
   const std::vector<double> branches = lsdem_gather_sorted(world, branch_rows(), BRANCH_ROW);
   const std::vector<double> nodes = lsdem_gather_sorted(world, membrane_rows(), 4);

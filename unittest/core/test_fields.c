@@ -13,8 +13,8 @@
 #define NGRAINS 400
 #define BOX 10.0
 
-static const lsdem_field_params PARAMS = {1.0, 0.5, LSDEM_FIELD_MIN_VARIANCE, LSDEM_FIELD_MIN_WEIGHT,
-                                         {{0}, {0}, {0}, {{0}}}};
+static const lsdem_field_params PARAMS = {1.0, 0.5, LSDEM_FIELD_MIN_VARIANCE,
+                                         LSDEM_FIELD_MIN_WEIGHT, {{0}, {0}, {0}, {{0}}}};
 
 /* a random loose packing: centres uniform in the box, masses and volumes in (0.5, 1.5] */
 static void random_grains(lsdem_field_grain *g, int n)
@@ -120,7 +120,8 @@ static void check_plain_average_fails(void)
         if (!interior) continue;
         const size_t node = (size_t)i0 + (size_t)n[0] * ((size_t)i1 + (size_t)n[1] * i2);
         const size_t up = node + (size_t)n[0], down = node - (size_t)n[0];
-        const double dudy = (ch[nodes + up] / ch[up] - ch[nodes + down] / ch[down]) / (2 * grid.h[1]);
+        const double dudy =
+            (ch[nodes + up] / ch[up] - ch[nodes + down] / ch[down]) / (2 * grid.h[1]);
         worst = fmax(worst, fabs(dudy - 0.01));
       }
   CHECK(worst > 0.01 * 0.01, "the plain average came out affine too (off by %.3g)", worst);
@@ -436,9 +437,9 @@ static void check_periodic_bruteforce(void)
               o[k] = ci[k] - in[k];
               o[k] -= gr->n[k] * (int)lround((double)o[k] / gr->n[k]); /* minimum image */
             }
-            const size_t ko = (size_t)(o[0] < 0 ? o[0] + gr->n[0] : o[0]) +
-                              (size_t)gr->n[0] * ((size_t)(o[1] < 0 ? o[1] + gr->n[1] : o[1]) +
-                                                  (size_t)gr->n[1] * (o[2] < 0 ? o[2] + gr->n[2] : o[2]));
+            size_t ko = 0; /* the kernel's node of offset o */
+            for (int k = 2; k >= 0; k--)
+              ko = ko * (size_t)gr->n[k] + (size_t)(o[k] < 0 ? o[k] + gr->n[k] : o[k]);
             const double W = g[i].mass * w[c] * G[ko];
             if (W == 0.0) continue;
             for (int k = 0; k < 3; k++) y[k] = d[c][k] + o[k] * gr->h[k];
@@ -499,7 +500,8 @@ static void check_periodic_smooth_and_stress(void)
   const size_t nodes = lsdem_field_grid_nodes(&g);
   double *a = calloc(nodes, sizeof(double)), *b = calloc(nodes, sizeof(double));
   for (int i = 0; i < 60; i++) {
-    const double x[3] = {hi[0] * urand(), hi[1] * urand(), i % 2 ? 0.05 * urand() : hi[2] * urand()};
+    const double z = i % 2 ? 0.05 * urand() : hi[2] * urand(); /* half at the z = 0 face */
+    const double x[3] = {hi[0] * urand(), hi[1] * urand(), z};
     const double v = urand();
     lsdem_field_deposit(&g, x, 1, &v, a);
   }

@@ -5,8 +5,8 @@ the faces); after run 0 (the reference) the box is deformed homogeneously with c
 ... remap -- pure shear (x scale 1.01, y scale 0.99), dilation of 1 % (x y z scale 1.01),
 simple shear 0.01 (a triclinic box of tilt xy = -0.09 sheared to xy = 0) -- and a run of 1
 step writes the fields (at step 1 only: the reference box of the simple shear is tilted,
-where the fix refuses to write). Checked: the grid spans exactly the box now (origin boxlo, n h = the
-period on every axis); EVERY node is regular and carries H = F - I to 1e-10 relative,
+where the fix refuses to write). Checked: the grid spans exactly the box now (origin boxlo,
+n h = the period on every axis); EVERY node is regular and carries H = F - I to 1e-10 relative,
 faces included; integrated density = total mass to 1e-12; integrated contact stress =
 compute stress/lsdem's sum to 1e-10; 1, 2 and 4 ranks write the same bytes; a run restarted
 from a file written after the deformation keeps the reference box (the jumps) and writes

@@ -112,6 +112,11 @@ void lsdem_field_deposit(const lsdem_field_grid *g, const double x[3], int nchan
     for (int ch = 0; ch < nchan; ch++) channels[(size_t)ch * nodes + node[c]] += w[c] * value[ch];
 }
 
+void lsdem_field_kernel_offset(const lsdem_field_grid *g, const int i[3], int o[3])
+{
+  for (int k = 0; k < 3; k++) o[k] = i[k] <= g->n[k] / 2 ? i[k] : i[k] - g->n[k];
+}
+
 void lsdem_field_kernel(const lsdem_field_grid *g, double width, double *kernel)
 {
   const double cut2 = LSDEM_FIELD_KERNEL_CUT * LSDEM_FIELD_KERNEL_CUT * width * width;
@@ -121,9 +126,9 @@ void lsdem_field_kernel(const lsdem_field_grid *g, double width, double *kernel)
   for (int i2 = 0; i2 < g->n[2]; i2++)
     for (int i1 = 0; i1 < g->n[1]; i1++)
       for (int i0 = 0; i0 < g->n[0]; i0++, node++) {
-        const int o[3] = {i0 <= g->n[0] / 2 ? i0 : i0 - g->n[0],
-                          i1 <= g->n[1] / 2 ? i1 : i1 - g->n[1],
-                          i2 <= g->n[2] / 2 ? i2 : i2 - g->n[2]};
+        const int i[3] = {i0, i1, i2};
+        int o[3];
+        lsdem_field_kernel_offset(g, i, o);
         double r2 = 0.0;
         for (int k = 0; k < 3; k++) r2 += (o[k] * g->h[k]) * (o[k] * g->h[k]);
         kernel[node] = r2 <= cut2 ? exp(-a * r2) : 0.0;

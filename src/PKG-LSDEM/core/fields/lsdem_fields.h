@@ -79,6 +79,9 @@ void lsdem_field_cell(const lsdem_field_grid *g, const double x[3], size_t node[
  * 1, so a deposit keeps every total. x as for lsdem_field_cell. */
 void lsdem_field_deposit(const lsdem_field_grid *g, const double x[3], int nchan,
                          const double *value, double *channels);
+/* The offset (in nodes, per axis) node i of a kernel array stands for: i, or i - n past
+ * the middle (the FFT's periodic offsets). */
+void lsdem_field_kernel_offset(const lsdem_field_grid *g, const int i[3], int o[3]);
 /* The discrete kernel on the grid, periodic offsets (node i holds G at the offset
  * min(i, n - i) h per axis), normalised to sum 1: smoothing keeps totals. */
 void lsdem_field_kernel(const lsdem_field_grid *g, double width, double *kernel);
@@ -112,7 +115,9 @@ lsdem_status lsdem_field_smooth_terms(const lsdem_field_grid *g, double width, i
 
 /* ---------------------------------------------------------- fields (fields.c) ---- */
 
-/* A grain now: mass, solid volume, centre x, displacement u since the reference. */
+/* A grain now: mass, solid volume, centre x, displacement u since the reference. On a
+ * periodic axis x may be any image, u being that image's displacement (the unwrapped centre
+ * for the unwrapped displacement); the core wraps it. */
 typedef struct {
   double mass, volume, x[3], u[3];
 } lsdem_field_grain;

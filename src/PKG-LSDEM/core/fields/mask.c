@@ -50,7 +50,10 @@ static int side(const double *V, int a, int b, const double p[2])
   const double *A = V + 3 * a + 1, *B = V + 3 * b + 1;
   const double eu = B[0] - A[0], ev = B[1] - A[1];
   const double o = eu * (p[1] - A[1]) - ev * (p[0] - A[0]);
-  int s = o > 0.0 ? 1 : o < 0.0 ? -1 : -ev > 0.0 ? 1 : -ev < 0.0 ? -1 : eu > 0.0 ? 1 : eu < 0.0 ? -1 : 0;
+  /* o(p + (e, e^2)) = o - ev e + eu e^2: the first non-zero term's sign */
+  const double terms[3] = {o, -ev, eu};
+  int s = 0;
+  for (int k = 0; k < 3 && s == 0; k++) s = (terms[k] > 0.0) - (terms[k] < 0.0);
   return flip ? -s : s;
 }
 

@@ -151,9 +151,9 @@ static void moment_kernel(const lsdem_field_grid *g, double width, int which, do
   for (int i2 = 0; i2 < g->n[2]; i2++)
     for (int i1 = 0; i1 < g->n[1]; i1++)
       for (int i0 = 0; i0 < g->n[0]; i0++, node++) {
-        const int o[3] = {i0 <= g->n[0] / 2 ? i0 : i0 - g->n[0],
-                          i1 <= g->n[1] / 2 ? i1 : i1 - g->n[1],
-                          i2 <= g->n[2] / 2 ? i2 : i2 - g->n[2]};
+        const int i[3] = {i0, i1, i2};
+        int o[3];
+        lsdem_field_kernel_offset(g, i, o);
         const double r[3] = {-o[0] * g->h[0], -o[1] * g->h[1], -o[2] * g->h[2]};
         kernel[node] *= which < 4 ? r[which - 1] : r[SYM_I[which - 4]] * r[SYM_J[which - 4]];
       }
