@@ -112,13 +112,15 @@ void lsdem_field_deposit(const lsdem_field_grid *g, const double x[3], int nchan
     for (int ch = 0; ch < nchan; ch++) channels[(size_t)ch * nodes + node[c]] += w[c] * value[ch];
 }
 
-void lsdem_field_kernel_offset(const lsdem_field_grid *g, const int i[3], int o[3])
-{
-  for (int k = 0; k < 3; k++) o[k] = i[k] <= g->n[k] / 2 ? i[k] : i[k] - g->n[k];
-}
-
 void lsdem_field_kernel(const lsdem_field_grid *g, double width, double *kernel)
 {
+  lsdem_field_kernel_moment(g, width, 0, kernel);
+}
+
+void lsdem_field_kernel_moment(const lsdem_field_grid *g, double width, int which,
+                               double *kernel)
+{
+  static const int SYM_I[6] = {0, 0, 0, 1, 1, 2}, SYM_J[6] = {0, 1, 2, 1, 2, 2};
   const double cut2 = LSDEM_FIELD_KERNEL_CUT * LSDEM_FIELD_KERNEL_CUT * width * width;
   const double a = 1.0 / (2.0 * width * width);
   double sum = 0.0;
@@ -127,12 +129,16 @@ void lsdem_field_kernel(const lsdem_field_grid *g, double width, double *kernel)
     for (int i1 = 0; i1 < g->n[1]; i1++)
       for (int i0 = 0; i0 < g->n[0]; i0++, node++) {
         const int i[3] = {i0, i1, i2};
-        int o[3];
-        lsdem_field_kernel_offset(g, i, o);
-        double r2 = 0.0;
-        for (int k = 0; k < 3; k++) r2 += (o[k] * g->h[k]) * (o[k] * g->h[k]);
-        kernel[node] = r2 <= cut2 ? exp(-a * r2) : 0.0;
-        sum += kernel[node];
+        double r[3], r2 = 0.0; /* r = source - target = -(the periodic offset) */
+        for (int k = 0; k < 3; k++) {
+          r[k] = -(i[k] <= g->n[k] / 2 ? i[k] : i[k] - g->n[k]) * g->h[k];
+          r2 += r[k] * r[k];
+        }
+        const double G = r2 <= cut2 ? exp(-a * r2) : 0.0;
+        sum += G;
+        kernel[node] = which == 0  ? G
+                       : which < 4 ? G * r[which - 1]
+                                   : G * r[SYM_I[which - 4]] * r[SYM_J[which - 4]];
       }
   const size_t nodes = lsdem_field_grid_nodes(g);
   for (size_t k = 0; k < nodes; k++) kernel[k] /= sum;

@@ -79,12 +79,13 @@ void lsdem_field_cell(const lsdem_field_grid *g, const double x[3], size_t node[
  * 1, so a deposit keeps every total. x as for lsdem_field_cell. */
 void lsdem_field_deposit(const lsdem_field_grid *g, const double x[3], int nchan,
                          const double *value, double *channels);
-/* The offset (in nodes, per axis) node i of a kernel array stands for: i, or i - n past
- * the middle (the FFT's periodic offsets). */
-void lsdem_field_kernel_offset(const lsdem_field_grid *g, const int i[3], int o[3]);
 /* The discrete kernel on the grid, periodic offsets (node i holds G at the offset
  * min(i, n - i) h per axis), normalised to sum 1: smoothing keeps totals. */
 void lsdem_field_kernel(const lsdem_field_grid *g, double width, double *kernel);
+/* The moment kernel K(which) of lsdem_field_smooth_terms (K0: lsdem_field_kernel), the
+ * same normalisation. */
+void lsdem_field_kernel_moment(const lsdem_field_grid *g, double width, int which,
+                               double *kernel);
 
 /* ---------------------------------------------------------- smooth (smooth.c) ---- */
 

@@ -140,25 +140,6 @@ lsdem_status lsdem_field_smooth_direct(const lsdem_field_grid *g, double width, 
   return LSDEM_OK;
 }
 
-/* K(which) (lsdem_field_smooth_terms) into kernel: G times the offset's moment, the offset
- * r = source - target = -(the kernel's periodic offset) */
-static void moment_kernel(const lsdem_field_grid *g, double width, int which, double *kernel)
-{
-  static const int SYM_I[6] = {0, 0, 0, 1, 1, 2}, SYM_J[6] = {0, 1, 2, 1, 2, 2};
-  lsdem_field_kernel(g, width, kernel);
-  if (which == 0) return;
-  size_t node = 0;
-  for (int i2 = 0; i2 < g->n[2]; i2++)
-    for (int i1 = 0; i1 < g->n[1]; i1++)
-      for (int i0 = 0; i0 < g->n[0]; i0++, node++) {
-        const int i[3] = {i0, i1, i2};
-        int o[3];
-        lsdem_field_kernel_offset(g, i, o);
-        const double r[3] = {-o[0] * g->h[0], -o[1] * g->h[1], -o[2] * g->h[2]};
-        kernel[node] *= which < 4 ? r[which - 1] : r[SYM_I[which - 4]] * r[SYM_J[which - 4]];
-      }
-}
-
 lsdem_status lsdem_field_smooth_terms(const lsdem_field_grid *g, double width, int nin,
                                       const double *in, int nout, double *out, int nterms,
                                       const lsdem_field_term *terms, lsdem_error *err)
@@ -188,7 +169,7 @@ lsdem_status lsdem_field_smooth_terms(const lsdem_field_grid *g, double width, i
       ok = 0;
       break;
     }
-    moment_kernel(g, width, k, w.real);
+    lsdem_field_kernel_moment(g, width, k, w.real);
     fftw_execute(w.forward);
     for (size_t m = 0; m < w.modes; m++) {
       kspec[k][m][0] = scale * w.spectrum[m][0];
