@@ -3,7 +3,7 @@
    LSDEM package: level-set discrete element method for LAMMPS.
 
    fix ID group field/lsdem N prefix kernel W spacing H [regular V S]
-       [mask cylinder cx cy R zlo zhi] [wall fixID ...]
+       [mask cylinder cx cy R zlo zhi | mask membrane fixID] [wall fixID ...]
    (doc/fix_field_lsdem.rst). Every N steps (and at a run's setup when the step is a
    multiple of N), or on the steps an equal-style variable names (N = v_name): each
    grain of the group (mass, solid volume, centre, displacement since
@@ -14,7 +14,11 @@
    (lsdem_fields_compute) and writes prefix_<step>.vti and prefix.pvd.
 
    The reference is the configuration at the first setup: each grain's unwrapped centre in
-   a fix STORE row (it migrates with the grain and survives a restart).
+   a fix STORE row (it migrates with the grain and survives a restart), and the box's
+   period vectors (global restart info). In a periodic dimension the core's grid spans the
+   period (an orthogonal box now); grains go at their unwrapped centres with their unwrapped
+   displacements, and the box's change of period vectors is the displacement jump across
+   a period (lsdem_field_box).
 ------------------------------------------------------------------------- */
 
 #include "fix_field_lsdem.h"
@@ -24,6 +28,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "fix_membrane_lsdem.h"
 #include "fix_wall_lsdem.h"
 #include "group.h"
 #include "lsdem_input.h"
@@ -42,7 +47,8 @@ using namespace FixConst;
 static constexpr int GRAIN_ROW = 9, BRANCH_ROW = 11;
 
 static const char *USAGE = "fix ID group field/lsdem N|v_name prefix kernel W spacing H "
-                           "[regular V S] [mask cylinder cx cy R zlo zhi] [wall fixID ...]";
+                           "[regular V S] [mask cylinder cx cy R zlo zhi | mask membrane "
+                           "fixID] [wall fixID ...]";
 
 // the keywords after which a list of wall IDs ends
 static bool is_keyword(const char *word)
@@ -55,10 +61,13 @@ static bool is_keyword(const char *word)
 /* ---------------------------------------------------------------------- */
 
 FixFieldLsdem::FixFieldLsdem(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), masked(false), mask_centre{0.0, 0.0}, mask_radius(0.0), mask_zlo(0.0),
-  mask_zhi(0.0), avec(nullptr), store(nullptr), have_reference(false),
-  series(narg > 4 ? arg[4] : "", "vti")
+  Fix(lmp, narg, arg), mask_kind(MASK_NONE), mask_centre{0.0, 0.0}, mask_radius(0.0),
+  mask_zlo(0.0), mask_zhi(0.0), membrane(nullptr), have_ref_box(false), avec(nullptr),
+  store(nullptr), have_reference(false), series(narg > 4 ? arg[4] : "", "vti")
 {
+  memset(&params, 0, sizeof params);
+  memset(ref_period, 0, sizeof ref_period);
+  restart_global = 1;
   if (narg < 9) error->all(FLERR, "Illegal fix field/lsdem command: {}", USAGE);
   nevery = steps.parse(lmp, arg[3], "Fix field/lsdem");
   if (std::string(arg[4]).find_first_of("*%") != std::string::npos)
@@ -89,8 +98,12 @@ FixFieldLsdem::FixFieldLsdem(LAMMPS *lmp, int narg, char **arg) :
         *v[k] = LsdemInput::number(FLERR, arg[iarg + 2 + k], "fix field/lsdem", "mask", lmp);
       if (!(mask_radius > 0.0) || !(mask_zhi > mask_zlo))
         error->all(FLERR, "Fix field/lsdem: mask cylinder needs R > 0 and zhi > zlo");
-      masked = true;
+      mask_kind = MASK_CYLINDER;
       iarg += 7;
+    } else if (key == "mask" && iarg + 2 < narg && strcmp(arg[iarg + 1], "membrane") == 0) {
+      membrane_id = arg[iarg + 2];
+      mask_kind = MASK_MEMBRANE;
+      iarg += 3;
     } else if (key == "wall" && iarg + 1 < narg) {
       iarg++;
       while (iarg < narg && !is_keyword(arg[iarg])) wall_ids.emplace_back(arg[iarg++]);
@@ -139,6 +152,25 @@ void FixFieldLsdem::init()
   avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
   sources.find(lmp, wall_ids, "Fix field/lsdem");
   steps.init(lmp, "Fix field/lsdem");
+  if (mask_kind == MASK_MEMBRANE) {
+    const int ifix = modify->find_fix(membrane_id.c_str());
+    membrane = ifix < 0 ? nullptr : dynamic_cast<FixMembraneLsdem *>(modify->fix[ifix]);
+    if (!membrane)
+      error->all(FLERR, "Fix field/lsdem: mask membrane {} is not a fix membrane/lsdem",
+                 membrane_id);
+    if (domain->zperiodic)
+      error->all(FLERR, "Fix field/lsdem: mask membrane needs a box not periodic in z");
+    // the inner layer's triangles (the surface through its sphere centres) and their vertices
+    membrane_tri.clear();
+    const std::vector<tagint> &tri = membrane->triangle_tags();
+    const std::vector<int> &layer = membrane->triangle_layers();
+    for (size_t t = 0; t < layer.size(); t++)
+      if (layer[t] == 0) membrane_tri.insert(membrane_tri.end(), &tri[3 * t], &tri[3 * t] + 3);
+    membrane_tags = membrane_tri;
+    std::sort(membrane_tags.begin(), membrane_tags.end());
+    membrane_tags.erase(std::unique(membrane_tags.begin(), membrane_tags.end()),
+                        membrane_tags.end());
+  }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -146,6 +178,12 @@ void FixFieldLsdem::init()
 void FixFieldLsdem::setup(int /*vflag*/)
 {
   if (!have_reference) store_reference();
+  if (!have_ref_box) {  // a restart file written before the reference box was kept
+    if (comm->me == 0)
+      error->warning(FLERR, "Fix field/lsdem: the restart file has no reference box; the box "
+                     "now taken as the reference (wrong jumps if a periodic box deformed)");
+    store_reference_box();
+  }
   if (steps.due_at_setup(update->ntimestep)) write_and_schedule();
 }
 
@@ -168,8 +206,18 @@ void FixFieldLsdem::write_and_schedule()
 
 /* ---------------------------------------------------------------------- */
 
+void FixFieldLsdem::store_reference_box()
+{
+  // the period vectors a = (xprd 0 0), b = (xy yprd 0), c = (xz yz zprd)
+  const double *h = domain->h;
+  const double period[3][3] = {{h[0], 0.0, 0.0}, {h[5], h[1], 0.0}, {h[4], h[3], h[2]}};
+  memcpy(ref_period, period, sizeof ref_period);
+  have_ref_box = true;
+}
+
 void FixFieldLsdem::store_reference()
 {
+  store_reference_box();
   double **x = atom->x;
   const imageint *image = atom->image;
   for (int i = 0; i < atom->nlocal; i++)
@@ -189,8 +237,9 @@ std::vector<double> FixFieldLsdem::grain_rows() const
     const lsdem_shape *shape = lsdem_library_shape(avec->library(), avec->shape[i]);
     double xu[3];
     domain->unmap(x[i], image[i], xu);
+    // the unwrapped centre: the image whose displacement u is (lsdem_field_grain)
     const double row[GRAIN_ROW] = {(double) atom->tag[i], atom->rmass[i], shape->volume,
-                                   x[i][0], x[i][1], x[i][2],
+                                   xu[0], xu[1], xu[2],
                                    xu[0] - store->astore[i][0], xu[1] - store->astore[i][1],
                                    xu[2] - store->astore[i][2]};
     rows.insert(rows.end(), row, row + GRAIN_ROW);
@@ -236,8 +285,14 @@ std::vector<double> FixFieldLsdem::branch_rows() const
 
 void FixFieldLsdem::write_fields()
 {
+  if (domain->triclinic && (domain->xperiodic || domain->yperiodic || domain->zperiodic) &&
+      (domain->xy != 0.0 || domain->xz != 0.0 || domain->yz != 0.0))
+    error->all(FLERR, "Fix field/lsdem: a periodic box must be orthogonal when the fields are "
+               "written at step {} (tilt factors 0; a box sheared from the reference to an "
+               "orthogonal one is fine)", update->ntimestep);
   const std::vector<double> grains = lsdem_gather_sorted(world, grain_rows(), GRAIN_ROW);
   const std::vector<double> branches = lsdem_gather_sorted(world, branch_rows(), BRANCH_ROW);
+  const std::vector<double> nodes = lsdem_gather_sorted(world, membrane_rows(), 4);
   if (comm->me != 0) return;
   const int n = (int) (grains.size() / GRAIN_ROW), nb = (int) (branches.size() / BRANCH_ROW);
   if (n == 0) error->one(FLERR, "Fix field/lsdem: no grains in group {}", group->names[igroup]);
@@ -258,9 +313,12 @@ void FixFieldLsdem::write_fields()
   }
   lsdem_fields f;
   lsdem_error err;
+  set_box();
   if (lsdem_fields_compute(&params, n, g.data(), nb, b.data(), &f, &err) != LSDEM_OK)
     error->one(FLERR, "Fix field/lsdem: {}", err.msg);
-  if (masked) lsdem_fields_mask_cylinder(&f, mask_centre, mask_radius, mask_zlo, mask_zhi);
+  if (mask_kind == MASK_CYLINDER)
+    lsdem_fields_mask_cylinder(&f, mask_centre, mask_radius, mask_zlo, mask_zhi);
+  if (mask_kind == MASK_MEMBRANE) mask_membrane(&f, nodes);
   const std::string file = series.step_file(update->ntimestep);
   const lsdem_status s = lsdem_fields_write_vti(file.c_str(), &f, &err);
   lsdem_fields_free(&f);
@@ -269,4 +327,80 @@ void FixFieldLsdem::write_fields()
   if (!series.add(update->ntimestep, time))
     error->one(FLERR, "Fix field/lsdem: writing {} failed: {}", series.index_file(),
                utils::getsyserror());
+}
+
+/* ----------------------------------------------------------------------
+   the core's box: periodic dimensions, the period now and the displacement jump across it
+   (period vector now minus at the reference; init checked the box is orthogonal now)
+------------------------------------------------------------------------- */
+
+void FixFieldLsdem::set_box()
+{
+  const int periodic[3] = {domain->xperiodic, domain->yperiodic, domain->zperiodic};
+  const double *h = domain->h;
+  const double now[3][3] = {{h[0], 0.0, 0.0}, {h[5], h[1], 0.0}, {h[4], h[3], h[2]}};
+  for (int k = 0; k < 3; k++) {
+    params.box.periodic[k] = periodic[k];
+    params.box.lo[k] = domain->boxlo[k];
+    params.box.hi[k] = domain->boxhi[k];
+    for (int i = 0; i < 3; i++)
+      params.box.jump[k][i] = periodic[k] ? now[k][i] - ref_period[k][i] : 0.0;
+  }
+}
+
+/* ----------------------------------------------------------------------
+   the membrane's inner-layer vertices here: tag x y z
+------------------------------------------------------------------------- */
+
+std::vector<double> FixFieldLsdem::membrane_rows() const
+{
+  std::vector<double> rows;
+  if (mask_kind != MASK_MEMBRANE) return rows;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (std::binary_search(membrane_tags.begin(), membrane_tags.end(), atom->tag[i])) {
+      const double row[4] = {(double) atom->tag[i], atom->x[i][0], atom->x[i][1], atom->x[i][2]};
+      rows.insert(rows.end(), row, row + 4);
+    }
+  return rows;
+}
+
+/* ----------------------------------------------------------------------
+   rank 0: the nodes outside the membrane's inner layer, closed at its end rings (core
+   lsdem_fields_mask_surface)
+------------------------------------------------------------------------- */
+
+void FixFieldLsdem::mask_membrane(lsdem_fields *f, const std::vector<double> &nodes)
+{
+  const int nv = (int) (nodes.size() / 4);
+  if (nv != (int) membrane_tags.size())
+    error->one(FLERR, "Fix field/lsdem: {} of the {} vertices of membrane {} exist", nv,
+               membrane_tags.size(), membrane_id);
+  std::vector<double> v(3 * (size_t) nv);
+  for (int k = 0; k < nv; k++) std::copy(&nodes[4 * k + 1], &nodes[4 * k + 4], &v[3 * k]);
+  std::vector<int> tri(membrane_tri.size());
+  for (size_t k = 0; k < tri.size(); k++)  // rows sorted by tag, as membrane_tags
+    tri[k] = (int) (std::lower_bound(membrane_tags.begin(), membrane_tags.end(),
+                                     membrane_tri[k]) - membrane_tags.begin());
+  lsdem_error err;
+  if (lsdem_fields_mask_surface(f, nv, v.data(), (int) tri.size() / 3, tri.data(), &err) !=
+      LSDEM_OK)
+    error->one(FLERR, "Fix field/lsdem: mask membrane: {}", err.msg);
+}
+
+/* ----------------------------------------------------------------------
+   global restart info: the reference box's period vectors
+------------------------------------------------------------------------- */
+
+void FixFieldLsdem::write_restart(FILE *fp)
+{
+  if (comm->me != 0) return;
+  const int size = 9 * sizeof(double);
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(&ref_period[0][0], sizeof(double), 9, fp);
+}
+
+void FixFieldLsdem::restart(char *buf)
+{
+  memcpy(&ref_period[0][0], buf, 9 * sizeof(double));
+  have_ref_box = true;
 }

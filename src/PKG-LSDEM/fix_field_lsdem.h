@@ -36,11 +36,19 @@ class FixFieldLsdem : public Fix {
   void init() override;
   void setup(int) override;
   void end_of_step() override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
 
  private:
   lsdem_field_params params;
-  bool masked;                        // keyword mask cylinder cx cy R zlo zhi
-  double mask_centre[2], mask_radius, mask_zlo, mask_zhi;
+  enum { MASK_NONE, MASK_CYLINDER, MASK_MEMBRANE } mask_kind;  // keyword mask
+  double mask_centre[2], mask_radius, mask_zlo, mask_zhi;     // mask cylinder cx cy R zlo zhi
+  std::string membrane_id;                                    // mask membrane fixID
+  class FixMembraneLsdem *membrane;
+  std::vector<tagint> membrane_tri;   // its inner layer's triangles (3 tags each)
+  std::vector<tagint> membrane_tags;  // their vertices, sorted
+  double ref_period[3][3];            // the box's period vectors at the reference (rows)
+  bool have_ref_box;
   std::vector<std::string> wall_ids;  // keyword wall: whose contacts enter the stress
   LsdemContactSources sources;
   class AtomVecLsdem *avec;
@@ -53,6 +61,10 @@ class FixFieldLsdem : public Fix {
   void store_reference();
   std::vector<double> grain_rows() const;
   std::vector<double> branch_rows() const;
+  std::vector<double> membrane_rows() const;
+  void set_box();
+  void mask_membrane(lsdem_fields *f, const std::vector<double> &nodes);
+  void store_reference_box();
   void write_fields();
   void write_and_schedule();
 };

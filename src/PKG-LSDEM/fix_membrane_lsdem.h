@@ -46,6 +46,9 @@ class FixMembraneLsdem : public Fix {
   int pack_reverse_comm(int, int, double *) override;
   void unpack_reverse_comm(int, int *, double *) override;
   double memory_usage() override;
+  // the triangles (3 vertex tags each) and their layers (0 inner), for fix field/lsdem
+  const std::vector<tagint> &triangle_tags() const { return tri; }
+  const std::vector<int> &triangle_layers() const { return tri_layer; }
 
  private:
   // the triangles file

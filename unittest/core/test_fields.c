@@ -1,6 +1,8 @@
 /* test_fields.c -- continuum fields (core/fields): affine fields recovered exactly on a
  * random packing, rigid rotations strain-free, FFT against direct summation, totals kept,
- * the cylinder mask and the .vti file. */
+ * the cylinder mask and the .vti file; periodic boxes (affine maps of the box recovered at
+ * every node, the fit against a brute-force minimum-image sum, the open grid as the
+ * control); the surface mask (point in closed surface). */
 #include "lsdem_test.h"
 
 #include "fields/lsdem_fields.h"
@@ -11,7 +13,8 @@
 #define NGRAINS 400
 #define BOX 10.0
 
-static const lsdem_field_params PARAMS = {1.0, 0.5, LSDEM_FIELD_MIN_VARIANCE, LSDEM_FIELD_MIN_WEIGHT};
+static const lsdem_field_params PARAMS = {1.0, 0.5, LSDEM_FIELD_MIN_VARIANCE,
+                                         LSDEM_FIELD_MIN_WEIGHT, {{0}, {0}, {0}, {{0}}}};
 
 /* a random loose packing: centres uniform in the box, masses and volumes in (0.5, 1.5] */
 static void random_grains(lsdem_field_grain *g, int n)
@@ -109,15 +112,16 @@ static void check_plain_average_fails(void)
   for (int i2 = 0; i2 < n[2]; i2++)
     for (int i1 = 1; i1 < n[1] - 1; i1++)
       for (int i0 = 0; i0 < n[0]; i0++) {
-        const double x[3] = {grid.origin[0] + grid.h * i0, grid.origin[1] + grid.h * i1,
-                             grid.origin[2] + grid.h * i2};
+        const double x[3] = {grid.origin[0] + grid.h[0] * i0, grid.origin[1] + grid.h[1] * i1,
+                             grid.origin[2] + grid.h[2] * i2};
         int interior = 1;
         for (int k = 0; k < 3; k++)
-          interior &= x[k] > lo[k] + inset * grid.h && x[k] < hi[k] - inset * grid.h;
+          interior &= x[k] > lo[k] + inset * grid.h[k] && x[k] < hi[k] - inset * grid.h[k];
         if (!interior) continue;
         const size_t node = (size_t)i0 + (size_t)n[0] * ((size_t)i1 + (size_t)n[1] * i2);
         const size_t up = node + (size_t)n[0], down = node - (size_t)n[0];
-        const double dudy = (ch[nodes + up] / ch[up] - ch[nodes + down] / ch[down]) / (2 * grid.h);
+        const double dudy =
+            (ch[nodes + up] / ch[up] - ch[nodes + down] / ch[down]) / (2 * grid.h[1]);
         worst = fmax(worst, fabs(dudy - 0.01));
       }
   CHECK(worst > 0.01 * 0.01, "the plain average came out affine too (off by %.3g)", worst);
@@ -207,7 +211,7 @@ static void check_totals(void)
   lsdem_fields f;
   CHECK(lsdem_fields_compute(&PARAMS, NGRAINS, g, NB, b, &f, NULL) == LSDEM_OK, "compute");
   const size_t nodes = lsdem_field_grid_nodes(&f.grid);
-  const double dv = f.grid.h * f.grid.h * f.grid.h;
+  const double dv = f.grid.h[0] * f.grid.h[1] * f.grid.h[2];
   double m = 0.0, v = 0.0, s[9] = {0.0};
   for (size_t node = 0; node < nodes; node++) {
     m += f.density[node] * dv;
@@ -230,9 +234,9 @@ static void check_totals(void)
     const int i0 = (int)(node % (size_t)f.grid.n[0]);
     const int i1 = (int)(node / (size_t)f.grid.n[0] % (size_t)f.grid.n[1]);
     const int i2 = (int)(node / ((size_t)f.grid.n[0] * f.grid.n[1]));
-    const double x = f.grid.origin[0] + f.grid.h * i0 - 5.0;
-    const double y = f.grid.origin[1] + f.grid.h * i1 - 5.0;
-    const double z = f.grid.origin[2] + f.grid.h * i2;
+    const double x = f.grid.origin[0] + f.grid.h[0] * i0 - 5.0;
+    const double y = f.grid.origin[1] + f.grid.h[1] * i1 - 5.0;
+    const double z = f.grid.origin[2] + f.grid.h[2] * i2;
     const int in = x * x + y * y <= 9.0 && z >= 1.0 && z <= 9.0;
     inside += in;
     if (in != f.inside[node] || in != !isnan(f.stress[9 * node]) || in != !isnan(f.density[node])) {
@@ -278,6 +282,382 @@ static void check_vti(void)
   lsdem_fields_free(&f);
 }
 
+
+/* ------------------------------------------------------------ periodic boxes ---- */
+
+#define PGRAINS 1500
+#define PBOX 10.0
+
+static void invert3(const double M[9], double inv[9])
+{
+  double c[9];
+  lsdem_cross3(M + 3, M + 6, c);
+  lsdem_cross3(M + 6, M, c + 3);
+  lsdem_cross3(M, M + 3, c + 6);
+  const double det = lsdem_dot3(M, c);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) inv[3 * i + j] = c[3 * j + i] / det;
+}
+
+/* The box [0, PBOX)^3 now, the image of the reference box under x = F X + t (its period
+ * vectors P_k = F^-1 PBOX e_k, a sheared box for simple shear): grains uniform in the
+ * reference box, mapped, given at their unwrapped centres (the drift t takes some out of
+ * the box: the core wraps them), or with wrapped != 0 wrapped into the box as LAMMPS keeps
+ * them (then u is not the affine field of the positions: what an open grid sees).
+ * jump_k = PBOX e_k - P_k. */
+static void periodic_scene(const double F[9], lsdem_field_grain *g, int n, lsdem_field_box *box,
+                           int wrapped)
+{
+  double Finv[9];
+  invert3(F, Finv);
+  const double t[3] = {3.3, -2.1, 0.7}; /* a drift: some grains wrap */
+  memset(box, 0, sizeof *box);
+  for (int k = 0; k < 3; k++) {
+    box->periodic[k] = 1;
+    box->hi[k] = PBOX;
+    for (int i = 0; i < 3; i++) box->jump[k][i] = (i == k) * PBOX - Finv[3 * i + k] * PBOX;
+  }
+  for (int i = 0; i < n; i++) {
+    double f[3], X[3] = {0, 0, 0}, x[3];
+    for (int k = 0; k < 3; k++) f[k] = urand();
+    for (int k = 0; k < 3; k++)
+      for (int j = 0; j < 3; j++) X[j] += f[k] * Finv[3 * j + k] * PBOX;
+    lsdem_mat_vec(F, X, x);
+    g[i].mass = 0.5 + urand();
+    g[i].volume = 0.4 * (0.5 + urand());
+    for (int k = 0; k < 3; k++) {
+      x[k] += t[k];
+      g[i].u[k] = x[k] - X[k];
+      g[i].x[k] = wrapped ? x[k] - PBOX * floor(x[k] / PBOX) : x[k];
+    }
+  }
+}
+
+/* every node of the periodic grid regular and H = F - I to 1e-10; the open grid on the same
+ * grains misses it (the wrapped grains' displacements jump by jump_k there) */
+static void check_periodic_affine(const char *name, const double F[9])
+{
+  static lsdem_field_grain g[PGRAINS];
+  lsdem_field_params p = PARAMS;
+  periodic_scene(F, g, PGRAINS, &p.box, 0);
+  lsdem_fields f;
+  lsdem_error err;
+  CHECK(lsdem_fields_compute(&p, PGRAINS, g, 0, NULL, &f, &err) == LSDEM_OK, "%s", err.msg);
+  double H[9];
+  for (int k = 0; k < 9; k++) H[k] = F[k] - (k % 4 == 0 ? 1.0 : 0.0);
+  const size_t nodes = lsdem_field_grid_nodes(&f.grid);
+  size_t regular = 0;
+  double e = 0.0, mass = 0.0, m = 0.0;
+  for (size_t node = 0; node < nodes; node++) {
+    regular += f.regular[node];
+    for (int k = 0; k < 9; k++) e = fmax(e, fabs(f.grad[9 * node + k] - H[k]));
+    m += f.density[node] * f.grid.h[0] * f.grid.h[1] * f.grid.h[2];
+  }
+  for (int i = 0; i < PGRAINS; i++) mass += g[i].mass;
+  CHECK(f.grid.n[0] * f.grid.h[0] == PBOX && f.grid.origin[0] == 0.0, "%s: grid %d x %g from %g",
+        name, f.grid.n[0], f.grid.h[0], f.grid.origin[0]);
+  CHECK(regular == nodes, "%s: %zu regular nodes of %zu", name, regular, nodes);
+  CHECK(e <= 1e-10 * max_abs(H, 9), "%s: periodic gradient off by %.3g (%.3g relative)", name, e,
+        e / max_abs(H, 9));
+  CHECK_REL(m, mass, 1e-12);
+  printf("periodic %s: %zu nodes, all regular, gradient error %.2e relative, mass %.2e\n",
+         name, nodes, e / max_abs(H, 9), fabs(m - mass) / mass);
+  lsdem_fields_free(&f);
+  /* the control: the open, padded grid over the same grains as LAMMPS keeps them (wrapped
+   * into the box, unwrapped displacements) */
+  for (int i = 0; i < PGRAINS; i++)
+    for (int k = 0; k < 3; k++) g[i].x[k] -= PBOX * floor(g[i].x[k] / PBOX);
+  p.box = PARAMS.box;
+  CHECK(lsdem_fields_compute(&p, PGRAINS, g, 0, NULL, &f, &err) == LSDEM_OK, "%s", err.msg);
+  double eo = 0.0;
+  size_t bad = 0, in_box = 0, node = 0;
+  for (int i2 = 0; i2 < f.grid.n[2]; i2++)
+    for (int i1 = 0; i1 < f.grid.n[1]; i1++)
+      for (int i0 = 0; i0 < f.grid.n[0]; i0++, node++) {
+        const int i[3] = {i0, i1, i2};
+        int inside = 1;
+        for (int k = 0; k < 3; k++) {
+          const double x = f.grid.origin[k] + f.grid.h[k] * i[k];
+          inside &= x >= 0.0 && x <= PBOX;
+        }
+        if (!inside) continue;
+        in_box++;
+        double en = f.regular[node] ? 0.0 : INFINITY;
+        for (int k = 0; k < 9 && f.regular[node]; k++)
+          en = fmax(en, fabs(f.grad[9 * node + k] - H[k]));
+        bad += !(en <= 1e-10 * max_abs(H, 9));
+        if (isfinite(en)) eo = fmax(eo, en);
+      }
+  CHECK(bad > in_box / 20, "%s: the open grid got %zu of %zu nodes in the box wrong", name, bad,
+        in_box);
+  printf("  open grid: %zu of %zu nodes in the box irregular or off by more than 1e-10 "
+         "(worst regular %.2e relative)\n", bad, in_box, eo / max_abs(H, 9));
+  lsdem_fields_free(&f);
+}
+
+/* The periodic fit of a non-affine displacement (the box's affine map plus a periodic
+ * wave) against the same weighted least-squares fit summed directly: every grain's image
+ * nearest each node through each of its 8 deposit nodes, its displacement that of the
+ * image (u + the jumps of the periods crossed). Checked on every node of the six faces. */
+static void check_periodic_bruteforce(void)
+{
+  enum { NG = 600 };
+  static lsdem_field_grain g[NG];
+  const double F[9] = {1.01, 0.01, 0, 0, 0.99, 0, 0, 0, 1};
+  lsdem_field_params p = PARAMS;
+  p.width = 1.2;
+  periodic_scene(F, g, NG, &p.box, 0);
+  for (int i = 0; i < NG; i++) g[i].u[0] += 0.02 * sin(2.0 * M_PI * g[i].x[1] / PBOX);
+  lsdem_fields f;
+  CHECK(lsdem_fields_compute(&p, NG, g, 0, NULL, &f, NULL) == LSDEM_OK, "compute");
+  const lsdem_field_grid *gr = &f.grid;
+  const size_t nodes = lsdem_field_grid_nodes(gr);
+  double *G = malloc(nodes * sizeof(double));
+  lsdem_field_kernel(gr, p.width, G);
+  double worst = 0.0;
+  size_t checked = 0, node = 0;
+  for (int i2 = 0; i2 < gr->n[2]; i2++)
+    for (int i1 = 0; i1 < gr->n[1]; i1++)
+      for (int i0 = 0; i0 < gr->n[0]; i0++, node++) {
+        const int in[3] = {i0, i1, i2};
+        int face = 0;
+        for (int k = 0; k < 3; k++) face |= in[k] == 0 || in[k] == gr->n[k] - 1;
+        if (!face || !f.regular[node]) continue;
+        double S = 0, Sy[3] = {0}, Su[3] = {0}, Syy[9] = {0}, Suy[9] = {0};
+        for (int i = 0; i < NG; i++) {
+          size_t cn[8];
+          double w[8], d[8][3];
+          lsdem_field_cell(gr, g[i].x, cn, w, d);
+          for (int c = 0; c < 8; c++) {
+            const int ci[3] = {(int)(cn[c] % gr->n[0]), (int)(cn[c] / gr->n[0] % gr->n[1]),
+                               (int)(cn[c] / ((size_t)gr->n[0] * gr->n[1]))};
+            int o[3];
+            double y[3], u[3];
+            for (int k = 0; k < 3; k++) {
+              o[k] = ci[k] - in[k];
+              o[k] -= gr->n[k] * (int)lround((double)o[k] / gr->n[k]); /* minimum image */
+            }
+            size_t ko = 0; /* the kernel's node of offset o */
+            for (int k = 2; k >= 0; k--)
+              ko = ko * (size_t)gr->n[k] + (size_t)(o[k] < 0 ? o[k] + gr->n[k] : o[k]);
+            const double W = g[i].mass * w[c] * G[ko];
+            if (W == 0.0) continue;
+            for (int k = 0; k < 3; k++) y[k] = d[c][k] + o[k] * gr->h[k];
+            /* the image's shift: node + y - x, a whole number of periods per axis */
+            for (int k = 0; k < 3; k++) u[k] = g[i].u[k];
+            for (int a = 0; a < 3; a++) {
+              const double x = gr->origin[a] + gr->h[a] * in[a] + y[a];
+              const double s = round((x - g[i].x[a]) / PBOX);
+              for (int k = 0; k < 3; k++) u[k] += s * p.box.jump[a][k];
+            }
+            S += W;
+            for (int k = 0; k < 3; k++) {
+              Sy[k] += W * y[k];
+              Su[k] += W * u[k];
+              for (int l = 0; l < 3; l++) {
+                Syy[3 * k + l] += W * y[k] * y[l];
+                Suy[3 * k + l] += W * u[k] * y[l];
+              }
+            }
+          }
+        }
+        double C[9], B[9], Ci[9], L[9], Finv[9], Fn[9];
+        for (int k = 0; k < 3; k++)
+          for (int l = 0; l < 3; l++) {
+            C[3 * k + l] = Syy[3 * k + l] / S - Sy[k] * Sy[l] / (S * S);
+            B[3 * k + l] = Suy[3 * k + l] / S - Su[k] * Sy[l] / (S * S);
+          }
+        invert3(C, Ci);
+        lsdem_mat_mul(B, Ci, L);
+        for (int k = 0; k < 9; k++) Finv[k] = (k % 4 == 0) - L[k];
+        invert3(Finv, Fn);
+        for (int k = 0; k < 9; k++)
+          worst = fmax(worst, fabs(f.grad[9 * node + k] - (Fn[k] - (k % 4 == 0))));
+        checked++;
+      }
+  CHECK(checked > 1000, "%zu face nodes checked", checked);
+  CHECK(worst <= 1e-10 * 0.01, "periodic fit against the direct sum: off by %.3g", worst);
+  printf("periodic fit = direct minimum-image sum on %zu face nodes to %.2e\n", checked, worst);
+  free(G);
+  lsdem_fields_free(&f);
+}
+
+/* FFT = direct sum on a grid periodic in x and z, open in y; contact branches across the
+ * faces (given with the far image of the contact point) integrate to the Love-Weber sum of
+ * the minimum-image branches */
+static void check_periodic_smooth_and_stress(void)
+{
+  lsdem_field_box box;
+  memset(&box, 0, sizeof box);
+  box.periodic[0] = box.periodic[2] = 1;
+  box.hi[0] = 4.0;
+  box.hi[2] = 3.0;
+  const double lo[3] = {0, 0, 0}, hi[3] = {4.0, 2.0, 3.0};
+  lsdem_field_grid g;
+  CHECK(lsdem_field_grid_cover_box(&box, lo, hi, 0.25, 0.4, &g, NULL) == LSDEM_OK, "grid");
+  CHECK(g.origin[0] == 0.0 && g.n[0] * g.h[0] == 4.0 && g.n[2] * g.h[2] == 3.0 && g.h[1] == 0.25,
+        "periodic axes span the period");
+  const size_t nodes = lsdem_field_grid_nodes(&g);
+  double *a = calloc(nodes, sizeof(double)), *b = calloc(nodes, sizeof(double));
+  for (int i = 0; i < 60; i++) {
+    const double z = i % 2 ? 0.05 * urand() : hi[2] * urand(); /* half at the z = 0 face */
+    const double x[3] = {hi[0] * urand(), hi[1] * urand(), z};
+    const double v = urand();
+    lsdem_field_deposit(&g, x, 1, &v, a);
+  }
+  memcpy(b, a, nodes * sizeof(double));
+  CHECK(lsdem_field_smooth_fft(&g, 0.4, 1, a, NULL) == LSDEM_OK, "fft");
+  CHECK(lsdem_field_smooth_direct(&g, 0.4, 1, b, NULL) == LSDEM_OK, "direct");
+  double diff = 0.0, scale = max_abs(b, (int)nodes);
+  for (size_t k = 0; k < nodes; k++) diff = fmax(diff, fabs(a[k] - b[k]));
+  CHECK(diff <= 1e-12 * scale, "periodic FFT against direct: %.3g of %.3g", diff, scale);
+  free(a);
+  free(b);
+  /* a kernel reaching half the period is refused */
+  lsdem_error err;
+  CHECK(lsdem_field_grid_cover_box(&box, lo, hi, 0.25, 0.6, &g, &err) == LSDEM_ERR_ARG, "reach");
+
+  enum { NG = 200, NB = 300 };
+  static lsdem_field_grain gr[NG];
+  static lsdem_field_branch br[NB];
+  double M[9] = {0}, sigma[9];
+  for (int i = 0; i < NG; i++) {
+    gr[i].mass = 1.0;
+    gr[i].volume = 0.5;
+    for (int k = 0; k < 3; k++) gr[i].x[k] = hi[k] * urand();
+    gr[i].x[0] = i % 3 ? gr[i].x[0] : 0.1 * urand(); /* a third at the x = 0 face */
+  }
+  for (int i = 0; i < NB; i++) {
+    const lsdem_field_grain *c = gr + i % NG;
+    for (int k = 0; k < 3; k++) {
+      br[i].force[k] = srand1();
+      br[i].centre[k] = c->x[k];
+      br[i].point[k] = c->x[k] + 0.3 * srand1();
+    }
+    lsdem_love_weber_add(M, br[i].force, br[i].point, br[i].centre);
+    if (i % 2) br[i].point[0] += 4.0; /* the far image: minimum image takes it back */
+    if (i % 3 == 0) br[i].point[2] -= 3.0;
+  }
+  lsdem_love_weber_stress(M, 1.0, sigma);
+  lsdem_field_params p = PARAMS;
+  p.width = 0.4;
+  p.h = 0.25;
+  p.box = box;
+  lsdem_fields f;
+  CHECK(lsdem_fields_compute(&p, NG, gr, NB, br, &f, &err) == LSDEM_OK, "%s", err.msg);
+  const double dv = f.grid.h[0] * f.grid.h[1] * f.grid.h[2];
+  double s[9] = {0}, m = 0;
+  for (size_t node = 0; node < lsdem_field_grid_nodes(&f.grid); node++) {
+    m += f.density[node] * dv;
+    for (int k = 0; k < 9; k++) s[k] += f.stress[9 * node + k] * dv;
+  }
+  CHECK_REL(m, (double)NG, 1e-12);
+  for (int k = 0; k < 9; k++) CHECK_NEAR(s[k], sigma[k], 1e-10 * max_abs(sigma, 9));
+  lsdem_fields_free(&f);
+}
+
+/* ------------------------------------------------------------- surface mask ---- */
+
+/* a closed-ended tube: nz + 1 rings of na vertices on radius R(z), z from z0 to z1, the
+ * lateral triangles only (the core closes the end rings) */
+static int tube(int na, int nz, double R0, double bulge, double z0, double z1, double *v, int *t)
+{
+  int nt = 0;
+  for (int j = 0; j <= nz; j++)
+    for (int i = 0; i < na; i++) {
+      const double s = (double)j / nz, a = 2.0 * M_PI * (i + 0.5 * (j % 2)) / na;
+      const double R = R0 + bulge * sin(M_PI * s);
+      double *p = v + 3 * (j * na + i);
+      p[0] = 5.0 + R * cos(a);
+      p[1] = 5.0 + R * sin(a);
+      p[2] = z0 + (z1 - z0) * s;
+    }
+  for (int j = 0; j < nz; j++)
+    for (int i = 0; i < na; i++) {
+      const int a = j * na + i, b = j * na + (i + 1) % na, c = (j + 1) * na + i,
+                d = (j + 1) * na + (i + 1) % na;
+      /* ring j + 1 turned by half a step from ring j (even j) or back (odd j) */
+      const int q[2][6] = {{a, b, c, b, d, c}, {a, b, d, a, d, c}};
+      memcpy(t + 3 * nt, q[j % 2], sizeof q[0]);
+      nt += 2;
+    }
+  return nt;
+}
+
+/* nodes inside the undeformed tube = inside the cylinder of its radius but within one
+ * node of the surface (the facets cut the circle: the polygon's inner radius is
+ * R cos(pi / na)); a bulged tube: inside its per-height radius profile likewise; the
+ * open-ended tube closed at its ends by the core (nodes beyond the end rings outside) */
+static void check_surface_mask(void)
+{
+  enum { NA = 96, NZ = 40 };
+  static double v[3 * NA * (NZ + 1)];
+  static int t[3 * 2 * NA * NZ];
+  lsdem_field_grid g;
+  const double lo[3] = {1, 1, 0}, hi[3] = {9, 9, 10};
+  CHECK(lsdem_field_grid_cover(lo, hi, 0.2, 0.3, &g, NULL) == LSDEM_OK, "grid");
+  const size_t nodes = lsdem_field_grid_nodes(&g);
+  unsigned char *in = malloc(nodes);
+  lsdem_error err;
+  for (int bulged = 0; bulged < 2; bulged++) {
+    const double R0 = 3.0, bulge = bulged ? 0.6 : 0.0, z0 = 1.0, z1 = 9.0;
+    const int nt = tube(NA, NZ, R0, bulge, z0, z1, v, t);
+    CHECK(lsdem_field_inside_surface(&g, NA * (NZ + 1), v, nt, t, in, &err) == LSDEM_OK, "%s",
+          err.msg);
+    size_t differ = 0, far = 0, inside = 0, node = 0;
+    const double h = g.h[0];
+    for (int i2 = 0; i2 < g.n[2]; i2++)
+      for (int i1 = 0; i1 < g.n[1]; i1++)
+        for (int i0 = 0; i0 < g.n[0]; i0++, node++) {
+          const double x = g.origin[0] + h * i0 - 5.0, y = g.origin[1] + h * i1 - 5.0;
+          const double z = g.origin[2] + h * i2;
+          const double R = R0 + bulge * sin(M_PI * fmin(fmax((z - z0) / (z1 - z0), 0.0), 1.0));
+          const double r = sqrt(x * x + y * y);
+          const int expect = r <= R && z >= z0 && z <= z1;
+          inside += in[node];
+          if (in[node] == expect) continue;
+          differ++;
+          /* distance to the surface, the ends included */
+          const double dist = fmin(fabs(r - R), fmin(fabs(z - z0), fabs(z - z1)));
+          far += dist > h;
+        }
+    CHECK(inside > nodes / 20, "%zu nodes inside", inside);
+    CHECK(far == 0, "%s tube: %zu nodes differ from the profile farther than a node from the "
+          "surface (%zu differ)", bulged ? "bulged" : "straight", far, differ);
+    printf("surface mask, %s tube: %zu nodes inside, %zu differ from the %s, all within one "
+           "node of the surface\n", bulged ? "bulged" : "straight", inside, differ,
+           bulged ? "radius profile" : "cylinder");
+  }
+  /* a ray through vertices and edges: a cube of 12 triangles whose faces and edges lie on
+   * node rows and columns counts every crossing once */
+  const double cube[8][3] = {{2, 2, 2}, {6, 2, 2}, {2, 6, 2}, {6, 6, 2},
+                             {2, 2, 6}, {6, 2, 6}, {2, 6, 6}, {6, 6, 6}};
+  const int ct[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                         {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  lsdem_field_grid cg = {{41, 41, 41}, {0, 0, 0}, {0.2, 0.2, 0.2}, {0, 0, 0}};
+  unsigned char *cin = malloc(41 * 41 * 41);
+  CHECK(lsdem_field_inside_surface(&cg, 8, &cube[0][0], 12, &ct[0][0], cin, &err) == LSDEM_OK,
+        "cube");
+  size_t wrong = 0, node = 0;
+  for (int i2 = 0; i2 < 41; i2++)
+    for (int i1 = 0; i1 < 41; i1++)
+      for (int i0 = 0; i0 < 41; i0++, node++) {
+        const int i[3] = {i0, i1, i2};
+        int strictly = 1, outside = 0;
+        for (int k = 0; k < 3; k++) {
+          strictly &= i[k] > 10 && i[k] < 30;
+          outside |= i[k] < 10 || i[k] > 30;
+        }
+        wrong += (strictly && !cin[node]) || (outside && cin[node]);
+      }
+  CHECK(wrong == 0, "cube: %zu nodes off the surface on the wrong side", wrong);
+  const int bad[3] = {0, 1, 8};
+  CHECK(lsdem_field_inside_surface(&cg, 8, &cube[0][0], 1, bad, cin, &err) == LSDEM_ERR_ARG,
+        "bad index");
+  free(cin);
+  free(in);
+}
+
 int main(void)
 {
   const double pure_shear[9] = {1.01, 0, 0, 0, 0.99, 0, 0, 0, 1};
@@ -291,5 +671,11 @@ int main(void)
   check_fft_direct();
   check_totals();
   check_vti();
+  check_periodic_affine("pure shear", pure_shear);
+  check_periodic_affine("simple shear", simple_shear);
+  check_periodic_affine("dilation", dilation);
+  check_periodic_bruteforce();
+  check_periodic_smooth_and_stress();
+  check_surface_mask();
   return lsdem_test_summary();
 }

@@ -7,7 +7,8 @@ MARK = b'<AppendedData encoding="raw">\n_'
 
 
 def read_vti(path):
-    """{'n': (nx, ny, nz), 'origin': (...), 'h': spacing, name: array (nodes, components)}"""
+    """{'n': (nx, ny, nz), 'origin': (...), 'spacing': (hx, hy, hz), 'h': hx (the spacing of
+    an open box's grid, the same on every axis), name: array (nodes, components)}"""
     data = open(path, "rb").read()
     base = data.index(MARK) + len(MARK)
     head = data[:base].decode()
@@ -15,7 +16,8 @@ def read_vti(path):
     ext = [int(v) for v in re.search(r'WholeExtent="([^"]+)"', head).group(1).split()]
     out["n"] = (ext[1] + 1, ext[3] + 1, ext[5] + 1)
     out["origin"] = [float(v) for v in re.search(r'Origin="([^"]+)"', head).group(1).split()]
-    out["h"] = float(re.search(r'Spacing="([^"]+)"', head).group(1).split()[0])
+    out["spacing"] = [float(v) for v in re.search(r'Spacing="([^"]+)"', head).group(1).split()]
+    out["h"] = out["spacing"][0]
     for m in re.finditer(r'<DataArray type="(\w+)" Name="(\w+)" NumberOfComponents="(\d+)" '
                          r'format="appended" offset="(\d+)"/>', head):
         kind, name, comps, offset = m.group(1), m.group(2), int(m.group(3)), int(m.group(4))

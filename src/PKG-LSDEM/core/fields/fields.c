@@ -8,7 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* the deposited channels, per node */
+/* the channels, per node: deposited about the deposit node (y = d = x - x_g), smoothed
+ * about the target node (y = x - x_n) */
 enum {
   CH_MASS = 0,     /* m */
   CH_Y = 1,        /* m y (3) */
@@ -37,37 +38,57 @@ static void fields_bounds(int n, const lsdem_field_grain *grains, int nb,
   }
 }
 
-/* the grid's centre: moments are taken about it to keep y small against the grid */
-static void grid_centre(const lsdem_field_grid *g, double c[3])
+/* L_box = sum over periodic axes k of jump_k e_k^T / period_k: u - L_box x is periodic */
+static void box_gradient(const lsdem_field_box *box, double L[9])
 {
-  for (int k = 0; k < 3; k++) c[k] = g->origin[k] + 0.5 * g->h * (g->n[k] - 1);
+  for (int k = 0; k < 9; k++) L[k] = 0.0;
+  for (int k = 0; k < 3; k++)
+    if (box->periodic[k])
+      for (int i = 0; i < 3; i++) L[3 * i + k] = box->jump[k][i] / (box->hi[k] - box->lo[k]);
 }
 
-static void deposit_grain(const lsdem_field_grid *g, const double c[3],
+/* a grain's moments about each node of its cell (d = x - x_g exact, the node's image next
+ * to x), with u' = u - L_box x */
+static void deposit_grain(const lsdem_field_grid *g, const double Lbox[9],
                           const lsdem_field_grain *gr, double *channels)
 {
-  double v[CH_STRESS] = {0.0}, y[3];
-  lsdem_sub3(gr->x, c, y);
+  size_t node[8];
+  double w[8], d[8][3], u[3], Lx[3];
+  lsdem_field_cell(g, gr->x, node, w, d);
+  lsdem_mat_vec(Lbox, gr->x, Lx);
+  lsdem_sub3(gr->u, Lx, u);
   const double m = gr->mass;
-  v[CH_MASS] = m;
-  for (int i = 0; i < 3; i++) {
-    v[CH_Y + i] = m * y[i];
-    v[CH_U + i] = m * gr->u[i];
-    for (int j = 0; j < 3; j++) v[CH_UY + 3 * i + j] = m * gr->u[i] * y[j];
+  const size_t nodes = lsdem_field_grid_nodes(g);
+  for (int c = 0; c < 8; c++) {
+    double v[CH_STRESS];
+    const double *y = d[c];
+    v[CH_MASS] = m;
+    for (int i = 0; i < 3; i++) {
+      v[CH_Y + i] = m * y[i];
+      v[CH_U + i] = m * u[i];
+      for (int j = 0; j < 3; j++) v[CH_UY + 3 * i + j] = m * u[i] * y[j];
+    }
+    for (int s = 0; s < 6; s++) v[CH_YY + s] = m * y[SYM_I[s]] * y[SYM_J[s]];
+    v[CH_VOLUME] = gr->volume;
+    for (int ch = 0; ch < CH_STRESS; ch++) channels[(size_t)ch * nodes + node[c]] += w[c] * v[ch];
   }
-  for (int s = 0; s < 6; s++) v[CH_YY + s] = m * y[SYM_I[s]] * y[SYM_J[s]];
-  v[CH_VOLUME] = gr->volume;
-  lsdem_field_deposit(g, gr->x, CH_STRESS, v, channels);
 }
 
-/* Goldhirsch's line integral along b = point - centre, by the midpoint rule on pieces no
- * longer than h: each piece carries 1/pieces of -sym(f (x) b) */
-static void deposit_branch(const lsdem_field_grid *g, const lsdem_field_branch *br,
-                           double *channels)
+/* Goldhirsch's line integral along b = point - centre (minimum image on a periodic axis),
+ * by the midpoint rule on pieces no longer than the finest spacing: each piece carries
+ * 1/pieces of -sym(f (x) b) */
+static void deposit_branch(const lsdem_field_grid *g, const lsdem_field_box *box,
+                           const lsdem_field_branch *br, double *channels)
 {
   double b[3], v[6];
   lsdem_sub3(br->point, br->centre, b);
-  const int pieces = (int)ceil(sqrt(lsdem_dot3(b, b)) / g->h) + (lsdem_dot3(b, b) == 0.0);
+  for (int k = 0; k < 3; k++)
+    if (box->periodic[k]) {
+      const double period = box->hi[k] - box->lo[k];
+      b[k] -= period * round(b[k] / period);
+    }
+  const double h = fmin(g->h[0], fmin(g->h[1], g->h[2]));
+  const int pieces = (int)ceil(sqrt(lsdem_dot3(b, b)) / h) + (lsdem_dot3(b, b) == 0.0);
   for (int s = 0; s < 6; s++) {
     const int i = SYM_I[s], j = SYM_J[s];
     v[s] = -0.5 * (br->force[i] * b[j] + br->force[j] * b[i]) / pieces;
@@ -79,6 +100,27 @@ static void deposit_branch(const lsdem_field_grid *g, const lsdem_field_branch *
                          br->centre[2] + t * b[2]};
     lsdem_field_deposit(g, x, 6, v, channels + CH_STRESS * nodes);
   }
+}
+
+/* The smoothing as moment kernels (lsdem_field_smooth_terms): with r = x_g - x_n, the
+ * moments about the target node are sum G (m, m (d + r), m (d + r)(d + r)^T, m u,
+ * m u (d + r)^T) -- the binomial expansion of each in d and r */
+static int smoothing_terms(lsdem_field_term *t)
+{
+  int n = 0;
+#define TERM(o, i, k) (t[n].out = (o), t[n].in = (i), t[n].kernel = (k), n++)
+  for (int c = 0; c < NCHAN; c++) TERM(c, c, 0);
+  for (int i = 0; i < 3; i++) TERM(CH_Y + i, CH_MASS, 1 + i);
+  for (int s = 0; s < 6; s++) {
+    const int i = SYM_I[s], j = SYM_J[s];
+    TERM(CH_YY + s, CH_Y + j, 1 + i);
+    TERM(CH_YY + s, CH_Y + i, 1 + j);
+    TERM(CH_YY + s, CH_MASS, 4 + s);
+  }
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) TERM(CH_UY + 3 * i + j, CH_U + i, 1 + j);
+#undef TERM
+  return n;
 }
 
 /* M^-1 of a general 3x3 matrix by cofactors; 0 when det M <= 0 (the fit turned the
@@ -111,9 +153,10 @@ static int invert_covariance(const double C[9], double min_var, double inv[9])
   return 1;
 }
 
-/* F at a node from its smoothed moments: the weighted fit u = a + L (x - xbar),
- * L = cov(u, y) cov(y, y)^-1, F = (I - L)^-1; 0 if the node is not regular */
-static int node_gradient(const double *mom, double min_var, double F[9])
+/* F at a node from its smoothed moments: the weighted fit u' = a + L' (x - xbar),
+ * L' = cov(u', y) cov(y, y)^-1, L = L' + L_box, F = (I - L)^-1; 0 if the node is not
+ * regular */
+static int node_gradient(const double *mom, const double Lbox[9], double min_var, double F[9])
 {
   const double s0 = mom[CH_MASS];
   double ybar[3], ubar[3], C[9], Cinv[9], Cuy[9], L[9], Finv[9];
@@ -129,7 +172,7 @@ static int node_gradient(const double *mom, double min_var, double F[9])
     for (int j = 0; j < 3; j++) Cuy[3 * i + j] = mom[CH_UY + 3 * i + j] / s0 - ubar[i] * ybar[j];
   if (!invert_covariance(C, min_var, Cinv)) return 0;
   lsdem_mat_mul(Cuy, Cinv, L);
-  for (int k = 0; k < 9; k++) Finv[k] = (k % 4 == 0 ? 1.0 : 0.0) - L[k];
+  for (int k = 0; k < 9; k++) Finv[k] = (k % 4 == 0 ? 1.0 : 0.0) - (L[k] + Lbox[k]);
   return invert_proper(Finv, F);
 }
 
@@ -156,12 +199,12 @@ static void clear_kinematics(lsdem_fields *f, size_t node)
   f->volumetric[node] = f->shear[node] = NAN;
 }
 
-static void solve_kinematics(lsdem_fields *f, size_t node, const double *mom, double min_var,
-                             double min_mass)
+static void solve_kinematics(lsdem_fields *f, size_t node, const double *mom,
+                             const double Lbox[9], double min_var, double min_mass)
 {
   double F[9];
   lsdem_local_strain small, green;
-  f->regular[node] = mom[CH_MASS] >= min_mass && node_gradient(mom, min_var, F) &&
+  f->regular[node] = mom[CH_MASS] >= min_mass && node_gradient(mom, Lbox, min_var, F) &&
                      lsdem_strain_measures(F, LSDEM_STRAIN_SMALL, &small) == LSDEM_OK &&
                      lsdem_strain_measures(F, LSDEM_STRAIN_GREEN, &green) == LSDEM_OK;
   if (!f->regular[node]) {
@@ -215,7 +258,9 @@ void lsdem_fields_free(lsdem_fields *f)
 static void solve_nodes(lsdem_fields *f, const double *channels, const lsdem_field_params *p)
 {
   const size_t nodes = lsdem_field_grid_nodes(&f->grid);
-  const double per_volume = 1.0 / (f->grid.h * f->grid.h * f->grid.h);
+  const double per_volume = 1.0 / (f->grid.h[0] * f->grid.h[1] * f->grid.h[2]);
+  double Lbox[9];
+  box_gradient(&p->box, Lbox);
   double max_mass = 0.0;
   for (size_t k = 0; k < nodes; k++)
     if (channels[k] > max_mass) max_mass = channels[k];
@@ -229,7 +274,8 @@ static void solve_nodes(lsdem_fields *f, const double *channels, const lsdem_fie
       f->stress[9 * node + 3 * i + j] = f->stress[9 * node + 3 * j + i] =
           per_volume * mom[CH_STRESS + s];
     }
-    solve_kinematics(f, node, mom, p->min_variance * p->width * p->width, p->min_weight * max_mass);
+    solve_kinematics(f, node, mom, Lbox, p->min_variance * p->width * p->width,
+                     p->min_weight * max_mass);
     f->inside[node] = 1;
   }
 }
@@ -243,9 +289,9 @@ lsdem_status lsdem_fields_compute(const lsdem_field_params *p, int n,
   if (n < 1 || nb < 0 || !(p->min_variance >= 0.0) || !(p->min_weight >= 0.0))
     return lsdem_fail(err, LSDEM_ERR_ARG, "fields: %d grains, %d branches, min_variance %g, "
                       "min_weight %g", n, nb, p->min_variance, p->min_weight);
-  double lo[3], hi[3], c[3];
+  double lo[3], hi[3], Lbox[9];
   fields_bounds(n, grains, nb, branches, lo, hi);
-  lsdem_status s = lsdem_field_grid_cover(lo, hi, p->h, p->width, &out->grid, err);
+  lsdem_status s = lsdem_field_grid_cover_box(&p->box, lo, hi, p->h, p->width, &out->grid, err);
   if (s != LSDEM_OK) return s;
   const size_t nodes = lsdem_field_grid_nodes(&out->grid);
   double *channels = calloc(NCHAN * nodes, sizeof(double));
@@ -254,14 +300,27 @@ lsdem_status lsdem_fields_compute(const lsdem_field_params *p, int n,
     lsdem_fields_free(out);
     return lsdem_fail(err, LSDEM_ERR_NOMEM, "fields: no memory for %zu nodes", nodes);
   }
-  grid_centre(&out->grid, c);
-  for (int i = 0; i < n; i++) deposit_grain(&out->grid, c, grains + i, channels);
-  for (int i = 0; i < nb; i++) deposit_branch(&out->grid, branches + i, channels);
-  s = lsdem_field_smooth_fft(&out->grid, p->width, NCHAN, channels, err);
+  box_gradient(&p->box, Lbox);
+  for (int i = 0; i < n; i++) deposit_grain(&out->grid, Lbox, grains + i, channels);
+  for (int i = 0; i < nb; i++) deposit_branch(&out->grid, &p->box, branches + i, channels);
+  lsdem_field_term terms[64];
+  const int nterms = smoothing_terms(terms);
+  s = lsdem_field_smooth_terms(&out->grid, p->width, NCHAN, channels, NCHAN, channels, nterms,
+                               terms, err);
   if (s == LSDEM_OK) solve_nodes(out, channels, p);
   else lsdem_fields_free(out);
   free(channels);
   return s;
+}
+
+/* a node outside the material: every field NaN */
+static void mask_node(lsdem_fields *f, size_t node)
+{
+  f->inside[node] = 0;
+  f->regular[node] = 0;
+  f->density[node] = f->solid_fraction[node] = NAN;
+  clear_kinematics(f, node);
+  set_nan(f->stress + 9 * node, 9);
 }
 
 void lsdem_fields_mask_cylinder(lsdem_fields *f, const double centre[2], double radius,
@@ -272,14 +331,23 @@ void lsdem_fields_mask_cylinder(lsdem_fields *f, const double centre[2], double 
   for (int i2 = 0; i2 < g->n[2]; i2++)
     for (int i1 = 0; i1 < g->n[1]; i1++)
       for (int i0 = 0; i0 < g->n[0]; i0++, node++) {
-        const double x = g->origin[0] + g->h * i0 - centre[0];
-        const double y = g->origin[1] + g->h * i1 - centre[1];
-        const double z = g->origin[2] + g->h * i2;
+        const double x = g->origin[0] + g->h[0] * i0 - centre[0];
+        const double y = g->origin[1] + g->h[1] * i1 - centre[1];
+        const double z = g->origin[2] + g->h[2] * i2;
         if (x * x + y * y <= radius * radius && z >= zlo && z <= zhi) continue;
-        f->inside[node] = 0;
-        f->regular[node] = 0;
-        f->density[node] = f->solid_fraction[node] = NAN;
-        clear_kinematics(f, node);
-        set_nan(f->stress + 9 * node, 9);
+        mask_node(f, node);
       }
+}
+
+lsdem_status lsdem_fields_mask_surface(lsdem_fields *f, int nv, const double *v, int nt,
+                                       const int *tri, lsdem_error *err)
+{
+  const size_t nodes = lsdem_field_grid_nodes(&f->grid);
+  unsigned char *in = malloc(nodes);
+  if (!in) return lsdem_fail(err, LSDEM_ERR_NOMEM, "mask: no memory for %zu nodes", nodes);
+  const lsdem_status s = lsdem_field_inside_surface(&f->grid, nv, v, nt, tri, in, err);
+  for (size_t node = 0; s == LSDEM_OK && node < nodes; node++)
+    if (!in[node]) mask_node(f, node);
+  free(in);
+  return s;
 }

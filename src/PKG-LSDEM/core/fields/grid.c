@@ -29,52 +29,98 @@ static int fft_friendly_size(int n)
 lsdem_status lsdem_field_grid_cover(const double lo[3], const double hi[3], double h,
                                     double width, lsdem_field_grid *g, lsdem_error *err)
 {
+  return lsdem_field_grid_cover_box(NULL, lo, hi, h, width, g, err);
+}
+
+lsdem_status lsdem_field_grid_cover_box(const lsdem_field_box *box, const double lo[3],
+                                        const double hi[3], double h, double width,
+                                        lsdem_field_grid *g, lsdem_error *err)
+{
   if (!(h > 0.0) || !(width > 0.0) || !isfinite(h) || !isfinite(width))
     return lsdem_fail(err, LSDEM_ERR_ARG, "field grid: spacing %g and width %g must be > 0",
                       h, width);
   const int pad = lsdem_field_kernel_reach(width, h) + 1;
   double total = 1.0;
   for (int k = 0; k < 3; k++) {
-    if (!(hi[k] >= lo[k]) || !isfinite(hi[k] - lo[k]))
-      return lsdem_fail(err, LSDEM_ERR_ARG, "field grid: empty box on axis %d", k);
-    const double span = ceil((hi[k] - lo[k]) / h) + 1.0 + 2.0 * pad;
-    if (span > 1 << 20)
-      return lsdem_fail(err, LSDEM_ERR_NOMEM, "field grid: %.0f nodes on axis %d", span, k);
-    g->n[k] = fft_friendly_size((int)span);
-    g->origin[k] = lo[k] - pad * h;
+    g->periodic[k] = box && box->periodic[k];
+    if (g->periodic[k]) { /* one period, unpadded: the FFT's circular convolution */
+      const double period = box->hi[k] - box->lo[k];
+      if (!(period > 0.0) || !isfinite(period))
+        return lsdem_fail(err, LSDEM_ERR_ARG, "field grid: period %g on axis %d", period, k);
+      const double span = ceil(period / h);
+      if (span > 1 << 20)
+        return lsdem_fail(err, LSDEM_ERR_NOMEM, "field grid: %.0f nodes on axis %d", span, k);
+      g->n[k] = fft_friendly_size((int)span);
+      g->h[k] = period / g->n[k];
+      g->origin[k] = box->lo[k];
+      const int reach = lsdem_field_kernel_reach(width, g->h[k]);
+      if (2 * reach + 2 > g->n[k])
+        return lsdem_fail(err, LSDEM_ERR_ARG, "field grid: the kernel's reach %g (3 W) is not "
+                          "below half the period %g on periodic axis %d",
+                          LSDEM_FIELD_KERNEL_CUT * width, period, k);
+    } else {
+      if (!(hi[k] >= lo[k]) || !isfinite(hi[k] - lo[k]))
+        return lsdem_fail(err, LSDEM_ERR_ARG, "field grid: empty box on axis %d", k);
+      const double span = ceil((hi[k] - lo[k]) / h) + 1.0 + 2.0 * pad;
+      if (span > 1 << 20)
+        return lsdem_fail(err, LSDEM_ERR_NOMEM, "field grid: %.0f nodes on axis %d", span, k);
+      g->n[k] = fft_friendly_size((int)span);
+      g->h[k] = h;
+      g->origin[k] = lo[k] - pad * h;
+    }
     total *= g->n[k];
   }
-  g->h = h;
   if (total > 2147483647.0)
     return lsdem_fail(err, LSDEM_ERR_NOMEM, "field grid: %.0f nodes (spacing %g too fine)",
                       total, h);
   return LSDEM_OK;
 }
 
-void lsdem_field_deposit(const lsdem_field_grid *g, const double x[3], int nchan,
-                         const double *value, double *channels)
+void lsdem_field_cell(const lsdem_field_grid *g, const double x[3], size_t node[8],
+                      double weight[8], double offset[8][3])
 {
   int i0[3];
   double t[3];
   for (int k = 0; k < 3; k++) {
-    const double s = (x[k] - g->origin[k]) / g->h;
+    const double s = (x[k] - g->origin[k]) / g->h[k];
     i0[k] = (int)floor(s);
     t[k] = s - i0[k];
   }
-  const size_t nodes = lsdem_field_grid_nodes(g);
   for (int c = 0; c < 8; c++) {
     const int d[3] = {c & 1, (c >> 1) & 1, (c >> 2) & 1};
-    const double w = (d[0] ? t[0] : 1.0 - t[0]) * (d[1] ? t[1] : 1.0 - t[1]) *
-                     (d[2] ? t[2] : 1.0 - t[2]);
-    const size_t node = (size_t)(i0[0] + d[0]) +
-                        (size_t)g->n[0] * ((size_t)(i0[1] + d[1]) +
-                                           (size_t)g->n[1] * (size_t)(i0[2] + d[2]));
-    for (int ch = 0; ch < nchan; ch++) channels[(size_t)ch * nodes + node] += w * value[ch];
+    size_t index[3];
+    for (int k = 0; k < 3; k++) {
+      int i = i0[k] + d[k];
+      if (offset) offset[c][k] = x[k] - (g->origin[k] + g->h[k] * i);
+      if (g->periodic[k]) i = ((i % g->n[k]) + g->n[k]) % g->n[k]; /* the image in the period */
+      index[k] = (size_t)i;
+    }
+    weight[c] = (d[0] ? t[0] : 1.0 - t[0]) * (d[1] ? t[1] : 1.0 - t[1]) *
+                (d[2] ? t[2] : 1.0 - t[2]);
+    node[c] = index[0] + (size_t)g->n[0] * (index[1] + (size_t)g->n[1] * index[2]);
   }
+}
+
+void lsdem_field_deposit(const lsdem_field_grid *g, const double x[3], int nchan,
+                         const double *value, double *channels)
+{
+  size_t node[8];
+  double w[8];
+  lsdem_field_cell(g, x, node, w, NULL);
+  const size_t nodes = lsdem_field_grid_nodes(g);
+  for (int c = 0; c < 8; c++)
+    for (int ch = 0; ch < nchan; ch++) channels[(size_t)ch * nodes + node[c]] += w[c] * value[ch];
 }
 
 void lsdem_field_kernel(const lsdem_field_grid *g, double width, double *kernel)
 {
+  lsdem_field_kernel_moment(g, width, 0, kernel);
+}
+
+void lsdem_field_kernel_moment(const lsdem_field_grid *g, double width, int which,
+                               double *kernel)
+{
+  static const int SYM_I[6] = {0, 0, 0, 1, 1, 2}, SYM_J[6] = {0, 1, 2, 1, 2, 2};
   const double cut2 = LSDEM_FIELD_KERNEL_CUT * LSDEM_FIELD_KERNEL_CUT * width * width;
   const double a = 1.0 / (2.0 * width * width);
   double sum = 0.0;
@@ -82,12 +128,17 @@ void lsdem_field_kernel(const lsdem_field_grid *g, double width, double *kernel)
   for (int i2 = 0; i2 < g->n[2]; i2++)
     for (int i1 = 0; i1 < g->n[1]; i1++)
       for (int i0 = 0; i0 < g->n[0]; i0++, node++) {
-        const int o[3] = {i0 <= g->n[0] / 2 ? i0 : i0 - g->n[0],
-                          i1 <= g->n[1] / 2 ? i1 : i1 - g->n[1],
-                          i2 <= g->n[2] / 2 ? i2 : i2 - g->n[2]};
-        const double r2 = g->h * g->h * (double)(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
-        kernel[node] = r2 <= cut2 ? exp(-a * r2) : 0.0;
-        sum += kernel[node];
+        const int i[3] = {i0, i1, i2};
+        double r[3], r2 = 0.0; /* r = source - target = -(the periodic offset) */
+        for (int k = 0; k < 3; k++) {
+          r[k] = -(i[k] <= g->n[k] / 2 ? i[k] : i[k] - g->n[k]) * g->h[k];
+          r2 += r[k] * r[k];
+        }
+        const double G = r2 <= cut2 ? exp(-a * r2) : 0.0;
+        sum += G;
+        kernel[node] = which == 0  ? G
+                       : which < 4 ? G * r[which - 1]
+                                   : G * r[SYM_I[which - 4]] * r[SYM_J[which - 4]];
       }
   const size_t nodes = lsdem_field_grid_nodes(g);
   for (size_t k = 0; k < nodes; k++) kernel[k] /= sum;

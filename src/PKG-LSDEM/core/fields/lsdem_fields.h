@@ -25,13 +25,26 @@ extern "C" {
 
 /* ------------------------------------------------------------- grid (grid.c) ---- */
 
-/* Nodes i = (i0, i1, i2), 0 <= ik < n[k], at origin + h i; stored with i0 (x) fastest:
- * index i0 + n0 (i1 + n1 i2). */
+/* Nodes i = (i0, i1, i2), 0 <= ik < n[k], at origin + h i (per axis); stored with i0 (x)
+ * fastest: index i0 + n0 (i1 + n1 i2). A periodic axis holds exactly one period: node
+ * n[k] is node 0 again, one period further. */
 typedef struct {
   int n[3];
   double origin[3];
-  double h;
+  double h[3];
+  int periodic[3];
 } lsdem_field_grid;
+
+/* The box the grains live in: on an axis with periodic[k], the period [lo[k], hi[k]) (an
+ * orthogonal box) and jump[k], the displacement an image one period further along axis k
+ * has over the grain (the period vector now minus the one at the reference: 0 for a box
+ * that kept its shape; a homogeneous deformation of the box makes affine displacements
+ * periodic only with it). Zeros: an open box. */
+typedef struct {
+  int periodic[3];
+  double lo[3], hi[3];
+  double jump[3][3];
+} lsdem_field_box;
 
 /* The Gaussian kernel exp(-r^2 / (2 w^2)) is cut at LSDEM_FIELD_KERNEL_CUT w. */
 #define LSDEM_FIELD_KERNEL_CUT 3.0
@@ -47,14 +60,32 @@ int lsdem_field_kernel_reach(double width, double h);
  * LSDEM_ERR_ARG for h, width <= 0 or an empty box; LSDEM_ERR_NOMEM beyond 2^31 nodes. */
 lsdem_status lsdem_field_grid_cover(const double lo[3], const double hi[3], double h,
                                     double width, lsdem_field_grid *g, lsdem_error *err);
+/* As lsdem_field_grid_cover on the open axes of box (box NULL: all open); a periodic axis
+ * spans exactly its period, unpadded: n = the smallest fast size >= period / h nodes of
+ * spacing period / n (<= h), the FFT's circular convolution being the periodic one there.
+ * LSDEM_ERR_ARG also when the kernel's reach is not below half the period (2 reach + 2 >
+ * n: a grain would meet a node as two of its images). */
+lsdem_status lsdem_field_grid_cover_box(const lsdem_field_box *box, const double lo[3],
+                                        const double hi[3], double h, double width,
+                                        lsdem_field_grid *g, lsdem_error *err);
+/* The trilinear cell of x: its 8 nodes (wrapped on periodic axes), their weights (>= 0,
+ * sum 1) and, if offset is not NULL, x minus each node's position (the node's image next
+ * to x). x must lie inside the grid's padded interior on the open axes; on a periodic axis
+ * anywhere. */
+void lsdem_field_cell(const lsdem_field_grid *g, const double x[3], size_t node[8],
+                      double weight[8], double offset[8][3]);
 /* Adds value[c] times the trilinear weights of x to channel c (channels: nchan arrays of
  * lsdem_field_grid_nodes(g) doubles, one after the other). The weights are >= 0 and sum to
- * 1, so a deposit keeps every total. x must lie inside the grid's padded interior. */
+ * 1, so a deposit keeps every total. x as for lsdem_field_cell. */
 void lsdem_field_deposit(const lsdem_field_grid *g, const double x[3], int nchan,
                          const double *value, double *channels);
 /* The discrete kernel on the grid, periodic offsets (node i holds G at the offset
  * min(i, n - i) h per axis), normalised to sum 1: smoothing keeps totals. */
 void lsdem_field_kernel(const lsdem_field_grid *g, double width, double *kernel);
+/* The moment kernel K(which) of lsdem_field_smooth_terms (K0: lsdem_field_kernel), the
+ * same normalisation. */
+void lsdem_field_kernel_moment(const lsdem_field_grid *g, double width, int which,
+                               double *kernel);
 
 /* ---------------------------------------------------------- smooth (smooth.c) ---- */
 
@@ -63,16 +94,31 @@ void lsdem_field_kernel(const lsdem_field_grid *g, double width, double *kernel)
  * each occupied node over the (2 reach + 1)^3 nodes within reach, as a sum over grains
  * would. Both give the linear convolution of deposits made by lsdem_field_deposit on a grid
  * from lsdem_field_grid_cover (the direct sum needs them there: it writes within reach of
- * each). FFTW plans with FFTW_ESTIMATE on fftw_malloc'd buffers: the same bits on every
- * call with the same grid. LSDEM_ERR_NOMEM. */
+ * each), the periodic one on a periodic axis. FFTW plans with FFTW_ESTIMATE on
+ * fftw_malloc'd buffers: the same bits on every call with the same grid. LSDEM_ERR_NOMEM. */
 lsdem_status lsdem_field_smooth_fft(const lsdem_field_grid *g, double width, int nchan,
                                     double *channels, lsdem_error *err);
 lsdem_status lsdem_field_smooth_direct(const lsdem_field_grid *g, double width, int nchan,
                                        double *channels, lsdem_error *err);
+/* Moment kernels: K0 = G (the normalised kernel), K(1 + i) = G r_i, K(4 + s) = G r_i r_j
+ * (s: xx xy xz yy yz zz), r = source node - target node (minimum image on periodic axes).
+ * A term adds K(kernel) * channel in to channel out. */
+enum { LSDEM_FIELD_KERNELS = 10 };
+typedef struct {
+  int out, in, kernel;
+} lsdem_field_term;
+/* out[t.out] = sum over the terms t of K(t.kernel) * in[t.in], by FFT (one forward transform
+ * per input channel, one inverse per output channel); in and out may be the same array.
+ * LSDEM_ERR_NOMEM. */
+lsdem_status lsdem_field_smooth_terms(const lsdem_field_grid *g, double width, int nin,
+                                      const double *in, int nout, double *out, int nterms,
+                                      const lsdem_field_term *terms, lsdem_error *err);
 
 /* ---------------------------------------------------------- fields (fields.c) ---- */
 
-/* A grain now: mass, solid volume, centre x, displacement u since the reference. */
+/* A grain now: mass, solid volume, centre x, displacement u since the reference. On a
+ * periodic axis x may be any image, u being that image's displacement (the unwrapped centre
+ * for the unwrapped displacement); the core wraps it. */
 typedef struct {
   double mass, volume, x[3], u[3];
 } lsdem_field_grain;
@@ -92,6 +138,7 @@ typedef struct {
   double min_weight;   /* ... and its kernel mass is >= min_weight times the largest.
                           Below these the fit is ill-posed, and the FFT's round-off (relative
                           to each channel's largest value) would show */
+  lsdem_field_box box; /* periodic axes (zeros: an open box) */
 } lsdem_field_params;
 /* defaults: on random packings an affine field comes out exact to ~1e-12 relative, a
  * rigid rotation strain-free to ~1e-13, at every regular node (unittest/core/test_fields.c) */
@@ -116,14 +163,19 @@ typedef struct {
 } lsdem_fields;
 
 /* The fields of n grains and nb contact branches (in their given order: the result's bits
- * depend on it). Each grain deposits its moments m, m y, m y y^T, m u, m u y^T (y = x - the
- * grid's centre) and V; each branch deposits -sym(f (x) b) spread uniformly along
- * b = point - centre (Goldhirsch 2010: ceil(|b| / h) equal pieces, each at its midpoint).
- * After smoothing, a node's moments are those of a Gaussian-weighted least-squares fit
- * u(x) = a + L (x - xbar) over the grains, F = (I - L)^-1; an affine displacement is
- * recovered exactly. Integrals over the grid: sum density h^3 = total mass, sum stress h^3 =
- * -sum sym(f (x) b) (the Love-Weber sum). Allocates out (lsdem_fields_free).
- * LSDEM_ERR_ARG (bad params, n < 1), LSDEM_ERR_NOMEM. */
+ * depend on it). Each grain deposits, on each node g of its trilinear cell, its moments
+ * m, m d, m d d^T, m u, m u d^T about that node (d = x - x_g) and V; the smoothing moves
+ * them to the target node n with the moment kernels (d + x_g - x_n, the binomial
+ * expansion), so every node's moments are about itself, with the grain's image nearest it
+ * on a periodic axis. Each branch deposits -sym(f (x) b) spread uniformly along
+ * b = point - centre (minimum image on a periodic axis; Goldhirsch 2010: ceil(|b| / h)
+ * equal pieces, each at its midpoint). A node's moments are those of a Gaussian-weighted
+ * least-squares fit u(x) = a + L (x - xbar) over the grains, F = (I - L)^-1; an affine
+ * displacement is recovered exactly. In a periodic box the fit is made of u - L_box x,
+ * periodic for an affine field consistent with the box (L_box = sum_k jump_k e_k^T /
+ * period_k), and L_box added back. Integrals over the grid: sum density dV = total mass,
+ * sum stress dV = -sum sym(f (x) b) (the Love-Weber sum). Allocates out
+ * (lsdem_fields_free). LSDEM_ERR_ARG (bad params, n < 1), LSDEM_ERR_NOMEM. */
 lsdem_status lsdem_fields_compute(const lsdem_field_params *p, int n,
                                   const lsdem_field_grain *grains, int nb,
                                   const lsdem_field_branch *branches, lsdem_fields *out,
@@ -133,6 +185,21 @@ void lsdem_fields_free(lsdem_fields *f);
  * = 0 and every field NaN (a membrane's outline: nothing outside is granular material). */
 void lsdem_fields_mask_cylinder(lsdem_fields *f, const double centre[2], double radius,
                                 double zlo, double zhi);
+/* inside[node] = 1 for the grid nodes inside the closed surface of nt triangles (vertex
+ * indices into the nv points v, 3 doubles each); each loop of boundary edges (edges of one
+ * triangle only: an open membrane's end rings) is closed by a fan to the loop's centroid.
+ * Point in closed surface by ray parity: a ray along +x from each node row, the crossings
+ * found in the (y, z) projection with an exact, shared tie rule (an edge's orientation
+ * computed once in a fixed vertex order, ties broken by the perturbation (y + e, z + e^2)),
+ * so a ray through an edge or vertex counts one crossing, or two at a fold; nodes on the
+ * surface fall either side. Cost: triangles times the rows under each, plus the nodes.
+ * LSDEM_ERR_ARG for a vertex index out of range, LSDEM_ERR_NOMEM. */
+lsdem_status lsdem_field_inside_surface(const lsdem_field_grid *g, int nv, const double *v,
+                                        int nt, const int *tri, unsigned char *inside,
+                                        lsdem_error *err);
+/* The nodes outside that surface masked as by lsdem_fields_mask_cylinder. */
+lsdem_status lsdem_fields_mask_surface(lsdem_fields *f, int nv, const double *v, int nt,
+                                       const int *tri, lsdem_error *err);
 
 /* ---------------------------------------------------------------- vti (vti.c) ---- */
 

@@ -78,11 +78,19 @@ lsdem_status lsdem_field_smooth_fft(const lsdem_field_grid *g, double width, int
   return LSDEM_OK;
 }
 
+/* node index j + o on axis k: wrapped on a periodic axis (the open axes' padding keeps it
+ * inside) */
+static size_t axis_index(const lsdem_field_grid *g, int k, int i)
+{
+  if (g->periodic[k]) i = ((i % g->n[k]) + g->n[k]) % g->n[k];
+  return (size_t)i;
+}
+
 /* out[j + o] += kernel[o] in[j] for every node j holding a deposit and every offset o
- * within reach (the grid's padding keeps j + o inside): the cost is the occupied nodes
- * times the kernel's (2 reach + 1)^3, the way a direct sum over grains goes */
-static void convolve_direct(const lsdem_field_grid *g, int reach, const double *kernel,
-                            const double *in, double *out)
+ * within reach: the cost is the occupied nodes times the kernel's (2 reach + 1)^3, the
+ * way a direct sum over grains goes */
+static void convolve_direct(const lsdem_field_grid *g, const int reach[3],
+                            const double *kernel, const double *in, double *out)
 {
   const int *n = g->n;
   const size_t nodes = lsdem_field_grid_nodes(g);
@@ -92,13 +100,14 @@ static void convolve_direct(const lsdem_field_grid *g, int reach, const double *
     for (int j1 = 0; j1 < n[1]; j1++)
       for (int j0 = 0; j0 < n[0]; j0++, node++) {
         if (in[node] == 0.0) continue;
-        for (int o2 = -reach; o2 <= reach; o2++)
-          for (int o1 = -reach; o1 <= reach; o1++) {
-            const size_t row = (size_t)n[0] * ((size_t)(j1 + o1) + (size_t)n[1] * (j2 + o2));
+        for (int o2 = -reach[2]; o2 <= reach[2]; o2++)
+          for (int o1 = -reach[1]; o1 <= reach[1]; o1++) {
+            const size_t row = (size_t)n[0] * (axis_index(g, 1, j1 + o1) +
+                                               (size_t)n[1] * axis_index(g, 2, j2 + o2));
             const size_t krow = (size_t)n[0] * ((size_t)(o1 < 0 ? o1 + n[1] : o1) +
                                                 (size_t)n[1] * (size_t)(o2 < 0 ? o2 + n[2] : o2));
-            for (int o0 = -reach; o0 <= reach; o0++)
-              out[row + (size_t)(j0 + o0)] +=
+            for (int o0 = -reach[0]; o0 <= reach[0]; o0++)
+              out[row + axis_index(g, 0, j0 + o0)] +=
                   kernel[krow + (size_t)(o0 < 0 ? o0 + n[0] : o0)] * in[node];
           }
       }
@@ -116,7 +125,11 @@ lsdem_status lsdem_field_smooth_direct(const lsdem_field_grid *g, double width, 
     return lsdem_fail(err, LSDEM_ERR_NOMEM, "field smoothing: no memory for %zu nodes", nodes);
   }
   lsdem_field_kernel(g, width, kernel);
-  const int reach = lsdem_field_kernel_reach(width, g->h);
+  int reach[3];
+  for (int k = 0; k < 3; k++) {
+    reach[k] = lsdem_field_kernel_reach(width, g->h[k]);
+    if (2 * reach[k] + 1 > g->n[k]) reach[k] = (g->n[k] - 1) / 2; /* the kernel is zero beyond */
+  }
   for (int c = 0; c < nchan; c++) {
     double *channel = channels + (size_t)c * nodes;
     memcpy(in, channel, nodes * sizeof(double));
@@ -124,5 +137,68 @@ lsdem_status lsdem_field_smooth_direct(const lsdem_field_grid *g, double width, 
   }
   free(kernel);
   free(in);
+  return LSDEM_OK;
+}
+
+lsdem_status lsdem_field_smooth_terms(const lsdem_field_grid *g, double width, int nin,
+                                      const double *in, int nout, double *out, int nterms,
+                                      const lsdem_field_term *terms, lsdem_error *err)
+{
+  fft_work w;
+  memset(&w, 0, sizeof w);
+  w.nodes = lsdem_field_grid_nodes(g);
+  w.modes = (size_t)g->n[2] * (size_t)g->n[1] * (size_t)(g->n[0] / 2 + 1);
+  fftw_complex *kspec[LSDEM_FIELD_KERNELS] = {NULL};
+  w.real = fftw_malloc(w.nodes * sizeof(double));
+  w.spectrum = fftw_malloc(w.modes * sizeof(fftw_complex));
+  fftw_complex *ins = fftw_malloc((size_t)nin * w.modes * sizeof(fftw_complex));
+  int ok = w.real && w.spectrum && ins;
+  if (ok) {
+    w.forward = fftw_plan_dft_r2c_3d(g->n[2], g->n[1], g->n[0], w.real, w.spectrum,
+                                     FFTW_ESTIMATE);
+    w.backward = fftw_plan_dft_c2r_3d(g->n[2], g->n[1], g->n[0], w.spectrum, w.real,
+                                      FFTW_ESTIMATE);
+    ok = w.forward && w.backward;
+  }
+  /* the kernels the terms use, each spectrum scaled by 1/N (the inverse is unnormalised) */
+  const double scale = 1.0 / (double)w.nodes;
+  for (int t = 0; ok && t < nterms; t++) {
+    const int k = terms[t].kernel;
+    if (kspec[k]) continue;
+    if (!(kspec[k] = fftw_malloc(w.modes * sizeof(fftw_complex)))) {
+      ok = 0;
+      break;
+    }
+    lsdem_field_kernel_moment(g, width, k, w.real);
+    fftw_execute(w.forward);
+    for (size_t m = 0; m < w.modes; m++) {
+      kspec[k][m][0] = scale * w.spectrum[m][0];
+      kspec[k][m][1] = scale * w.spectrum[m][1];
+    }
+  }
+  for (int c = 0; ok && c < nin; c++) {
+    memcpy(w.real, in + (size_t)c * w.nodes, w.nodes * sizeof(double));
+    fftw_execute(w.forward);
+    memcpy(ins + (size_t)c * w.modes, w.spectrum, w.modes * sizeof(fftw_complex));
+  }
+  for (int o = 0; ok && o < nout; o++) {
+    memset(w.spectrum, 0, w.modes * sizeof(fftw_complex));
+    for (int t = 0; t < nterms; t++) {
+      if (terms[t].out != o) continue;
+      const fftw_complex *a = ins + (size_t)terms[t].in * w.modes, *b = kspec[terms[t].kernel];
+      for (size_t m = 0; m < w.modes; m++) {
+        w.spectrum[m][0] += a[m][0] * b[m][0] - a[m][1] * b[m][1];
+        w.spectrum[m][1] += a[m][0] * b[m][1] + a[m][1] * b[m][0];
+      }
+    }
+    fftw_execute(w.backward);
+    memcpy(out + (size_t)o * w.nodes, w.real, w.nodes * sizeof(double));
+  }
+  for (int k = 0; k < LSDEM_FIELD_KERNELS; k++) fftw_free(kspec[k]);
+  fftw_free(ins);
+  fft_work_free(&w);
+  if (!ok)
+    return lsdem_fail(err, LSDEM_ERR_NOMEM, "field smoothing: no memory for a %dx%dx%d FFT "
+                      "of %d channels", g->n[0], g->n[1], g->n[2], nin);
   return LSDEM_OK;
 }

@@ -23,7 +23,7 @@ static void write_arrays(FILE *fp, const lsdem_field_grid *g, const vti_array *a
               "Spacing=\"%.17g %.17g %.17g\">\n<Piece Extent=\"0 %d 0 %d 0 %d\">\n"
               "<PointData Scalars=\"density\">\n",
           g->n[0] - 1, g->n[1] - 1, g->n[2] - 1, g->origin[0], g->origin[1], g->origin[2],
-          g->h, g->h, g->h, g->n[0] - 1, g->n[1] - 1, g->n[2] - 1);
+          g->h[0], g->h[1], g->h[2], g->n[0] - 1, g->n[1] - 1, g->n[2] - 1);
   uint64_t offset = 0;
   for (int k = 0; k < na; k++) {
     fprintf(fp, "<DataArray type=\"%s\" Name=\"%s\" NumberOfComponents=\"%d\" "

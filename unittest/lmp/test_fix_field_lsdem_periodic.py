@@ -1,0 +1,134 @@
+"""fix field/lsdem in a fully periodic box (issue 35 item 2).
+
+729 balls on a jittered lattice fill the box [0, 9)^3 (a few overlap: contacts, some across
+the faces); after run 0 (the reference) the box is deformed homogeneously with change_box
+... remap -- pure shear (x scale 1.01, y scale 0.99), dilation of 1 % (x y z scale 1.01),
+simple shear 0.01 (a triclinic box of tilt xy = -0.09 sheared to xy = 0) -- and a run of 1
+step writes the fields (at step 1 only: the reference box of the simple shear is tilted,
+where the fix refuses to write). Checked: the grid spans exactly the box now (origin boxlo,
+n h = the period on every axis); EVERY node is regular and carries H = F - I to 1e-10 relative,
+faces included; integrated density = total mass to 1e-12; integrated contact stress =
+compute stress/lsdem's sum to 1e-10; 1, 2 and 4 ranks write the same bytes; a run restarted
+from a file written after the deformation keeps the reference box (the jumps) and writes
+the same bytes."""
+import os
+import random
+
+import numpy as np
+
+import grain_decks as gd
+from lsdemtest import check, finish, run_lmp, thermo
+from vti import read_vti
+
+L = 9.0
+rng = random.Random(235)
+grains = []
+for i in range(9):
+    for j in range(9):
+        for k in range(9):
+            x = [c + 0.5 + rng.uniform(-0.06, 0.06) for c in (i, j, k)]
+            grains.append({"id": len(grains) + 1, "shape": 2, "density": 1.0 + rng.random(),
+                           "x": x, "q": [1.0, 0.0, 0.0, 0.0]})
+LIB = os.path.abspath(gd.library())
+gd.write_data("cube.data", grains, box=(0.0, L, 0.0, L, 0.0, L))
+text = open("cube.data").read()
+open("sheared.data", "w").write(text.replace("zlo zhi\n", "zlo zhi\n-0.09 0.0 0.0 xy xz yz\n"))
+DATA = {"cube": os.path.abspath("cube.data"), "sheared": os.path.abspath("sheared.data")}
+
+CASES = {
+    "pure_shear": ("cube", "change_box all x scale 1.01 y scale 0.99 remap",
+                   [[0.01, 0, 0], [0, -0.01, 0], [0, 0, 0]]),
+    "dilation": ("cube", "change_box all x scale 1.01 y scale 1.01 z scale 1.01 remap",
+                 [[0.01, 0, 0], [0, 0.01, 0], [0, 0, 0.01]]),
+    "simple_shear": ("sheared", "change_box all xy final 0.0 remap",
+                     [[0, 0.01, 0], [0, 0, 0], [0, 0, 0]]),
+}
+
+DECK = """units lj
+atom_style lsdem library %s
+atom_modify map array
+boundary p p p
+comm_modify vel yes
+read_data %s
+pair_style lsdem
+pair_coeff * * 1000 1000 0.5
+variable next equal stride(1,1000,1)
+fix f all field/lsdem v_next field kernel 1.2 spacing 0.5
+compute st all stress/lsdem volume 1.0
+variable mt equal mass(all)
+variable lx equal lx
+variable ly equal ly
+variable lz equal lz
+thermo_style custom step v_mt v_lx v_ly v_lz c_st[1] c_st[2] c_st[3] c_st[4] c_st[5] c_st[6]
+thermo_modify format float %%.17g
+run 0
+%s
+run 1
+"""
+
+for name, (data, change, H) in CASES.items():
+    outs = {}
+    for np_ in (1, 2, 4):
+        wd = os.path.abspath("%s_np%d" % (name, np_))
+        rc, log = run_lmp(DECK % (LIB, DATA[data], change), np=np_, cwd=wd)
+        path = os.path.join(wd, "field_1.vti")
+        if rc != 0 or not os.path.exists(path):
+            continue
+        outs[np_] = open(path, "rb").read()
+        if np_ != 1:
+            continue
+        f = read_vti(path)
+        row = thermo(log)[-1]
+        n, h = f["n"], f["spacing"]
+        box = [row["v_lx"], row["v_ly"], row["v_lz"]]
+        check(all(abs(n[k] * h[k] - box[k]) <= 1e-12 * box[k] for k in range(3)),
+              "%s: grid %r x %r, box %r" % (name, n, h, box))
+        reg = f["regular"][:, 0] == 1
+        nodes = n[0] * n[1] * n[2]
+        check(reg.all(), "%s: %d of %d nodes regular" % (name, reg.sum(), nodes))
+        Hm = np.array(H, dtype=float)
+        err = np.abs(f["displacement_gradient"] - Hm.reshape(9)).max()
+        check(err <= 1e-10 * np.abs(Hm).max(), "%s: gradient off by %g" % (name, err))
+        # the faces' nodes in particular (the first and last of each axis)
+        idx = np.arange(nodes)
+        ijk = (idx % n[0], idx // n[0] % n[1], idx // (n[0] * n[1]))
+        face = np.zeros(nodes, bool)
+        for k in range(3):
+            face |= (ijk[k] == 0) | (ijk[k] == n[k] - 1)
+        err_face = np.abs(f["displacement_gradient"][face] - Hm.reshape(9)).max()
+        dv = h[0] * h[1] * h[2]
+        mass = row["v_mt"]
+        check(abs(f["density"].sum() * dv - mass) <= 1e-12 * mass,
+              "%s: integrated density %r, mass %r" % (name, f["density"].sum() * dv, mass))
+        sigma = [row["c_st[%d]" % k] for k in range(1, 7)]
+        s = f["stress"].sum(axis=0) * dv
+        got = [s[0], s[4], s[8], s[1], s[2], s[5]]
+        scale = max(abs(c) for c in sigma)
+        check(scale > 0.0, "%s: no contacts" % name)
+        check(all(abs(a - b) <= 1e-10 * scale for a, b in zip(got, sigma)),
+              "%s: integrated stress %r, compute stress/lsdem %r" % (name, got, sigma))
+        print("%s: %d nodes, all regular; gradient error %.2e relative (faces %.2e); "
+              "mass %.2e; stress %.2e" % (
+                  name, nodes, err / np.abs(Hm).max(), err_face / np.abs(Hm).max(),
+                  abs(f["density"].sum() * dv - mass) / mass,
+                  max(abs(a - b) for a, b in zip(got, sigma)) / scale))
+    check(len(outs) == 3 and outs[1] == outs[2] == outs[4],
+          "%s: 1, 2, 4 ranks write different fields (%s)" % (name, sorted(outs)))
+    if name != "pure_shear":
+        continue
+    # the reference box survives a restart written after the deformation
+    deck = DECK % (LIB, DATA[data], change)
+    run_lmp(deck[:deck.rindex("run 1\n")] + "write_restart deformed.restart\n", cwd="restart")
+    run_lmp("""atom_style lsdem library %s
+read_restart deformed.restart
+comm_modify vel yes
+pair_style lsdem
+pair_coeff * * 1000 1000 0.5
+variable next equal stride(1,1000,1)
+fix f all field/lsdem v_next field kernel 1.2 spacing 0.5
+run 1
+""" % LIB, cwd="restart")
+    path = os.path.join("restart", "field_1.vti")
+    check(os.path.exists(path) and open(path, "rb").read() == outs.get(1),
+          "%s: the restarted run lost the reference box" % name)
+finish()
