@@ -435,6 +435,7 @@ void FixImpulseLsdem::final_integrate()
   make_bodies();
   now.ke_start = group_kinetic_energy();
   anchor_terms.clear();
+  if (method == SPLIT) unkicked = body;  // classify() takes the approach before the kick
   kick();  // external forces (eqs 4.37, 4.39), the step's thresholds
   forward_velocities();
   ke_after_kick = group_kinetic_energy();
@@ -707,7 +708,8 @@ void FixImpulseLsdem::add_glued(int i, int j, tagint ta, tagint tb, int bindex,
 
 /* ----------------------------------------------------------------------
    method split: the contacts classified resting or colliding (lsdem_impulse_stage_classify:
-   by their approach now, after the kick; a pair that touched at the last step is not
+   by their approach before the step's kick, at the bodies kept in unkicked; a pair that
+   touched at the last step is not
    required: in a settled heap ~5 % of the contacts per step are pairs that flicker in and
    out of touch by a node, and each made a collision of its island); a resting contact
    starts from the impulse of the matching contact of the last step (LsdemImpulseWarm,
@@ -718,7 +720,7 @@ void FixImpulseLsdem::add_glued(int i, int j, tagint ta, tagint tb, int bindex,
 void FixImpulseLsdem::classify()
 {
   if (method != SPLIT) return;
-  lsdem_impulse_stage_classify(body.data(), contacts.data(), (int) contacts.size(),
+  lsdem_impulse_stage_classify(unkicked.data(), contacts.data(), (int) contacts.size(),
                                stage.wall.rest_speed);
   for (LsdemImpulseContact &c : contacts) {
     if (!c.resting) continue;

@@ -101,6 +101,7 @@ class FixImpulseLsdem : public Fix {
 
   // per-step storage, grown only: the solver's arrays (core/impulse, the step's stages)
   std::vector<lsdem_impulse_body> body;    // atoms (local, ghost), then the walls
+  std::vector<lsdem_impulse_body> unkicked;  // body before the step's kick (classify)
   std::vector<lsdem_impulse_grain> grain;  // per atom: what the stages need beyond its body
   std::vector<char> moving;                // per atom: in the group
   std::vector<LsdemImpulseContact> contacts, coll;

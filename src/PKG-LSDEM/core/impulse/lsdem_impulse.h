@@ -31,8 +31,9 @@
  *   2. contacts: the manifolds of touching pairs and grain-wall pairs at the current poses
  *      (lsdem_detect), glued (lsdem_impulse_glue, §4.3.3), capped
  *      (lsdem_impulse_cap_contacts);
- *   3. classify (lsdem_impulse_stage_classify; method split): resting or colliding, the
- *      resting ones warm-started from the last step's impulses (the caller's store);
+ *   3. classify (lsdem_impulse_stage_classify; method split): resting or colliding by
+ *      the velocities before the kick, the resting ones warm-started from the last step's
+ *      impulses (the caller's store);
  *   4. passes: the contacts an island pass takes (lsdem_impulse_stage_select), islands
  *      (lsdem_islands_build and, across ranks, lsdem_islands_merge), each island's contacts
  *      sorted by global ids (the tie-breaking order) and solved (lsdem_island_solve: the
@@ -677,8 +678,12 @@ void lsdem_impulse_step_thresholds(lsdem_impulse_step *s, double rest_speed,
 
 /* Stage 3 (split), classify: a contact is resting when it does not approach faster than
  * the resting speed (lsdem_wall_classify not colliding: the report's rule for walls,
- * §4.4.1, for every contact), else colliding; sets c[k].resting. The caller warm-starts
- * the resting ones. */
+ * §4.4.1, for every contact), else colliding; sets c[k].resting. The approach is taken at
+ * the velocities body holds: the caller passes the bodies as they were BEFORE the step's
+ * kick (Guendelman et al. 2003's order: the kick's |g| dt is what every resting contact
+ * approaches with, not an impact; taken after it, a ball on a floor with e = 0.65 at the
+ * impact speed it gains from the kick and from sinking one step below the floor kept a
+ * 4-step micro-bounce at 3.3 g dt for ever). The caller warm-starts the resting ones. */
 void lsdem_impulse_stage_classify(const lsdem_impulse_body *body,
                                   lsdem_impulse_step_contact *c, int n, double rest_speed);
 
