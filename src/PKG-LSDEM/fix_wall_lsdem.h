@@ -83,8 +83,9 @@ class FixWallLsdem : public Fix {
   void each_manifold(double s, const char *take, const ManifoldVisit &visit);
   // the wall as the wall guard meets it (lsdem_impulse_stage_wall_guard) with the step's
   // parameters `step`: at its pose s after now, its group, its detection (without node
-  // lists: the guard looks at predicted poses, which no pair state follows), its friction
-  lsdem_impulse_guard_wall guard_wall(double s, const lsdem_wall_params &step) const;
+  // lists: the guard looks at predicted poses, which no pair state follows), its friction,
+  // and its candidates as the guard's cheap rejection (guard_gap)
+  lsdem_impulse_guard_wall guard_wall(double s, const lsdem_wall_params &step);
   bool tests_points() const { return twoway; }  // keyword twoway yes
   // fix impulse/lsdem: the force its contacts put on this wall this step (added to the
   // wall's force output; passive walls start each step from zero)
@@ -153,6 +154,15 @@ class FixWallLsdem : public Fix {
   int maxcand, cand_nlocal;
   bigint cand_built;           // neighbor->lastcall when cand was built; -1: stale
   double cand_wall_x[3];       // the wall's point then
+  // for the wall guard of fix impulse/lsdem (passive walls): the candidates' margin, the
+  // step they were found at, the grains' positions then and which grains they are
+  double cand_margin;
+  bigint cand_step;
+  std::vector<double> cand_x;
+  std::vector<unsigned char> cand_near;
+  bigint drift_step;           // the step of cand_drift
+  double cand_drift;           // the most a grain outside the candidates moved since then
+  double guard_gap(const lsdem_pose &w);
   void add_contact(Lane &, int, const lsdem_contact_result &, const lsdem_pose &w, bool began);
   void apply_contact(Lane &, int, const lsdem_contact_result &, const lsdem_pose &w, bool began,
                      bool through_band);

@@ -698,11 +698,18 @@ typedef struct {
   lsdem_pose pose;            /* its pose at the step's end */
   lsdem_detect_params detect; /* the detection against it */
   lsdem_wall_params prm;      /* the step's (lsdem_impulse_step.wall) with its friction */
+  /* cheap rejection before any lookup (NULL: none): grain k with near[k] == 0 reaches the
+   * wall only after its centre moves farther than far_gap, so it is skipped when
+   * dt |v| < far_gap (the wall fix's candidates, their margin less what the grains and the
+   * wall moved since they were found) */
+  const unsigned char *near;
+  double far_gap;
 } lsdem_impulse_guard_wall;
 
 /* Stage 5, the wall guard of one wall (report §4.4.1, Figures 4.4-4.5): every moving grain
- * whose groups meet the wall's, at its predicted pose (lsdem_impulse_predict_pose; first
- * its centre alone, against the wall's bounding test), is detected against the wall, its
+ * whose groups meet the wall's and that w->near does not reject, at its predicted pose
+ * (lsdem_impulse_predict_pose; first its centre alone, against the wall's bounding test),
+ * is detected against the wall, its
  * push-out limited (lsdem_wall_limit_push_out) and its resting contact corrected
  * (lsdem_wall_correct). seen: one per grain (seen[k] for grain k), as above. points,
  * npoints: manifold storage (a grain's manifold capacity). Returns the number of grains
