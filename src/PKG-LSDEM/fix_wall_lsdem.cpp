@@ -854,23 +854,71 @@ void FixWallLsdem::each_manifold(double s, const char *take, const ManifoldVisit
 {
   const lsdem_pose w = pose_at(s);
   if (!candidates_hold(w)) find_candidates(w);
-  Lane &lane = *lanes[0];
+  const int n = lanes_for_call();
+  lanes[0]->path.begin_step(n);
+  if (n == 1) {
+    detect_candidates(*lanes[0], 0, ncand, w, take, &visit);
+  } else {
+    // the lanes hold consecutive runs of the candidates: read in lane order, the serial
+    // order, so the visits are the serial run's
+    for (int l = 0; l < n; l++) {
+      lanes[l]->found_i.clear();
+      lanes[l]->found.clear();
+      lanes[l]->found_points.clear();
+    }
+    detect_all(w, take, n);
+    for (int l = 0; l < n; l++) {
+      Lane &lane = *lanes[l];
+      for (size_t k = 0; k < lane.found.size(); k++) {
+        lsdem_manifold m = lane.found[k];
+        m.point = lane.found_points.data() + (size_t) m.cap;
+        m.cap = m.n;
+        visit(lane.found_i[k], m);
+      }
+    }
+  }
+  lanes[0]->path.end_step();
+}
+
+void FixWallLsdem::detect_candidates(Lane &lane, int from, int to, const lsdem_pose &w,
+                                     const char *take, const ManifoldVisit *visit)
+{
   const bigint step = update->ntimestep;
-  lane.path.begin_step();
-  each_candidate(lane, 0, ncand, w, take, [&](int i, bool test) {
+  lane.found_i.clear();
+  lane.found.clear();
+  lane.found_points.clear();
+  each_candidate(lane, from, to, w, take, [&](int i, bool test) {
     if (!test) return;
     lsdem_pose p;
     LsdemContactPath::pose_of(atom, avec, i, p);
     if (lane.path.detect(i, WALL_PARTNER, avec->shape_of(i), p, &bnd.shape, w, prm.detect,
-                         step) > 0)
-      visit(i, lane.path.manifold());
+                         step) <= 0)
+      return;
+    const lsdem_manifold &m = lane.path.manifold();
+    if (visit) {
+      (*visit)(i, m);
+      return;
+    }
+    lsdem_manifold kept = m;
+    kept.point = nullptr;
+    kept.cap = (int) lane.found_points.size();  // where its points start
+    lane.found_i.push_back(i);
+    lane.found.push_back(kept);
+    lane.found_points.insert(lane.found_points.end(), m.point, m.point + m.n);
   });
-  lane.path.end_step();
+}
+
+void FixWallLsdem::detect_all(const lsdem_pose &w, const char *take, int n)
+{
+  for (int l = 0; l < n; l++) {  // one thread: lane 0 takes them all, the others none
+    const int from = l == 0 ? 0 : ncand;
+    detect_candidates(*lanes[l], from, ncand, w, take, nullptr);
+  }
 }
 
 /* ---------------------------------------------------------------------- */
 
-lsdem_impulse_guard_wall FixWallLsdem::guard_wall(double s, const lsdem_wall_params &step) const
+lsdem_impulse_guard_wall FixWallLsdem::guard_wall(double s, const lsdem_wall_params &step)
 {
   lsdem_impulse_guard_wall g;
   g.boundary = &bnd;

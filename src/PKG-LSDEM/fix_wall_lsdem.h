@@ -104,6 +104,11 @@ class FixWallLsdem : public Fix {
     double f[3], t[3];
     std::vector<Contact> contact;
     std::string crossing;
+    // each_manifold with several lanes: the lane's grains with manifolds, their manifolds
+    // (point: offset into found_points) and points, in candidate order
+    std::vector<int> found_i;
+    std::vector<lsdem_manifold> found;
+    std::vector<lsdem_contact_point> found_points;
   };
   std::vector<std::unique_ptr<Lane>> lanes;
   int nlanes;  // lanes used by the last force call
@@ -114,6 +119,12 @@ class FixWallLsdem : public Fix {
   void visit_candidates(Lane &, int from, int to, const lsdem_pose &w);
   void end_force_call();
   int ncand;   // candidate grains of this step (visit_candidates' range)
+  // each_manifold's detection: candidates [from, to) by the lane, each manifold to visit
+  // (nullptr: kept in the lane's found lists); detect_all: all candidates by n lanes into
+  // their found lists (fix wall/lsdem/omp: one lane per thread)
+  void detect_candidates(Lane &, int from, int to, const lsdem_pose &w, const char *take,
+                         const ManifoldVisit *visit);
+  virtual void detect_all(const lsdem_pose &w, const char *take, int n);
 
  private:
   lsdem_boundary bnd;          // the wall: kind, pose, velocity, pivoting platen
