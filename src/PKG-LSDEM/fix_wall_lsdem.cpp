@@ -51,7 +51,8 @@ FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), nlanes(1), ncand(0), fix_history(nullptr), avec(nullptr),
   band_file(nullptr), twoway(false), point_cap(0), map_every(0), map_restart_steps(0),
   map_booked(-1), fall_valid(0), moving(false), passive(false), contact_step(-1), cand(nullptr), maxcand(0),
-  cand_nlocal(0), cand_built(-1)
+  cand_nlocal(0), cand_built(-1), cand_margin(0.0), cand_step(-1), drift_step(-1),
+  cand_drift(0.0)
 {
   for (int d = 0; d < 6; d++) {
     vstr[d] = nullptr;
@@ -588,6 +589,58 @@ void FixWallLsdem::find_candidates(const lsdem_pose &w)
   cand_built = keep ? neighbor->lastcall : -1;
   cand_nlocal = nlocal;
   for (int d = 0; d < 3; d++) cand_wall_x[d] = w.x[d];
+  // the wall guard's record (guard_gap): only when fix impulse/lsdem runs the wall and the
+  // margin leaves a gap to use
+  cand_margin = margin;
+  cand_step = update->ntimestep;
+  drift_step = -1;
+  cand_near.clear();
+  if (!passive || !(margin > 0.0)) return;
+  cand_near.assign(nlocal, 0);
+  for (int c = 0; c < ncand; c++) cand_near[cand[c]] = 1;
+  cand_x.resize(3 * (size_t) nlocal);
+  for (int i = 0; i < nlocal; i++)
+    for (int d = 0; d < 3; d++) cand_x[3 * i + d] = atom->x[i][d];
+}
+
+/* ----------------------------------------------------------------------
+   the wall guard's cheap rejection (lsdem_impulse_guard_wall's near and far_gap): a grain
+   outside the candidates had phi(x_b) >= L (r + margin) when they were found (grain at
+   x_b, wall at cand_wall_x); phi being L-Lipschitz and the wall not turning, its
+   predicted centre x + v dt reaches the wall at pose w (phi < L r) only if
+   dt |v| > margin - |x - x_b| - |w.x - cand_wall_x|: that gap, less a round-off margin,
+   or 0 when the candidates do not tell (then the guard tests every grain)
+------------------------------------------------------------------------- */
+
+double FixWallLsdem::guard_gap(const lsdem_pose &w)
+{
+  const int nlocal = atom->nlocal;
+  const bool current = cand_step == update->ntimestep ||
+      (cand_built >= 0 && cand_built == neighbor->lastcall);
+  if (cand_near.empty() || (int) cand_near.size() != nlocal || cand_nlocal != nlocal ||
+      !current || lsdem_boundary_turns(&bnd))
+    return 0.0;
+  if (drift_step != update->ntimestep) {  // the grains stay put through the step's passes
+    double most = 0.0;
+    for (int i = 0; i < nlocal; i++) {
+      if (cand_near[i]) continue;
+      double d2 = 0.0;
+      for (int d = 0; d < 3; d++) {
+        const double dx = atom->x[i][d] - cand_x[3 * i + d];
+        d2 += dx * dx;
+      }
+      most = std::max(most, d2);
+    }
+    cand_drift = std::sqrt(most);
+    drift_step = update->ntimestep;
+  }
+  double shift = 0.0, scale = cand_margin;
+  for (int d = 0; d < 3; d++) {
+    shift += (w.x[d] - cand_wall_x[d]) * (w.x[d] - cand_wall_x[d]);
+    scale += std::fabs(w.x[d]) + std::max(std::fabs(domain->boxlo[d]), std::fabs(domain->boxhi[d]));
+  }
+  const double gap = cand_margin - cand_drift - std::sqrt(shift) - 1e-9 * scale;
+  return gap > 0.0 ? gap : 0.0;
 }
 
 /* ----------------------------------------------------------------------
@@ -801,23 +854,71 @@ void FixWallLsdem::each_manifold(double s, const char *take, const ManifoldVisit
 {
   const lsdem_pose w = pose_at(s);
   if (!candidates_hold(w)) find_candidates(w);
-  Lane &lane = *lanes[0];
+  const int n = lanes_for_call();
+  lanes[0]->path.begin_step(n);
+  if (n == 1) {
+    detect_candidates(*lanes[0], 0, ncand, w, take, &visit);
+  } else {
+    // the lanes hold consecutive runs of the candidates: read in lane order, the serial
+    // order, so the visits are the serial run's
+    for (int l = 0; l < n; l++) {
+      lanes[l]->found_i.clear();
+      lanes[l]->found.clear();
+      lanes[l]->found_points.clear();
+    }
+    detect_all(w, take, n);
+    for (int l = 0; l < n; l++) {
+      Lane &lane = *lanes[l];
+      for (size_t k = 0; k < lane.found.size(); k++) {
+        lsdem_manifold m = lane.found[k];
+        m.point = lane.found_points.data() + (size_t) m.cap;
+        m.cap = m.n;
+        visit(lane.found_i[k], m);
+      }
+    }
+  }
+  lanes[0]->path.end_step();
+}
+
+void FixWallLsdem::detect_candidates(Lane &lane, int from, int to, const lsdem_pose &w,
+                                     const char *take, const ManifoldVisit *visit)
+{
   const bigint step = update->ntimestep;
-  lane.path.begin_step();
-  each_candidate(lane, 0, ncand, w, take, [&](int i, bool test) {
+  lane.found_i.clear();
+  lane.found.clear();
+  lane.found_points.clear();
+  each_candidate(lane, from, to, w, take, [&](int i, bool test) {
     if (!test) return;
     lsdem_pose p;
     LsdemContactPath::pose_of(atom, avec, i, p);
     if (lane.path.detect(i, WALL_PARTNER, avec->shape_of(i), p, &bnd.shape, w, prm.detect,
-                         step) > 0)
-      visit(i, lane.path.manifold());
+                         step) <= 0)
+      return;
+    const lsdem_manifold &m = lane.path.manifold();
+    if (visit) {
+      (*visit)(i, m);
+      return;
+    }
+    lsdem_manifold kept = m;
+    kept.point = nullptr;
+    kept.cap = (int) lane.found_points.size();  // where its points start
+    lane.found_i.push_back(i);
+    lane.found.push_back(kept);
+    lane.found_points.insert(lane.found_points.end(), m.point, m.point + m.n);
   });
-  lane.path.end_step();
+}
+
+void FixWallLsdem::detect_all(const lsdem_pose &w, const char *take, int n)
+{
+  for (int l = 0; l < n; l++) {  // one thread: lane 0 takes them all, the others none
+    const int from = l == 0 ? 0 : ncand;
+    detect_candidates(*lanes[l], from, ncand, w, take, nullptr);
+  }
 }
 
 /* ---------------------------------------------------------------------- */
 
-lsdem_impulse_guard_wall FixWallLsdem::guard_wall(double s, const lsdem_wall_params &step) const
+lsdem_impulse_guard_wall FixWallLsdem::guard_wall(double s, const lsdem_wall_params &step)
 {
   lsdem_impulse_guard_wall g;
   g.boundary = &bnd;
@@ -827,6 +928,8 @@ lsdem_impulse_guard_wall FixWallLsdem::guard_wall(double s, const lsdem_wall_par
   g.detect.node_skin = 0.0;
   g.prm = step;
   g.prm.mu = opts.law.mu;
+  g.far_gap = guard_gap(g.pose);
+  g.near = g.far_gap > 0.0 ? cand_near.data() : nullptr;
   return g;
 }
 

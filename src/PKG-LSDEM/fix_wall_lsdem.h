@@ -83,8 +83,9 @@ class FixWallLsdem : public Fix {
   void each_manifold(double s, const char *take, const ManifoldVisit &visit);
   // the wall as the wall guard meets it (lsdem_impulse_stage_wall_guard) with the step's
   // parameters `step`: at its pose s after now, its group, its detection (without node
-  // lists: the guard looks at predicted poses, which no pair state follows), its friction
-  lsdem_impulse_guard_wall guard_wall(double s, const lsdem_wall_params &step) const;
+  // lists: the guard looks at predicted poses, which no pair state follows), its friction,
+  // and its candidates as the guard's cheap rejection (guard_gap)
+  lsdem_impulse_guard_wall guard_wall(double s, const lsdem_wall_params &step);
   bool tests_points() const { return twoway; }  // keyword twoway yes
   // fix impulse/lsdem: the force its contacts put on this wall this step (added to the
   // wall's force output; passive walls start each step from zero)
@@ -103,6 +104,11 @@ class FixWallLsdem : public Fix {
     double f[3], t[3];
     std::vector<Contact> contact;
     std::string crossing;
+    // each_manifold with several lanes: the lane's grains with manifolds, their manifolds
+    // (point: offset into found_points) and points, in candidate order
+    std::vector<int> found_i;
+    std::vector<lsdem_manifold> found;
+    std::vector<lsdem_contact_point> found_points;
   };
   std::vector<std::unique_ptr<Lane>> lanes;
   int nlanes;  // lanes used by the last force call
@@ -113,6 +119,12 @@ class FixWallLsdem : public Fix {
   void visit_candidates(Lane &, int from, int to, const lsdem_pose &w);
   void end_force_call();
   int ncand;   // candidate grains of this step (visit_candidates' range)
+  // each_manifold's detection: candidates [from, to) by the lane, each manifold to visit
+  // (nullptr: kept in the lane's found lists); detect_all: all candidates by n lanes into
+  // their found lists (fix wall/lsdem/omp: one lane per thread)
+  void detect_candidates(Lane &, int from, int to, const lsdem_pose &w, const char *take,
+                         const ManifoldVisit *visit);
+  virtual void detect_all(const lsdem_pose &w, const char *take, int n);
 
  private:
   lsdem_boundary bnd;          // the wall: kind, pose, velocity, pivoting platen
@@ -153,6 +165,15 @@ class FixWallLsdem : public Fix {
   int maxcand, cand_nlocal;
   bigint cand_built;           // neighbor->lastcall when cand was built; -1: stale
   double cand_wall_x[3];       // the wall's point then
+  // for the wall guard of fix impulse/lsdem (passive walls): the candidates' margin, the
+  // step they were found at, the grains' positions then and which grains they are
+  double cand_margin;
+  bigint cand_step;
+  std::vector<double> cand_x;
+  std::vector<unsigned char> cand_near;
+  bigint drift_step;           // the step of cand_drift
+  double cand_drift;           // the most a grain outside the candidates moved since then
+  double guard_gap(const lsdem_pose &w);
   void add_contact(Lane &, int, const lsdem_contact_result &, const lsdem_pose &w, bool began);
   void apply_contact(Lane &, int, const lsdem_contact_result &, const lsdem_pose &w, bool began,
                      bool through_band);

@@ -333,6 +333,10 @@ static void test_push_out_and_approach(void)
   pts[1].depth = 5e-7;
   lsdem_wall_limit_push_out(&m, dt, rest);
   CHECK_NEAR(m.point[0].depth, 1e-6, 0.0);
+  /* the limit both guards take (lsdem_push_out_limit): u_n + d' / dt = cap, d' in [0, d] */
+  CHECK_NEAR(lsdem_push_out_limit(0.012, 0.01, -2.0, dt, rest), (cap + 2.0) * dt, 1e-15);
+  CHECK(lsdem_push_out_limit(1e-6, 1e-6, 0.0, dt, rest) == 1e-6, "an overlap of this step limited");
+  CHECK(lsdem_push_out_limit(0.004, 0.01, 6.0, dt, rest) == 0.0, "an excess beyond d left a depth");
 
   const double zero[3] = {0, 0, 0}, x[3] = {0, 0, 1}, v1[3] = {0, 0, -1e-13},
                v2[3] = {0, 0, -1e-3};

@@ -273,6 +273,8 @@ static void test_select_collisions(void)
         "separating grains no collision");
 }
 
+/* The floor z = 0 as the guard meets it: group 1, r = 0.02, depth_tol 1e-8, mu 0.5. */
+
 /* The wall guard on a sphere of radius R at rest with its centre h above the plane z = 0
  * (overlap d0 = R - h; at rest the predicted pose is the pose): the deepest point rises
  * by d0/dt when that is below the push-out limit, else to the limit max(r, sqrt(r d0/dt))
@@ -348,6 +350,37 @@ static void test_wall_guard(void)
   CHECK_REL(J, vz, 1e-12);
   guard_once(shallow, -2.5 * r, &vz, &J, &n);
   CHECK(n == 0 && vz == -2.5 * r, "a collision corrected: %d, v_z %g", n, vz);
+}
+
+/* The guard's cheap rejection: a grain with near[k] == 0 is skipped while dt |v| < far_gap
+ * (the caller vouches that it cannot reach the wall then), tested once it moves faster. */
+static void test_wall_guard_far(void)
+{
+  const double R = 0.1, dt = 1e-3, I[3] = {0.004, 0.004, 0.004}, d0 = 1e-5;
+  lsdem_shape ball = sphere_shape(R);
+  const double x[3] = {0.0, 0.0, R - d0}; /* overlapping the plane z = 0 */
+  lsdem_impulse_body body[1];
+  lsdem_impulse_grain grain[1];
+  make_grain(&body[0], &grain[0], 1, 1.0, I, x, &ball);
+  body[0].v[0] = 1.0; /* dt |v| = 1e-3 */
+  const char moving[1] = {1};
+  const unsigned char near[1] = {0};
+  lsdem_boundary plane;
+  lsdem_impulse_guard_wall w;
+  plane_wall(&plane, &w, (lsdem_wall_params){0.02, 1e-8, 0.5});
+  lsdem_error err;
+  w.near = near;
+  w.far_gap = 2e-3;
+  lsdem_contact_point pts[4];
+  lsdem_wall_guard_seen seen[1];
+  memset(seen, 0, sizeof seen);
+  CHECK(lsdem_impulse_stage_wall_guard(body, grain, moving, 1, &w, 0, dt, pts, 4, seen, &err) ==
+            0 && body[0].v[2] == 0.0 && !seen[0].clear,
+        "a grain marked far and slow was tested");
+  w.far_gap = 5e-4; /* dt |v| beyond the gap: tested, and corrected */
+  CHECK(lsdem_impulse_stage_wall_guard(body, grain, moving, 1, &w, 0, dt, pts, 4, seen, &err) ==
+            1 && body[0].v[2] > 0.0,
+        "a grain faster than the gap was not tested");
 }
 
 /* The CFL ratio: |v| dt / radius of the worst moving grain; NaN counts as the worst. */
@@ -475,6 +508,7 @@ int main(void)
   test_classify_select();
   test_select_collisions();
   test_wall_guard();
+  test_wall_guard_far();
   test_cfl();
   test_audit_bookings();
   return lsdem_test_summary();

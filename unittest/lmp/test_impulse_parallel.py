@@ -12,9 +12,11 @@ ranks and the label exchange takes rounds. A run stopped after 250 steps on 2 ra
 continued from its restart file on 3 is the uninterrupted run: the resting contacts'
 warm-start impulses (method split, the default) travel with their grains between ranks
 and through the restart file. Threads (-sf omp: pair_style lsdem/impulse/omp shares each
-rank's detection among them) give the same bits too: 1 rank with 2 and 3 threads, 2 ranks
-with 2 threads each (the log must name the threaded pair style)."""
+rank's detection among them, fix wall/lsdem/omp each wall's detection of its grains) give
+the same bits too: 1 rank with 2 and 3 threads, 2 ranks with 2 threads each (the log must
+name the threaded pair style and the five walls' threaded style)."""
 import os
+import re
 
 from grain_decks import pile
 from impulse_decks import header
@@ -43,8 +45,10 @@ EXACT = ("f_imp[1]", "f_imp[2]", "f_imp[4]", "f_imp[5]", "f_imp[6]", "f_imp[7]",
          "f_imp[22]", "f_imp[23]", "f_imp[24]", "f_imp[25]")
 
 
-def deck(steps, restart=None):
+def deck(steps, restart=None, info=False):
     text = header("pile.lslib", "pile.data") + SCENE.format(every=EVERY)
+    if info:  # the fixes' styles into the log (the walls' /omp style)
+        text += "info fixes out log\n"
     if restart:
         return text + "run %d\nwrite_restart %s\n" % (steps, restart)
     return text + DUMP.format(steps=steps) + "run %d\n" % steps
@@ -92,9 +96,12 @@ for np in (2, 3, 4):
 
 for np, nthreads in ((1, 2), (1, 3), (2, 2)):
     name = "np%d-omp%d" % (np, nthreads)
-    atoms, rows = run(name, deck(STEPS), np, args=["-sf", "omp", "-pk", "omp", nthreads])
+    atoms, rows = run(name, deck(STEPS, info=True), np,
+                      args=["-sf", "omp", "-pk", "omp", nthreads])
     log = open(os.path.join(os.path.abspath(name), "log.lammps")).read()
     check("pair_style lsdem/impulse/omp" in log, "%s: the threaded pair style ran" % name)
+    check(len(re.findall(r"style = wall/lsdem/omp", log)) == 5,
+          "%s: the walls' threaded style ran" % name)
     check(atoms == ref_atoms, "%s: grains differ from the serial run" % name)
     check(len(rows) == len(ref) and all(r[col] == s[col] for r, s in zip(rows, ref)
                                         for col in EXACT), "%s: counters differ" % name)

@@ -44,3 +44,22 @@ void FixWallLsdemOMP::visit_all(const lsdem_pose &w)
     visit_candidates(*lanes[r.tid], r.from, r.to, w);
   }
 }
+
+/* ----------------------------------------------------------------------
+   fix impulse/lsdem's wall detection (each_manifold) with the candidates split among the
+   threads, each thread's manifolds kept in its lane (read in lane order: the serial order)
+------------------------------------------------------------------------- */
+
+void FixWallLsdemOMP::detect_all(const lsdem_pose &w, const char *take, int n)
+{
+  const int nthreads = n;  // lanes set up for comm->nthreads at init
+  const int ncands = ncand;
+
+#if defined(_OPENMP)
+#pragma omp parallel LMP_DEFAULT_NONE LMP_SHARED(w, take)
+#endif
+  {
+    const LsdemThreadRange r(ncands, nthreads);
+    detect_candidates(*lanes[r.tid], r.from, r.to, w, take, nullptr);
+  }
+}

@@ -6,7 +6,9 @@
    the candidates in its own lane (contact path, pair-state lane, contact list, force and
    torque on the wall) and writes its grains' forces (each grain is visited by one
    thread). The wall's totals are sums of terms rounded to the force quanta: the same
-   bits as fix wall/lsdem on any thread count (doc/howto_parallel.rst).
+   bits as fix wall/lsdem on any thread count (doc/howto_parallel.rst). Under fix
+   impulse/lsdem the wall's detection (each_manifold) is shared the same way, each thread's
+   manifolds in its lane, visited in lane order (the serial order).
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -30,6 +32,7 @@ class FixWallLsdemOMP : public FixWallLsdem {
  protected:
   int lanes_for_call() const override;
   void visit_all(const lsdem_pose &w) override;
+  void detect_all(const lsdem_pose &w, const char *take, int n) override;
 };
 
 }    // namespace LAMMPS_NS

@@ -53,14 +53,6 @@ static double current_overlap(const lsdem_impulse_body *bm, const lsdem_impulse_
   return deepest;
 }
 
-/* the predicted overlap d less what of the overlap d0 the pair has now exceeds the push-out
- * cap (lsdem_push_out_cap): d - d0 + cap dt when d0 / dt > cap */
-static double limit_push_out(double d, double d0, double dt, double rest_speed)
-{
-  const double cap = lsdem_push_out_cap(d0, dt, rest_speed);
-  return d0 / dt > cap ? fmin(d, d - d0 + cap * dt) : d;
-}
-
 /* the rise of the relative normal velocity u_n (< 0: approaching; the master's relative to
  * the slave's along the slave's normal: the same for a and b) that closes the overlap d, or
  * for a collision (u_n < -rest_speed) gives it restitution e:
@@ -97,7 +89,9 @@ static int detect_pair(const lsdem_impulse_body *body, const lsdem_impulse_grain
   if (!(deep.depth > p->depth_tol)) return 0;
   const double d0 = current_overlap(a_master ? a : b, gm, a_master ? b : a, gs, det, step,
                                     points, npoints);
-  const double depth = limit_push_out(deep.depth, d0, dt, p->rest_speed);
+  /* the approach over the step that takes d0 to the predicted overlap: (d0 - d) / dt */
+  const double depth =
+      lsdem_push_out_limit(deep.depth, d0, (d0 - deep.depth) / dt, dt, p->rest_speed);
   if (!(depth > p->depth_tol)) return 0;
   const double sign = a_master ? 1.0 : -1.0; /* the manifold's normal points to the master */
   const lsdem_pose *pa = a_master ? &pm : &ps, *pb = a_master ? &ps : &pm;

@@ -193,12 +193,8 @@ lsdem_status lsdem_impulse_validate(const lsdem_impulse_body *bodies, int nbodie
 int lsdem_impulse_approaching(const lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
                               double floor, double *u_n)
 {
-  double ua[3], ub[3];
-  lsdem_impulse_point_velocity(&bodies[c->a], c->point, ua);
-  lsdem_impulse_point_velocity(&bodies[c->b], c->point, ub);
-  double u[3];
-  lsdem_sub3(ua, ub, u);
-  const double un = lsdem_dot3(c->normal, u);
+  double ua[3], ub[3], u[3];
+  const double un = lsdem_impulse_contact_velocities(bodies, c, ua, ub, u);
   const double noise = 1e-12 * (sqrt(lsdem_dot3(ua, ua)) + sqrt(lsdem_dot3(ub, ub)));
   if (u_n) *u_n = un;
   return un < -fmax(floor, noise);

@@ -142,22 +142,31 @@ typedef struct {
   double restitution; /* Stronge's coefficient e of the pair, 0 <= e <= 1 (eq 4.1) */
 } lsdem_impulse_contact;
 
-/* Relative velocity u = u_a - u_b at the contact (eq 4.7); returns its normal part
- * u_n = n . u (< 0: approaching). Inline, as lsdem_impulse_point_velocity. */
-static inline double lsdem_impulse_relative_velocity(const lsdem_impulse_body *bodies,
-                                                     const lsdem_impulse_contact *c,
-                                                     double u[3])
+/* The point velocities u_a, u_b of the contact's bodies there and u = u_a - u_b (eq 4.7);
+ * returns the normal part u_n = n . u (< 0: approaching). Inline, as
+ * lsdem_impulse_point_velocity. */
+static inline double lsdem_impulse_contact_velocities(const lsdem_impulse_body *bodies,
+                                                      const lsdem_impulse_contact *c,
+                                                      double ua[3], double ub[3], double u[3])
 {
-  double ua[3], ub[3];
   lsdem_impulse_point_velocity(&bodies[c->a], c->point, ua);
   lsdem_impulse_point_velocity(&bodies[c->b], c->point, ub);
   lsdem_sub3(ua, ub, u);
   return lsdem_dot3(c->normal, u);
 }
-/* u_n alone. */
+/* Relative velocity u = u_a - u_b at the contact (eq 4.7); returns u_n. */
+static inline double lsdem_impulse_relative_velocity(const lsdem_impulse_body *bodies,
+                                                     const lsdem_impulse_contact *c,
+                                                     double u[3])
+{
+  double ua[3], ub[3];
+  return lsdem_impulse_contact_velocities(bodies, c, ua, ub, u);
+}
+/* u_n alone (the classify stage's, the island solve's trigger). */
 double lsdem_impulse_normal_velocity(const lsdem_impulse_body *bodies,
                                      const lsdem_impulse_contact *c);
-/* Whether contact c approaches: u_n (returned in *u_n) below -floor and below the round-off
+/* Whether contact c approaches (the collision selection's): u_n (returned in *u_n; the
+ * same as lsdem_impulse_normal_velocity's) below -floor and below the round-off
  * of its velocities, -1e-12 (|u_a| + |u_b|) (an island whose fastest approach is round-off
  * would never converge to a tolerance relative to it). floor: velocity >= 0. */
 int lsdem_impulse_approaching(const lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
@@ -437,6 +446,12 @@ lsdem_wall_contact_kind lsdem_wall_classify(double u_n, double rest_speed);
  * u_n becomes that cap (lsdem_push_out_cap); the rest of the overlap goes in the next
  * steps. */
 void lsdem_wall_limit_push_out(lsdem_manifold *m, double dt, double rest_speed);
+/* The push-out limit of one contact (the wall guard's and the ball guard's, §4.4.1-4.4.2):
+ * its predicted overlap d when the overlap it has now, d0, is within the cap (d0 / dt <=
+ * lsdem_push_out_cap), else the depth that lifts its relative normal velocity u_n over the
+ * step (d0 - d) / dt to the cap, max(cap - u_n, 0) dt, at most d. The wall guard takes
+ * u_n at its deepest point and d0 = d + u_n dt, the ball guard d0 measured. */
+double lsdem_push_out_limit(double d, double d0, double u_n, double dt, double rest_speed);
 /* The index of the manifold's deepest point (ties: the first; 0 for an empty manifold). */
 int lsdem_manifold_deepest(const lsdem_manifold *m);
 /* The push-out cap of an overlap d0 the body has now: max(rest_speed, sqrt(2 a d0)),
@@ -725,11 +740,18 @@ typedef struct {
   lsdem_pose pose;            /* its pose at the step's end */
   lsdem_detect_params detect; /* the detection against it */
   lsdem_wall_params prm;      /* the step's (lsdem_impulse_step.wall) with its friction */
+  /* cheap rejection before any lookup (NULL: none): grain k with near[k] == 0 reaches the
+   * wall only after its centre moves farther than far_gap, so it is skipped when
+   * dt |v| < far_gap (the wall fix's candidates, their margin less what the grains and the
+   * wall moved since they were found) */
+  const unsigned char *near;
+  double far_gap;
 } lsdem_impulse_guard_wall;
 
 /* Stage 5, the wall guard of one wall (report §4.4.1, Figures 4.4-4.5): every moving grain
- * whose groups meet the wall's, at its predicted pose (lsdem_impulse_predict_pose; first
- * its centre alone, against the wall's bounding test), is detected against the wall, its
+ * whose groups meet the wall's and that w->near does not reject, at its predicted pose
+ * (lsdem_impulse_predict_pose; first its centre alone, against the wall's bounding test),
+ * is detected against the wall, its
  * push-out limited (lsdem_wall_limit_push_out) and its resting contact corrected
  * (lsdem_wall_correct). seen: one per grain (seen[k] for grain k), as above. points,
  * npoints: manifold storage (a grain's manifold capacity). Returns the number of grains

@@ -154,6 +154,9 @@ int lsdem_impulse_stage_wall_guard(lsdem_impulse_body *body, const lsdem_impulse
     sk->work = 0.0;
     if (!moving[k] || !(grain[k].groups & w->groups)) continue;
     lsdem_impulse_body *b = &body[k];
+    if (w->near && !w->near[k] && w->far_gap > 0.0 &&
+        dt * dt * lsdem_dot3(b->v, b->v) < w->far_gap * w->far_gap)
+      continue; /* far from the wall, and slow: not even its centre's lookup */
     if (sk->clear && memcmp(sk->v, b->v, sizeof sk->v) == 0 &&
         memcmp(sk->omega, b->omega, sizeof sk->omega) == 0)
       continue;

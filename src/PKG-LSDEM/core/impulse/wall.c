@@ -29,15 +29,22 @@ int lsdem_manifold_deepest(const lsdem_manifold *m)
   return k;
 }
 
+double lsdem_push_out_limit(double d, double d0, double u_n, double dt, double rest_speed)
+{
+  const double cap = lsdem_push_out_cap(d0, dt, rest_speed);
+  return d0 / dt > cap ? fmin(d, fmax(cap - u_n, 0.0) * dt) : d; /* u_n + d' / dt = cap */
+}
+
 void lsdem_wall_limit_push_out(lsdem_manifold *m, double dt, double rest_speed)
 {
   if (m->n == 0) return;
   const lsdem_contact_point *p = &m->point[lsdem_manifold_deepest(m)];
+  if (!(p->depth > 0.0)) return;
   const double un = lsdem_dot3(p->vrel, p->normal);
-  const double d0 = fmax(p->depth + un * dt, 0.0);
-  const double cap = lsdem_push_out_cap(d0, dt, rest_speed);
-  if (!(d0 / dt > cap) || !(p->depth > 0.0)) return;
-  const double scale = fmax(cap - un, 0.0) * dt / p->depth; /* u_n + d' / dt = cap */
+  const double d0 = fmax(p->depth + un * dt, 0.0); /* the overlap now (§4.4.1) */
+  const double d = lsdem_push_out_limit(p->depth, d0, un, dt, rest_speed);
+  if (d == p->depth) return;
+  const double scale = d / p->depth;
   for (int j = 0; j < m->n; j++) m->point[j].depth *= scale;
 }
 
