@@ -273,8 +273,6 @@ static void test_select_collisions(void)
         "separating grains no collision");
 }
 
-/* The floor z = 0 as the guard meets it: group 1, r = 0.02, depth_tol 1e-8, mu 0.5. */
-
 /* The wall guard on a sphere of radius R at rest with its centre h above the plane z = 0
  * (overlap d0 = R - h; at rest the predicted pose is the pose): the deepest point rises
  * by d0/dt when that is below the push-out limit, else to the limit max(r, sqrt(r d0/dt))
