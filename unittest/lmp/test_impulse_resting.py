@@ -138,6 +138,28 @@ for steps, bounces in ((2, True), (8, False)):
         check((vmax > 0.5 * 0.65 * 3.0 * G * 1e-3) == bounces,
               "rest_steps %d: largest upward speed %g (bounce expected: %s)" % (steps, vmax, bounces))
 
+# A ball dropped under gravity with e = 0.65 bounces lower and lower and comes to rest (its
+# contact classified by the approach it arrived with, before the step's kick: classified
+# after it, the ball kept a 4-step micro-bounce at 3.3 g dt for ever, pumped by the kick's
+# g dt and by sinking a step below the floor before each impact)
+deck = (header(BALL, data("settle", [(1, 0.0, 0.0, 2.0 * R)]))
+        + "fix floor all wall/lsdem plane 0 0 0 0 0 1 1.0e4 0 0\n"
+        + "fix grav all gravity %r vector 0 0 -1\n" % G
+        + "fix imp all impulse/lsdem 0.65 0.0\ntimestep 1e-3\n"
+        + "variable z equal z[1]\nvariable vz equal vz[1]\n"
+        + "thermo_style custom step v_z v_vz\nthermo_modify format float %.15g\n"
+        + "thermo 1\nrun 2000\n")
+_, log = run_lmp(deck, cwd=os.path.abspath("settle"))
+rows = thermo(log)
+if check(rows, "the settling drop ran"):
+    ups = [k for k in range(1, len(rows)) if rows[k]["v_vz"] > 0.0 >= rows[k - 1]["v_vz"]]
+    tail = rows[-500:]
+    print("settling drop: %d bounces, the last at step %d; last 500 steps: |vz| <= %g, z %g..%g"
+          % (len(ups), rows[ups[-1]]["Step"] if ups else -1, max(abs(r["v_vz"]) for r in tail),
+             min(r["v_z"] for r in tail), max(r["v_z"] for r in tail)))
+    check(ups and rows[ups[-1]]["Step"] < 1500, "the ball still bounces after step 1500")
+    check(max(abs(r["v_vz"]) for r in tail) < 1e-9, "the ball is not at rest at the end")
+
 # Newton's cradle: sphere 1 at speed 1 hits four touching spheres at rest; the split method
 # gives the report's ETM result (method etm) bit for bit: the collision's impulse crosses
 # the resting contacts elastically
