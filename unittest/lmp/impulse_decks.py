@@ -30,6 +30,19 @@ def header(lib, data, skin=0.1):
     return HEADER.format(lib=os.path.abspath(lib), data=os.path.abspath(data), skin=skin)
 
 
+def floor_drop(lib, data, e, dt, steps, g=None, opts="", setup=""):
+    """A deck: the grains of data over the floor z = 0 (fix wall/lsdem plane, kn 1e4), setup
+    commands first, gravity g down (None: none), fix imp impulse/lsdem e 0 opts, run steps
+    of dt with thermo every step: Step, v_z and v_vz of atom 1 at full precision."""
+    return (header(lib, data) + setup
+            + "fix floor all wall/lsdem plane 0 0 0 0 0 1 1.0e4 0 0\n"
+            + ("fix grav all gravity %r vector 0 0 -1\n" % g if g else "")
+            + "fix imp all impulse/lsdem %r 0.0 %s\ntimestep %r\n" % (e, opts, dt)
+            + "variable z equal z[1]\nvariable vz equal vz[1]\n"
+            + "thermo_style custom step v_z v_vz\nthermo_modify format float %.15g\n"
+            + "thermo 1\nrun %d\n" % steps)
+
+
 def dump(every, fname, name="d"):
     """A dump of every grain's whole state at full precision (read with states())."""
     return (PROPS + "dump %s all custom %d %s %s\ndump_modify %s format float %%.17g sort id\n"

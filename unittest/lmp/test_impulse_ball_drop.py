@@ -12,7 +12,7 @@ hundred steps."""
 import math
 import os
 
-from impulse_decks import header, library
+from impulse_decks import floor_drop, header, library
 from lsdemtest import run_lmp, thermo, check, near, finish
 
 R, H0, G = 0.1, 1.0, 9.81
@@ -59,11 +59,7 @@ check(all(abs(r["v_vz"]) < 2 * G * 1e-3 for r in late),
 with open("sunk.data", "w") as f:
     f.write("ball\n\n1 atoms\n1 atom types\n\n-1 1 xlo xhi\n-1 1 ylo yhi\n-0.5 2 zlo zhi\n\n"
             "Atoms # lsdem\n\n1 1 1 1.0 0 0 %r 1 0 0 0\n" % (R - 0.01))
-deck = (header(LIB, "sunk.data") + "fix floor all wall/lsdem plane 0 0 0 0 0 1 1.0e4 0 0\n"
-        + "fix grav all gravity %r vector 0 0 -1\n" % G + "fix imp all impulse/lsdem 0.3 0.0\n"
-        + "timestep 1e-4\nvariable z equal z[1]\nvariable vz equal vz[1]\n"
-        + "thermo_style custom step v_z v_vz\nthermo_modify format float %.15g\n"
-        + "thermo 1\nrun 3000\n")
+deck = floor_drop(LIB, "sunk.data", 0.3, 1e-4, 3000, g=G)
 _, log = run_lmp(deck, cwd=os.path.abspath("sunk"))
 rows = thermo(log)
 if check(rows, "sunk ball ran"):

@@ -17,7 +17,7 @@ split, the default; issue 33).
   report's method's test does not walk sideways or turn (it did, at 2e-5 of a box per step)."""
 import os
 
-from impulse_decks import header, library
+from impulse_decks import floor_drop, header, library
 from lsdemtest import run_lmp, thermo, check, near, finish, shape_tool
 
 G, R = 9.81, 0.1
@@ -104,14 +104,9 @@ def drop(v0, dt=1e-3, rest=None):
     """rest: fix keywords setting the resting speed (default: rest 2 g dt, given)."""
     name = "drop_v%g%s" % (v0, "_" + rest.replace(" ", "") if rest else "")
     rest = rest or "rest %r" % (2 * G * dt)
-    deck = (header(BALL, data(name, [(1, 0.0, 0.0, R + 0.5 * v0 * dt)]))
-            + "velocity all set 0 0 %r\n" % -v0
-            + "fix floor all wall/lsdem plane 0 0 0 0 0 1 1.0e4 0 0\n"
-            + ("fix grav all gravity %r vector 0 0 -1\n" % G if "rest_steps" in rest else "")
-            + "fix imp all impulse/lsdem 0.65 0.0 %s\ntimestep %r\n" % (rest, dt)
-            + "variable z equal z[1]\nvariable vz equal vz[1]\n"
-            + "thermo_style custom step v_z v_vz\nthermo_modify format float %.15g\n"
-            + "thermo 1\nrun 20\n")
+    deck = floor_drop(BALL, data(name, [(1, 0.0, 0.0, R + 0.5 * v0 * dt)]), 0.65, dt, 20,
+                      g=G if "rest_steps" in rest else None, opts=rest,
+                      setup="velocity all set 0 0 %r\n" % -v0)
     _, log = run_lmp(deck, cwd=os.path.abspath(name))
     return thermo(log)
 
@@ -142,13 +137,7 @@ for steps, bounces in ((2, True), (8, False)):
 # contact classified by the approach it arrived with, before the step's kick: classified
 # after it, the ball kept a 4-step micro-bounce at 3.3 g dt for ever, pumped by the kick's
 # g dt and by sinking a step below the floor before each impact)
-deck = (header(BALL, data("settle", [(1, 0.0, 0.0, 2.0 * R)]))
-        + "fix floor all wall/lsdem plane 0 0 0 0 0 1 1.0e4 0 0\n"
-        + "fix grav all gravity %r vector 0 0 -1\n" % G
-        + "fix imp all impulse/lsdem 0.65 0.0\ntimestep 1e-3\n"
-        + "variable z equal z[1]\nvariable vz equal vz[1]\n"
-        + "thermo_style custom step v_z v_vz\nthermo_modify format float %.15g\n"
-        + "thermo 1\nrun 2000\n")
+deck = floor_drop(BALL, data("settle", [(1, 0.0, 0.0, 2.0 * R)]), 0.65, 1e-3, 2000, g=G)
 _, log = run_lmp(deck, cwd=os.path.abspath("settle"))
 rows = thermo(log)
 if check(rows, "the settling drop ran"):
