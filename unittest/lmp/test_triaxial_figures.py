@@ -71,6 +71,27 @@ def grains_of(step):
     return np.array([[float(w) for w in r.split()] for r in rows if r.strip()])
 
 
+# 2b. the fields are masked by the membrane (in.triaxial: mask membrane conf): the nodes
+# near the specimen's axis at mid-height are inside, every node further from the axis than
+# the outermost grain centre plus two grain sizes is outside
+for s in snaps:
+    f = read_vti("fields_%d.vti" % int(s["step"]))
+    g = grains_of(int(s["step"]))
+    nx, ny, nz = f["n"]
+    k, j, i = np.meshgrid(np.arange(nz), np.arange(ny), np.arange(nx), indexing="ij")
+    pts = np.column_stack([i.ravel(), j.ravel(), k.ravel()]) * np.array(f["spacing"]) + f["origin"]
+    axis = g[:, 1:3].mean(axis=0)
+    rad = np.hypot(pts[:, 0] - axis[0], pts[:, 1] - axis[1])
+    rmax = np.hypot(g[:, 1] - axis[0], g[:, 2] - axis[1]).max()
+    zlo, zhi = g[:, 3].min(), g[:, 3].max()
+    inside = f["inside"][:, 0] == 1
+    core = (rad < 0.5 * rmax) & (np.abs(pts[:, 2] - 0.5 * (zlo + zhi)) < 0.25 * (zhi - zlo))
+    far = rad > rmax + 2.0 * s["D50"]
+    check(core.any() and inside[core].all(),
+          "step %d: %d of %d nodes near the axis masked" % (s["step"], (~inside[core]).sum(), core.sum()))
+    check(far.any() and not inside[far].any(),
+          "step %d: %d nodes beyond the membrane not masked" % (s["step"], inside[far].sum()))
+
 # 3. the slice: its plane, and its values against the field
 plane = None
 for s in reversed(snaps):
