@@ -549,6 +549,21 @@ bool FixWallLsdem::candidates_can_last() const
 }
 
 /* ----------------------------------------------------------------------
+   how far beyond its reach a grain must be kept to stay covered until the next
+   reneighbouring: until then a grain stays within half the skin of where the lists were
+   built and the wall within half the skin of where the candidates were found
+   (candidates_hold). Found at a reneighbouring, a grain and the wall close in by at most
+   one skin; found between two (the wall had moved), a grain may already be half a skin
+   from where the lists were built and go half a skin the other way: 1.5 skins (a grain
+   moving away and back while a platen came down was missed with one)
+------------------------------------------------------------------------- */
+
+double FixWallLsdem::candidate_margin() const
+{
+  return (neighbor->lastcall == update->ntimestep ? 1.0 : 1.5) * neighbor->skin;
+}
+
+/* ----------------------------------------------------------------------
    the candidates found at the last reneighbouring still cover every grain that can
    touch the wall at pose w: since then no grain moved more than half the neighbour skin
    and the wall translated by at most as much
@@ -581,7 +596,7 @@ void FixWallLsdem::find_candidates(const lsdem_pose &w)
     memory->create(cand, maxcand, "wall/lsdem:cand");
   }
   const bool keep = candidates_can_last();
-  const double margin = keep ? neighbor->skin : 0.0;
+  const double margin = keep ? candidate_margin() : 0.0;
   ncand = 0;
   for (int i = 0; i < nlocal; i++)
     if (may_touch(i, w, margin) || lanes[0]->path.keeps_state(i))

@@ -183,6 +183,7 @@ class FixWallLsdem : public Fix {
   void each_candidate(Lane &, int from, int to, const lsdem_pose &w, const char *take,
                       Visit visit);
   bool candidates_can_last() const;
+  double candidate_margin() const;
   bool candidates_hold(const lsdem_pose &w) const;
   void find_candidates(const lsdem_pose &w);
   int parse_pivot(int, int, char **, double[3]);

@@ -8,13 +8,19 @@ reneighbourings) and settling on a floor with friction; and cubes at rest (nothi
 reneighbours) under a lid that comes down fast from far above, so that only the wall's
 own motion since the list was made can renew it. A third scene runs with lists built once
 per run (`neigh_modify once yes`): nothing then bounds how far a grain moves between
-builds, so the wall must find its candidates at every step; a lone cube flies at it."""
+builds, so the wall must find its candidates at every step; a lone cube flies at it.
+A fourth (away and back): a ball moved by fix move half a skin down and a skin up (never
+more than half a skin from where the lists were built: LAMMPS does not rebuild them) while
+a lid comes down, fast enough to renew its candidates between the two: the lid must still
+find the ball (with one skin of margin at that renewal it did not, and the ball went 0.078
+into the lid without a force)."""
 import math
 import os
 import re
 
 from lsdemtest import run_lmp, thermo, check, near, finish
 from contact_decks import Grain, box_library, quat_axis_angle, write_data, head, THERMO_FULL
+from impulse_decks import library
 
 lib = box_library("cube.lslib", 0.5, 0.05, 600)
 SCENES = {
@@ -90,5 +96,45 @@ for name, (grains, walls, cols, kept_neigh) in SCENES.items():
                      msg="%s, step %d: %s differs with kept candidates" % (name, a["Step"], col))
                 for col in a]
         if not all(same):
+            break
+
+AWAY_AND_BACK = """
+pair_style lsdem
+pair_coeff * * 2000 1500 0.5
+neighbor 0.2 bin
+neigh_modify delay 0 every 1 %s
+# the ball (radius 0.5, its bounding sphere): down 0.095 in 100 steps, then up 0.19 in 100
+# steps; the lid 0.216 above its top: down 0.101 in 100 steps (its candidates renewed), then 0.098
+variable s equal step
+variable zg equal "(v_s<=100)*(-0.00095*v_s) + (v_s>100)*(-0.095+0.0019*(v_s-100))"
+variable vg equal "(v_s<=100)*(-0.95) + (v_s>100)*1.9"
+variable vw equal "(v_s<100)*(-1.01) + (v_s>=100)*(-0.98)"
+fix mv all move variable NULL NULL v_zg NULL NULL v_vg
+fix lid all wall/lsdem plane 0 0 0.716 0 0 -1 2000 0 0 velocity 0 0 v_vw
+variable fz equal fz[1]
+thermo_style custom step v_fz f_lid[3]
+%s
+thermo 1
+timestep 1e-3
+run 200
+"""
+write_data("away.data", (-3, 3, -3, 3, -3, 3), [Grain((0.0, 0.0, 0.0))])
+ball = library("ball.lslib", "sphere", 0.5, nodes=200, analytic=True)
+runs = {}
+for mode, neigh in (("yes", "check yes"), ("no", "check no")):
+    deck = head(ball, "away.data", boundary="f f f") + AWAY_AND_BACK % (neigh, THERMO_FULL)
+    rc, log = run_lmp(deck, cwd=os.path.abspath("away_" + mode))
+    builds = re.search(r"Neighbor list builds = (\d+)", log)
+    runs[mode] = (thermo(log), int(builds.group(1)) if builds else -1)
+kept, fresh = runs["yes"][0], runs["no"][0]
+if check(len(kept) == 201 and len(fresh) == 201, "away and back: thermo rows %d and %d"
+         % (len(kept), len(fresh))):
+    check(runs["yes"][1] == 0, "away and back: the lists were rebuilt (%d)" % runs["yes"][1])
+    check(fresh[-1]["v_fz"] < -100.0, "away and back: the lid does not press the ball (%g)"
+          % fresh[-1]["v_fz"])
+    for a, b in zip(kept, fresh):
+        if not near(a["v_fz"], b["v_fz"], rtol=1e-12, atol=1e-12,
+                    msg="away and back, step %d: the ball's force with kept candidates"
+                    % a["Step"]):
             break
 finish()
