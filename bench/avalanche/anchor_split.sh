@@ -20,8 +20,7 @@ build=${LSDEM_BUILD_DIR:-$top/build}
 py=/usr/bin/python3
 for s in $seeds; do
   scene=$out/s$s/scene
-  vmin=$(LSDEM_SHAPE_TOOL=$build/lsdem-shape bash -c ". '$ex/../common.sh'; smallest_volume '$scene/grains.lslib'")
-  dt=$("$py" -c "print('%.2g' % (0.2 * (2.65 * $vmin / (5 * 3.0e4)) ** 0.5))")
+  dt=$(LSDEM_SHAPE_TOOL=$build/lsdem-shape bash "$ex/penalty_step.sh" "$scene/grains.lslib")
   for m in penalty $mults; do
     if [ "$m" = penalty ]; then run=$out/s$s/split_penalty args=(-var method penalty) step=$dt
     else run=$out/s$s/split_x$m args=(-var method impulse -var mult "$m") step=$("$py" -c "print($m * $dt)"); fi

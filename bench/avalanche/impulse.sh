@@ -28,8 +28,7 @@ for s in $seeds; do
        LSDEM_SHAPE_TOOL=$build/lsdem-shape bash "$ex/make_nets.sh" . 2 >/dev/null)
   fi
   # run.sh's step and the terrain's edges
-  vmin=$(LSDEM_SHAPE_TOOL=$build/lsdem-shape bash -c ". '$ex/../common.sh'; smallest_volume '$scene/grains.lslib'")
-  dt=$("$py" -c "print('%.2g' % (0.2 * (2.65 * $vmin / (5 * 3.0e4)) ** 0.5))")
+  dt=$(LSDEM_SHAPE_TOOL=$build/lsdem-shape bash "$ex/penalty_step.sh" "$scene/grains.lslib")
   edge_x=$(awk 'tolower($1) == "xllcenter" { print $2 }' "$scene/valley.asc")
   edge_y=$(awk 'tolower($1) == "yllcenter" { print -$2 }' "$scene/valley.asc")
   for n in $nets_list; do

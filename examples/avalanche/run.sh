@@ -22,10 +22,8 @@ enter_out "$out"
 LSDEM_SHAPE_TOOL=$shape bash "$here/make_scene.sh" . "$n" "$runout" "$seed"
 # shellcheck disable=SC2086 # NET_ARGS: words on purpose
 [ "$nets" != 0 ] && LSDEM_SHAPE_TOOL=$shape bash "$here/make_nets.sh" . "$nets" ${NET_ARGS:-}
-# the penalty step: 0.2 sqrt(m_min / (5 kn)), below fix nve/lsdem's bound for a flat contact
-# of five nodes (eq 4.47's 0.1 sqrt(m_min / kn) is just above it); kn = 3e4, density 2.65
-vmin=$(smallest_volume grains.lslib)
-dt=$("$py" -c "print('%.2g' % (0.2 * (2.65 * $vmin / (5 * 3.0e4)) ** 0.5))")
+# the penalty step (penalty_step.sh: 0.2 sqrt(m_min / (5 kn)))
+dt=$(LSDEM_SHAPE_TOOL=$shape bash "$here/penalty_step.sh" grains.lslib)
 echo "dt $dt"
 [ "${1:-}" = prepare ] && exit 0
 # the terrain's west end and half-width, for the deck's count of grains near its edges
