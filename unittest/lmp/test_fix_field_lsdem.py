@@ -9,7 +9,6 @@ A: a spread-out random set of 216 grains is mapped affinely (displace_atoms, x -
 B: three cubes settled on a floor wall: the integrated contact stress over the specimen
    volume V equals compute stress/lsdem's with the same V and wall to 1e-10; 1, 2 and 4
    ranks write the same bytes; the mask leaves nodes outside the cylinder NaN."""
-import math
 import os
 import random
 
@@ -19,7 +18,7 @@ import grain_decks as gd
 from contact_decks import Grain, box_library, head, THERMO_FULL
 from contact_decks import write_data as write_contact_data
 from lsdemtest import check, finish, run_lmp, thermo
-from vti import read_vti
+from vti import read_vti, runs_on_ranks
 
 # ---- A: affine map of a random spread-out set --------------------------------------
 rng = random.Random(35)
@@ -135,16 +134,9 @@ timestep 1e-3
 run 1000
 """ % (V, THERMO_FULL)
 
-outs = {}
-for np_ in (1, 2, 4):
-    wd = os.path.abspath("pile_np%d" % np_)
-    rc, log = run_lmp(DECK_B, np=np_, cwd=wd)
-    path = os.path.join(wd, "field_1000.vti")
-    if rc != 0 or not os.path.exists(path):
-        continue
-    outs[np_] = open(path, "rb").read()
-    if np_ != 1:
-        continue
+outs, first = runs_on_ranks(DECK_B, "pile", "field_1000.vti")
+if first:
+    path, log = first
     f = read_vti(path)
     row = thermo(log)[-1]
     sigma = [row["c_st[%d]" % k] for k in range(1, 7)]

@@ -17,7 +17,7 @@ import os
 import numpy as np
 
 from lsdemtest import check, finish, run_lmp, shape_tool
-from vti import read_vti
+from vti import read_vti, runs_on_ranks
 
 RS, H, RB, OUTER, B = 3.0, 4.0, 0.4, 1.1, 0.15
 shape_tool("analytic", "ball_in.lslib", "sphere", RB, "--analytic")
@@ -106,19 +106,14 @@ print("mask membrane vs mask cylinder: %d of %d nodes differ, all within one nod
       "surface" % ((got != ref).sum(), got.size))
 
 # ---- 2. bulged -------------------------------------------------------------------------
-outs = {}
-for np_ in (1, 2):
-    wd = "bulged_np%d" % np_
-    run_lmp(DECK % "displace_atoms membrane move v_dx v_dy 0.0", np=np_, cwd=wd)
-    path = os.path.join(wd, "mem_0.vti")
-    if os.path.exists(path):
-        outs[np_] = open(path, "rb").read()
-        if np_ == 1:
-            n_bulged = compare(read_vti(path),
-                               lambda z: R_IN * (1 + B * np.sin(np.pi * (z - ZLO) / (ZHI - ZLO))),
-                               "bulged membrane")
-            check(n_bulged > 1.15 * n_straight, "bulged: %d nodes inside, undeformed %d"
-                  % (n_bulged, n_straight))
+outs, first = runs_on_ranks(DECK % "displace_atoms membrane move v_dx v_dy 0.0", "bulged",
+                            "mem_0.vti", ranks=(1, 2))
+if first:
+    n_bulged = compare(read_vti(first[0]),
+                       lambda z: R_IN * (1 + B * np.sin(np.pi * (z - ZLO) / (ZHI - ZLO))),
+                       "bulged membrane")
+    check(n_bulged > 1.15 * n_straight, "bulged: %d nodes inside, undeformed %d"
+          % (n_bulged, n_straight))
 check(len(outs) == 2 and outs[1] == outs[2], "bulged: 1 and 2 ranks differ")
 
 # ---- 3. errors ---------------------------------------------------------------------------

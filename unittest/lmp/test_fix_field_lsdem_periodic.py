@@ -18,7 +18,7 @@ import numpy as np
 
 import grain_decks as gd
 from lsdemtest import check, finish, run_lmp, thermo
-from vti import read_vti
+from vti import read_vti, runs_on_ranks
 
 L = 9.0
 rng = random.Random(235)
@@ -67,16 +67,9 @@ run 1
 """
 
 for name, (data, change, H) in CASES.items():
-    outs = {}
-    for np_ in (1, 2, 4):
-        wd = os.path.abspath("%s_np%d" % (name, np_))
-        rc, log = run_lmp(DECK % (LIB, DATA[data], change), np=np_, cwd=wd)
-        path = os.path.join(wd, "field_1.vti")
-        if rc != 0 or not os.path.exists(path):
-            continue
-        outs[np_] = open(path, "rb").read()
-        if np_ != 1:
-            continue
+    outs, first = runs_on_ranks(DECK % (LIB, DATA[data], change), name, "field_1.vti")
+    if first:
+        path, log = first
         f = read_vti(path)
         row = thermo(log)[-1]
         n, h = f["n"], f["spacing"]

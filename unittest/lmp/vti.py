@@ -1,7 +1,11 @@
-"""Reader of the VTK ImageData files fix field/lsdem writes (raw appended, UInt64 headers)."""
+"""Reader of the VTK ImageData files fix field/lsdem writes (raw appended, UInt64 headers),
+and the runs of one deck on several rank counts that compare them."""
+import os
 import re
 
 import numpy as np
+
+from lsdemtest import run_lmp
 
 MARK = b'<AppendedData encoding="raw">\n_'
 
@@ -26,3 +30,20 @@ def read_vti(path):
         arr = np.frombuffer(data, dtype, size // np.dtype(dtype).itemsize, base + offset + 8)
         out[name] = arr.reshape(-1, comps)
     return out
+
+
+def runs_on_ranks(deck, name, out, ranks=(1, 2, 4)):
+    """deck run on each rank count N of ranks in folder <name>_np<N>: ({N: the bytes of the
+    file out written there, for the runs that wrote it}, (out's path, the log) of the first
+    rank count's run, or None when it wrote nothing)."""
+    outs, first = {}, None
+    for np_ in ranks:
+        wd = os.path.abspath("%s_np%d" % (name, np_))
+        rc, log = run_lmp(deck, np=np_, cwd=wd)
+        path = os.path.join(wd, out)
+        if rc != 0 or not os.path.exists(path):
+            continue
+        outs[np_] = open(path, "rb").read()
+        if np_ == ranks[0]:
+            first = (path, log)
+    return outs, first
