@@ -1,7 +1,7 @@
 /* resting_scaling.c -- the resting solve's cost per contact against island size (issue 33:
  * "solver time per contact within +-30 % from islands of 10 to 10^4 contacts").
  *
- *   lsdem-bench-resting [STEPS]
+ *   lsdem-bench-resting [STEPS [THREADS [all]]]
  *
  * Islands: cubic lattices of L x L x H unit spheres resting on a floor under gravity (each
  * sphere touches its -x, -y and -z neighbours, the bottom layer the floor; the lattice is
@@ -11,7 +11,11 @@
  * it (defaults: 10 sweeps at most, the shock sweep). After 20 warm-up steps, STEPS
  * (default 50) steps are timed. Prints per island: contacts, sweeps per step, microseconds
  * per contact and step, nanoseconds per contact and sweep, and the floor's load against
- * the weight. CPU time (clock), one thread. */
+ * the weight. Wall-clock time (timespec_get) and CPU time (clock, all threads). THREADS 0
+ * (the default): the sweeps in the island's order (fix impulse/lsdem's colours no); N >= 1:
+ * colour by colour on N OpenMP threads (colours yes; lsdem_resting_params.threads, islands
+ * of fewer than 64 pairs per thread take one; the same bits on any N), to 1e-3 as the fix.
+ * all: every one of the 10 sweeps runs (tolerance 0), to time the sweeps themselves. */
 #include "lsdem.h"
 
 #include <stdio.h>
@@ -21,7 +25,14 @@
 
 static double cpu_seconds(void) { return (double)clock() / CLOCKS_PER_SEC; }
 
-static void lattice(int L, int H, double dt, int steps)
+static double wall_seconds(void)
+{
+  struct timespec ts;
+  timespec_get(&ts, TIME_UTC);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void lattice(int L, int H, double dt, int steps, int threads, int all)
 {
   const int nb = L * L * H, nbod = nb + 1, floor_id = nb;
   lsdem_impulse_body *b = calloc((size_t)nbod, sizeof *b);
@@ -58,6 +69,10 @@ static void lattice(int L, int H, double dt, int steps)
   lsdem_island_params p;
   lsdem_island_params_default(&p);
   p.rest.max_sweeps = 10;
+  p.rest.colours = threads > 0;
+  p.rest.threads = threads > 0 ? threads : 1;
+  if (threads > 0) p.rest.tolerance = 1e-3;
+  if (all) p.rest.tolerance = 0.0;
   p.rest.ref_speed = 2.0 * 9.81 * dt;
   p.rest.dt = dt;
   p.collide_speed = p.rest.ref_speed;
@@ -67,26 +82,27 @@ static void lattice(int L, int H, double dt, int steps)
   void *ws = malloc(wsize);
   lsdem_island_result res;
   long sweeps = 0;
-  double t = 0.0;
+  double t = 0.0, cpu = 0.0;
   for (int s = 0; s < 20 + steps; s++) {
     for (int k = 0; k < nb; k++) b[k].v[2] -= 9.81 * dt;
-    const double t0 = cpu_seconds();
+    const double t0 = wall_seconds(), c0 = cpu_seconds();
     if (lsdem_island_solve(b, nbod, c, nc, resting, P, NULL, 1, &p, ws, wsize, &res, &err) !=
         LSDEM_OK) {
       fprintf(stderr, "island solve: %s\n", err.msg);
       exit(1);
     }
     if (s >= 20) {
-      t += cpu_seconds() - t0;
+      t += wall_seconds() - t0;
+      cpu += cpu_seconds() - c0;
       sweeps += res.rest.sweeps;
     }
   }
   double load = 0.0;
   for (int k = 0; k < nc; k++)
     if (c[k].b == floor_id) load += P[k][2];
-  printf("%7d %8d %8.2f %10.3f %10.1f %10.4f\n", nb, nc, (double)sweeps / steps,
-         1e6 * t / ((double)steps * nc), 1e9 * t / ((double)(sweeps + steps) * nc),
-         load / (nb * 9.81 * dt));
+  printf("%7d %8d %8.2f %10.3f %10.3f %10.1f %10.4f\n", nb, nc, (double)sweeps / steps,
+         1e6 * t / ((double)steps * nc), 1e6 * cpu / ((double)steps * nc),
+         1e9 * t / ((double)(sweeps + steps) * nc), load / (nb * 9.81 * dt));
   free(b);
   free(c);
   free(P);
@@ -97,9 +113,18 @@ static void lattice(int L, int H, double dt, int steps)
 int main(int argc, char **argv)
 {
   const int steps = argc > 1 ? atoi(argv[1]) : 50;
-  printf("# grains contacts sweeps/step us/contact-step ns/contact-sweep floor/weight\n");
+  const int threads = argc > 2 ? atoi(argv[2]) : 0;
+  const int all = argc > 3 && strcmp(argv[3], "all") == 0;
+  if (steps < 1 || threads < 0 || (argc > 3 && !all)) {
+    fprintf(stderr, "usage: lsdem-bench-resting [STEPS >= 1 [THREADS >= 0 [all]]]\n");
+    return 2;
+  }
+  if (threads > 0) printf("# colours, %d thread(s)", threads);
+  else printf("# in the island's order, one thread");
+  printf("%s\n# grains contacts sweeps/step us/contact-step(wall) us/contact-step(cpu) "
+         "ns/contact-sweep(wall) floor/weight\n", all ? ", every sweep" : "");
   const int sizes[] = {1, 2, 3, 4, 6, 8, 11, 15};
   for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++)
-    lattice(sizes[k], sizes[k], 2.76e-3, steps);
+    lattice(sizes[k], sizes[k], 2.76e-3, steps, threads, all);
   return 0;
 }

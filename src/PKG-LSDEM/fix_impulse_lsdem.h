@@ -126,6 +126,7 @@ class FixImpulseLsdem : public Fix {
     LsdemIslandStats first;   // the first pass's islands
     bigint iterations, sweeps;  // ETM iterations, resting sweeps x contacts, all passes
     int largest, rounds, passes, corrections, collisions, max_sweeps, etm_islands, etm_rounds;
+    int rest_threads;  // the most threads that shared an island's resting sweeps
     int resting, contacts, pairs;  // resting contacts, contacts (capped), touching pairs
     double absorbed, dissipated, released, resting_work, contact_work;
     double depth, wall_depth;  // deepest grain-grain and grain-wall penetration

@@ -27,6 +27,7 @@ void LsdemIslandStats::clear()
 {
   iterations = sweeps = resting = contacts = 0;
   islands = cross = largest = rounds = etm_islands = max_sweeps = largest_contacts = 0;
+  rest_threads = 0;
   etm_rounds = 0;
   absorbed = dissipated = released = truncated = resting_work = etm_work = 0.0;
   t_islands = t_etm = t_comm = t_rest = 0.0;
@@ -517,6 +518,7 @@ std::string LsdemImpulseIslands::solve_island(const Item *it, int n,
     st.resting += res.nresting;
     st.sweeps += (bigint) res.rest.sweeps * res.nresting;
     st.max_sweeps = std::max(st.max_sweeps, res.rest.sweeps);
+    st.rest_threads = std::max(st.rest_threads, res.rest.threads);
     st.resting_work += res.rest.work;
     st.etm_work += res.etm.work;
     st.t_rest += res.rest_seconds;

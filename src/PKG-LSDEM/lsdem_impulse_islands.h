@@ -44,6 +44,7 @@ typedef lsdem_impulse_step_contact LsdemImpulseContact;
 struct LsdemIslandStats {
   bigint iterations, sweeps;   // ETM group iterations; resting sweeps x contacts
   int islands, cross, largest, rounds, etm_islands, max_sweeps, largest_contacts, etm_rounds;
+  int rest_threads;            // the most threads that shared an island's resting sweeps
   bigint resting, contacts;    // resting contacts solved; contacts of the islands solved
   double absorbed, dissipated, released, truncated, resting_work;
   double etm_work;             // the collision impulses' exact work (lsdem_etm_result.work)

@@ -13,8 +13,11 @@ continued from its restart file on 3 is the uninterrupted run: the resting conta
 warm-start impulses (method split, the default) travel with their grains between ranks
 and through the restart file. Threads (-sf omp: pair_style lsdem/impulse/omp shares each
 rank's detection among them, fix wall/lsdem/omp each wall's detection of its grains) give
-the same bits too: 1 rank with 2 and 3 threads, 2 ranks with 2 threads each (the log must
-name the threaded pair style and the five walls' threaded style)."""
+the same bits too: 1 rank with 2 threads, and with colours yes (the resting sweeps colour by
+colour, shared by the threads) 1 rank with 3 threads and 2 ranks with 2 threads each against
+a serial colours-yes run (the log must name the threaded pair style and the five walls'
+threaded style, and the fix's value 46 that as many threads shared the pile's resting sweeps
+with colours, one without)."""
 import os
 import re
 
@@ -35,7 +38,8 @@ fix imp all impulse/lsdem 0.5 0.5 damping 1.0 alpha 1 tolerance 1e-3 passes 3
 timestep 1e-3
 compute q all property/atom qw qx qy qz
 thermo_style custom step ke f_imp[1] f_imp[2] f_imp[3] f_imp[4] f_imp[5] f_imp[6] f_imp[7] &
-             f_imp[8] f_imp[10] f_imp[13] f_imp[20] f_imp[22] f_imp[23] f_imp[24] f_imp[25]
+             f_imp[8] f_imp[10] f_imp[13] f_imp[20] f_imp[22] f_imp[23] f_imp[24] f_imp[25] &
+             f_imp[46]
 thermo_modify norm no format float %.17g
 thermo {every}
 """
@@ -45,8 +49,10 @@ EXACT = ("f_imp[1]", "f_imp[2]", "f_imp[4]", "f_imp[5]", "f_imp[6]", "f_imp[7]",
          "f_imp[22]", "f_imp[23]", "f_imp[24]", "f_imp[25]")
 
 
-def deck(steps, restart=None, info=False):
+def deck(steps, restart=None, info=False, colours=False):
     text = header("pile.lslib", "pile.data") + SCENE.format(every=EVERY)
+    if colours:
+        text = text.replace("passes 3\n", "passes 3 colours yes\n")
     if info:  # the fixes' styles into the log (the walls' /omp style)
         text += "info fixes out log\n"
     if restart:
@@ -76,6 +82,7 @@ if check(ref_atoms and len(ref) == STEPS // EVERY + 1, "the serial pile ran"):
           % (last["f_imp[2]"], last["f_imp[22]"]))
     check(all(r["f_imp[3]"] == 0 and r["f_imp[8]"] == 0 for r in ref),
           "one rank: no island spans ranks, no label exchange")
+    check(max(r["f_imp[46]"] for r in ref) == 1, "no threads: the resting sweeps on one")
 for np in (2, 3, 4):
     atoms, rows = run("np%d" % np, deck(STEPS), np)
     check(atoms == ref_atoms, "np=%d: grains differ from the serial run" % np)
@@ -94,17 +101,28 @@ for np in (2, 3, 4):
     check(cross > 0 and rounds >= 2, "np=%d: islands span ranks (%d), labels exchanged in %d "
           "rounds" % (np, cross, rounds))
 
-for np, nthreads in ((1, 2), (1, 3), (2, 2)):
-    name = "np%d-omp%d" % (np, nthreads)
-    atoms, rows = run(name, deck(STEPS, info=True), np,
+# colours yes: the resting sweeps colour by colour (another order: its own serial run)
+col_atoms, col_ref = run("np1-colours", deck(STEPS, colours=True), 1)
+check(col_atoms and col_atoms != ref_atoms, "colours yes ran, and sweeps in another order")
+check(max(r["f_imp[46]"] for r in col_ref) == 1, "colours yes, no threads: the sweeps on one")
+for np, nthreads, colours in ((1, 2, False), (1, 3, True), (2, 2, True)):
+    name = "np%d-omp%d%s" % (np, nthreads, "-colours" if colours else "")
+    atoms, rows = run(name, deck(STEPS, info=True, colours=colours), np,
                       args=["-sf", "omp", "-pk", "omp", nthreads])
     log = open(os.path.join(os.path.abspath(name), "log.lammps")).read()
     check("pair_style lsdem/impulse/omp" in log, "%s: the threaded pair style ran" % name)
     check(len(re.findall(r"style = wall/lsdem/omp", log)) == 5,
           "%s: the walls' threaded style ran" % name)
-    check(atoms == ref_atoms, "%s: grains differ from the serial run" % name)
-    check(len(rows) == len(ref) and all(r[col] == s[col] for r, s in zip(rows, ref)
-                                        for col in EXACT), "%s: counters differ" % name)
+    serial_atoms, serial = (col_atoms, col_ref) if colours else (ref_atoms, ref)
+    check(atoms == serial_atoms, "%s: grains differ from the serial run" % name)
+    check(len(rows) == len(serial) and all(r[col] == s[col] for r, s in zip(rows, serial)
+                                           for col in EXACT), "%s: counters differ" % name)
+    # with colours the pile's island is large enough for the threads to share its resting
+    # sweeps (64 pairs per thread) on one rank at least once; without, one thread sweeps
+    teams = max(r["f_imp[46]"] for r in rows)
+    print("%s: up to %d threads shared an island's resting sweeps" % (name, teams))
+    check(teams == (nthreads if colours else 1),
+          "%s: the resting sweeps were shared by %d threads" % (name, teams))
 
 # stopped on 2 ranks, continued from the restart on 3
 run_lmp(deck(HALF, restart="half.restart"), np=2, cwd=os.path.abspath("restart"))

@@ -40,13 +40,14 @@ def data(name, atoms, box="-2 2 xlo xhi\n-2 2 ylo yhi\n-1 12 zlo zhi\n", types=1
     return path
 
 
-def on_floor(name, lib, data_path, dt, variables, columns, every, steps):
+def on_floor(name, lib, data_path, dt, variables, columns, every, steps, opts=""):
     """Grains under gravity on a floor (friction 0.5), impulse method e = mu = 0.5 with the
-    fix's defaults; variables: deck lines; columns: thermo columns. The thermo rows."""
+    fix's defaults and opts; variables: deck lines; columns: thermo columns. The thermo
+    rows."""
     deck = (header(lib, data_path)
             + "fix floor all wall/lsdem plane 0 0 0 0 0 1 1.0e4 0 0.5\n"
             + "fix grav all gravity %r vector 0 0 -1\n" % G
-            + "fix imp all impulse/lsdem 0.5 0.5\ntimestep %r\n" % dt
+            + "fix imp all impulse/lsdem 0.5 0.5 %s\ntimestep %r\n" % (opts, dt)
             + variables + "variable m equal mass(all)\n"
             + "thermo_style custom step %s\n" % columns
             + "thermo_modify norm no format float %%.15g\nthermo %d\nrun %d\n" % (every, steps))
@@ -191,24 +192,31 @@ if check(rows, "mass ratio 1000 ran"):
                                             late[-1]["v_m"] * G, late[-1]["f_imp[23]"]))
     check(sink < 0.01 * 0.05, "the small sphere sinks %.3g of its radius" % (sink / 0.05))
     near(-late[-1]["f_floor[3]"], late[-1]["v_m"] * G, rtol=0.01, msg="floor carries both")
-# six boxes 1 x 1 x 0.5 stacked on the floor, friction 0.5, at dt 16e-3
-atoms = [(1, 0.0, 0.0, 0.25 + 0.5 * k - 1e-4 * (k + 1)) for k in range(6)]
-rows = on_floor("boxes", BOX, data("boxes", atoms, box="-3 3 xlo xhi\n-3 3 ylo yhi\n-1 6 zlo zhi\n"),
-                16e-3, "variable x equal x[6]\nvariable y equal y[6]\nvariable z equal z[6]\n"
-                "compute w all property/atom omegax omegay omegaz\n"
-                "variable w2 atom c_w[1]^2+c_w[2]^2+c_w[3]^2\nvariable w equal sqrt(v_w2[6])\n",
-                "v_x v_y v_z v_w v_m f_floor[3] f_imp[6]", 50, 1000)
-if check(rows, "box column ran"):
-    late = rows[len(rows) // 2:]
-    walk = max(abs(r["v_x"] - late[0]["v_x"]) + abs(r["v_y"] - late[0]["v_y"]) for r in late)
-    print("box column: top box at (%.3g, %.3g), z %.9g .. %.9g, spin up to %.3g; floor force "
-          "%.6g (weight %.6g)" % (late[-1]["v_x"], late[-1]["v_y"], min(r["v_z"] for r in late),
-                                 max(r["v_z"] for r in late), max(r["v_w"] for r in late),
-                                 -late[-1]["f_floor[3]"], late[-1]["v_m"] * G))
-    check(walk < 1e-9, "the box column walks sideways: %g over the last 500 steps" % walk)
-    # a tolerance, not a derived bound: the top box within 1 % of its width of the axis
-    # (the first steps' node-level asymmetry moves it there: 0.007 measured)
-    check(abs(late[-1]["v_x"]) + abs(late[-1]["v_y"]) < 0.01, "the top box settled off-centre")
-    check(max(r["v_w"] for r in late) < 1e-9, "the top box turns")
-    near(-late[-1]["f_floor[3]"], late[-1]["v_m"] * G, rtol=0.01, msg="box column: floor force")
+# six boxes 1 x 1 x 0.5 stacked on the floor, friction 0.5, at dt 16e-3: the resting sweeps
+# in the island's order (the default) and colour by colour (colours yes)
+for opts in ("", "colours yes"):
+    name = "boxes" + ("_colours" if opts else "")
+    atoms = [(1, 0.0, 0.0, 0.25 + 0.5 * k - 1e-4 * (k + 1)) for k in range(6)]
+    rows = on_floor(name, BOX, data(name, atoms, box="-3 3 xlo xhi\n-3 3 ylo yhi\n-1 6 zlo zhi\n"),
+                    16e-3, "variable x equal x[6]\nvariable y equal y[6]\nvariable z equal z[6]\n"
+                    "compute w all property/atom omegax omegay omegaz\n"
+                    "variable w2 atom c_w[1]^2+c_w[2]^2+c_w[3]^2\nvariable w equal sqrt(v_w2[6])\n",
+                    "v_x v_y v_z v_w v_m f_floor[3] f_imp[6]", 50, 1000, opts)
+    if check(rows, "box column ran (%s)" % (opts or "defaults")):
+        late = rows[len(rows) // 2:]
+        walk = max(abs(r["v_x"] - late[0]["v_x"]) + abs(r["v_y"] - late[0]["v_y"]) for r in late)
+        print("box column (%s): top box at (%.3g, %.3g), z %.9g .. %.9g, spin up to %.3g; floor "
+              "force %.6g (weight %.6g)" % (opts or "defaults", late[-1]["v_x"], late[-1]["v_y"],
+                                          min(r["v_z"] for r in late), max(r["v_z"] for r in late),
+                                          max(r["v_w"] for r in late), -late[-1]["f_floor[3]"],
+                                          late[-1]["v_m"] * G))
+        check(walk < 1e-9, "the box column walks sideways (%s): %g over the last 500 steps"
+              % (opts or "defaults", walk))
+        # a tolerance, not a derived bound: the top box within 1 % of its width of the axis
+        # (the first steps' node-level asymmetry moves it there: 0.007 measured)
+        check(abs(late[-1]["v_x"]) + abs(late[-1]["v_y"]) < 0.01,
+              "the top box settled off-centre (%s)" % (opts or "defaults"))
+        check(max(r["v_w"] for r in late) < 1e-9, "the top box turns (%s)" % (opts or "defaults"))
+        near(-late[-1]["f_floor[3]"], late[-1]["v_m"] * G, rtol=0.01,
+             msg="box column: floor force (%s)" % (opts or "defaults"))
 finish()

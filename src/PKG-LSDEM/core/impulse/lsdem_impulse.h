@@ -529,6 +529,13 @@ typedef struct {
                        step (the frozen side misses its reaction); its impulses enter P,
                        so the next step's warm start applies them to both sides and a
                        stack's load reaches the floor one level per step. Default 1 */
+  int colours;      /* 1: the sweeps visit the contacts in colours -- runs of one pair's
+                       contacts, coloured greedily in which's order so that no two runs of
+                       a colour share a moving body -- colour by colour, and threads share
+                       each colour: the same bits on any thread count; 0: in which's order,
+                       on one thread. Default 0 */
+  int threads;      /* with colours: OpenMP threads sharing the sweeps and the rows (>= 1;
+                       an island of fewer than 64 pairs per thread takes one). Default 1 */
 } lsdem_resting_params;
 
 void lsdem_resting_params_default(lsdem_resting_params *p);
@@ -540,6 +547,7 @@ typedef struct {
   double work;      /* kinetic energy the resting impulses added, warm start included
                        (negative: dissipated), the exact sum of dP . (u- + u+) / 2 */
   double warm_work; /* of which the warm start */
+  int threads;      /* threads that shared the sweeps (lsdem_resting_params.threads) */
   int cold;         /* 1: the solve added more energy than the bias may (sum of m v^2
                        over the island's grains, v the largest of max_push and the
                        contacts' target speeds) and was done again from the
@@ -549,7 +557,8 @@ typedef struct {
 size_t lsdem_resting_workspace_size(int nbodies, int ncontacts);
 
 /* The resting solve over the contacts which[0..nwhich) of an island (bodies and contacts
- * as for ETM), in that order (sort it by global keys for rank-independent bits).
+ * as for ETM) in that order, or the sweeps in colours made from it
+ * (lsdem_resting_params.colours); sort it by global keys for rank-independent bits.
  * impulse[c] holds contact c's accumulated impulse: the previous step's (re-projected on
  * this step's cone, scaled by warm and applied first when warm_start) or the one an
  * earlier solve of this step left (warm_start 0: not applied again); on return the new

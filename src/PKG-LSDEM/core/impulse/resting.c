@@ -6,6 +6,9 @@
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 void lsdem_resting_params_default(lsdem_resting_params *p)
 {
@@ -18,6 +21,8 @@ void lsdem_resting_params_default(lsdem_resting_params *p)
   p->max_push = HUGE_VAL;
   p->warm = 1.0;
   p->shock = 1;
+  p->threads = 1;
+  p->colours = 0;
 }
 
 /* Which side of a contact an update leaves alone: none, or (shock propagation) the side
@@ -47,15 +52,27 @@ typedef struct {
 
 static size_t align64(size_t n) { return (n + 63) & ~(size_t)63; }
 
+/* The sweeps' colours: runs of one pair's contacts coloured so that no two runs of a colour
+ * share a moving body; colours 0..NCOLOURS-2 from a 64-bit mask per body, the last for the
+ * runs no such colour fits (a body in ~32 pairs), swept by one thread. */
+enum { NCOLOURS = 65, MAX_THREADS = 64 };
+/* the colouring's int32 arrays for n contacts: seq, pos, run_first, run_place, run_colour,
+ * colour_start (struct colouring) */
+#define COLOURING_INTS(n) (5 * (size_t)(n) + 2 + NCOLOURS + 1)
+
 /* rows, then (shock) per body its level, the BFS queue, its first adjacency entry and a
- * count per level, the adjacency (two entries per contact) and the contacts' order */
+ * count per level, the adjacency (two entries per contact) and the contacts' order; the
+ * entry state (velocities, impulses); the colouring (runs' first contacts and order,
+ * colours' first runs, bodies' masks), each contact's work and each thread's residual */
 size_t lsdem_resting_workspace_size(int nbodies, int ncontacts)
 {
   const size_t nc = (size_t)(ncontacts > 0 ? ncontacts : 0);
   const size_t nb = (size_t)(nbodies > 0 ? nbodies : 0);
   return align64(nc * sizeof(row)) + align64((4 * nb + 4) * sizeof(int32_t)) +
          align64(3 * nc * sizeof(int32_t)) + align64(6 * nb * sizeof(double)) +
-         align64(3 * nc * sizeof(double)) + 64;
+         align64(3 * nc * sizeof(double)) +
+         align64(COLOURING_INTS(nc) * sizeof(int32_t)) + align64(nb * sizeof(uint64_t)) +
+         align64(nc * sizeof(double)) + align64(MAX_THREADS * 8 * sizeof(double)) + 64;
 }
 
 /* The normal speed a resting contact is driven to: the part of its overlap beyond the
@@ -139,6 +156,21 @@ static void make_row(const lsdem_impulse_body *bodies, const lsdem_impulse_conta
                                                      lsdem_impulse_body_is_wall(b));
 }
 
+/* The rows of the contacts which[seq[0..n)], in seq's order, on p->threads threads for a
+ * large island (each row its own: any thread count gives the same bits). */
+static void make_rows(const lsdem_impulse_body *bodies, const lsdem_impulse_contact *contacts,
+                      const int32_t *which, const int32_t *seq, int n,
+                      const lsdem_resting_params *p, row *rows)
+{
+  const int most = p->threads < MAX_THREADS ? p->threads : MAX_THREADS;
+  const int threads = p->colours && n >= 64 * most ? most : 1;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+#endif
+  for (int k = 0; k < n; k++)
+    make_row(bodies, &contacts[which[seq[k]]], p, FROZEN_NONE, &rows[k]);
+}
+
 /* The relative velocity of the contact along the row's direction d. */
 static double row_velocity(const row *r, const lsdem_impulse_body *a,
                            const lsdem_impulse_body *b, int d)
@@ -149,16 +181,22 @@ static double row_velocity(const row *r, const lsdem_impulse_body *a,
          lsdem_dot3(r->rb[d], b->omega);
 }
 
-/* An impulse lambda along the row's direction d on a (and -lambda on b). */
-static void row_apply(const row *r, lsdem_impulse_body *a, lsdem_impulse_body *b, int d,
-                      double lambda)
+/* An impulse lambda along the row's direction d on a (and -lambda on b); a side that does
+ * not move (a wall or frozen: inverse mass 0 in the row) is not written, so that threads
+ * updating contacts on one wall do not share a write. */
+static inline void row_apply(const row *r, lsdem_impulse_body *a, lsdem_impulse_body *b, int d,
+                             double lambda)
 {
-  for (int i = 0; i < 3; i++) {
-    a->v[i] += r->ma * lambda * r->dir[d][i];
-    a->omega[i] += lambda * r->ia[d][i];
-    b->v[i] -= r->mb * lambda * r->dir[d][i];
-    b->omega[i] -= lambda * r->ib[d][i];
-  }
+  if (r->ma != 0.0)
+    for (int i = 0; i < 3; i++) {
+      a->v[i] += r->ma * lambda * r->dir[d][i];
+      a->omega[i] += lambda * r->ia[d][i];
+    }
+  if (r->mb != 0.0)
+    for (int i = 0; i < 3; i++) {
+      b->v[i] -= r->mb * lambda * r->dir[d][i];
+      b->omega[i] -= lambda * r->ib[d][i];
+    }
 }
 
 /* Coulomb's cone: the normal part of P kept >= 0, its tangential part clipped to mu times
@@ -328,9 +366,9 @@ static void shock_order(const lsdem_impulse_body *bodies, int nbodies,
  * Bridson & Fedkiw 2003; Erleben 2007): a stack stops in one sweep, whatever its height or
  * mass ratios; contacts between bodies of one level, or no wall's, are updated as usual. */
 static void shock_sweep(lsdem_impulse_body *bodies, const lsdem_impulse_contact *contacts,
-                        const int32_t *which, const row *rows, const int32_t *order,
-                        int nwhich, const int32_t *level, const lsdem_resting_params *p,
-                        double (*impulse)[3], double *work)
+                        const int32_t *which, const row *rows, const int32_t *row_of,
+                        const int32_t *order, int nwhich, const int32_t *level,
+                        const lsdem_resting_params *p, double (*impulse)[3], double *work)
 {
   for (int n = 0; n < nwhich; n++) {
     const int k = order[n];
@@ -338,7 +376,7 @@ static void shock_sweep(lsdem_impulse_body *bodies, const lsdem_impulse_contact 
     const int32_t la = level[c->a], lb = level[c->b];
     const int frozen = la < lb ? FROZEN_A : (lb < la ? FROZEN_B : FROZEN_NONE);
     if (frozen == FROZEN_NONE) { /* the sweeps' row holds: positions do not change */
-      update_contact(bodies, c, &rows[k], impulse[which[k]], work);
+      update_contact(bodies, c, &rows[row_of[k]], impulse[which[k]], work);
       continue;
     }
     row r;
@@ -347,26 +385,213 @@ static void shock_sweep(lsdem_impulse_body *bodies, const lsdem_impulse_contact 
   }
 }
 
-/* The sweeps (until the residual is below tolerance x ref_speed, at most max_sweeps), then
- * the shock sweep if shock. */
+/* The sweeps' order (see NCOLOURS): the contacts of which in runs of one pair (consecutive,
+ * the same two bodies), the runs coloured greedily in which's order -- a run takes the
+ * lowest colour neither of its moving bodies has yet -- then listed colour by colour,
+ * stably: seq. The rows are made in seq's order, so that the sweeps read them in a stream.
+ * The runs of one colour share no moving body: their updates commute, so threads may share
+ * a colour and every thread count gives the same bits. O(contacts). */
+typedef struct {
+  int32_t *seq;          /* the places in which, in the sweeps' order */
+  int32_t *pos;          /* per place in which: its position in seq (and its row's) */
+  int32_t *run_first;    /* nruns + 1: the runs in the sweeps' order, each one's first
+                            position in seq */
+  int32_t *colour_start; /* NCOLOURS + 1: each colour's first run in that order */
+  int32_t *run_place;    /* nruns + 1, scratch: the runs in which's order, their first places */
+  int32_t *run_colour;   /* scratch: their colours */
+  uint64_t *used;        /* per body: the colours of its runs so far */
+  double *work;          /* per position in seq: the work of its updates in the sweeps */
+  double *part;          /* per thread (8 apart): its largest residual of a sweep */
+  int nruns;
+} colouring;
+
+static int moves(const lsdem_impulse_body *b) { return !lsdem_impulse_body_is_wall(b); }
+
+static int lowest_free_colour(uint64_t used)
+{
+  for (int c = 0; c < NCOLOURS - 1; c++)
+    if (!(used >> c & 1u)) return c;
+  return NCOLOURS - 1;
+}
+
+/* The runs of which and their colours, in which's order (run_place, run_colour): coloured
+ * (colours), or all in the last colour, swept by one thread in which's order. Returns the
+ * runs. */
+static int find_runs(const lsdem_impulse_body *bodies, int nbodies,
+                     const lsdem_impulse_contact *contacts, const int32_t *which, int nwhich,
+                     int colours, colouring *cl)
+{
+  for (int i = 0; colours && i < nbodies; i++) cl->used[i] = 0;
+  int n = 0;
+  for (int k = 0; k < nwhich; k++) {
+    const lsdem_impulse_contact *c = &contacts[which[k]];
+    if (k > 0 && c->a == contacts[which[k - 1]].a && c->b == contacts[which[k - 1]].b) continue;
+    int colour = NCOLOURS - 1;
+    if (colours) {
+      const int ma = moves(&bodies[c->a]), mb = moves(&bodies[c->b]);
+      colour = lowest_free_colour((ma ? cl->used[c->a] : 0) | (mb ? cl->used[c->b] : 0));
+      if (colour < NCOLOURS - 1) {
+        if (ma) cl->used[c->a] |= (uint64_t)1 << colour;
+        if (mb) cl->used[c->b] |= (uint64_t)1 << colour;
+      }
+    }
+    cl->run_place[n] = k;
+    cl->run_colour[n++] = colour;
+  }
+  cl->run_place[n] = nwhich;
+  return n;
+}
+
+static void colour_runs(const lsdem_impulse_body *bodies, int nbodies,
+                        const lsdem_impulse_contact *contacts, const int32_t *which, int nwhich,
+                        int colours, colouring *cl)
+{
+  const int n = find_runs(bodies, nbodies, contacts, which, nwhich, colours, cl);
+  cl->nruns = n;
+  /* counting sort of the runs by colour, stable: runs and contacts per colour, then each
+   * colour's first run and first position in seq */
+  int32_t runs_in[NCOLOURS] = {0}, places_in[NCOLOURS] = {0};
+  for (int r = 0; r < n; r++) {
+    runs_in[cl->run_colour[r]]++;
+    places_in[cl->run_colour[r]] += cl->run_place[r + 1] - cl->run_place[r];
+  }
+  int32_t runs = 0, places = 0;
+  for (int c = 0; c < NCOLOURS; c++) {
+    const int32_t nr = runs_in[c], np = places_in[c];
+    cl->colour_start[c] = runs_in[c] = runs;
+    places_in[c] = places;
+    runs += nr;
+    places += np;
+  }
+  cl->colour_start[NCOLOURS] = runs;
+  for (int r = 0; r < n; r++) {
+    const int c = cl->run_colour[r];
+    cl->run_first[runs_in[c]++] = places_in[c];
+    for (int k = cl->run_place[r]; k < cl->run_place[r + 1]; k++) {
+      cl->pos[k] = places_in[c];
+      cl->seq[places_in[c]++] = k;
+    }
+  }
+  cl->run_first[n] = nwhich;
+}
+
+/* The updates of the run at r in the sweeps' order (its contacts in which's order); returns
+ * their largest residual. */
+static double update_run(lsdem_impulse_body *bodies, const lsdem_impulse_contact *contacts,
+                         const int32_t *which, const row *rows, double (*impulse)[3],
+                         const colouring *cl, int r)
+{
+  double worst = 0.0;
+  for (int n = cl->run_first[r]; n < cl->run_first[r + 1]; n++) {
+    const int32_t w = which[cl->seq[n]];
+    worst = fmax(worst, update_contact(bodies, &contacts[w], &rows[n], impulse[w], &cl->work[n]));
+  }
+  return worst;
+}
+
+static int thread_id(void)
+{
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+static int team_size(void)
+{
+#ifdef _OPENMP
+  return omp_get_num_threads();
+#else
+  return 1;
+#endif
+}
+
+/* A barrier of the calling team; none for a team of one (libgomp's barrier makes a system
+ * call even then). Every thread of a team takes the same branch. */
+static void team_barrier(void)
+{
+  if (team_size() > 1) {
+#ifdef _OPENMP
+#pragma omp barrier
+#endif
+  }
+}
+
+/* One sweep, colour by colour, by the calling team (the last colour by one thread);
+ * returns the largest residual, the same on every thread of the team. */
+static double sweep_colours(lsdem_impulse_body *bodies, const lsdem_impulse_contact *contacts,
+                            const int32_t *which, const row *rows, double (*impulse)[3],
+                            const colouring *cl)
+{
+  double worst = 0.0;
+  for (int c = 0; c < NCOLOURS; c++) {
+    const int from = cl->colour_start[c], to = cl->colour_start[c + 1];
+    if (from == to) continue;
+    if (c < NCOLOURS - 1) {
+#ifdef _OPENMP
+#pragma omp for schedule(static) nowait
+#endif
+      for (int n = from; n < to; n++)
+        worst = fmax(worst, update_run(bodies, contacts, which, rows, impulse, cl, n));
+    } else if (thread_id() == 0) {
+      for (int n = from; n < to; n++)
+        worst = fmax(worst, update_run(bodies, contacts, which, rows, impulse, cl, n));
+    }
+    team_barrier();
+  }
+  cl->part[8 * thread_id()] = worst;
+  team_barrier();
+  double all = 0.0;
+  for (int t = 0; t < team_size(); t++) all = fmax(all, cl->part[8 * t]);
+  team_barrier(); /* every thread has read part before the next sweep writes it */
+  return all;
+}
+
+/* The sweeps by the calling team until the residual is below stop, at most max_sweeps;
+ * thread 0 writes their count and last residual. */
+static void run_sweeps(lsdem_impulse_body *bodies, const lsdem_impulse_contact *contacts,
+                       const int32_t *which, const row *rows, double (*impulse)[3],
+                       const colouring *cl, int max_sweeps, double stop,
+                       lsdem_resting_result *res)
+{
+  for (int s = 0; s < max_sweeps; s++) {
+    const double worst = sweep_colours(bodies, contacts, which, rows, impulse, cl);
+    if (thread_id() == 0) {
+      res->sweeps = s + 1;
+      res->residual = worst;
+      res->threads = team_size();
+    }
+    if (worst <= stop) break;
+  }
+}
+
+/* The sweeps (until the residual is below tolerance x ref_speed, at most max_sweeps), on
+ * p->threads threads when the island has enough contacts, then the shock sweep if shock
+ * (one thread: its order is by level). The work is summed per contact, then in which's
+ * order: the same bits on any thread count. */
 static void sweep_island(lsdem_impulse_body *bodies, int nbodies,
                          const lsdem_impulse_contact *contacts, const int32_t *which, int nwhich,
                          const row *rows, double (*impulse)[3], const lsdem_resting_params *p,
-                         int shock, const shock_ws *sw, lsdem_resting_result *res)
+                         int shock, const shock_ws *sw, colouring *cl,
+                         lsdem_resting_result *res)
 {
   const double stop = p->tolerance * p->ref_speed;
-  for (int s = 0; s < p->max_sweeps; s++) {
-    double worst = 0.0;
-    for (int k = 0; k < nwhich; k++)
-      worst = fmax(worst, update_contact(bodies, &contacts[which[k]], &rows[k],
-                                         impulse[which[k]], &res->work));
-    res->sweeps = s + 1;
-    res->residual = worst;
-    if (worst <= stop) break;
+  for (int k = 0; k < nwhich; k++) cl->work[k] = 0.0;
+  int threads = p->threads < MAX_THREADS ? p->threads : MAX_THREADS;
+  if (!p->colours || cl->nruns < 64 * threads) threads = 1; /* a small island: one */
+  if (threads > 1) {
+#ifdef _OPENMP
+#pragma omp parallel num_threads(threads)
+#endif
+    run_sweeps(bodies, contacts, which, rows, impulse, cl, p->max_sweeps, stop, res);
+  } else {
+    run_sweeps(bodies, contacts, which, rows, impulse, cl, p->max_sweeps, stop, res);
   }
+  for (int k = 0; k < nwhich; k++) res->work += cl->work[k];
   if (shock) {
     shock_order(bodies, nbodies, contacts, which, nwhich, sw);
-    shock_sweep(bodies, contacts, which, rows, sw->order, nwhich, sw->level, p, impulse,
+    shock_sweep(bodies, contacts, which, rows, cl->pos, sw->order, nwhich, sw->level, p, impulse,
                 &res->work);
   }
 }
@@ -416,12 +641,13 @@ lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
   memset(res, 0, sizeof *res);
   if (p->max_sweeps < 0 || !(p->tolerance >= 0.0) || !(p->ref_speed >= 0.0) ||
       !(p->dt >= 0.0) || !(p->bias >= 0.0 && p->bias <= 1.0) || !(p->slop >= 0.0) ||
-      !(p->max_push >= 0.0) || !(p->warm >= 0.0 && p->warm <= 1.0))
+      !(p->max_push >= 0.0) || !(p->warm >= 0.0 && p->warm <= 1.0) || p->threads < 1)
     return lsdem_fail(err, LSDEM_ERR_ARG,
                       "resting solve: sweeps %d (>= 0), tolerance %g, ref_speed %g, dt %g, "
-                      "slop %g, max_push %g (>= 0), bias %g, warm %g (in [0, 1])",
+                      "slop %g, max_push %g (>= 0), bias %g, warm %g (in [0, 1]), threads %d "
+                      "(>= 1)",
                       p->max_sweeps, p->tolerance, p->ref_speed, p->dt, p->slop, p->max_push,
-                      p->bias, p->warm);
+                      p->bias, p->warm, p->threads);
   if (nwhich <= 0) return LSDEM_OK;
   char *base = (char *)(((uintptr_t)ws + 63) & ~(uintptr_t)63);
   if (!ws || lsdem_resting_workspace_size(nbodies, nwhich) > wsize)
@@ -437,6 +663,16 @@ lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
   sw.order = sw.adj + 2 * (size_t)nwhich;
   double *saved = (double *)((char *)sw.adj + align64(3 * (size_t)nwhich * sizeof(int32_t)));
   double *saved_imp = saved + align64(6 * (size_t)nbodies * sizeof(double)) / sizeof(double);
+  colouring cl;
+  cl.seq = (int32_t *)((char *)saved_imp + align64(3 * (size_t)nwhich * sizeof(double)));
+  cl.pos = cl.seq + nwhich;
+  cl.run_first = cl.pos + nwhich;       /* nwhich + 1 */
+  cl.run_place = cl.run_first + nwhich + 1; /* nwhich + 1 */
+  cl.run_colour = cl.run_place + nwhich + 1;
+  cl.colour_start = cl.run_colour + nwhich; /* NCOLOURS + 1 */
+  cl.used = (uint64_t *)((char *)cl.seq + align64(COLOURING_INTS(nwhich) * sizeof(int32_t)));
+  cl.work = (double *)((char *)cl.used + align64((size_t)nbodies * sizeof(uint64_t)));
+  cl.part = (double *)((char *)cl.work + align64((size_t)nwhich * sizeof(double)));
   for (int k = 0; k < nwhich; k++) {
     const int32_t w = which[k];
     if (w < 0 || w >= ncontacts)
@@ -446,8 +682,9 @@ lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
     if (c->a < 0 || c->a >= nbodies || c->b < 0 || c->b >= nbodies || c->a == c->b)
       return lsdem_fail(err, LSDEM_ERR_ARG, "resting solve: contact %d joins bodies %d, %d of %d",
                         w, c->a, c->b, nbodies);
-    make_row(bodies, c, p, FROZEN_NONE, &rows[k]);
   }
+  colour_runs(bodies, nbodies, contacts, which, nwhich, p->colours, &cl);
+  make_rows(bodies, contacts, which, cl.seq, nwhich, p, rows);
 
   /* warm start: last step's accumulated impulses, re-projected on this step's cones */
   save_state(bodies, nbodies, which, nwhich, impulse, saved, saved_imp);
@@ -457,10 +694,11 @@ lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
     const lsdem_impulse_contact *c = &contacts[which[k]];
     project_cone(c->normal, c->mu, P);
     if (P[0] == 0.0 && P[1] == 0.0 && P[2] == 0.0) continue;
-    res->warm_work += apply_total(bodies, c, &rows[k], P);
+    res->warm_work += apply_total(bodies, c, &rows[cl.pos[k]], P);
   }
 
-  sweep_island(bodies, nbodies, contacts, which, nwhich, rows, impulse, p, p->shock, &sw, res);
+  sweep_island(bodies, nbodies, contacts, which, nwhich, rows, impulse, p, p->shock, &sw, &cl,
+               res);
   res->work += res->warm_work;
   /* A solve that adds more energy than its bias may -- a warm start the sweeps could not
    * relax (too few sweeps for a stiff pile), or the shock sweep handing a frozen side's
@@ -472,7 +710,7 @@ lsdem_status lsdem_resting_solve(lsdem_impulse_body *bodies, int nbodies,
       for (int d = 0; d < 3; d++) impulse[which[k]][d] = 0.0;
     memset(res, 0, sizeof *res);
     res->cold = 1;
-    sweep_island(bodies, nbodies, contacts, which, nwhich, rows, impulse, p, 0, &sw, res);
+    sweep_island(bodies, nbodies, contacts, which, nwhich, rows, impulse, p, 0, &sw, &cl, res);
   }
   return LSDEM_OK;
 }
