@@ -54,7 +54,8 @@ static size_t align64(size_t n) { return (n + 63) & ~(size_t)63; }
 
 /* The sweeps' colours: runs of one pair's contacts coloured so that no two runs of a colour
  * share a moving body; colours 0..NCOLOURS-2 from a 64-bit mask per body, the last for the
- * runs no such colour fits (a body in ~32 pairs), swept by one thread. */
+ * runs no such colour fits (a body in ~32 pairs), swept by one thread -- and, without
+ * colours (lsdem_resting_params.colours 0), for every run, in which's order. */
 enum { NCOLOURS = 65, MAX_THREADS = 64 };
 /* the colouring's int32 arrays for n contacts: seq, pos, run_first, run_place, run_colour,
  * colour_start (struct colouring) */
@@ -567,9 +568,9 @@ static void run_sweeps(lsdem_impulse_body *bodies, const lsdem_impulse_contact *
 }
 
 /* The sweeps (until the residual is below tolerance x ref_speed, at most max_sweeps), on
- * p->threads threads when the island has enough contacts, then the shock sweep if shock
- * (one thread: its order is by level). The work is summed per contact, then in which's
- * order: the same bits on any thread count. */
+ * p->threads threads when colouring an island with enough contacts, then the shock sweep
+ * if shock (one thread: its order is by level). The work is summed per contact, then in the
+ * sweeps' order: the same bits on any thread count. */
 static void sweep_island(lsdem_impulse_body *bodies, int nbodies,
                          const lsdem_impulse_contact *contacts, const int32_t *which, int nwhich,
                          const row *rows, double (*impulse)[3], const lsdem_resting_params *p,
