@@ -54,8 +54,7 @@ static size_t align64(size_t n) { return (n + 63) & ~(size_t)63; }
 
 /* The sweeps' colours: runs of one pair's contacts coloured so that no two runs of a colour
  * share a moving body; colours 0..NCOLOURS-2 from a 64-bit mask per body, the last for the
- * runs no such colour fits (a body in ~32 pairs), swept by one thread -- and, without
- * colours (lsdem_resting_params.colours 0), for every run, in which's order. */
+ * runs no such colour fits (a body in ~32 pairs), swept by one thread. */
 enum { NCOLOURS = 65, MAX_THREADS = 64 };
 /* the colouring's int32 arrays for n contacts: seq, pos, run_first, run_place, run_colour,
  * colour_start (struct colouring) */
@@ -165,8 +164,13 @@ static void make_rows(const lsdem_impulse_body *bodies, const lsdem_impulse_cont
 {
   const int most = p->threads < MAX_THREADS ? p->threads : MAX_THREADS;
   const int threads = p->colours && n >= 64 * most ? most : 1;
+  if (threads == 1) { /* no team: one thread's loop as the compiler makes it */
+    for (int k = 0; k < n; k++)
+      make_row(bodies, &contacts[which[seq[k]]], p, FROZEN_NONE, &rows[k]);
+    return;
+  }
 #ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+#pragma omp parallel for schedule(static) num_threads(threads)
 #endif
   for (int k = 0; k < n; k++)
     make_row(bodies, &contacts[which[seq[k]]], p, FROZEN_NONE, &rows[k]);
@@ -183,21 +187,16 @@ static double row_velocity(const row *r, const lsdem_impulse_body *a,
 }
 
 /* An impulse lambda along the row's direction d on a (and -lambda on b); a side that does
- * not move (a wall or frozen: inverse mass 0 in the row) is not written, so that threads
- * updating contacts on one wall do not share a write. */
-static inline void row_apply(const row *r, lsdem_impulse_body *a, lsdem_impulse_body *b, int d,
-                             double lambda)
+ * not move (a wall or frozen: inverse mass 0 in the row) takes zero. */
+static void row_apply(const row *r, lsdem_impulse_body *a, lsdem_impulse_body *b, int d,
+                      double lambda)
 {
-  if (r->ma != 0.0)
-    for (int i = 0; i < 3; i++) {
-      a->v[i] += r->ma * lambda * r->dir[d][i];
-      a->omega[i] += lambda * r->ia[d][i];
-    }
-  if (r->mb != 0.0)
-    for (int i = 0; i < 3; i++) {
-      b->v[i] -= r->mb * lambda * r->dir[d][i];
-      b->omega[i] -= lambda * r->ib[d][i];
-    }
+  for (int i = 0; i < 3; i++) {
+    a->v[i] += r->ma * lambda * r->dir[d][i];
+    a->omega[i] += lambda * r->ia[d][i];
+    b->v[i] -= r->mb * lambda * r->dir[d][i];
+    b->omega[i] -= lambda * r->ib[d][i];
+  }
 }
 
 /* Coulomb's cone: the normal part of P kept >= 0, its tangential part clipped to mu times
@@ -269,6 +268,17 @@ static double update_contact(lsdem_impulse_body *bodies, const lsdem_impulse_con
                              const row *r, double P[3], double *work)
 {
   lsdem_impulse_body *a = &bodies[c->a], *b = &bodies[c->b];
+  /* a side that does not move takes its zero updates in a copy: threads sweeping contacts
+   * on one wall never write it */
+  lsdem_impulse_body still_a, still_b;
+  if (r->ma == 0.0) {
+    still_a = *a;
+    a = &still_a;
+  }
+  if (r->mb == 0.0) {
+    still_b = *b;
+    b = &still_b;
+  }
   const double un = row_velocity(r, a, b, DN);
   const double ut[2] = {row_velocity(r, a, b, DT1), row_velocity(r, a, b, DT2)};
   const double pn = lsdem_dot3(P, r->dir[DN]);
@@ -415,26 +425,22 @@ static int lowest_free_colour(uint64_t used)
   return NCOLOURS - 1;
 }
 
-/* The runs of which and their colours, in which's order (run_place, run_colour): coloured
- * (colours), or all in the last colour, swept by one thread in which's order. Returns the
- * runs. */
+/* The runs of which and their colours, in which's order (run_place, run_colour). Returns
+ * the runs. */
 static int find_runs(const lsdem_impulse_body *bodies, int nbodies,
                      const lsdem_impulse_contact *contacts, const int32_t *which, int nwhich,
-                     int colours, colouring *cl)
+                     colouring *cl)
 {
-  for (int i = 0; colours && i < nbodies; i++) cl->used[i] = 0;
+  for (int i = 0; i < nbodies; i++) cl->used[i] = 0;
   int n = 0;
   for (int k = 0; k < nwhich; k++) {
     const lsdem_impulse_contact *c = &contacts[which[k]];
     if (k > 0 && c->a == contacts[which[k - 1]].a && c->b == contacts[which[k - 1]].b) continue;
-    int colour = NCOLOURS - 1;
-    if (colours) {
-      const int ma = moves(&bodies[c->a]), mb = moves(&bodies[c->b]);
-      colour = lowest_free_colour((ma ? cl->used[c->a] : 0) | (mb ? cl->used[c->b] : 0));
-      if (colour < NCOLOURS - 1) {
-        if (ma) cl->used[c->a] |= (uint64_t)1 << colour;
-        if (mb) cl->used[c->b] |= (uint64_t)1 << colour;
-      }
+    const int ma = moves(&bodies[c->a]), mb = moves(&bodies[c->b]);
+    const int colour = lowest_free_colour((ma ? cl->used[c->a] : 0) | (mb ? cl->used[c->b] : 0));
+    if (colour < NCOLOURS - 1) {
+      if (ma) cl->used[c->a] |= (uint64_t)1 << colour;
+      if (mb) cl->used[c->b] |= (uint64_t)1 << colour;
     }
     cl->run_place[n] = k;
     cl->run_colour[n++] = colour;
@@ -443,11 +449,17 @@ static int find_runs(const lsdem_impulse_body *bodies, int nbodies,
   return n;
 }
 
+/* The sweeps' order: seq and pos, the runs and colours (colours), or which's own order. */
 static void colour_runs(const lsdem_impulse_body *bodies, int nbodies,
                         const lsdem_impulse_contact *contacts, const int32_t *which, int nwhich,
                         int colours, colouring *cl)
 {
-  const int n = find_runs(bodies, nbodies, contacts, which, nwhich, colours, cl);
+  if (!colours) {
+    for (int k = 0; k < nwhich; k++) cl->seq[k] = cl->pos[k] = k;
+    cl->nruns = 0;
+    return;
+  }
+  const int n = find_runs(bodies, nbodies, contacts, which, nwhich, cl);
   cl->nruns = n;
   /* counting sort of the runs by colour, stable: runs and contacts per colour, then each
    * colour's first run and first position in seq */
@@ -567,6 +579,25 @@ static void run_sweeps(lsdem_impulse_body *bodies, const lsdem_impulse_contact *
   }
 }
 
+/* The sweeps in which's order (no colours), until the largest residual of a sweep is below
+ * stop, at most max_sweeps; the work summed in the sweeps' order. */
+static void sweep_in_order(lsdem_impulse_body *bodies, const lsdem_impulse_contact *contacts,
+                           const int32_t *which, int nwhich, const row *rows,
+                           double (*impulse)[3], int max_sweeps, double stop,
+                           lsdem_resting_result *res)
+{
+  for (int s = 0; s < max_sweeps; s++) {
+    double worst = 0.0;
+    for (int k = 0; k < nwhich; k++)
+      worst = fmax(worst, update_contact(bodies, &contacts[which[k]], &rows[k],
+                                         impulse[which[k]], &res->work));
+    res->sweeps = s + 1;
+    res->residual = worst;
+    res->threads = 1;
+    if (worst <= stop) break;
+  }
+}
+
 /* The sweeps (until the residual is below tolerance x ref_speed, at most max_sweeps), on
  * p->threads threads when colouring an island with enough contacts, then the shock sweep
  * if shock (one thread: its order is by level). The work is summed per contact, then in the
@@ -578,18 +609,22 @@ static void sweep_island(lsdem_impulse_body *bodies, int nbodies,
                          lsdem_resting_result *res)
 {
   const double stop = p->tolerance * p->ref_speed;
-  for (int k = 0; k < nwhich; k++) cl->work[k] = 0.0;
-  int threads = p->threads < MAX_THREADS ? p->threads : MAX_THREADS;
-  if (!p->colours || cl->nruns < 64 * threads) threads = 1; /* a small island: one */
-  if (threads > 1) {
+  if (!p->colours) {
+    sweep_in_order(bodies, contacts, which, nwhich, rows, impulse, p->max_sweeps, stop, res);
+  } else {
+    for (int k = 0; k < nwhich; k++) cl->work[k] = 0.0;
+    int threads = p->threads < MAX_THREADS ? p->threads : MAX_THREADS;
+    if (cl->nruns < 64 * threads) threads = 1; /* a small island: one */
+    if (threads > 1) {
 #ifdef _OPENMP
 #pragma omp parallel num_threads(threads)
 #endif
-    run_sweeps(bodies, contacts, which, rows, impulse, cl, p->max_sweeps, stop, res);
-  } else {
-    run_sweeps(bodies, contacts, which, rows, impulse, cl, p->max_sweeps, stop, res);
+      run_sweeps(bodies, contacts, which, rows, impulse, cl, p->max_sweeps, stop, res);
+    } else {
+      run_sweeps(bodies, contacts, which, rows, impulse, cl, p->max_sweeps, stop, res);
+    }
+    for (int k = 0; k < nwhich; k++) res->work += cl->work[k];
   }
-  for (int k = 0; k < nwhich; k++) res->work += cl->work[k];
   if (shock) {
     shock_order(bodies, nbodies, contacts, which, nwhich, sw);
     shock_sweep(bodies, contacts, which, rows, cl->pos, sw->order, nwhich, sw->level, p, impulse,
