@@ -39,6 +39,7 @@ FixStyle(LSDEM_HISTORY,FixLsdemHistory);
 
 #include "fix.h"
 #include "lsdem_kernel.h"
+#include "lsdem_lane_padding.h"
 
 #include <vector>
 
@@ -94,6 +95,7 @@ class FixLsdemHistory : public Fix {
     int atom_slice;          // where the atom being visited starts (while written)
     int atom_records;        // and the records its committed pairs take
     int maxrecords;          // the largest state written to this lane this step
+    LsdemLanePadding apart;  // written by its thread at every pair: off the next lane's lines
   };
   std::vector<Pool> pool[2];  // the lanes of the two pools
   int cur;                    // pool[cur] holds the states; pool[1 - cur] is written

@@ -23,6 +23,7 @@ FixStyle(wall/lsdem,FixWallLsdem);
 #include "lsdem_contact_options.h"
 #include "lsdem_contact_path.h"
 #include "lsdem_kernel.h"
+#include "lsdem_lane_padding.h"
 
 #include <functional>
 #include <memory>
@@ -109,6 +110,7 @@ class FixWallLsdem : public Fix {
     std::vector<int> found_i;
     std::vector<lsdem_manifold> found;
     std::vector<lsdem_contact_point> found_points;
+    LsdemLanePadding apart;  // written by its thread at every test: off the next lane's lines
   };
   std::vector<std::unique_ptr<Lane>> lanes;
   int nlanes;  // lanes used by the last force call

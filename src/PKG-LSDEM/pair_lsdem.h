@@ -23,6 +23,7 @@ PairStyle(lsdem,PairLsdem);
 #include "lsdem_contact_options.h"
 #include "lsdem_contact_path.h"
 #include "lsdem_kernel.h"
+#include "lsdem_lane_padding.h"
 
 #include <memory>
 #include <vector>
@@ -114,6 +115,7 @@ class PairLsdem : public Pair {
     LsdemContactPath path;
     std::vector<Contact> contact;
     bigint ntested_pairs = 0, ntested_nodes = 0, npen_nodes = 0;
+    LsdemLanePadding apart;  // written by its thread at every test: off the next lane's lines
   };
   std::vector<std::unique_ptr<Lane>> lanes;
   int nlanes;  // lanes used by the last force call

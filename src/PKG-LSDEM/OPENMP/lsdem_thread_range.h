@@ -2,8 +2,7 @@
    LSDEM package: the share of n items that the calling thread of an OpenMP parallel region
    takes: the serial order cut into nthreads contiguous runs, so that thread t's lane holds
    run t and the lanes read in order are the serial order (fix wall/lsdem/omp,
-   fix nve/lsdem/omp; pair_style lsdem/omp uses the OPENMP package's loop_setup_thr, the same
-   cut).
+   fix nve/lsdem/omp; pair_style lsdem/omp cuts its grains by work, lsdem_pair_threads.h).
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_LSDEM_THREAD_RANGE_H

@@ -13,8 +13,6 @@
 #include "suffix.h"
 #include "update.h"
 
-#include "omp_compat.h"
-
 using namespace LAMMPS_NS;
 
 PairLsdemOMP::PairLsdemOMP(LAMMPS *lmp) : PairLsdem(lmp), ThrOMP(lmp, THR_PAIR)
@@ -33,45 +31,52 @@ void PairLsdemOMP::init_style()
 
 /* ----------------------------------------------------------------------
    pair_style lsdem's force call with its two loops threaded: the tests (each thread's
-   grains into its lane), then, after the coordination count that zcap needs from every
-   lane, the forces (each lane's contacts into its thread's arrays)
+   grains into its lane), then the forces (each lane's contacts into its thread's arrays).
+   Without zcap a thread applies its lane's forces as soon as it has tested its grains,
+   in the same parallel region; zcap scales them by the contact counts of every lane, so
+   the counts come between two regions
 ------------------------------------------------------------------------- */
 
 void PairLsdemOMP::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
-  const int nall = atom->nlocal + atom->nghost;
   const int nthreads = comm->nthreads;  // lanes set up for them at init_style
   const int inum = list->inum;
   begin_force_call(nthreads);
-  update_poses(0, nall);
+  update_poses(0, atom->nlocal + atom->nghost);
   if (neighbor->ago == 0 || !master_built) build_master_pairs();
 
   // runs of equal work: a grain weighs 1 + its node tests on the last force call
   lsdem_work_cuts(inum, nthreads,
                   [&](int ii) { return 1.0 + grain_node_tests[list->ilist[ii]]; }, cuts);
-  lsdem_pair_threads(fix, cuts, [&](int tid, int from, int to, ThrData *) {
+  const bool counts_first = zcap > 0;
+  lsdem_pair_threads(fix, cuts, [&](int tid, int from, int to, ThrData *thr) {
     test_pairs(*lanes[tid], from, to);
+    if (!counts_first) apply_lane(*lanes[tid], eflag, vflag, thr);
   });
   end_force_call();
-  if (zcap > 0) coordination(1);
-
-#if defined(_OPENMP)
-#pragma omp parallel LMP_DEFAULT_NONE LMP_SHARED(eflag, vflag)
-#endif
-  {
-    int ifrom, ito, tid;
-    loop_setup_thr(ifrom, ito, tid, inum, nthreads);
-    ThrData *thr = fix->get_thr(tid);
-    thr->timer(Timer::START);
-    ev_setup_thr(eflag, vflag, nall, eatom, vatom, nullptr, thr);
-    apply_contacts(*lanes[tid], thr->get_f(), thr->get_torque());
-    thr->timer(Timer::PAIR);
-    reduce_thr(this, eflag, vflag, thr);  // every thread, inside the region (it syncs them)
+  if (counts_first) {
+    coordination(1);
+    lsdem_pair_threads(fix, cuts, [&](int tid, int, int, ThrData *thr) {
+      apply_lane(*lanes[tid], eflag, vflag, thr);
+    });
   }
 
   if (eflag_global) tally_workload();
   if (update->setupflag) report_overlaps();
+}
+
+/* ----------------------------------------------------------------------
+   a lane's contacts into its thread's force and torque arrays, then the threads' arrays
+   summed (every thread calls it, inside the parallel region: it syncs them)
+------------------------------------------------------------------------- */
+
+void PairLsdemOMP::apply_lane(Lane &lane, int eflag, int vflag, ThrData *thr)
+{
+  ev_setup_thr(eflag, vflag, atom->nlocal + atom->nghost, eatom, vatom, nullptr, thr);
+  apply_contacts(lane, thr->get_f(), thr->get_torque());
+  thr->timer(Timer::PAIR);
+  reduce_thr(this, eflag, vflag, thr);
 }
 
 /* ---------------------------------------------------------------------- */

@@ -36,6 +36,7 @@ class PairLsdemOMP : public PairLsdem, public ThrOMP {
 
  private:
   std::vector<int> cuts;  // thread t tests the grains ilist[cuts[t]..cuts[t + 1])
+  void apply_lane(Lane &, int eflag, int vflag, class ThrData *);
 };
 
 }    // namespace LAMMPS_NS
