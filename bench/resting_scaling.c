@@ -69,9 +69,8 @@ static void lattice(int L, int H, double dt, int steps, int threads, int all)
   lsdem_island_params p;
   lsdem_island_params_default(&p);
   p.rest.max_sweeps = 10;
-  p.rest.colours = threads > 0;
+  lsdem_resting_set_colours(&p.rest, threads > 0);
   p.rest.threads = threads > 0 ? threads : 1;
-  if (threads > 0) p.rest.tolerance = 1e-3;
   if (all) p.rest.tolerance = 0.0;
   p.rest.ref_speed = 2.0 * 9.81 * dt;
   p.rest.dt = dt;

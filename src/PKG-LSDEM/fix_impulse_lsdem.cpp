@@ -154,8 +154,8 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
         error->all(FLERR, "fix impulse/lsdem: sweeps = {} must be >= 1 (Gauss-Seidel sweeps "
                    "over an island's resting contacts per step)", val);
     } else if (key == "colours") {
-      if (strcmp(val, "yes") == 0) resting.colours = 1;
-      else if (strcmp(val, "no") == 0) resting.colours = 0;
+      if (strcmp(val, "yes") == 0) lsdem_resting_set_colours(&resting, 1);
+      else if (strcmp(val, "no") == 0) lsdem_resting_set_colours(&resting, 0);
       else error->all(FLERR, "fix impulse/lsdem: colours must be yes or no, not {}", val);
     } else if (key == "bias") {
       resting.bias = number();
@@ -265,10 +265,6 @@ FixImpulseLsdem::FixImpulseLsdem(LAMMPS *lmp, int narg, char **arg) :
   // points auto: the report's method keeps every glued contact (as the report), the split
   // method four per pair
   if (max_points < 0) max_points = method == SPLIT ? 4 : 0;
-  // colours: the sweeps in colour order converge otherwise than in the island's order; at
-  // the 1e-2 (of the resting speed) that serves that order, a column of 6 boxes at 16x the
-  // step crept sideways for ~500 steps (test lmp.impulse_resting)
-  if (resting.colours) resting.tolerance = 1e-3;
 
   avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
   if (!avec) error->all(FLERR, "Fix impulse/lsdem requires atom_style lsdem");

@@ -511,7 +511,8 @@ lsdem_status lsdem_wall_correct(lsdem_impulse_body *grain, const lsdem_manifold 
 typedef struct {
   int max_sweeps;   /* Gauss-Seidel sweeps per solve, at most. Default 30 */
   double tolerance; /* stop when a sweep found no contact with |u - target n| above
-                       tolerance x ref_speed (velocity residual). Default 1e-2 */
+                       tolerance x ref_speed (velocity residual). Default 1e-2;
+                       lsdem_resting_set_colours sets 1e-3 with colours */
   double ref_speed; /* the velocity scale of tolerance: the resting speed (the caller's;
                        0: all sweeps run) */
   double dt;        /* time step (bias); 0: no bias */
@@ -539,6 +540,9 @@ typedef struct {
 } lsdem_resting_params;
 
 void lsdem_resting_params_default(lsdem_resting_params *p);
+/* colours on (1) or off (0), with the tolerance that serves that order: 1e-3 in colours,
+ * 1e-2 (the default) in the island's order */
+void lsdem_resting_set_colours(lsdem_resting_params *p, int colours);
 double lsdem_resting_target(const lsdem_resting_params *p, double depth, int on_wall);
 
 typedef struct {
