@@ -15,6 +15,10 @@
  *   - against a grid the list keeps its nodes' cells: lookups in the same cell read them;
  *   - a history in an earlier version's list layout is not read as a list; a damaged node
  *     entry in a list is skipped (never used as a node index);
+ *   - a grid grain B screens A's bounding sphere and clusters by its level set (and box)
+ *     without dropping a contact: at random poses and after random moves within a list,
+ *     the same nodes and force as A's plain nodes against B without a gradient bound
+ *     (every node in B's bounding sphere looked up), with far fewer lookups;
  *   - lsdem_grid_outer_lipschitz bounds |phi(p) - phi(p')| / |p - p'| on random nearby
  *     pairs where phi >= 0, stays close to 1 for a sampled exact distance, and its reach
  *     limit is the smallest boundary sample. */
@@ -149,7 +153,8 @@ static void compare_runs(const char *what, int path, const lsdem_shape *A,
   if (!fewer) return;
   CHECK(reused > STEPS / 2 && rebuilt >= 3, "%s: list reused at %d steps, rebuilt at %d",
         what, reused, rebuilt);
-  CHECK(tested_fast < tested_plain / 2, "%s: %ld lookups with lists, %ld without", what,
+  /* (0.50 for the grid here: without a list B's level set screens A's clusters too) */
+  CHECK(5 * tested_fast < 3 * tested_plain, "%s: %ld lookups with lists, %ld without", what,
         tested_fast, tested_plain);
 }
 
@@ -356,6 +361,66 @@ static void test_random_moves(const lsdem_shape *A, const lsdem_shape *B,
         what, trusted, touching);
 }
 
+/* A's clusters (and bounding sphere) screened by grid B's level set against the plain
+ * detection: A without clusters against B without a gradient bound, which looks up every
+ * node in B's bounding sphere. At random poses about `lift` above B (some clusters' centres
+ * outside B's grid box, some pairs not touching at all), with a list built and after random
+ * moves that the list is trusted over: the same penetrating nodes and force bit for bit,
+ * and at least a fifth fewer lookups (0.74 and 0.66 of them at lifts 13 and 15 when
+ * written; 0.27 in a 2,500-node sand heap, where the grains' bounding spheres are looser). */
+static void test_level_set_screening(const double a[3], const lsdem_shape *B,
+                                     const lsdem_pose *pb, double lift)
+{
+  enum { N = 2000 }; /* clusters small against the grain, as in a library's grains */
+  static double nodes[3 * N], area[N], sphere[4 * N];
+  static int start[N + 1];
+  fix_fibonacci_ellipsoid(N, a, nodes);
+  for (int k = 0; k < N; k++) area[k] = 1.0;
+  const int nc = lsdem_nodes_cluster(N, nodes, area, LSDEM_CLUSTER_TARGET, start, sphere);
+  fix_grain grain, *g = &grain;
+  g->plain = fix_shape(B->sdf, N, nodes, fmax(a[0], fmax(a[1], a[2])));
+  g->clustered = g->plain;
+  g->clustered.nclusters = nc;
+  g->clustered.cluster_start = start;
+  g->clustered.cluster_sphere = sphere;
+  lsdem_shape unscreened = *B;
+  unscreened.sdf.grid.lip = 0.0;
+  static pair_buf h0;
+  pair_buf_clear(&h0);
+  long screened_lookups = 0, plain_lookups = 0;
+  int same = 1, touching = 0, apart = 0;
+  for (int t = 0; t < 400; t++) {
+    lsdem_contact_params prm = fix_params(50.0, 0.0, 0.0, 0.5), listed = prm;
+    listed.detect.node_skin = t % 2 ? 0.4 : 1.5;
+    lsdem_pose pa = fix_pose(4.0 * srand1(), 4.0 * srand1(), lift + 3.0 * srand1());
+    fix_rotation_about(srand1(), srand1(), srand1(), FIX_PI * urand(), pa.R);
+    for (int m = 0; m < 4; m++) {
+      lsdem_contact_result r, ref;
+      if (m == 0)
+        step_pair(&g->clustered, &pa, B, pb, &listed, 0, NULL, &h0, &r);
+      else
+        step_pair(&g->clustered, &pa, B, pb, &listed, m, &h0, NULL, &r);
+      step_pair(&g->plain, &pa, &unscreened, pb, &prm, 0, NULL, NULL, &ref);
+      same &= r.npen == ref.npen && memcmp(r.force, ref.force, sizeof r.force) == 0 &&
+              memcmp(r.torque_a, ref.torque_a, sizeof r.torque_a) == 0;
+      touching += ref.npen > 0;
+      apart += ref.npen == 0;
+      if (m == 0) { /* the work without a list: screened against plain */
+        lsdem_contact_result rs;
+        step_pair(&g->clustered, &pa, B, pb, &prm, 0, NULL, NULL, &rs);
+        same &= rs.npen == ref.npen && memcmp(rs.force, ref.force, sizeof rs.force) == 0;
+        screened_lookups += rs.ntested;
+        plain_lookups += ref.ntested;
+      }
+      pa.x[2] -= 0.3 * listed.detect.node_skin * urand(); /* within the list's skin */
+    }
+  }
+  CHECK(same, "level-set screening changed a result");
+  CHECK(touching > 400 && apart > 100, "%d poses touching, %d apart", touching, apart);
+  CHECK(5 * screened_lookups < 4 * plain_lookups, "%ld lookups screened, %ld plain",
+        screened_lookups, plain_lookups);
+}
+
 static void test_outer_lipschitz(const lsdem_sdf *g)
 {
   double limit = 0.0;
@@ -504,6 +569,8 @@ int main(void)
   test_random_moves(&ga.clustered, &plane, &pw, 1.0, 1, "plane");
   test_random_moves(&ga.clustered, &B, &pb, 13.0, 1, "ellipsoid grid");
   test_random_moves(&ga.clustered, &round, &pb, 15.0, 0, "round grid");
+  test_level_set_screening(a, &B, &pb, 13.0);
+  test_level_set_screening(a, &B, &pb, 15.0);
   compare_runs("round grid, approach, clusters", APPROACH, &ga.clustered, &round, &pb, 14.2,
                0.5, 1, 0.3, 0);
   /* without a gradient bound every looked-up node is listed: still the same results */

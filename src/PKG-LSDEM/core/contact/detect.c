@@ -151,50 +151,142 @@ static void screened_batch(detection *restrict dt, node_batch *b)
   detect_batch(dt, b);
 }
 
-/* For B with |grad phi| <= L (lsdem_sdf_lipschitz): no point of the ball of radius r
- * about centre (A's frame, mapped to B's by q = M x + t) is inside B when phi_B(q) / L > r.
- * This is how a wall (unbounded: no bounding sphere) skips a grain, or a cluster, with one
- * evaluation instead of one per node. Returns phi / L - r less a relative margin that
- * covers round-off in phi at the nodes: a distance the ball must move to touch. */
+/* p clamped into the box, a millionth of a spacing inside its faces (where lookups
+ * interpolate, with the gradient of the cell) */
+static void clamp_to_box(const lsdem_grid *gr, const double p[3], double q[3])
+{
+  const double inset = 1e-6 * gr->h;
+  for (int a = 0; a < 3; a++) {
+    const double lo = gr->origin[a] + inset, hi = gr->origin[a] + gr->h * (gr->n[a] - 1) - inset;
+    q[a] = fmin(fmax(p[a], lo), hi);
+  }
+}
+
+/* The bound L on |grad phi_B| that ball screening (ball_clearance) may use, 0 for none:
+ * an unbounded B's (a wall: lsdem_sdf_lipschitz); a grid grain's when it is not inverted
+ * and its box's boundary samples are all positive (lip_reach > 0: its solid lies inside
+ * the box), lsdem_grid_outer_lipschitz's bound, which holds inside the box wherever
+ * phi >= 0. Other bounded shapes are screened by their bounding sphere only. */
+static double screening_lipschitz(const lsdem_shape *B)
+{
+  const lsdem_sdf *s = &B->sdf;
+  if (!isfinite(B->radius)) return lsdem_sdf_lipschitz(s);
+  const int grid = s->kind == LSDEM_SDF_GRID && !s->inverted;
+  return grid && s->grid.lip > 0.0 && s->grid.lip_reach > 0.0 ? s->grid.lip : 0.0;
+}
+
+/* A lower bound on the distance from q (B's frame) to a grid's solid, which lies inside
+ * the box: the box distance, |q - c| for c = q clamped into the box (a millionth of a
+ * spacing inside its faces: less at most 2e-6 h), and phi(c) / L - |q - c| (c's distance
+ * is at least phi(c) / L: the segment from c to the nearest solid point stays in the box,
+ * where |grad phi| <= L while phi >= 0); the larger of the two. box_gap_of and
+ * grid_gap_of split it so that a point far from the box costs no lookup. */
+static double box_gap_of(const lsdem_grid *gr, const double q[3], double c[3])
+{
+  double d[3];
+  clamp_to_box(gr, q, c);
+  lsdem_sub3(q, c, d);
+  return sqrt(lsdem_dot3(d, d));
+}
+
+static double grid_gap_of(const lsdem_grid *gr, double lip, const double c[3], double out)
+{
+  return fmax(out - 2e-6 * gr->h, lsdem_grid_value(gr, c) / lip - out);
+}
+
+/* For B with |grad phi| <= L (screening_lipschitz): no point of the ball of radius r
+ * about centre (A's frame, mapped to B's by q = M x + t) is inside B when phi_B(q) / L > r
+ * (a grid: its distance bound above > r). This is how a wall (unbounded: no bounding
+ * sphere) skips a grain, or a cluster, and a grain a cluster of another's nodes, with one
+ * evaluation instead of one per node. ball_margin: the relative margin that covers
+ * round-off in phi at the nodes; ball_clearance: the bound less r and that margin, a
+ * distance the ball must move to touch. */
+static double ball_margin(const double q[3], double r)
+{
+  return 1e-12 * (fabs(q[0]) + fabs(q[1]) + fabs(q[2]) + r);
+}
+
 static double ball_clearance(const lsdem_sdf *sdfB, double lip, const double M[9],
                              const double t[3], const double centre[3], double r)
 {
-  double q[3], g[3];
+  double q[3], g[3], c[3];
   lsdem_affine3(M, t, centre, q);
-  const double scale = fabs(q[0]) + fabs(q[1]) + fabs(q[2]) + r;
-  return lsdem_sdf_eval(sdfB, q, g) / lip - r - 1e-12 * scale;
+  const double dist = sdfB->kind == LSDEM_SDF_GRID
+                          ? grid_gap_of(&sdfB->grid, lip, c, box_gap_of(&sdfB->grid, q, c))
+                          : lsdem_sdf_eval(sdfB, q, g) / lip;
+  return dist - r - ball_margin(q, r);
 }
 
-/* Node range [start, end) of cluster cl of A when it may touch B (or of all of A when
- * A has no clusters); returns 0 when the cluster's sphere is clear of B's bounding
- * sphere widened by `widen` (cb: B's centre in A's frame) or, for B with a gradient
- * bound lip > 0, of B's solid by more than `clear`. A cluster left out of a list being built gives the list a
- * margin: how far it is from touching. */
-static int cluster_range(detection *dt, int cl, double widen, double lip, double clear,
-                         const double cb[3], int *start, int *end)
+/* Clusters screened at a time: their level-set lookups done back to back. */
+enum { CLUSTER_BATCH = 32 };
+
+/* Which of A's clusters [c0, c1) (at most CLUSTER_BATCH) may touch B: kept in keep[] in
+ * increasing order, their count returned. A cluster is left out when its sphere is clear
+ * of B's bounding sphere widened by `widen` (cb: B's centre in A's frame) or, for B with a
+ * gradient bound lip > 0, of B's solid by more than `clear` (a grid: first by its box,
+ * which needs no lookup, then by its level set, the lookups of the batch together). A
+ * cluster left out of a list being built gives the list a margin: how far it is from
+ * touching. */
+static int screen_clusters(detection *dt, int c0, int c1, double widen, double lip,
+                           double clear, const double cb[3], int keep[CLUSTER_BATCH])
 {
   const lsdem_shape *A = dt->A, *B = dt->B;
   node_list *L = &dt->list;
-  *start = 0;
-  *end = A->nnodes;
-  if (!(A->nclusters > 0 && A->cluster_start && A->cluster_sphere)) return 1;
-  const double *sph = &A->cluster_sphere[4 * cl];
-  const double d[3] = {sph[0] - cb[0], sph[1] - cb[1], sph[2] - cb[2]};
-  const double reach = B->radius + widen + sph[3];
-  if (lsdem_dot3(d, d) > reach * reach) {
-    if (L->building) nodelist_margin(L, sqrt(lsdem_dot3(d, d)) - B->radius - sph[3]);
-    return 0;
+  const int grid = B->sdf.kind == LSDEM_SDF_GRID;
+  int n = 0;
+  double q[CLUSTER_BATCH][3], c[CLUSTER_BATCH][3], out[CLUSTER_BATCH];
+  for (int cl = c0; cl < c1; cl++) {
+    const double *sph = &A->cluster_sphere[4 * cl];
+    const double d[3] = {sph[0] - cb[0], sph[1] - cb[1], sph[2] - cb[2]};
+    const double reach = B->radius + widen + sph[3];
+    if (lsdem_dot3(d, d) > reach * reach) {
+      if (L->building) nodelist_margin(L, sqrt(lsdem_dot3(d, d)) - B->radius - sph[3]);
+      continue;
+    }
+    if (lip > 0.0) {
+      lsdem_affine3(dt->M, dt->t, sph, q[n]);
+      if (grid) {
+        out[n] = box_gap_of(&B->sdf.grid, q[n], c[n]);
+        const double gap = out[n] - 2e-6 * B->sdf.grid.h - sph[3] - ball_margin(q[n], sph[3]);
+        if (gap > clear) {
+          if (L->building) nodelist_margin(L, gap);
+          continue;
+        }
+      }
+    }
+    keep[n++] = cl;
   }
-  if (lip > 0.0) {
-    const double gap = ball_clearance(&B->sdf, lip, dt->M, dt->t, sph, sph[3]);
+  if (!(lip > 0.0)) return n;
+  double dist[CLUSTER_BATCH], g[3];
+  for (int i = 0; i < n; i++)
+    dist[i] = grid ? grid_gap_of(&B->sdf.grid, lip, c[i], out[i])
+                   : lsdem_sdf_eval(&B->sdf, q[i], g) / lip;
+  int kept = 0;
+  for (int i = 0; i < n; i++) {
+    const double r = A->cluster_sphere[4 * keep[i] + 3];
+    const double gap = dist[i] - r - ball_margin(q[i], r);
     if (gap > clear) {
       if (L->building) nodelist_margin(L, gap);
-      return 0;
+      continue;
     }
+    keep[kept++] = keep[i];
   }
-  *start = A->cluster_start[cl];
-  *end = A->cluster_start[cl + 1];
-  return 1;
+  return kept;
+}
+
+/* Nodes [start, end) of A (every stride-th) screened against B's bounding sphere, the kept
+ * ones looked up in batches. */
+static void screen_range(detection *restrict dt, int start, int end, int stride,
+                         const double cb[3], double rb2, node_batch *batch, double *nearest)
+{
+  int k = (start + stride - 1) / stride * stride;
+  while (k < end) {
+    const int left = (end - k + stride - 1) / stride, room = NODE_BATCH - batch->n;
+    const int count = left < room ? left : room;
+    screen_nodes(dt->A->nodes, k, count, stride, cb, rb2, batch, nearest);
+    k += count * stride;
+    if (batch->n == NODE_BATCH) screened_batch(dt, batch);
+  }
 }
 
 /* Every node of A screened: clusters, then nodes against B's bounding sphere (both
@@ -209,20 +301,26 @@ static void detect_screened_nodes(detection *restrict dt, const double cb[3], do
   const double widen = L->building ? L->skin : 0.0, rb = dt->B->radius + widen, rb2 = rb * rb;
   /* a node left out of a list being built has phi >= L s: its ball's gap beyond s */
   const double clear = L->building && isfinite(L->reach) ? L->skin : 0.0;
-  const int nclusters = A->nclusters > 0 && A->cluster_start && A->cluster_sphere
-                            ? A->nclusters : 1;
   double nearest = HUGE_VAL; /* squared distance from cb of the nearest node left out */
-  for (int cl = 0; cl < nclusters; cl++) {
-    int start, end;
-    if (!cluster_range(dt, cl, widen, lip, clear, cb, &start, &end)) continue;
-    int k = (start + stride - 1) / stride * stride;
-    while (k < end) {
-      const int left = (end - k + stride - 1) / stride, room = NODE_BATCH - batch->n;
-      const int count = left < room ? left : room;
-      screen_nodes(A->nodes, k, count, stride, cb, rb2, batch, &nearest);
-      k += count * stride;
-      if (batch->n == NODE_BATCH) screened_batch(dt, batch);
+  if (isfinite(dt->B->radius) && lip > 0.0) { /* a grid grain B: A's bounding sphere first */
+    const double origin[3] = {0.0, 0.0, 0.0};
+    const double gap = ball_clearance(&dt->B->sdf, lip, dt->M, dt->t, origin, A->radius);
+    if (gap > clear) {
+      if (L->building) nodelist_margin(&dt->list, gap);
+      return;
     }
+  }
+  if (A->nclusters > 0 && A->cluster_start && A->cluster_sphere) {
+    for (int c0 = 0; c0 < A->nclusters; c0 += CLUSTER_BATCH) {
+      const int c1 = c0 + CLUSTER_BATCH < A->nclusters ? c0 + CLUSTER_BATCH : A->nclusters;
+      int keep[CLUSTER_BATCH];
+      const int n = screen_clusters(dt, c0, c1, widen, lip, clear, cb, keep);
+      for (int i = 0; i < n; i++)
+        screen_range(dt, A->cluster_start[keep[i]], A->cluster_start[keep[i] + 1], stride, cb,
+                     rb2, batch, &nearest);
+    }
+  } else {
+    screen_range(dt, 0, A->nnodes, stride, cb, rb2, batch, &nearest);
   }
   screened_batch(dt, batch);
   if (L->building && nearest < HUGE_VAL)
@@ -266,12 +364,14 @@ int lsdem_detect_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_s
   lsdem_matT_mul(pb->R, pa->R, dt.M);
   lsdem_matT_vec(pb->R, mdx, dt.t);
 
-  /* an unbounded B with a gradient bound (a wall) has no bounding sphere to screen with:
-   * reject A's bounding sphere (about A's centroid, the origin of A's frame) and then A's
-   * clusters by B's level set instead; lip = 0: no such screening */
-  const double lip = isfinite(rb) ? 0.0 : lsdem_sdf_lipschitz(&B->sdf);
+  /* B with a gradient bound: a wall, which has no bounding sphere to screen with, rejects
+   * A's bounding sphere (about A's centroid, the origin of A's frame) here, then A's
+   * clusters by its level set; a grid grain does both only when a list is built (a list
+   * in use costs less than the lookup); lip = 0: no such screening */
+  const double lip = screening_lipschitz(B);
   const double origin[3] = {0.0, 0.0, 0.0};
-  if (lip > 0.0 && ball_clearance(&B->sdf, lip, dt.M, dt.t, origin, A->radius) > 0.0)
+  if (!isfinite(rb) && lip > 0.0 &&
+      ball_clearance(&B->sdf, lip, dt.M, dt.t, origin, A->radius) > 0.0)
     return no_contact(m, list_out);
 
   const int stride = det->node_stride > 1 ? det->node_stride : 1;
@@ -373,17 +473,6 @@ static int sphere_point(double radius, const double n[3], double d, const lsdem_
  * gradient at q follows only to about h over the distance from an edge) and the lookups
  * made in *lookups. */
 enum { OUTSIDE_LOOKUPS = 32 };
-
-/* p clamped into the box, a millionth of a spacing inside its faces (where lookups
- * interpolate, with the gradient of the cell) */
-static void clamp_to_box(const lsdem_grid *gr, const double p[3], double q[3])
-{
-  const double inset = 1e-6 * gr->h;
-  for (int a = 0; a < 3; a++) {
-    const double lo = gr->origin[a] + inset, hi = gr->origin[a] + gr->h * (gr->n[a] - 1) - inset;
-    q[a] = fmin(fmax(p[a], lo), hi);
-  }
-}
 
 /* f(q) and its gradient (unprojected) */
 static double outside_f(const lsdem_sdf *sdf, const double c[3], const double q[3],
