@@ -940,7 +940,14 @@ lsdem_impulse_guard_wall FixWallLsdem::guard_wall(double s, const lsdem_wall_par
   g.groups = groupbit;
   g.pose = pose_at(s);
   g.detect = prm.detect;
-  g.detect.node_skin = 0.0;
+  const int nlocal = atom->nlocal;
+  guard_lists.assign(nlocal, lsdem_nodelist());
+  if (fix_history && prm.detect.node_skin > 0.0)
+    for (int i = 0; i < nlocal; i++) {
+      lsdem_pair_state st;
+      if (fix_history->find(i, WALL_PARTNER, st)) guard_lists[i] = st.list;
+    }
+  g.lists = guard_lists.data();
   g.prm = step;
   g.prm.mu = opts.law.mu;
   g.far_gap = guard_gap(g.pose);

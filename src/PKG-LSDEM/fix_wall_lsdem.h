@@ -83,9 +83,10 @@ class FixWallLsdem : public Fix {
   typedef std::function<void(int, const lsdem_manifold &)> ManifoldVisit;
   void each_manifold(double s, const char *take, const ManifoldVisit &visit);
   // the wall as the wall guard meets it (lsdem_impulse_stage_wall_guard) with the step's
-  // parameters `step`: at its pose s after now, its group, its detection (without node
-  // lists: the guard looks at predicted poses, which no pair state follows), its friction,
-  // and its candidates as the guard's cheap rejection (guard_gap)
+  // parameters `step`: at its pose s after now, its group, its detection, the owned
+  // grains' node lists from the step's detection (read only, where they still hold at the
+  // predicted poses; no new list is made there), its friction, and its candidates as the
+  // guard's cheap rejection (guard_gap)
   lsdem_impulse_guard_wall guard_wall(double s, const lsdem_wall_params &step);
   bool tests_points() const { return twoway; }  // keyword twoway yes
   // fix impulse/lsdem: the force its contacts put on this wall this step (added to the
@@ -173,6 +174,7 @@ class FixWallLsdem : public Fix {
   bigint cand_step;
   std::vector<double> cand_x;
   std::vector<unsigned char> cand_near;
+  std::vector<lsdem_nodelist> guard_lists;  // the owned grains' lists for the wall guard
   bigint drift_step;           // the step of cand_drift
   double cand_drift;           // the most a grain outside the candidates moved since then
   double guard_gap(const lsdem_pose &w);

@@ -498,6 +498,63 @@ static void test_audit_bookings(void)
   CHECK(lsdem_impulse_audit_residual(0.0, 0.0, &au) == 0.0, "all zero");
 }
 
+/* The guard reads a grain's node list against the wall (lsdem_impulse_guard_wall.lists)
+ * where it holds at the predicted pose: an ellipsoid grain with 400 nodes, its lowest node
+ * 1e-3 into a plane and sinking, corrected the same, bit for bit, with the list made by
+ * detection at its pose as without; the list is really consulted (an empty list that
+ * claims to hold, radius 1, leaves the grain uncorrected) and not trusted past its radius
+ * (an empty list of radius 1e-6, less than the step's motion 4e-6: the plain result). */
+static void test_wall_guard_lists(void)
+{
+  const double a[3] = {0.1, 0.08, 0.06}, dt = 1e-3, I[3] = {0.004, 0.003, 0.002};
+  static fix_grain g;
+  const lsdem_sdf ell = fix_sdf(LSDEM_SDF_ELLIPSOID, a[0], a[1], a[2]);
+  fix_make_grain(&g, a, &ell);
+  double low = HUGE_VAL;
+  for (int k = 0; k < FIX_GRAIN_NODES; k++) low = fmin(low, g.nodes[3 * k + 2]);
+  const double x[3] = {0.0, 0.0, -low - 1e-3};
+  lsdem_boundary plane;
+  lsdem_impulse_guard_wall w;
+  plane_wall(&plane, &w, (lsdem_wall_params){0.02, 1e-8, 0.5});
+  w.detect.node_skin = 0.01;
+  static lsdem_nodelist_entry entry[FIX_GRAIN_NODES];
+  static lsdem_contact_point pts[FIX_GRAIN_NODES];
+  lsdem_nodelist_head head;
+  lsdem_nodelist list = {0, &head, entry};
+  double v[4][3];
+  int n[4];
+  for (int run = 0; run < 4; run++) {
+    lsdem_impulse_body body;
+    lsdem_impulse_grain grain;
+    make_grain(&body, &grain, 1, 1.0, I, x, &g.clustered);
+    body.v[2] = -0.2 * w.prm.rest_speed; /* sinking slowly: a resting contact */
+    lsdem_pose pose;
+    lsdem_impulse_predict_pose(body.x, grain.q, body.v, body.omega, I, dt, &pose);
+    lsdem_manifold m = lsdem_manifold_over(pts, FIX_GRAIN_NODES);
+    lsdem_detect(&g.clustered, &pose, &plane.shape, &w.pose, &w.detect, 0, NULL, &list, &m);
+    CHECK(list.valid && head.count > 0 && head.count < FIX_GRAIN_NODES / 2,
+          "a list of %d nodes", head.count);
+    if (run >= 2) { /* an empty list that claims to hold, built at the current pose */
+      head.count = 0;
+      head.radius = run == 2 ? 1.0 : 1e-6;
+      head.t[2] -= dt * body.v[2];
+    }
+    w.lists = run == 0 ? NULL : &list;
+    const char moving[1] = {1};
+    lsdem_wall_guard_seen seen[1];
+    memset(seen, 0, sizeof seen);
+    lsdem_error err;
+    n[run] = lsdem_impulse_stage_wall_guard(&body, &grain, moving, 1, &w, 0, dt, pts,
+                                            FIX_GRAIN_NODES, seen, &err);
+    memcpy(v[run], body.v, sizeof v[run]);
+  }
+  CHECK(n[0] == 1 && v[0][2] > 0.0, "no correction without a list (%d, %g)", n[0], v[0][2]);
+  CHECK(n[1] == 1 && memcmp(v[1], v[0], sizeof v[0]) == 0, "the list changed the correction");
+  CHECK(n[2] == 0 && v[2][2] < 0.0, "an empty list was not consulted (%d)", n[2]);
+  CHECK(n[3] == 1 && memcmp(v[3], v[0], sizeof v[0]) == 0,
+        "an empty list trusted past its radius (%d)", n[3]);
+}
+
 int main(void)
 {
   test_kick_drift_gravity();
@@ -507,6 +564,7 @@ int main(void)
   test_select_collisions();
   test_wall_guard();
   test_wall_guard_far();
+  test_wall_guard_lists();
   test_cfl();
   test_audit_bookings();
   return lsdem_test_summary();

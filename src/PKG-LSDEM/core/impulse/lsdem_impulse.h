@@ -759,6 +759,10 @@ typedef struct {
    * wall moved since they were found) */
   const unsigned char *near;
   double far_gap;
+  /* grain k's node list against the wall from the step's detection (lists[k].valid 0, or
+   * lists NULL: none), looked up read-only while it holds at the predicted pose
+   * (detect.node_skin > 0): a list changes the work, never the result */
+  const lsdem_nodelist *lists;
 } lsdem_impulse_guard_wall;
 
 /* Stage 5, the wall guard of one wall (report §4.4.1, Figures 4.4-4.5): every moving grain

@@ -123,9 +123,9 @@ int lsdem_impulse_stage_select(const lsdem_impulse_body *body,
 /* Grain g (body b) against the wall at its predicted pose: 1 when corrected (a resting
  * contact; its impulse in res), 0 when not, -1 on error. */
 static int guard_grain(lsdem_impulse_body *b, const lsdem_impulse_grain *g,
-                       const lsdem_impulse_guard_wall *w, int64_t step, double dt,
-                       lsdem_contact_point *points, int npoints, lsdem_wall_result *res,
-                       lsdem_error *err)
+                       const lsdem_impulse_guard_wall *w, const lsdem_nodelist *list,
+                       int64_t step, double dt, lsdem_contact_point *points, int npoints,
+                       lsdem_wall_result *res, lsdem_error *err)
 {
   /* the centre's predicted position first: the turn of the orientation costs more */
   const double xp[3] = {b->x[0] + dt * b->v[0], b->x[1] + dt * b->v[1],
@@ -134,8 +134,8 @@ static int guard_grain(lsdem_impulse_body *b, const lsdem_impulse_grain *g,
   lsdem_pose gp;
   lsdem_impulse_predict_pose(b->x, g->q, b->v, b->omega, g->inertia, dt, &gp);
   lsdem_manifold m = lsdem_manifold_over(points, npoints);
-  if (lsdem_detect(g->shape, &gp, &w->boundary->shape, &w->pose, &w->detect, step, NULL, NULL,
-                   &m) == 0)
+  if (lsdem_detect(g->shape, &gp, &w->boundary->shape, &w->pose, &w->detect, step,
+                   list && list->valid ? list : NULL, NULL, &m) == 0)
     return 0;
   lsdem_wall_limit_push_out(&m, dt, w->prm.rest_speed);
   if (lsdem_wall_correct(b, &m, dt, &w->prm, res, err) != LSDEM_OK) return -1;
@@ -163,7 +163,8 @@ int lsdem_impulse_stage_wall_guard(lsdem_impulse_body *body, const lsdem_impulse
     memcpy(sk->v, b->v, sizeof sk->v);
     memcpy(sk->omega, b->omega, sizeof sk->omega);
     lsdem_wall_result res;
-    const int r = guard_grain(b, &grain[k], w, step, dt, points, npoints, &res, err);
+    const int r = guard_grain(b, &grain[k], w, w->lists ? &w->lists[k] : NULL, step, dt,
+                              points, npoints, &res, err);
     if (r < 0) return -1 - k;
     sk->clear = !r;
     sk->corrected = r;
