@@ -165,7 +165,8 @@ static void clamp_to_box(const lsdem_grid *gr, const double p[3], double q[3])
 /* A master with fewer clusters is not screened by a grid grain's level set: a cluster's
  * lookup then saves too few of its nodes' (measured: the reference scene's 250-node
  * ellipsoids, 16 clusters, 5 % slower over its first 200 steps; 120-node grains, 8
- * clusters, no change; 750 nodes, 47 clusters, 15 % faster; 2,500 nodes 42 %). */
+ * clusters, no change; flowing 750-node grains, 47 clusters, 15 % faster; 2,500 nodes,
+ * 156 clusters, 35-40 %: bench/README.md). */
 enum { LEVEL_SET_SCREEN_MIN_CLUSTERS = 32 };
 
 /* The bound L on |grad phi_B| that ball screening of A (ball_clearance) may use, 0 for
@@ -374,8 +375,9 @@ int lsdem_detect_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_s
 
   /* B with a gradient bound: a wall, which has no bounding sphere to screen with, rejects
    * A's bounding sphere (about A's centroid, the origin of A's frame) here, then A's
-   * clusters by its level set; a grid grain does both only when a list is built (a list
-   * in use costs less than the lookup); lip = 0: no such screening */
+   * clusters by its level set; a grid grain does both only when A's nodes are screened (a
+   * list built, or none kept: a list in use costs less than the lookup); lip = 0: no such
+   * screening */
   const double lip = screening_lipschitz(A, B);
   const double origin[3] = {0.0, 0.0, 0.0};
   if (!isfinite(rb) && lip > 0.0 &&
