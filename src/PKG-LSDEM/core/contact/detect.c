@@ -165,8 +165,8 @@ static void clamp_to_box(const lsdem_grid *gr, const double p[3], double q[3])
 /* A master with fewer clusters is not screened by a grid grain's level set: a cluster's
  * lookup then saves too few of its nodes' (measured: the reference scene's 250-node
  * ellipsoids, 16 clusters, 5 % slower over its first 200 steps; 120-node grains, 8
- * clusters, no change; flowing 750-node grains, 47 clusters, 15 % faster; 2,500 nodes,
- * 156 clusters, 35-40 %: bench/README.md). */
+ * clusters, no change; flowing 750-node grains, 64 clusters, 15 % faster; 2,500 nodes,
+ * 256 clusters, 35-40 %: bench/README.md; 32 clusters from 272 nodes). */
 enum { LEVEL_SET_SCREEN_MIN_CLUSTERS = 32 };
 
 /* The bound L on |grad phi_B| that ball screening of A (ball_clearance) may use, 0 for
