@@ -205,16 +205,21 @@ static double row_velocity(const row *r, const lsdem_impulse_body *a,
 }
 
 /* An impulse lambda along the row's direction d on a (and -lambda on b); a side that does
- * not move (a wall or frozen: inverse mass 0 in the row) takes zero. */
-static void row_apply(const row *r, lsdem_impulse_body *a, lsdem_impulse_body *b, int d,
-                      double lambda)
+ * not move (a wall or frozen: inverse mass 0 in the row) is not written, so that threads
+ * sweeping contacts on one wall never share a write. */
+static inline void row_apply(const row *r, lsdem_impulse_body *a, lsdem_impulse_body *b, int d,
+                             double lambda)
 {
-  for (int i = 0; i < 3; i++) {
-    a->v[i] += r->ma * lambda * r->dir[d][i];
-    a->omega[i] += lambda * r->ia[d][i];
-    b->v[i] -= r->mb * lambda * r->dir[d][i];
-    b->omega[i] -= lambda * r->ib[d][i];
-  }
+  if (r->ma != 0.0)
+    for (int i = 0; i < 3; i++) {
+      a->v[i] += r->ma * lambda * r->dir[d][i];
+      a->omega[i] += lambda * r->ia[d][i];
+    }
+  if (r->mb != 0.0)
+    for (int i = 0; i < 3; i++) {
+      b->v[i] -= r->mb * lambda * r->dir[d][i];
+      b->omega[i] -= lambda * r->ib[d][i];
+    }
 }
 
 /* Coulomb's cone: the normal part of P kept >= 0, its tangential part clipped to mu times
@@ -286,17 +291,6 @@ static double update_contact(lsdem_impulse_body *bodies, const lsdem_impulse_con
                              const row *r, double P[3], double *work)
 {
   lsdem_impulse_body *a = &bodies[c->a], *b = &bodies[c->b];
-  /* a side that does not move takes its zero updates in a copy: threads sweeping contacts
-   * on one wall never write it */
-  lsdem_impulse_body still_a, still_b;
-  if (r->ma == 0.0) {
-    still_a = *a;
-    a = &still_a;
-  }
-  if (r->mb == 0.0) {
-    still_b = *b;
-    b = &still_b;
-  }
   const double un = row_velocity(r, a, b, DN);
   const double ut[2] = {row_velocity(r, a, b, DT1), row_velocity(r, a, b, DT2)};
   const double pn = lsdem_dot3(P, r->dir[DN]);
