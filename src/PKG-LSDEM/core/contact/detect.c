@@ -58,6 +58,9 @@ typedef struct {
   double q[3 * NODE_BATCH];    /* and in B's frame */
   double phi[NODE_BATCH];      /* B's level set there */
   double grad[3 * NODE_BATCH]; /* and its outward unit gradient (B's frame) */
+  int slotted;                 /* a list in use with slack: */
+  int slot[NODE_BATCH];        /* each node's entry in the output list (-1: none kept) */
+  unsigned char slack[NODE_BATCH]; /* and its slack */
   int cached;                  /* B is a grid whose cells come from the pair's list */
   lsdem_grid_cell cell[NODE_BATCH];
 } node_batch;
@@ -117,12 +120,18 @@ static void detect_batch(detection *restrict dt, node_batch *b)
   lookup_batch(&dt->B->sdf, dt->M, dt->t, b);
   dt->m->ntested += b->n;
   for (int i = 0; i < b->n; i++) {
-    const int listed = L->use || (L->building && b->phi[i] < L->reach);
-    if (!listed) {
-      if (L->building) nodelist_margin(L, b->phi[i] / L->lip); /* phi >= L s: L > 0 here */
-      continue;
+    if (L->use && b->slotted) {
+      if (b->slot[i] >= 0)
+        nodelist_write(L, &L->out->entry[b->slot[i]], b->node[i], &b->x[3 * i], &b->cell[i],
+                       b->slack[i]);
+    } else if (L->use) {
+      if (L->out) nodelist_write(L, nodelist_next(L), b->node[i], &b->x[3 * i], &b->cell[i], 0);
+    } else if (L->building && b->phi[i] < L->reach) {
+      nodelist_write(L, nodelist_next(L), b->node[i], &b->x[3 * i], &b->cell[i],
+                     nodelist_slack(L, b->phi[i]));
+    } else if (L->building) {
+      nodelist_margin(L, b->phi[i] / L->lip); /* phi >= L s: L > 0 here */
     }
-    if (L->out) nodelist_keep(L, b->node[i], &b->x[3 * i], &b->cell[i]);
   }
   int at[NODE_BATCH], npen = 0; /* the penetrating ones, gathered without a branch per node */
   for (int i = 0; i < b->n; i++) {
@@ -337,21 +346,42 @@ static void detect_screened_nodes(detection *restrict dt, const double cb[3], do
 }
 
 /* Only the nodes of the pair's list, in increasing order, looked up in batches: their
- * coordinates and cells from the list's entries. An entry that names no node of A (a
- * damaged restart file) is skipped. */
-static void detect_listed_nodes(detection *restrict dt, node_batch *batch)
+ * coordinates and cells from the list's entries; with `skipping` (the list keeps slack), a
+ * node whose slack is not used up is not looked up, its entry carried over. An entry that
+ * names no node of A (a damaged restart file) is dropped. Inlined twice, so that a list
+ * without slack (most in a dense packing: their nodes touch) pays no test per entry. */
+static inline __attribute__((always_inline)) void
+listed_nodes(detection *restrict dt, node_batch *batch, const int skipping)
 {
   const node_list *L = &dt->list;
   for (int e = 0; e < L->nnode_in; e++) {
     const lsdem_nodelist_entry *h = &L->node_in[e];
-    if (h->node < 0 || h->node >= dt->A->nnodes) continue;
+    if ((int)h->node >= dt->A->nnodes) continue;
+    lsdem_nodelist_entry *out = skipping && L->out ? nodelist_next(L) : NULL;
+    if (skipping && nodelist_skips(L, h)) {
+      if (out) *out = *h;
+      continue;
+    }
     const int i = batch->n++;
+    if (skipping) { /* its place in the output list, taken now: entries stay in order */
+      batch->slot[i] = out ? (int)(out - L->out->entry) : -1;
+      batch->slack[i] = (unsigned char)h->slack;
+    }
     batch->node[i] = h->node;
     memcpy(&batch->x[3 * i], h->x, 3 * sizeof(double));
     if (L->cached) nodelist_entry_cell(h, &batch->cell[i]);
     if (batch->n == NODE_BATCH) detect_batch(dt, batch);
   }
   detect_batch(dt, batch);
+}
+
+static void detect_listed_nodes(detection *restrict dt, node_batch *batch)
+{
+  batch->slotted = dt->list.slack_unit > 0.0;
+  if (batch->slotted)
+    listed_nodes(dt, batch, 1);
+  else
+    listed_nodes(dt, batch, 0);
 }
 
 int lsdem_detect_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_shape *B,
@@ -394,7 +424,7 @@ int lsdem_detect_nodes(const lsdem_shape *A, const lsdem_pose *pa, const lsdem_s
   nodelist_begin(&dt.list, A, &B->sdf, det, step, list_in, list_out, dt.M, dt.t);
 
   node_batch batch;
-  batch.n = 0;
+  batch.n = batch.slotted = 0;
   if (dt.list.use)
     detect_listed_nodes(&dt, &batch);
   else

@@ -116,7 +116,10 @@ lsdem_manifold lsdem_manifold_over(lsdem_contact_point *storage, int cap);
  * The skin adapts per pair: a list outlived within 8 steps is followed by one wide
  * enough to last 8 steps at the pair's rate of motion (at most 4 s, and within B's
  * gradient bound), and a wide list (validity radius above 2 s) is rebuilt after 32
- * steps. A list built with another stride is rebuilt. */
+ * steps. A list built with another stride is rebuilt. A node listed at phi > 0 keeps
+ * its slack min(phi, the bound's limit) / L (rounded down to 31sts of the build's skin):
+ * it cannot touch while the motion bound since the build is below that, and its lookups
+ * are skipped till then (settled pairs: most of them), its entry carried over. */
 typedef struct {
   double M[9], t[3]; /* pose of B relative to A when built: node x -> M x + t (B's frame) */
   int64_t built;     /* step it was built at */
@@ -124,14 +127,22 @@ typedef struct {
                         to touch B (at least the skin) */
   int32_t stride;    /* node stride it was built with */
   int32_t count;     /* node entries */
+  double slack_unit; /* the unit of its entries' slack: the build's skin / 31 (0: none, B
+                        has no gradient bound or the list came from state records) */
 } lsdem_nodelist_head;
 
 typedef struct {
-  int32_t node;  /* A's node index */
+  uint32_t node : 27; /* A's node index (< LSDEM_LIBRARY_MAX_NODES = 2^26), or
+                         LSDEM_NODELIST_NO_NODE (a damaged state record's) */
+  uint32_t slack : 5; /* the node cannot touch B before the motion bound since the build
+                         reaches slack x head.slack_unit (its lookup is skipped till then;
+                         0: looked up) */
   int32_t cell;  /* grid index of the kept cell's sample 000, -1: none kept */
   float v[8];    /* that cell's samples (lsdem_grid_cell order) */
   double x[3];   /* the node in A's frame (so a step using the list reads none of A) */
 } lsdem_nodelist_entry;
+
+#define LSDEM_NODELIST_NO_NODE ((1u << 27) - 1u)
 
 /* A node list as detection reads and writes it, in the caller's storage: valid = 0 means
  * none. As output, head points to room for the head and entry[] holds

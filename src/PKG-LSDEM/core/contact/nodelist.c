@@ -72,6 +72,8 @@ void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
 {
   L->skin = det->node_skin > 0.0 ? det->node_skin : 0.0;
   L->use = L->cached = L->building = 0;
+  L->moved = L->slack_unit = L->slack_per_length = 0.0;
+  L->nslack = 0;
   L->node_in = NULL;
   L->nnode_in = L->node_cursor = 0;
   L->out = NULL;
@@ -88,9 +90,12 @@ void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
     const double motion = list_motion(in->head, M, t, A->radius);
     L->use = list_holds(in->head, motion, L->skin, step, stride);
     if (!L->use) L->skin = adapted_skin(L->skin, sdfB, in->head, motion, step);
+    L->moved = motion;
+    L->slack_unit = in->head->slack_unit;
   }
   L->reach = list_reach(sdfB, L->skin);
   L->lip = isfinite(L->reach) ? L->reach / L->skin : 0.0;
+
   L->cap = sdfB->kind == LSDEM_SDF_GRID && L->lip > 0.0 ? sdfB->grid.lip_reach / L->lip
                                                          : HUGE_VAL;
   if (!out) return;
@@ -107,11 +112,23 @@ void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
   memcpy(out->head->t, t, sizeof out->head->t);
   out->head->built = step;
   out->head->stride = stride; /* radius: when the list is finished */
+  out->head->slack_unit = L->lip > 0.0 ? L->skin / 31.0 : 0.0;
+  if (L->lip > 0.0) {
+    L->slack_per_length = 31.0 / L->skin * (1.0 - 1e-12);
+    L->inv_lip = 1.0 / L->lip * (1.0 - 1e-12);
+  }
 }
+
+/* A list keeps its slack when at least this fraction of its entries have some (fewer:
+ * the test per entry costs more than the lookups it saves; measured on the reference
+ * scene, where most listed nodes touch: bench/README.md). */
+#define SLACK_MIN_FRACTION 0.5
 
 void nodelist_finish(node_list *L)
 {
   if (!L->building) return;
+  lsdem_nodelist_head *h = L->out->head;
   const double radius = L->margin < L->cap ? L->margin : L->cap;
-  L->out->head->radius = radius > L->skin ? radius : L->skin;
+  h->radius = radius > L->skin ? radius : L->skin;
+  if (L->nslack < SLACK_MIN_FRACTION * h->count) h->slack_unit = 0.0;
 }

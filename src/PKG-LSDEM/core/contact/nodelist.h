@@ -6,6 +6,7 @@
 
 #include "lsdem_contact.h"
 
+#include <math.h>
 #include <string.h>
 
 /* The list state of one detection call. */
@@ -18,6 +19,11 @@ typedef struct {
   int use;      /* the input list holds: look up its nodes only */
   int cached;   /* B is a grid: listed nodes' cells are kept */
   int building; /* a new list is being built into out */
+  double moved; /* a list in use: the motion bound since it was built (list_motion) */
+  double slack_unit; /* a list in use: its head's slack_unit */
+  double slack_per_length; /* a list built: 1 / its slack unit, a trillionth less (0: none) */
+  double inv_lip;          /* a list built with slack: 1 / lip, a trillionth less */
+  int nslack;              /* a list built: entries with slack */
   const lsdem_nodelist_entry *node_in; /* the input list's entries (increasing node) */
   int nnode_in, node_cursor;
   lsdem_nodelist *out; /* where this step's list goes, or NULL (also without a skin) */
@@ -37,12 +43,30 @@ static inline void nodelist_margin(node_list *L, double d)
   L->margin = d < L->margin ? d : L->margin;
 }
 
-/* Listed node k at x (A's frame) with its cell c joins the output list. */
-static inline void nodelist_keep(node_list *L, int k, const double x[3], const lsdem_grid_cell *c)
+/* The slack of a node listed at phi (lsdem_contact.h): min(phi / L, the bound's limit)
+ * in slack units, rounded down; 0 when it may touch or there is no bound. */
+static inline unsigned nodelist_slack(const node_list *L, double phi)
 {
-  lsdem_nodelist_entry *e = &L->out->entry[L->out->head->count++];
+  const double above = phi > 0.0 ? phi * L->inv_lip : 0.0;
+  const double units = (above < L->cap ? above : L->cap) * L->slack_per_length;
+  return (unsigned)(units < 31.0 ? units : 31.0);
+}
+
+/* Whether a listed node's lookup is skipped: the motion since the list's build has not
+ * used up the node's slack. */
+static inline int nodelist_skips(const node_list *L, const lsdem_nodelist_entry *e)
+{
+  return e->slack && L->moved < e->slack * L->slack_unit;
+}
+
+/* Entry e of the output list: node k at x (A's frame) with its cell c and slack. */
+static inline void nodelist_write(node_list *L, lsdem_nodelist_entry *e, int k,
+                                  const double x[3], const lsdem_grid_cell *c, unsigned slack)
+{
   const int kept = L->cached && c && c->index >= 0 && c->index <= INT32_MAX;
-  e->node = k;
+  e->node = (uint32_t)k;
+  e->slack = slack;
+  L->nslack += slack > 0;
   e->cell = kept ? (int32_t)c->index : -1;
   if (kept)
     memcpy(e->v, c->v, sizeof e->v);
@@ -51,6 +75,11 @@ static inline void nodelist_keep(node_list *L, int k, const double x[3], const l
   memcpy(e->x, x, sizeof e->x);
 }
 
+/* The next entry of the output list (its place: entries stay in increasing node order). */
+static inline lsdem_nodelist_entry *nodelist_next(const node_list *L)
+{
+  return &L->out->entry[L->out->head->count++];
+}
 
 /* The cell kept in an entry. */
 static inline void nodelist_entry_cell(const lsdem_nodelist_entry *e, lsdem_grid_cell *c)

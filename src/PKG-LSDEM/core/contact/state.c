@@ -14,6 +14,9 @@ _Static_assert(sizeof(((lsdem_nodelist_entry *)0)->v) ==
                        sizeof(((lsdem_state_record *)0)->a),
                "a node record holds a cell's 8 samples in its stamp and a");
 
+_Static_assert(sizeof(lsdem_nodelist_entry) == 64, "a node-list entry fills one 64-byte slot");
+_Static_assert(LSDEM_LIBRARY_MAX_NODES < LSDEM_NODELIST_NO_NODE, "node indices fit an entry");
+
 static int is_node_record(int32_t id, int nnodes)
 {
   return id >= LIST_NODE && id < LIST_NODE + nnodes;
@@ -46,6 +49,7 @@ static void decode_head(const lsdem_state_record *rec, lsdem_nodelist_head *h)
   h->stride = rec[0].aux;
   h->built = rec[0].stamp;
   h->count = rec[1].aux;
+  h->slack_unit = 0.0; /* not in the records: no lookups skipped till the next build */
   memcpy(&h->radius, &rec[1].stamp, sizeof h->radius);
   for (int i = 0; i < 3; i++) {
     h->M[i] = rec[0].a[i];
@@ -96,7 +100,9 @@ static int decode_list(const lsdem_state_record *rec, int n, int nnodes, lsdem_n
   for (int k = 0; k < count; k++) {
     const lsdem_state_record *r = &rec[2 + k];
     lsdem_nodelist_entry *e = &list->entry[k];
-    e->node = is_node_record(r->id, nnodes) ? r->id - LIST_NODE : -1; /* -1: skipped */
+    e->node = is_node_record(r->id, nnodes) ? (uint32_t)(r->id - LIST_NODE)
+                                            : LSDEM_NODELIST_NO_NODE; /* dropped */
+    e->slack = 0;
     e->cell = r->aux;
     memcpy(e->v, &r->stamp, sizeof e->v);
     memcpy(e->x, r->b, sizeof e->x);
