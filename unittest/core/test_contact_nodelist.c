@@ -12,7 +12,8 @@
  *     when the skin changes;
  *   - a listed node whose slack is not used up is not looked up: a resting pair skips most
  *     lookups, with the same results (and every path above with them; a slack twice too
- *     large fails them);
+ *     large fails them); a grain hovering within the skin looks up none after the build,
+ *     and finds the contact when lowered;
  *   - a pair that rattles gets a wider list (rebuilt far less often), and the base skin's
  *     list back once it rests; never wider than B's gradient bound covers;
  *   - against a grid the list keeps its nodes' cells: lookups in the same cell read them;
@@ -225,6 +226,43 @@ static void test_rattle_widens(const lsdem_shape *A, const lsdem_shape *B, const
   CHECK(rest_entries == fresh_entries && rf.ntested < rp.ntested,
         "rattle: %d entries at rest, %d in a fresh list; %d lookups, %d without",
         rest_entries, fresh_entries, rf.ntested, rp.ntested);
+}
+
+/* A grain hovering just clear of the plane (REST's pose lifted by `lift`), trembling: its
+ * list holds nodes within the skin, none touching. After the build no node is looked up
+ * (each listed node's slack covers the trembling), and the results stay those without lists
+ * (no contact); a slack that ignored the motion would miss the contact of the next check:
+ * the same list lowered onto the plane by 0.25 (more than the skin's 31sts) finds it. */
+static void test_hover_skips(const lsdem_shape *A, const lsdem_shape *plane,
+                             const lsdem_pose *pw)
+{
+  lsdem_contact_params prm = fix_params(50.0, 40.0, 0.5, 0.5), listed = prm;
+  listed.detect.node_skin = 0.8;
+  static run_state plain, fast;
+  run_clear(&plain);
+  run_clear(&fast);
+  const double lift = 0.72;
+  int later_lookups = 0, touching = 0, entries = 0;
+  lsdem_contact_result rp, rf;
+  for (int s = 0; s < 40; s++) {
+    lsdem_pose pa;
+    path_pose(REST, s, lift, &pa);
+    step_run(&plain, A, &pa, plane, pw, &prm, s, &rp);
+    step_run(&fast, A, &pa, plane, pw, &listed, s, &rf);
+    touching += rp.npen + rf.npen;
+    if (s > 0) later_lookups += rf.ntested;
+    entries = fast.buf[fast.cur].head.count;
+  }
+  CHECK(touching == 0 && entries > 0 && later_lookups == 0,
+        "hover: %d touching nodes, %d listed, %d lookups after the build", touching, entries,
+        later_lookups);
+  lsdem_pose low;
+  path_pose(REST, 0, lift - 0.25, &low);
+  step_run(&plain, A, &low, plane, pw, &prm, 40, &rp);
+  step_run(&fast, A, &low, plane, pw, &listed, 40, &rf);
+  CHECK(rp.npen > 0 && rf.npen == rp.npen &&
+            memcmp(rp.force, rf.force, sizeof rp.force) == 0,
+        "hover, lowered: %d nodes touch, %d found with the list", rp.npen, rf.npen);
 }
 
 /* The widening stops where B's gradient bound stops: against a grid whose bound holds only
@@ -553,6 +591,7 @@ int main(void)
   test_old_layout(&ga.clustered, &B, &pb);
   test_damaged_entry(&ga.clustered, &B, &pb);
   test_rattle_widens(&ga.clustered, &B, &pb);
+  test_hover_skips(&ga.clustered, &plane, &pw);
   test_rattle_bound_limits(&ga.clustered, &B, &pb);
   compare_runs("grid, friction", SLIDE, &ga.clustered, &B, &pb, 11.6, 0.5, 1, 0.3, 1);
   compare_runs("grid, no friction", SLIDE, &ga.clustered, &B, &pb, 11.6, 0.0, 1, 0.3, 1);
