@@ -16,18 +16,25 @@
 set -euo pipefail
 top=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 [ $# -ge 1 ] || { sed -n '2,16p' "$0"; exit 2; }
-dir=$(cd "$1" && pwd)
+dir=$1
 shift
 from=impulse_x16 steps=1000 rounds=2 opts="method split"
 while [ $# -gt 0 ]; do
+  [ $# -ge 2 ] || { echo "impulse_settled.sh: $1 needs a value" >&2; exit 2; }
   case $1 in
-    --from) from=$2; shift 2 ;;
-    --steps) steps=$2; shift 2 ;;
-    --rounds) rounds=$2; shift 2 ;;
-    --opts) opts=$2; shift 2 ;;
+    --from) from=$2 ;;
+    --steps) steps=$2 ;;
+    --rounds) rounds=$2 ;;
+    --opts) opts=$2 ;;
     *) echo "impulse_settled.sh: unknown option $1" >&2; exit 2 ;;
   esac
+  shift 2
 done
+for v in "--steps $steps" "--rounds $rounds"; do
+  [[ ${v#* } =~ ^[1-9][0-9]*$ ]] || { echo "impulse_settled.sh: ${v% *} needs a positive integer, not ${v#* }" >&2; exit 2; }
+done
+[ -d "$dir" ] || { echo "impulse_settled.sh: $dir is not a folder (bench/impulse.sh's OUTDIR)" >&2; exit 2; }
+dir=$(cd "$dir" && pwd)
 lmp=${LSDEM_LMP:-${LSDEM_BUILD_DIR:-$top/build}/lmp}
 [ -x "$lmp" ] || { echo "impulse_settled.sh: no lmp at $lmp (./lsdem build first)" >&2; exit 2; }
 deck=$top/examples/container_release/in.release

@@ -63,4 +63,35 @@ check(os.path.getsize("out/impulse_error.png") > 10000, "the error plot is writt
 check(os.path.getsize("out/impulse_mounds.png") > 10000, "the renderings are written")
 
 script_refuses(RUN, ["--muls", "1 0"], env, "--muls needs positive integers", "bad")
+
+# bench/impulse_settled.sh from the x2 run's mound: both methods 5 steps at the penalty run's
+# step; its figures are its logs' loop times and their ratio
+SETTLED = os.path.join(os.path.dirname(RUN), "impulse_settled.sh")
+p = subprocess.run(["bash", SETTLED, "out", "--from", "impulse_x2", "--steps", "5", "--rounds",
+                    "1"], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                   timeout=300)
+check(p.returncode == 0, "impulse_settled.sh failed (%d): %s%s" % (p.returncode,
+                                                                   p.stdout[-2000:],
+                                                                   p.stderr[-2000:]))
+dt_penalty = re.search(r"^timestep\s+([\d.e+-]+)$", open("out/log.penalty").read(), re.M).group(1)
+settled = {}
+for method in ("penalty", "impulse"):
+    log = open("out/log.settled_%s" % method).read()
+    check(re.search(r"^read_data\s+mound_impulse_x2\.data$", log, re.M) is not None,
+          "%s: starts from the x2 run's mound" % method)
+    check(re.search(r"^timestep\s+%s$" % re.escape(dt_penalty), log, re.M) is not None,
+          "%s: at the penalty run's step %s" % (method, dt_penalty))
+    m = re.search(r"Loop time of ([\d.e+-]+) on 1 procs for 5 steps", log)
+    check(m is not None, "%s: 5 steps on one rank" % method)
+    settled[method] = float(m.group(1))
+line = [ln for ln in p.stdout.splitlines() if "round 1:" in ln]
+m = re.search(r"penalty ([\d.e+-]+) s, impulse ([\d.e+-]+) s, impulse/penalty ([\d.]+)",
+              line[0] if line else "")
+check(m is not None, "a line per round: %s" % p.stdout[-500:])
+if m:
+    near(float(m.group(1)), settled["penalty"], rtol=1e-6, msg="penalty time from its log")
+    near(float(m.group(2)), settled["impulse"], rtol=1e-6, msg="impulse time from its log")
+    near(float(m.group(3)), settled["impulse"] / settled["penalty"], atol=0.006,
+         msg="the ratio of the two")
+script_refuses(SETTLED, ["--steps", "0"], env, "--steps needs a positive integer", "bad")
 finish()
