@@ -324,7 +324,7 @@ void PairLsdem::compute(int eflag, int vflag)
   end_force_call();
   if (zcap > 0) coordination(1);
   apply_contacts(*lanes[0], atom->f, atom->torque);
-  if (eflag_global) tally_workload();  // compute pair reads it on energy steps only
+  if (eflag_global) tally_workload(contacting_pairs());  // compute pair reads it then only
   if (update->setupflag) report_overlaps();
   if (vflag_fdotr) virial_fdotr_compute();
 }
@@ -566,9 +566,8 @@ const double *PairLsdem::coordination(int to_ghosts)
    that tally energy only, the only steps compute pair may read it on
 ------------------------------------------------------------------------- */
 
-void PairLsdem::tally_workload()
+void PairLsdem::tally_workload(double touching)
 {
-  double ncontacting = 0.0;
   for (int k = 0; k < nextra; k++) pvector[k] = 0.0;
   if (fix_history) {
     pvector[4] = fix_history->memory_usage();
@@ -583,12 +582,22 @@ void PairLsdem::tally_workload()
   }
   for (int l = 0; l < nlanes; l++) {
     const Lane &lane = *lanes[l];
-    for (const Contact &k : lane.contact) ncontacting += k.counts;
     pvector[0] += (double) lane.ntested_pairs;
     pvector[2] += (double) lane.ntested_nodes;
     pvector[3] += (double) lane.npen_nodes;
   }
-  pvector[1] = ncontacting;
+  pvector[1] = touching;
+}
+
+/* the grain pairs in contact of the last force call (a pair found from both sides, in
+   two-way mode, once) */
+
+double PairLsdem::contacting_pairs() const
+{
+  double n = 0.0;
+  for (int l = 0; l < nlanes; l++)
+    for (const Contact &k : lanes[l]->contact) n += k.counts;
+  return n;
 }
 
 /* ----------------------------------------------------------------------

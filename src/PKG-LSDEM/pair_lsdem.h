@@ -156,7 +156,10 @@ class PairLsdem : public Pair {
   template <class F> F *internal_fix(const char *fix_id, const char *style);
   void end_force_call();
   void apply_contacts(Lane &, double **f, double **torque) const;
-  void tally_workload();
+  // the workload of the last force call into pvector (compute pair), touching: the grain
+  // pairs in contact it found
+  void tally_workload(double touching);
+  double contacting_pairs() const;
   void check_periodic_length() const;
   double reverse_depth(int, int);
   void report_overlaps();

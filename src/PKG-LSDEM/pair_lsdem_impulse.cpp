@@ -105,7 +105,8 @@ void PairLsdemImpulse::begin_detection(int eflag, int vflag, int n)
 void PairLsdemImpulse::detect_range(int l, int iifrom, int iito)
 {
   const int *ilist = list->ilist;
-  LsdemContactPath &path = lanes[l]->path;
+  Lane &lane = *lanes[l];
+  LsdemContactPath &path = lane.path;
   Found &out = found[l];
   for (int ii = iifrom; ii < iito; ii++) {
     const int i = ilist[ii];
@@ -117,9 +118,12 @@ void PairLsdemImpulse::detect_range(int l, int iifrom, int iito)
           (sleeping && sleeping[i] != 0.0 && sleeping[j] != 0.0))
         continue;
       const lsdem_contact_params &p = params[atom->type[i]][atom->type[j]];
-      if (path.detect(i, atom->tag[j], shape[i], pose[i], shape[j], pose[j], p.detect,
-                      touch_step) > 0)
-        keep(out, i, j, path.manifold());
+      const int npen = path.detect(i, atom->tag[j], shape[i], pose[i], shape[j], pose[j],
+                                   p.detect, touch_step);
+      lane.ntested_pairs++;  // the workload, as pair_style lsdem counts it (compute pair)
+      lane.ntested_nodes += path.manifold().ntested;
+      lane.npen_nodes += npen;
+      if (npen > 0) keep(out, i, j, path.manifold());
     }
     path.end_atom(i);
   }
@@ -146,6 +150,7 @@ void PairLsdemImpulse::end_detection()
       points.insert(points.end(), found[l].points.begin(), found[l].points.end());
     }
   }
+  if (eflag_global) tally_workload((double) touch.size());  // compute pair reads it then
   seconds += MPI_Wtime() - t_start;
 }
 

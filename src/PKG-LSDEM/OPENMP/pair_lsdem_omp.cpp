@@ -62,7 +62,7 @@ void PairLsdemOMP::compute(int eflag, int vflag)
     });
   }
 
-  if (eflag_global) tally_workload();
+  if (eflag_global) tally_workload(contacting_pairs());
   if (update->setupflag) report_overlaps();
 }
 
