@@ -95,7 +95,6 @@ void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
   }
   L->reach = list_reach(sdfB, L->skin);
   L->lip = isfinite(L->reach) ? L->reach / L->skin : 0.0;
-
   L->cap = sdfB->kind == LSDEM_SDF_GRID && L->lip > 0.0 ? sdfB->grid.lip_reach / L->lip
                                                          : HUGE_VAL;
   if (!out) return;

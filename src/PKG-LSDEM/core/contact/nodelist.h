@@ -6,7 +6,6 @@
 
 #include "lsdem_contact.h"
 
-#include <math.h>
 #include <string.h>
 
 /* The list state of one detection call. */
