@@ -127,8 +127,9 @@ static void detect_batch(detection *restrict dt, node_batch *b)
     } else if (L->use) {
       if (L->out) nodelist_write(L, nodelist_next(L), b->node[i], &b->x[3 * i], &b->cell[i], 0);
     } else if (L->building && b->phi[i] < L->reach) {
-      nodelist_write(L, nodelist_next(L), b->node[i], &b->x[3 * i], &b->cell[i],
-                     nodelist_slack(L, b->phi[i]));
+      const unsigned slack = nodelist_slack(L, b->phi[i]);
+      L->nslack += slack > 0;
+      nodelist_write(L, nodelist_next(L), b->node[i], &b->x[3 * i], &b->cell[i], slack);
     } else if (L->building) {
       nodelist_margin(L, b->phi[i] / L->lip); /* phi >= L s: L > 0 here */
     }

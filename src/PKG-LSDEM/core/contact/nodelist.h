@@ -59,13 +59,12 @@ static inline int nodelist_skips(const node_list *L, const lsdem_nodelist_entry 
 }
 
 /* Entry e of the output list: node k at x (A's frame) with its cell c and slack. */
-static inline void nodelist_write(node_list *L, lsdem_nodelist_entry *e, int k,
+static inline void nodelist_write(const node_list *L, lsdem_nodelist_entry *e, int k,
                                   const double x[3], const lsdem_grid_cell *c, unsigned slack)
 {
   const int kept = L->cached && c && c->index >= 0 && c->index <= INT32_MAX;
   e->node = (uint32_t)k;
   e->slack = slack;
-  L->nslack += slack > 0;
   e->cell = kept ? (int32_t)c->index : -1;
   if (kept)
     memcpy(e->v, c->v, sizeof e->v);
