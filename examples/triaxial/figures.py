@@ -90,6 +90,9 @@ def read_vti(path):
     base = raw.index(b"_", mark) + 1
     head = raw[:base].decode()
     attr = lambda name: [float(v) for v in re.search(name + r'="([^"]+)"', head).group(1).split()]
+    if "Direction=" in head:  # a tilted periodic box's skewed grid: not this script's slices
+        sys.exit("figures.py: %s holds a skewed grid (a tilted box); its slices are drawn for "
+                 "orthogonal grids only -- open the file in ParaView (5.10 or later)" % path)
     ext = [int(v) for v in attr("WholeExtent")]
     n = (ext[1] + 1, ext[3] + 1, ext[5] + 1)
     grid = {"n": n, "origin": np.array(attr("Origin")), "h": attr("Spacing")[0]}

@@ -16,9 +16,9 @@
    The reference is the configuration at the first setup: each grain's unwrapped centre in
    a fix STORE row (it migrates with the grain and survives a restart), and the box's
    period vectors (global restart info). In a periodic dimension the core's grid spans the
-   period (an orthogonal box now); grains go at their unwrapped centres with their unwrapped
-   displacements, and the box's change of period vectors is the displacement jump across
-   a period (lsdem_field_box).
+   period (along the period vector: a triclinic box's grid is skewed with it); grains go at
+   their unwrapped centres with their unwrapped displacements, and the box's change of
+   period vectors is the displacement jump across a period (lsdem_field_box).
 ------------------------------------------------------------------------- */
 
 #include "fix_field_lsdem.h"
@@ -285,11 +285,6 @@ std::vector<double> FixFieldLsdem::branch_rows() const
 
 void FixFieldLsdem::write_fields()
 {
-  if (domain->triclinic && (domain->xperiodic || domain->yperiodic || domain->zperiodic) &&
-      (domain->xy != 0.0 || domain->xz != 0.0 || domain->yz != 0.0))
-    error->all(FLERR, "Fix field/lsdem: a periodic box must be orthogonal when the fields are "
-               "written at step {} (tilt factors 0; a box sheared from the reference to an "
-               "orthogonal one is fine)", update->ntimestep);
   const std::vector<double> grains = lsdem_gather_sorted(world, grain_rows(), GRAIN_ROW);
   const std::vector<double> branches = lsdem_gather_sorted(world, branch_rows(), BRANCH_ROW);
   const std::vector<double> nodes = lsdem_gather_sorted(world, membrane_rows(), 4);
@@ -330,8 +325,8 @@ void FixFieldLsdem::write_fields()
 }
 
 /* ----------------------------------------------------------------------
-   the core's box: periodic dimensions, the period now and the displacement jump across it
-   (period vector now minus at the reference; init checked the box is orthogonal now)
+   the core's box: periodic dimensions, bounds and tilt factors now, and the displacement
+   jump across each period (period vector now minus at the reference)
 ------------------------------------------------------------------------- */
 
 void FixFieldLsdem::set_box()
@@ -343,6 +338,7 @@ void FixFieldLsdem::set_box()
     params.box.periodic[k] = periodic[k];
     params.box.lo[k] = domain->boxlo[k];
     params.box.hi[k] = domain->boxhi[k];
+    params.box.tilt[k] = domain->triclinic ? (k == 0 ? h[5] : k == 1 ? h[4] : h[3]) : 0.0;
     for (int i = 0; i < 3; i++)
       params.box.jump[k][i] = periodic[k] ? now[k][i] - ref_period[k][i] : 0.0;
   }

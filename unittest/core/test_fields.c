@@ -2,7 +2,9 @@
  * random packing, rigid rotations strain-free, FFT against direct summation, totals kept,
  * the cylinder mask and the .vti file; periodic boxes (affine maps of the box recovered at
  * every node, the fit against a brute-force minimum-image sum, the open grid as the
- * control); the surface mask (point in closed surface). */
+ * control); tilted (triclinic) boxes (their skewed grid: affine maps recovered at every
+ * node, FFT against direct, kernel weights at Cartesian distances, the surface mask); the
+ * surface mask (point in closed surface). */
 #include "lsdem_test.h"
 
 #include "fields/lsdem_fields.h"
@@ -14,7 +16,7 @@
 #define BOX 10.0
 
 static const lsdem_field_params PARAMS = {1.0, 0.5, LSDEM_FIELD_MIN_VARIANCE,
-                                         LSDEM_FIELD_MIN_WEIGHT, {{0}, {0}, {0}, {{0}}}};
+                                         LSDEM_FIELD_MIN_WEIGHT, {{0}, {0}, {0}, {0}, {{0}}}};
 
 /* a random loose packing: centres uniform in the box, masses and volumes in (0.5, 1.5] */
 static void random_grains(lsdem_field_grain *g, int n)
@@ -333,6 +335,28 @@ static void periodic_scene(const double F[9], lsdem_field_grain *g, int n, lsdem
   }
 }
 
+/* The fields of PGRAINS grains g under p (into f); H = F - I; returns the largest
+ * |grad - H| over the nodes, with how many are regular and the integrated density's
+ * relative difference from the total mass */
+static double fit_affine(const lsdem_field_params *p, const lsdem_field_grain *g,
+                         const double F[9], lsdem_fields *f, double H[9], size_t *regular,
+                         double *mass_error)
+{
+  lsdem_error err;
+  CHECK(lsdem_fields_compute(p, PGRAINS, g, 0, NULL, f, &err) == LSDEM_OK, "%s", err.msg);
+  for (int k = 0; k < 9; k++) H[k] = F[k] - (k % 4 == 0 ? 1.0 : 0.0);
+  double e = 0.0, m = 0.0, mass = 0.0;
+  *regular = 0;
+  for (size_t node = 0; node < lsdem_field_grid_nodes(&f->grid); node++) {
+    *regular += f->regular[node];
+    for (int k = 0; k < 9; k++) e = fmax(e, fabs(f->grad[9 * node + k] - H[k]));
+    m += f->density[node] * f->grid.h[0] * f->grid.h[1] * f->grid.h[2];
+  }
+  for (int i = 0; i < PGRAINS; i++) mass += g[i].mass;
+  *mass_error = fabs(m - mass) / mass;
+  return e;
+}
+
 /* every node of the periodic grid regular and H = F - I to 1e-10; the open grid on the same
  * grains misses it (the wrapped grains' displacements jump by jump_k there) */
 static void check_periodic_affine(const char *name, const double F[9])
@@ -341,33 +365,25 @@ static void check_periodic_affine(const char *name, const double F[9])
   lsdem_field_params p = PARAMS;
   periodic_scene(F, g, PGRAINS, &p.box, 0);
   lsdem_fields f;
-  lsdem_error err;
-  CHECK(lsdem_fields_compute(&p, PGRAINS, g, 0, NULL, &f, &err) == LSDEM_OK, "%s", err.msg);
-  double H[9];
-  for (int k = 0; k < 9; k++) H[k] = F[k] - (k % 4 == 0 ? 1.0 : 0.0);
+  double H[9], dm;
+  size_t regular;
+  const double e = fit_affine(&p, g, F, &f, H, &regular, &dm);
   const size_t nodes = lsdem_field_grid_nodes(&f.grid);
-  size_t regular = 0;
-  double e = 0.0, mass = 0.0, m = 0.0;
-  for (size_t node = 0; node < nodes; node++) {
-    regular += f.regular[node];
-    for (int k = 0; k < 9; k++) e = fmax(e, fabs(f.grad[9 * node + k] - H[k]));
-    m += f.density[node] * f.grid.h[0] * f.grid.h[1] * f.grid.h[2];
-  }
-  for (int i = 0; i < PGRAINS; i++) mass += g[i].mass;
   CHECK(f.grid.n[0] * f.grid.h[0] == PBOX && f.grid.origin[0] == 0.0, "%s: grid %d x %g from %g",
         name, f.grid.n[0], f.grid.h[0], f.grid.origin[0]);
   CHECK(regular == nodes, "%s: %zu regular nodes of %zu", name, regular, nodes);
   CHECK(e <= 1e-10 * max_abs(H, 9), "%s: periodic gradient off by %.3g (%.3g relative)", name, e,
         e / max_abs(H, 9));
-  CHECK_REL(m, mass, 1e-12);
+  CHECK(dm <= 1e-12, "%s: integrated density off the mass by %.3g", name, dm);
   printf("periodic %s: %zu nodes, all regular, gradient error %.2e relative, mass %.2e\n",
-         name, nodes, e / max_abs(H, 9), fabs(m - mass) / mass);
+         name, nodes, e / max_abs(H, 9), dm);
   lsdem_fields_free(&f);
   /* the control: the open, padded grid over the same grains as LAMMPS keeps them (wrapped
    * into the box, unwrapped displacements) */
   for (int i = 0; i < PGRAINS; i++)
     for (int k = 0; k < 3; k++) g[i].x[k] -= PBOX * floor(g[i].x[k] / PBOX);
   p.box = PARAMS.box;
+  lsdem_error err;
   CHECK(lsdem_fields_compute(&p, PGRAINS, g, 0, NULL, &f, &err) == LSDEM_OK, "%s", err.msg);
   double eo = 0.0;
   size_t bad = 0, in_box = 0, node = 0;
@@ -482,50 +498,53 @@ static void check_periodic_bruteforce(void)
   lsdem_fields_free(&f);
 }
 
-/* FFT = direct sum on a grid periodic in x and z, open in y; contact branches across the
- * faces (given with the far image of the contact point) integrate to the Love-Weber sum of
- * the minimum-image branches */
-static void check_periodic_smooth_and_stress(void)
+/* 60 values deposited at lattice coordinates uniform in [0, span) (half at the z = 0 face)
+ * of grid g, smoothed by FFT and by direct summation: their largest difference over the
+ * largest value */
+static double fft_direct_difference(const lsdem_field_grid *g, double width,
+                                    const double span[3])
 {
-  lsdem_field_box box;
-  memset(&box, 0, sizeof box);
-  box.periodic[0] = box.periodic[2] = 1;
-  box.hi[0] = 4.0;
-  box.hi[2] = 3.0;
-  const double lo[3] = {0, 0, 0}, hi[3] = {4.0, 2.0, 3.0};
-  lsdem_field_grid g;
-  CHECK(lsdem_field_grid_cover_box(&box, lo, hi, 0.25, 0.4, &g, NULL) == LSDEM_OK, "grid");
-  CHECK(g.origin[0] == 0.0 && g.n[0] * g.h[0] == 4.0 && g.n[2] * g.h[2] == 3.0 && g.h[1] == 0.25,
-        "periodic axes span the period");
-  const size_t nodes = lsdem_field_grid_nodes(&g);
+  const size_t nodes = lsdem_field_grid_nodes(g);
   double *a = calloc(nodes, sizeof(double)), *b = calloc(nodes, sizeof(double));
   for (int i = 0; i < 60; i++) {
-    const double z = i % 2 ? 0.05 * urand() : hi[2] * urand(); /* half at the z = 0 face */
-    const double x[3] = {hi[0] * urand(), hi[1] * urand(), z};
+    const double xi[3] = {span[0] * urand(), span[1] * urand(),
+                          i % 2 ? 0.05 * urand() : span[2] * urand()};
+    double x[3];
+    lsdem_field_from_lattice(g->skew, xi, x);
     const double v = urand();
-    lsdem_field_deposit(&g, x, 1, &v, a);
+    lsdem_field_deposit(g, x, 1, &v, a);
   }
   memcpy(b, a, nodes * sizeof(double));
-  CHECK(lsdem_field_smooth_fft(&g, 0.4, 1, a, NULL) == LSDEM_OK, "fft");
-  CHECK(lsdem_field_smooth_direct(&g, 0.4, 1, b, NULL) == LSDEM_OK, "direct");
-  double diff = 0.0, scale = max_abs(b, (int)nodes);
+  CHECK(lsdem_field_smooth_fft(g, width, 1, a, NULL) == LSDEM_OK, "fft");
+  CHECK(lsdem_field_smooth_direct(g, width, 1, b, NULL) == LSDEM_OK, "direct");
+  double diff = 0.0;
+  const double scale = max_abs(b, (int)nodes);
   for (size_t k = 0; k < nodes; k++) diff = fmax(diff, fabs(a[k] - b[k]));
-  CHECK(diff <= 1e-12 * scale, "periodic FFT against direct: %.3g of %.3g", diff, scale);
   free(a);
   free(b);
-  /* a kernel reaching half the period is refused */
-  lsdem_error err;
-  CHECK(lsdem_field_grid_cover_box(&box, lo, hi, 0.25, 0.6, &g, &err) == LSDEM_ERR_ARG, "reach");
+  return diff / scale;
+}
 
+/* Grains uniform in box (periodic in x and z; a third at its x = 0 face) with contact
+ * branches, half of them given with the far image of their point (the period vector a
+ * further, a third c back: minimum image takes them back): the fields' integrals are the
+ * total mass and the Love-Weber sum of the branches. */
+static void check_branch_integrals(const lsdem_field_box *box)
+{
   enum { NG = 200, NB = 300 };
   static lsdem_field_grain gr[NG];
   static lsdem_field_branch br[NB];
-  double M[9] = {0}, sigma[9];
+  double M[9] = {0}, sigma[9], skew[3];
+  lsdem_field_box_skew(box, skew);
+  const double l[3] = {box->hi[0] - box->lo[0], box->hi[1] - box->lo[1], box->hi[2] - box->lo[2]};
+  const double pa[3] = {l[0], 0.0, 0.0}, pc[3] = {box->tilt[1], box->tilt[2], l[2]};
   for (int i = 0; i < NG; i++) {
     gr[i].mass = 1.0;
     gr[i].volume = 0.5;
-    for (int k = 0; k < 3; k++) gr[i].x[k] = hi[k] * urand();
-    gr[i].x[0] = i % 3 ? gr[i].x[0] : 0.1 * urand(); /* a third at the x = 0 face */
+    double xi[3];
+    for (int k = 0; k < 3; k++) xi[k] = box->lo[k] + l[k] * urand();
+    xi[0] = i % 3 ? xi[0] : box->lo[0] + 0.1 * urand();
+    lsdem_field_from_lattice(skew, xi, gr[i].x);
   }
   for (int i = 0; i < NB; i++) {
     const lsdem_field_grain *c = gr + i % NG;
@@ -535,15 +554,18 @@ static void check_periodic_smooth_and_stress(void)
       br[i].point[k] = c->x[k] + 0.3 * srand1();
     }
     lsdem_love_weber_add(M, br[i].force, br[i].point, br[i].centre);
-    if (i % 2) br[i].point[0] += 4.0; /* the far image: minimum image takes it back */
-    if (i % 3 == 0) br[i].point[2] -= 3.0;
+    for (int k = 0; k < 3; k++) {
+      if (i % 2) br[i].point[k] += pa[k];
+      if (i % 3 == 0) br[i].point[k] -= pc[k];
+    }
   }
   lsdem_love_weber_stress(M, 1.0, sigma);
   lsdem_field_params p = PARAMS;
   p.width = 0.4;
   p.h = 0.25;
-  p.box = box;
+  p.box = *box;
   lsdem_fields f;
+  lsdem_error err;
   CHECK(lsdem_fields_compute(&p, NG, gr, NB, br, &f, &err) == LSDEM_OK, "%s", err.msg);
   const double dv = f.grid.h[0] * f.grid.h[1] * f.grid.h[2];
   double s[9] = {0}, m = 0;
@@ -554,6 +576,145 @@ static void check_periodic_smooth_and_stress(void)
   CHECK_REL(m, (double)NG, 1e-12);
   for (int k = 0; k < 9; k++) CHECK_NEAR(s[k], sigma[k], 1e-10 * max_abs(sigma, 9));
   lsdem_fields_free(&f);
+}
+
+/* ------------------------------------------------------------- tilted boxes ---- */
+
+/* A tilted periodic box (LAMMPS's triclinic form) that is the image under x = F X + t of
+ * a reference box of tilt ref_tilt (F upper triangular keeps that form): the period vectors
+ * a_k = F A_k, the box now from 0 with lengths a0, b1, c2 and tilt (b0, c0, c1); grains
+ * uniform in the reference box, at their unwrapped centres (the drift takes some out of the
+ * box). Every node regular, H = F - I to 1e-10 relative, the mass integral, the grid spanning
+ * the period vectors. */
+static void check_tilted_affine(const char *name, const double F[9], const double ref_tilt[3])
+{
+  static lsdem_field_grain g[PGRAINS];
+  const double A[3][3] = {{PBOX, 0, 0}, {ref_tilt[0], PBOX, 0}, {ref_tilt[1], ref_tilt[2], PBOX}};
+  double a[3][3];
+  for (int k = 0; k < 3; k++) lsdem_mat_vec(F, A[k], a[k]);
+  lsdem_field_params p = PARAMS;
+  memset(&p.box, 0, sizeof p.box);
+  for (int k = 0; k < 3; k++) {
+    p.box.periodic[k] = 1;
+    p.box.hi[k] = a[k][k];
+    for (int i = 0; i < 3; i++) p.box.jump[k][i] = a[k][i] - A[k][i];
+  }
+  p.box.tilt[0] = a[1][0];
+  p.box.tilt[1] = a[2][0];
+  p.box.tilt[2] = a[2][1];
+  CHECK(a[0][1] == 0.0 && a[0][2] == 0.0 && a[1][2] == 0.0, "%s: F keeps the box's form", name);
+  const double t[3] = {3.3, -2.1, 0.7};
+  for (int i = 0; i < PGRAINS; i++) {
+    double X[3] = {0, 0, 0}, x[3];
+    for (int k = 0; k < 3; k++) {
+      const double f = urand();
+      for (int j = 0; j < 3; j++) X[j] += f * A[k][j];
+    }
+    lsdem_mat_vec(F, X, x);
+    g[i].mass = 0.5 + urand();
+    g[i].volume = 0.4 * (0.5 + urand());
+    for (int k = 0; k < 3; k++) {
+      g[i].x[k] = x[k] + t[k];
+      g[i].u[k] = g[i].x[k] - X[k];
+    }
+  }
+  lsdem_fields f;
+  double H[9], dm;
+  size_t regular;
+  const double e = fit_affine(&p, g, F, &f, H, &regular, &dm);
+  const size_t nodes = lsdem_field_grid_nodes(&f.grid);
+  for (int k = 0; k < 3; k++) {
+    int end[3] = {0, 0, 0};
+    end[k] = f.grid.n[k];
+    double x[3];
+    lsdem_field_node_position(&f.grid, end, x);
+    CHECK(fabs(x[0] - a[k][0]) + fabs(x[1] - a[k][1]) + fabs(x[2] - a[k][2]) <= 1e-12 * PBOX,
+          "%s: node n_%d at (%g %g %g), not the period vector (%g %g %g)", name, k, x[0], x[1],
+          x[2], a[k][0], a[k][1], a[k][2]);
+  }
+  CHECK(regular == nodes, "%s: %zu regular nodes of %zu", name, regular, nodes);
+  CHECK(e <= 1e-10 * max_abs(H, 9), "%s: tilted gradient off by %.3g (%.3g relative)", name, e,
+        e / max_abs(H, 9));
+  CHECK(dm <= 1e-12, "%s: integrated density off the mass by %.3g", name, dm);
+  printf("tilted %s: skew %.3f %.3f %.3f, %zu nodes, all regular, gradient error %.2e "
+         "relative, mass %.2e\n", name, f.grid.skew[0], f.grid.skew[1], f.grid.skew[2], nodes,
+         e / max_abs(H, 9), dm);
+  lsdem_fields_free(&f);
+}
+
+/* A grid periodic in x and z, open in y, of a box with tilt factors tilt (zeros:
+ * orthogonal): the periodic axes span their periods, the FFT equals the direct sum, a
+ * node's kernel weight follows the Cartesian distance (the node of offset (1, -1, 0)
+ * against its world distance), a kernel reaching half the period is refused; contact
+ * branches across the faces (check_branch_integrals) */
+static void check_smooth_and_stress(const char *name, const double tilt[3])
+{
+  lsdem_field_box box;
+  memset(&box, 0, sizeof box);
+  box.periodic[0] = box.periodic[2] = 1;
+  const double lo[3] = {0.0, 0.0, 0.0}, hi[3] = {4.0, 2.0, 3.0}; /* y open: the grains' */
+  for (int k = 0; k < 3; k++) {
+    box.hi[k] = hi[k];
+    box.tilt[k] = tilt[k];
+  }
+  lsdem_field_grid g;
+  CHECK(lsdem_field_grid_cover_box(&box, lo, hi, 0.25, 0.4, &g, NULL) == LSDEM_OK, "grid");
+  CHECK(g.origin[0] == 0.0 && g.n[0] * g.h[0] == 4.0 && g.n[2] * g.h[2] == 3.0 && g.h[1] == 0.25,
+        "%s: periodic axes span the period", name);
+  CHECK(g.skew[0] == tilt[0] / 2.0 && g.skew[1] == tilt[1] / 3.0 && g.skew[2] == tilt[2] / 3.0,
+        "%s: skew", name);
+  const double diff = fft_direct_difference(&g, 0.4, hi);
+  CHECK(diff <= 1e-12, "%s: FFT against direct: %.3g relative", name, diff);
+  const size_t nodes = lsdem_field_grid_nodes(&g);
+  double *K = malloc(nodes * sizeof(double));
+  lsdem_field_kernel(&g, 0.4, K);
+  const double dxi[3] = {g.h[0], -g.h[1], 0.0};
+  double d[3];
+  lsdem_field_from_lattice(g.skew, dxi, d);
+  const size_t k1 = (size_t)(g.n[0] - 1) + (size_t)g.n[0] * 1; /* offset -(1, -1, 0) */
+  CHECK_REL(K[k1] / K[0], exp(-lsdem_dot3(d, d) / (2.0 * 0.4 * 0.4)), 1e-14);
+  free(K);
+  lsdem_error err;
+  CHECK(lsdem_field_grid_cover_box(&box, lo, hi, 0.25, 0.6, &g, &err) == LSDEM_ERR_ARG,
+        "%s: reach", name);
+  check_branch_integrals(&box);
+  printf("%s grid: FFT = direct to %.2e, mass and contact stress integrals hold\n", name, diff);
+}
+
+/* The surface mask on a skewed grid: the nodes inside the cube [2, 6]^3 are those whose
+ * world positions are (nodes within 1e-9 of a face not counted) */
+static void check_tilted_mask(void)
+{
+  const double cube[8][3] = {{2, 2, 2}, {6, 2, 2}, {2, 6, 2}, {6, 6, 2},
+                             {2, 2, 6}, {6, 2, 6}, {2, 6, 6}, {6, 6, 6}};
+  const int ct[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                         {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  lsdem_field_grid cg = {{45, 41, 41}, {-1.5, 0, 0}, {0.2, 0.2, 0.2}, {0, 0, 0},
+                         {0.13, -0.11, 0.07}};
+  const size_t nodes = lsdem_field_grid_nodes(&cg);
+  unsigned char *in = malloc(nodes);
+  lsdem_error err;
+  CHECK(lsdem_field_inside_surface(&cg, 8, &cube[0][0], 12, &ct[0][0], in, &err) == LSDEM_OK,
+        "tilted cube");
+  size_t node = 0, wrong = 0, inside = 0;
+  for (int i2 = 0; i2 < cg.n[2]; i2++)
+    for (int i1 = 0; i1 < cg.n[1]; i1++)
+      for (int i0 = 0; i0 < cg.n[0]; i0++, node++) {
+        const int i[3] = {i0, i1, i2};
+        double x[3], face = HUGE_VAL;
+        int want = 1;
+        lsdem_field_node_position(&cg, i, x);
+        for (int k = 0; k < 3; k++) {
+          want &= x[k] > 2.0 && x[k] < 6.0;
+          face = fmin(face, fmin(fabs(x[k] - 2.0), fabs(x[k] - 6.0)));
+        }
+        if (face < 1e-9) continue;
+        inside += want;
+        wrong += in[node] != want;
+      }
+  CHECK(wrong == 0 && inside > 1000, "tilted mask: %zu nodes wrong, %zu inside", wrong, inside);
+  printf("tilted mask: %zu nodes inside the cube, none wrong\n", inside);
+  free(in);
 }
 
 /* ------------------------------------------------------------- surface mask ---- */
@@ -634,7 +795,7 @@ static void check_surface_mask(void)
                              {2, 2, 6}, {6, 2, 6}, {2, 6, 6}, {6, 6, 6}};
   const int ct[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                          {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-  lsdem_field_grid cg = {{41, 41, 41}, {0, 0, 0}, {0.2, 0.2, 0.2}, {0, 0, 0}};
+  lsdem_field_grid cg = {{41, 41, 41}, {0, 0, 0}, {0.2, 0.2, 0.2}, {0, 0, 0}, {0, 0, 0}};
   unsigned char *cin = malloc(41 * 41 * 41);
   CHECK(lsdem_field_inside_surface(&cg, 8, &cube[0][0], 12, &ct[0][0], cin, &err) == LSDEM_OK,
         "cube");
@@ -675,7 +836,14 @@ int main(void)
   check_periodic_affine("simple shear", simple_shear);
   check_periodic_affine("dilation", dilation);
   check_periodic_bruteforce();
-  check_periodic_smooth_and_stress();
+  const double no_tilt[3] = {0, 0, 0}, ref_tilt[3] = {-1.0, 2.0, 1.5};
+  const double tilt[3] = {0.8, -0.6, 0.9};
+  check_smooth_and_stress("periodic", no_tilt);
+  check_smooth_and_stress("tilted", tilt);
+  const double upper[9] = {1.02, 0.03, -0.04, 0, 0.99, 0.05, 0, 0, 1.01};
+  check_tilted_affine("simple shear of a cube", simple_shear, no_tilt);
+  check_tilted_affine("upper-triangular F of a tilted box", upper, ref_tilt);
+  check_tilted_mask();
   check_surface_mask();
   return lsdem_test_summary();
 }

@@ -3,10 +3,11 @@
 729 balls on a jittered lattice fill the box [0, 9)^3 (a few overlap: contacts, some across
 the faces); after run 0 (the reference) the box is deformed homogeneously with change_box
 ... remap -- pure shear (x scale 1.01, y scale 0.99), dilation of 1 % (x y z scale 1.01),
-simple shear 0.01 (a triclinic box of tilt xy = -0.09 sheared to xy = 0) -- and a run of 1
-step writes the fields (at step 1 only: the reference box of the simple shear is tilted,
-where the fix refuses to write). Checked: the grid spans exactly the box now (origin boxlo,
-n h = the period on every axis); EVERY node is regular and carries H = F - I to 1e-10 relative,
+simple shear 0.01 (a triclinic box of tilt xy = -0.09 sheared to xy = 0, and the cube made
+triclinic and sheared to xy = 0.09: a tilted box now), and all three tilts at once (xy 0.09,
+xz -0.045, yz 0.18) -- and a run of 1 step writes the fields. Checked: the grid spans exactly
+the box now (origin boxlo; along each period vector, n times the spacing = its length, the
+file's Direction its unit vector); EVERY node is regular and carries H = F - I to 1e-10 relative,
 faces included; integrated density = total mass to 1e-12; integrated contact stress =
 compute stress/lsdem's sum to 1e-10; 1, 2 and 4 ranks write the same bytes; a run restarted
 from a file written after the deformation keeps the reference box (the jumps) and writes
@@ -42,6 +43,11 @@ CASES = {
                  [[0.01, 0, 0], [0, 0.01, 0], [0, 0, 0.01]]),
     "simple_shear": ("sheared", "change_box all xy final 0.0 remap",
                      [[0, 0.01, 0], [0, 0, 0], [0, 0, 0]]),
+    "tilted_now": ("cube", "change_box all triclinic\nchange_box all xy final 0.09 remap",
+                   [[0, 0.01, 0], [0, 0, 0], [0, 0, 0]]),
+    "three_tilts": ("cube", "change_box all triclinic\n"
+                    "change_box all xy final 0.09 xz final -0.045 yz final 0.18 remap",
+                    [[0, 0.01, -0.005], [0, 0, 0.02], [0, 0, 0]]),
 }
 
 DECK = """units lj
@@ -59,7 +65,10 @@ variable mt equal mass(all)
 variable lx equal lx
 variable ly equal ly
 variable lz equal lz
-thermo_style custom step v_mt v_lx v_ly v_lz c_st[1] c_st[2] c_st[3] c_st[4] c_st[5] c_st[6]
+variable xy equal xy
+variable xz equal xz
+variable yz equal yz
+thermo_style custom step v_mt v_lx v_ly v_lz v_xy v_xz v_yz c_st[1] c_st[2] c_st[3] c_st[4] c_st[5] c_st[6]
 thermo_modify format float %%.17g
 run 0
 %s
@@ -73,9 +82,16 @@ for name, (data, change, H) in CASES.items():
         f = read_vti(path)
         row = thermo(log)[-1]
         n, h = f["n"], f["spacing"]
-        box = [row["v_lx"], row["v_ly"], row["v_lz"]]
-        check(all(abs(n[k] * h[k] - box[k]) <= 1e-12 * box[k] for k in range(3)),
-              "%s: grid %r x %r, box %r" % (name, n, h, box))
+        period = np.array([[row["v_lx"], 0, 0], [row["v_xy"], row["v_ly"], 0],
+                           [row["v_xz"], row["v_yz"], row["v_lz"]]])
+        length = np.linalg.norm(period, axis=1)
+        check(all(abs(n[k] * h[k] - length[k]) <= 1e-12 * length[k] for k in range(3)),
+              "%s: grid %r x %r, period vectors %r" % (name, n, h, period))
+        check(np.abs(f["direction"].T - period / length[:, None]).max() <= 1e-15,
+              "%s: Direction %r, period vectors %r" % (name, f["direction"], period))
+        check(("Direction" in open(path, "rb").read(2000).decode("latin-1")) ==
+              bool(np.abs(period - np.diag(np.diag(period))).max() > 0),
+              "%s: a Direction where the box is orthogonal, or none where it is tilted" % name)
         reg = f["regular"][:, 0] == 1
         nodes = n[0] * n[1] * n[2]
         check(reg.all(), "%s: %d of %d nodes regular" % (name, reg.sum(), nodes))
@@ -89,7 +105,7 @@ for name, (data, change, H) in CASES.items():
         for k in range(3):
             face |= (ijk[k] == 0) | (ijk[k] == n[k] - 1)
         err_face = np.abs(f["displacement_gradient"][face] - Hm.reshape(9)).max()
-        dv = h[0] * h[1] * h[2]
+        dv = h[0] * h[1] * h[2] * abs(np.linalg.det(f["direction"]))  # a voxel's volume
         mass = row["v_mt"]
         check(abs(f["density"].sum() * dv - mass) <= 1e-12 * mass,
               "%s: integrated density %r, mass %r" % (name, f["density"].sum() * dv, mass))

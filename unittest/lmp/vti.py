@@ -12,7 +12,8 @@ MARK = b'<AppendedData encoding="raw">\n_'
 
 def read_vti(path):
     """{'n': (nx, ny, nz), 'origin': (...), 'spacing': (hx, hy, hz), 'h': hx (the spacing of
-    an open box's grid, the same on every axis), name: array (nodes, components)}"""
+    an open box's grid, the same on every axis), 'direction': 3x3 (columns: the grid's unit
+    axes; identity unless the file has a Direction), name: array (nodes, components)}"""
     data = open(path, "rb").read()
     base = data.index(MARK) + len(MARK)
     head = data[:base].decode()
@@ -22,6 +23,10 @@ def read_vti(path):
     out["origin"] = [float(v) for v in re.search(r'Origin="([^"]+)"', head).group(1).split()]
     out["spacing"] = [float(v) for v in re.search(r'Spacing="([^"]+)"', head).group(1).split()]
     out["h"] = out["spacing"][0]
+    # a skewed grid's (a triclinic box's) Direction: row-major, columns the unit axes
+    m = re.search(r'Direction="([^"]+)"', head)
+    out["direction"] = (np.array([float(v) for v in m.group(1).split()]).reshape(3, 3)
+                        if m else np.eye(3))
     for m in re.finditer(r'<DataArray type="(\w+)" Name="(\w+)" NumberOfComponents="(\d+)" '
                          r'format="appended" offset="(\d+)"/>', head):
         kind, name, comps, offset = m.group(1), m.group(2), int(m.group(3)), int(m.group(4))

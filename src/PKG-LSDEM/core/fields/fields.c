@@ -23,14 +23,19 @@ enum {
 /* (row, column) of the six stored components of a symmetric tensor */
 static const int SYM_I[6] = {0, 0, 0, 1, 1, 2}, SYM_J[6] = {0, 1, 2, 1, 2, 2};
 
-static void fields_bounds(int n, const lsdem_field_grain *grains, int nb,
+/* the bounds of the grains' and branches' points in lattice coordinates (skew) */
+static void fields_bounds(const double skew[3], int n, const lsdem_field_grain *grains, int nb,
                           const lsdem_field_branch *branches, double lo[3], double hi[3])
 {
-  for (int k = 0; k < 3; k++) lo[k] = hi[k] = grains[0].x[k];
+  lsdem_field_to_lattice(skew, grains[0].x, lo);
+  for (int k = 0; k < 3; k++) hi[k] = lo[k];
   for (int i = 0; i < n + 2 * nb; i++) {
-    const double *x = i < n ? grains[i].x
-                            : (i - n) % 2 ? branches[(i - n) / 2].point
-                                          : branches[(i - n) / 2].centre;
+    double x[3];
+    lsdem_field_to_lattice(skew,
+                           i < n           ? grains[i].x
+                           : (i - n) % 2 ? branches[(i - n) / 2].point
+                                         : branches[(i - n) / 2].centre,
+                           x);
     for (int k = 0; k < 3; k++) {
       if (x[k] < lo[k]) lo[k] = x[k];
       if (x[k] > hi[k]) hi[k] = x[k];
@@ -38,13 +43,26 @@ static void fields_bounds(int n, const lsdem_field_grain *grains, int nb,
   }
 }
 
-/* L_box = sum over periodic axes k of jump_k e_k^T / period_k: u - L_box x is periodic */
+/* L_box = sum over periodic axes k of jump_k d_k^T, d_k the dual of the period vectors
+ * (row k of T^-1 over the length l_k: d_k . a_j = delta_kj; e_k / l_k for an orthogonal
+ * box): L_box a_k = jump_k, and u - L_box x is periodic */
 static void box_gradient(const lsdem_field_box *box, double L[9])
 {
+  double skew[3];
+  lsdem_field_box_skew(box, skew);
   for (int k = 0; k < 9; k++) L[k] = 0.0;
-  for (int k = 0; k < 3; k++)
-    if (box->periodic[k])
-      for (int i = 0; i < 3; i++) L[3 * i + k] = box->jump[k][i] / (box->hi[k] - box->lo[k]);
+  for (int k = 0; k < 3; k++) {
+    if (!box->periodic[k]) continue;
+    double e[3] = {0.0, 0.0, 0.0}, d[3];
+    e[k] = 1.0;
+    /* row k of T^-1 = T^-T e_k, by T^T d = e_k (forward substitution) */
+    d[0] = e[0];
+    d[1] = e[1] - skew[0] * d[0];
+    d[2] = e[2] - skew[1] * d[0] - skew[2] * d[1];
+    const double l = box->hi[k] - box->lo[k];
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) L[3 * i + j] += box->jump[k][i] * d[j] / l;
+  }
 }
 
 /* a grain's moments about each node of its cell (d = x - x_g exact, the node's image next
@@ -80,13 +98,16 @@ static void deposit_grain(const lsdem_field_grid *g, const double Lbox[9],
 static void deposit_branch(const lsdem_field_grid *g, const lsdem_field_box *box,
                            const lsdem_field_branch *br, double *channels)
 {
-  double b[3], v[6];
-  lsdem_sub3(br->point, br->centre, b);
+  double b[3], bxi[3], v[6];
+  lsdem_sub3(br->point, br->centre, bxi);
+  lsdem_field_to_lattice(g->skew, bxi, b); /* b in lattice coordinates first */
   for (int k = 0; k < 3; k++)
     if (box->periodic[k]) {
       const double period = box->hi[k] - box->lo[k];
       b[k] -= period * round(b[k] / period);
     }
+  memcpy(bxi, b, sizeof bxi);
+  lsdem_field_from_lattice(g->skew, bxi, b);
   const double h = fmin(g->h[0], fmin(g->h[1], g->h[2]));
   const int pieces = (int)ceil(sqrt(lsdem_dot3(b, b)) / h) + (lsdem_dot3(b, b) == 0.0);
   for (int s = 0; s < 6; s++) {
@@ -290,7 +311,9 @@ lsdem_status lsdem_fields_compute(const lsdem_field_params *p, int n,
     return lsdem_fail(err, LSDEM_ERR_ARG, "fields: %d grains, %d branches, min_variance %g, "
                       "min_weight %g", n, nb, p->min_variance, p->min_weight);
   double lo[3], hi[3], Lbox[9];
-  fields_bounds(n, grains, nb, branches, lo, hi);
+  double skew[3];
+  lsdem_field_box_skew(&p->box, skew);
+  fields_bounds(skew, n, grains, nb, branches, lo, hi);
   lsdem_status s = lsdem_field_grid_cover_box(&p->box, lo, hi, p->h, p->width, &out->grid, err);
   if (s != LSDEM_OK) return s;
   const size_t nodes = lsdem_field_grid_nodes(&out->grid);
@@ -331,9 +354,10 @@ void lsdem_fields_mask_cylinder(lsdem_fields *f, const double centre[2], double 
   for (int i2 = 0; i2 < g->n[2]; i2++)
     for (int i1 = 0; i1 < g->n[1]; i1++)
       for (int i0 = 0; i0 < g->n[0]; i0++, node++) {
-        const double x = g->origin[0] + g->h[0] * i0 - centre[0];
-        const double y = g->origin[1] + g->h[1] * i1 - centre[1];
-        const double z = g->origin[2] + g->h[2] * i2;
+        const int i[3] = {i0, i1, i2};
+        double p[3];
+        lsdem_field_node_position(g, i, p);
+        const double x = p[0] - centre[0], y = p[1] - centre[1], z = p[2];
         if (x * x + y * y <= radius * radius && z >= zlo && z <= zhi) continue;
         mask_node(f, node);
       }

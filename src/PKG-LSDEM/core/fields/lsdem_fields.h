@@ -25,24 +25,32 @@ extern "C" {
 
 /* ------------------------------------------------------------- grid (grid.c) ---- */
 
-/* Nodes i = (i0, i1, i2), 0 <= ik < n[k], at origin + h i (per axis); stored with i0 (x)
- * fastest: index i0 + n0 (i1 + n1 i2). A periodic axis holds exactly one period: node
- * n[k] is node 0 again, one period further. */
+/* Nodes i = (i0, i1, i2), 0 <= ik < n[k], at x = T (origin + h i) (origin and h per axis,
+ * in LATTICE coordinates xi = T^-1 x); stored with i0 fastest: index i0 + n0 (i1 + n1 i2).
+ * T is the box's shape, unit upper triangular: T = [[1, skew[0], skew[1]], [0, 1, skew[2]],
+ * [0, 0, 1]] with skew = (xy / ly, xz / lz, yz / lz) of a LAMMPS triclinic box (tilt factors
+ * over lengths), zeros for an orthogonal box (then xi = x). Node rows along i0 run along x;
+ * a voxel's volume is h0 h1 h2 (det T = 1). A periodic axis holds exactly one period: node
+ * n[k] is node 0 again, one period vector further. */
 typedef struct {
   int n[3];
   double origin[3];
   double h[3];
   int periodic[3];
+  double skew[3];
 } lsdem_field_grid;
 
-/* The box the grains live in: on an axis with periodic[k], the period [lo[k], hi[k]) (an
- * orthogonal box) and jump[k], the displacement an image one period further along axis k
- * has over the grain (the period vector now minus the one at the reference: 0 for a box
- * that kept its shape; a homogeneous deformation of the box makes affine displacements
- * periodic only with it). Zeros: an open box. */
+/* The box the grains live in, as LAMMPS keeps it: bounds lo, hi and tilt factors (xy, xz,
+ * yz; zeros: orthogonal), so that its period vectors are a = (hi0 - lo0, 0, 0),
+ * b = (xy, hi1 - lo1, 0), c = (xz, yz, hi2 - lo2). On an axis with periodic[k], the grains
+ * repeat by that period vector, and jump[k] is the displacement an image one period further
+ * has over the grain (the period vector now minus the one at the reference: 0 for a box that
+ * kept its shape; a homogeneous deformation of the box makes affine displacements periodic
+ * only with it). Zeros: an open, orthogonal box. */
 typedef struct {
   int periodic[3];
   double lo[3], hi[3];
+  double tilt[3];
   double jump[3][3];
 } lsdem_field_box;
 
@@ -50,27 +58,40 @@ typedef struct {
 #define LSDEM_FIELD_KERNEL_CUT 3.0
 
 size_t lsdem_field_grid_nodes(const lsdem_field_grid *g);
-/* The kernel's reach in nodes: ceil(LSDEM_FIELD_KERNEL_CUT w / h). */
+/* The kernel's reach in nodes of an orthogonal grid: ceil(LSDEM_FIELD_KERNEL_CUT w / h). */
 int lsdem_field_kernel_reach(double width, double h);
-/* The grid over the box [lo, hi] (every point that will be deposited) with spacing h,
- * padded by reach + 1 nodes of zeros on each side, each axis then lengthened to a size
- * FFTW transforms fast (factors 2, 3, 5, 7; the extra nodes are more zero padding at the
- * high end). A circular convolution on it equals the linear one on every node: nothing
+/* The kernel's reach in nodes along axis k of grid g: the largest |i_k| of a node offset i
+ * within LSDEM_FIELD_KERNEL_CUT w of a node, ceil(cut w |row k of T^-1| / h_k)
+ * (lsdem_field_kernel_reach on an orthogonal grid). */
+int lsdem_field_grid_reach(const lsdem_field_grid *g, double width, int k);
+/* x's lattice coordinates xi = T^-1 x (lsdem_field_grid) for skew s, and back: x = T xi.
+ * Zero skew: xi = x, bit for bit. */
+void lsdem_field_to_lattice(const double skew[3], const double x[3], double xi[3]);
+void lsdem_field_from_lattice(const double skew[3], const double xi[3], double x[3]);
+/* The skew of box (lsdem_field_grid): tilt factors over the box's lengths. */
+void lsdem_field_box_skew(const lsdem_field_box *box, double skew[3]);
+/* Node i's position x = T (origin + h i). */
+void lsdem_field_node_position(const lsdem_field_grid *g, const int i[3], double x[3]);
+/* The grid over the box [lo, hi] (bounds of every point that will be deposited) with
+ * spacing h, padded by reach + 1 nodes of zeros on each side, each axis then lengthened to
+ * a size FFTW transforms fast (factors 2, 3, 5, 7; the extra nodes are more zero padding at
+ * the high end). A circular convolution on it equals the linear one on every node: nothing
  * deposited comes within reach of a node across the periodic seam.
  * LSDEM_ERR_ARG for h, width <= 0 or an empty box; LSDEM_ERR_NOMEM beyond 2^31 nodes. */
 lsdem_status lsdem_field_grid_cover(const double lo[3], const double hi[3], double h,
                                     double width, lsdem_field_grid *g, lsdem_error *err);
-/* As lsdem_field_grid_cover on the open axes of box (box NULL: all open); a periodic axis
- * spans exactly its period, unpadded: n = the smallest fast size >= period / h nodes of
- * spacing period / n (<= h), the FFT's circular convolution being the periodic one there.
+/* As lsdem_field_grid_cover on the open axes of box (box NULL: all open), with box's skew
+ * (lo and hi then bound the points' lattice coordinates); a periodic axis spans exactly its
+ * period, unpadded: n = the smallest fast size >= length / h nodes of lattice spacing
+ * length / n (<= h), the FFT's circular convolution being the periodic one there.
  * LSDEM_ERR_ARG also when the kernel's reach is not below half the period (2 reach + 2 >
  * n: a grain would meet a node as two of its images). */
 lsdem_status lsdem_field_grid_cover_box(const lsdem_field_box *box, const double lo[3],
                                         const double hi[3], double h, double width,
                                         lsdem_field_grid *g, lsdem_error *err);
-/* The trilinear cell of x: its 8 nodes (wrapped on periodic axes), their weights (>= 0,
- * sum 1) and, if offset is not NULL, x minus each node's position (the node's image next
- * to x). x must lie inside the grid's padded interior on the open axes; on a periodic axis
+/* The trilinear cell of x (in lattice coordinates): its 8 nodes (wrapped on periodic
+ * axes), their weights (>= 0, sum 1) and, if offset is not NULL, x minus each node's
+ * position (world frame; the node's image next to x). x must lie inside the grid's padded interior on the open axes; on a periodic axis
  * anywhere. */
 void lsdem_field_cell(const lsdem_field_grid *g, const double x[3], size_t node[8],
                       double weight[8], double offset[8][3]);
@@ -80,7 +101,8 @@ void lsdem_field_cell(const lsdem_field_grid *g, const double x[3], size_t node[
 void lsdem_field_deposit(const lsdem_field_grid *g, const double x[3], int nchan,
                          const double *value, double *channels);
 /* The discrete kernel on the grid, periodic offsets (node i holds G at the offset
- * min(i, n - i) h per axis), normalised to sum 1: smoothing keeps totals. */
+ * T (h j), j_k = i_k or i_k - n_k, whichever is nearer 0), normalised to sum 1: smoothing
+ * keeps totals. */
 void lsdem_field_kernel(const lsdem_field_grid *g, double width, double *kernel);
 /* The moment kernel K(which) of lsdem_field_smooth_terms (K0: lsdem_field_kernel), the
  * same normalisation. */

@@ -108,7 +108,9 @@ lsdem_status lsdem_field_inside_surface(const lsdem_field_grid *g, int nv, const
     e[k].b = a < b ? b : a;
   }
   qsort(e, (size_t)3 * nt, sizeof *e, edge_cmp);
-  memcpy(V, v, (size_t)nv * 3 * sizeof *V);
+  /* in lattice coordinates (lsdem_field_grid), where the node rows are those of an
+   * orthogonal grid along xi0 = x: inside is affine-invariant */
+  for (int k = 0; k < nv; k++) lsdem_field_to_lattice(g->skew, v + 3 * k, V + 3 * k);
   memset(V + 3 * nv, 0, (size_t)nv * 3 * sizeof *V);
   for (int i = 0; i < nv; i++) parent[i] = i;
   memcpy(closed, tri, (size_t)nt * 3 * sizeof *closed);
@@ -127,7 +129,7 @@ lsdem_status lsdem_field_inside_surface(const lsdem_field_grid *g, int nv, const
   for (int t = nt; t < ntri; t++)
     for (int c = 0; c < 2; c++) {
       const int r = find_root(parent, closed[3 * t + c]);
-      for (int k = 0; k < 3; k++) V[3 * (nv + r) + k] += v[3 * closed[3 * t + c] + k];
+      for (int k = 0; k < 3; k++) V[3 * (nv + r) + k] += V[3 * closed[3 * t + c] + k];
       count[r] += 1.0;
     }
   for (int r = 0; r < nv; r++)

@@ -127,7 +127,7 @@ lsdem_status lsdem_field_smooth_direct(const lsdem_field_grid *g, double width, 
   lsdem_field_kernel(g, width, kernel);
   int reach[3];
   for (int k = 0; k < 3; k++) {
-    reach[k] = lsdem_field_kernel_reach(width, g->h[k]);
+    reach[k] = lsdem_field_grid_reach(g, width, k);
     if (2 * reach[k] + 1 > g->n[k]) reach[k] = (g->n[k] - 1) / 2; /* the kernel is zero beyond */
   }
   for (int c = 0; c < nchan; c++) {

@@ -3,6 +3,7 @@
 #include "lsdem_fields.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
@@ -14,16 +15,41 @@ typedef struct {
   int bytes; /* per component: 8 Float64, 1 UInt8 */
 } vti_array;
 
+/* The grid's ImageData attributes: extent, origin (world) and spacing, and for a skewed
+ * grid (lsdem_field_grid) the Direction matrix (VTK 9, ParaView 5.10 on: row-major, its
+ * columns the unit lattice directions T e_k) with the spacing along them, h_k |T e_k|. */
+static void write_geometry(FILE *fp, const lsdem_field_grid *g)
+{
+  const int zero[3] = {0, 0, 0};
+  double origin[3], col[3][3], spacing[3];
+  lsdem_field_node_position(g, zero, origin);
+  for (int k = 0; k < 3; k++) {
+    double e[3] = {0.0, 0.0, 0.0};
+    e[k] = 1.0;
+    lsdem_field_from_lattice(g->skew, e, col[k]);
+    const double len = sqrt(col[k][0] * col[k][0] + col[k][1] * col[k][1] + col[k][2] * col[k][2]);
+    for (int i = 0; i < 3; i++) col[k][i] /= len;
+    spacing[k] = g->h[k] * len;
+  }
+  fprintf(fp, "<ImageData WholeExtent=\"0 %d 0 %d 0 %d\" Origin=\"%.17g %.17g %.17g\" "
+              "Spacing=\"%.17g %.17g %.17g\"",
+          g->n[0] - 1, g->n[1] - 1, g->n[2] - 1, origin[0], origin[1], origin[2], spacing[0],
+          spacing[1], spacing[2]);
+  if (g->skew[0] != 0.0 || g->skew[1] != 0.0 || g->skew[2] != 0.0)
+    fprintf(fp, " Direction=\"%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"",
+            col[0][0], col[1][0], col[2][0], col[0][1], col[1][1], col[2][1], col[0][2],
+            col[1][2], col[2][2]);
+  fputs(">\n", fp);
+}
+
 static void write_arrays(FILE *fp, const lsdem_field_grid *g, const vti_array *a, int na)
 {
   const uint64_t nodes = lsdem_field_grid_nodes(g);
-  fprintf(fp, "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"1.0\" "
-              "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
-              "<ImageData WholeExtent=\"0 %d 0 %d 0 %d\" Origin=\"%.17g %.17g %.17g\" "
-              "Spacing=\"%.17g %.17g %.17g\">\n<Piece Extent=\"0 %d 0 %d 0 %d\">\n"
-              "<PointData Scalars=\"density\">\n",
-          g->n[0] - 1, g->n[1] - 1, g->n[2] - 1, g->origin[0], g->origin[1], g->origin[2],
-          g->h[0], g->h[1], g->h[2], g->n[0] - 1, g->n[1] - 1, g->n[2] - 1);
+  fputs("<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"1.0\" "
+        "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n", fp);
+  write_geometry(fp, g);
+  fprintf(fp, "<Piece Extent=\"0 %d 0 %d 0 %d\">\n<PointData Scalars=\"density\">\n",
+          g->n[0] - 1, g->n[1] - 1, g->n[2] - 1);
   uint64_t offset = 0;
   for (int k = 0; k < na; k++) {
     fprintf(fp, "<DataArray type=\"%s\" Name=\"%s\" NumberOfComponents=\"%d\" "
