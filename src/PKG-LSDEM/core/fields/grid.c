@@ -9,11 +9,6 @@ size_t lsdem_field_grid_nodes(const lsdem_field_grid *g)
   return (size_t)g->n[0] * (size_t)g->n[1] * (size_t)g->n[2];
 }
 
-int lsdem_field_kernel_reach(double width, double h)
-{
-  return (int)ceil(LSDEM_FIELD_KERNEL_CUT * width / h);
-}
-
 void lsdem_field_to_lattice(const double skew[3], const double x[3], double xi[3])
 {
   const double x2 = x[2], x1 = x[1] - skew[2] * x2; /* back substitution in T xi = x */
@@ -180,7 +175,8 @@ void lsdem_field_kernel_moment(const lsdem_field_grid *g, double width, int whic
       for (int i0 = 0; i0 < g->n[0]; i0++, node++) {
         const int i[3] = {i0, i1, i2};
         double rxi[3], r[3]; /* r = source - target = -(the periodic offset) */
-        for (int k = 0; k < 3; k++) rxi[k] = -(i[k] <= g->n[k] / 2 ? i[k] : i[k] - g->n[k]) * g->h[k];
+        for (int k = 0; k < 3; k++)
+          rxi[k] = -(i[k] <= g->n[k] / 2 ? i[k] : i[k] - g->n[k]) * g->h[k];
         lsdem_field_from_lattice(g->skew, rxi, r);
         const double r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
         const double G = r2 <= cut2 ? exp(-a * r2) : 0.0;

@@ -58,11 +58,9 @@ typedef struct {
 #define LSDEM_FIELD_KERNEL_CUT 3.0
 
 size_t lsdem_field_grid_nodes(const lsdem_field_grid *g);
-/* The kernel's reach in nodes of an orthogonal grid: ceil(LSDEM_FIELD_KERNEL_CUT w / h). */
-int lsdem_field_kernel_reach(double width, double h);
 /* The kernel's reach in nodes along axis k of grid g: the largest |i_k| of a node offset i
  * within LSDEM_FIELD_KERNEL_CUT w of a node, ceil(cut w |row k of T^-1| / h_k)
- * (lsdem_field_kernel_reach on an orthogonal grid). */
+ * (ceil(cut w / h_k) on an orthogonal grid). */
 int lsdem_field_grid_reach(const lsdem_field_grid *g, double width, int k);
 /* x's lattice coordinates xi = T^-1 x (lsdem_field_grid) for skew s, and back: x = T xi.
  * Zero skew: xi = x, bit for bit. */
