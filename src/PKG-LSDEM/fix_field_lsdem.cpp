@@ -67,9 +67,11 @@ FixFieldLsdem::FixFieldLsdem(LAMMPS *lmp, int narg, char **arg) :
 {
   memset(&params, 0, sizeof params);
   memset(ref_period, 0, sizeof ref_period);
+  memset(last_period, 0, sizeof last_period);
   restart_global = 1;
   if (narg < 9) error->all(FLERR, "Illegal fix field/lsdem command: {}", USAGE);
-  nevery = steps.parse(lmp, arg[3], "Fix field/lsdem");
+  steps.parse(lmp, arg[3], "Fix field/lsdem");
+  nevery = 1;  // end_of_step follows the box's flips every step (steps decides the writes)
   if (std::string(arg[4]).find_first_of("*%") != std::string::npos)
     error->all(FLERR, "Fix field/lsdem takes a file prefix without * or %: it writes "
                "prefix_<step>.vti and prefix.pvd");
@@ -184,13 +186,23 @@ void FixFieldLsdem::setup(int /*vflag*/)
                      "now taken as the reference (wrong jumps if a periodic box deformed)");
     store_reference_box();
   }
+  period_vectors(last_period);  // a change of the box between runs is a deformation
   if (steps.due_at_setup(update->ntimestep)) write_and_schedule();
 }
 
-/* ---------------------------------------------------------------------- */
+/* ----------------------------------------------------------------------
+   a flip of the box in the step (fix deform's: a tilt beyond half a length reset by a
+   period vector) changes the basis of the reference's period vectors with it
+------------------------------------------------------------------------- */
 
 void FixFieldLsdem::end_of_step()
 {
+  if (domain->triclinic) {
+    double now[3][3];
+    period_vectors(now);
+    lsdem_field_box_rebase(last_period, now, ref_period);
+    memcpy(last_period, now, sizeof now);
+  }
   if (steps.due(update->ntimestep)) write_and_schedule();
 }
 
@@ -206,12 +218,17 @@ void FixFieldLsdem::write_and_schedule()
 
 /* ---------------------------------------------------------------------- */
 
-void FixFieldLsdem::store_reference_box()
+void FixFieldLsdem::period_vectors(double p[3][3]) const
 {
-  // the period vectors a = (xprd 0 0), b = (xy yprd 0), c = (xz yz zprd)
+  // a = (xprd 0 0), b = (xy yprd 0), c = (xz yz zprd)
   const double *h = domain->h;
   const double period[3][3] = {{h[0], 0.0, 0.0}, {h[5], h[1], 0.0}, {h[4], h[3], h[2]}};
-  memcpy(ref_period, period, sizeof ref_period);
+  memcpy(p, period, sizeof period);
+}
+
+void FixFieldLsdem::store_reference_box()
+{
+  period_vectors(ref_period);
   have_ref_box = true;
 }
 
@@ -333,7 +350,8 @@ void FixFieldLsdem::set_box()
 {
   const int periodic[3] = {domain->xperiodic, domain->yperiodic, domain->zperiodic};
   const double *h = domain->h;
-  const double now[3][3] = {{h[0], 0.0, 0.0}, {h[5], h[1], 0.0}, {h[4], h[3], h[2]}};
+  double now[3][3];
+  period_vectors(now);
   for (int k = 0; k < 3; k++) {
     params.box.periodic[k] = periodic[k];
     params.box.lo[k] = domain->boxlo[k];

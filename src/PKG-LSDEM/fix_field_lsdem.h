@@ -47,7 +47,10 @@ class FixFieldLsdem : public Fix {
   class FixMembraneLsdem *membrane;
   std::vector<tagint> membrane_tri;   // its inner layer's triangles (3 tags each)
   std::vector<tagint> membrane_tags;  // their vertices, sorted
-  double ref_period[3][3];            // the box's period vectors at the reference (rows)
+  double ref_period[3][3];            // the box's period vectors at the reference (rows),
+                                      // in the basis of the box now (after flips)
+  double last_period[3][3];           // the box's period vectors at the last step's end
+  void period_vectors(double p[3][3]) const;  // the box's now (rows)
   bool have_ref_box;
   std::vector<std::string> wall_ids;  // keyword wall: whose contacts enter the stress
   LsdemContactSources sources;

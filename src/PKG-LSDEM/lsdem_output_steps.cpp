@@ -48,7 +48,7 @@ bool LsdemOutputSteps::due_at_setup(bigint step) const
 
 bool LsdemOutputSteps::due(bigint step) const
 {
-  return var.empty() || step == next;
+  return var.empty() ? step % interval == 0 : step == next;
 }
 
 void LsdemOutputSteps::written(LAMMPS *lmp, bigint step, const char *style)

@@ -25,7 +25,7 @@ class LsdemOutputSteps {
   // the variable's next step (a run's init)
   void init(LAMMPS *lmp, const char *style);
   bool due_at_setup(bigint step) const;
-  bool due(bigint step) const;  // on a step end_of_step is called
+  bool due(bigint step) const;  // whether to write on `step` (called at any step)
   // after a write on `step`: the variable's next step, which must lie beyond it
   void written(LAMMPS *lmp, bigint step, const char *style);
 

@@ -681,6 +681,39 @@ static void check_smooth_and_stress(const char *name, const double tilt[3])
   printf("%s grid: FFT = direct to %.2e, mass and contact stress integrals hold\n", name, diff);
 }
 
+/* The reference's period vectors follow a flip of the box into the new basis: an xy flip
+ * (b' = b - a), then a yz flip (c' = c - b, LAMMPS's xz' = xz - xy), each with a step's
+ * deformation on top; a step without a flip leaves them alone */
+static void check_box_rebase(void)
+{
+  double ref[3][3] = {{9, 0, 0}, {0.3, 9, 0}, {-0.2, 0.4, 9}}, ref0[3][3];
+  memcpy(ref0, ref, sizeof ref);
+  const double last[3][3] = {{9.1, 0, 0}, {4.54, 8.9, 0}, {0.5, 4.4, 9.05}};
+  double now[3][3];
+  memcpy(now, last, sizeof now);
+  now[1][0] += 1e-3; /* a step's shear */
+  CHECK(lsdem_field_box_rebase(last, now, ref) == 0 && !memcmp(ref, ref0, sizeof ref),
+        "a step without a flip changed the reference");
+  double flipped[3][3];
+  memcpy(flipped, now, sizeof now);
+  flipped[1][0] -= flipped[0][0]; /* xy flip: b - a */
+  flipped[1][0] += 1e-3;
+  CHECK(lsdem_field_box_rebase(now, flipped, ref) == 1, "xy flip not seen");
+  for (int i = 0; i < 3; i++) {
+    CHECK(ref[1][i] == ref0[1][i] - ref0[0][i], "xy flip: b_ref[%d] = %g", i, ref[1][i]);
+    CHECK(ref[0][i] == ref0[0][i] && ref[2][i] == ref0[2][i], "xy flip moved a or c");
+  }
+  double again[3][3];
+  memcpy(again, flipped, sizeof again);
+  for (int i = 0; i < 3; i++) again[2][i] -= flipped[1][i]; /* yz flip: c - b */
+  double ref1[3][3];
+  memcpy(ref1, ref, sizeof ref);
+  CHECK(lsdem_field_box_rebase(flipped, again, ref) == 1, "yz flip not seen");
+  for (int i = 0; i < 3; i++)
+    CHECK(ref[2][i] == ref1[2][i] - ref1[1][i], "yz flip: c_ref[%d] = %g", i, ref[2][i]);
+  printf("box flips: the reference's period vectors follow the xy and yz flips\n");
+}
+
 /* The surface mask on a skewed grid: the nodes inside the cube [2, 6]^3 are those whose
  * world positions are (nodes within 1e-9 of a face not counted) */
 static void check_tilted_mask(void)
@@ -844,6 +877,7 @@ int main(void)
   check_tilted_affine("simple shear of a cube", simple_shear, no_tilt);
   check_tilted_affine("upper-triangular F of a tilted box", upper, ref_tilt);
   check_tilted_mask();
+  check_box_rebase();
   check_surface_mask();
   return lsdem_test_summary();
 }

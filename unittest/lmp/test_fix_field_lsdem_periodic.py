@@ -5,7 +5,9 @@ the faces); after run 0 (the reference) the box is deformed homogeneously with c
 ... remap -- pure shear (x scale 1.01, y scale 0.99), dilation of 1 % (x y z scale 1.01),
 simple shear 0.01 (a triclinic box of tilt xy = -0.09 sheared to xy = 0, and the cube made
 triclinic and sheared to xy = 0.09: a tilted box now), and all three tilts at once (xy 0.09,
-xz -0.045, yz 0.18) -- and a run of 1 step writes the fields. Checked: the grid spans exactly
+xz -0.045, yz 0.18) -- and a run of 1 step writes the fields; and a box that fix deform
+flips (xy from 4.3 past half its length in 3 steps: the fields of step 3 come from the
+flipped box, xy = 4.5667 - 9, with the reference's period vectors rebased, H = 4.5667 / 9). Checked: the grid spans exactly
 the box now (origin boxlo; along each period vector, n times the spacing = its length, the
 file's Direction its unit vector); EVERY node is regular and carries H = F - I to 1e-10 relative,
 faces included; integrated density = total mass to 1e-12; integrated contact stress =
@@ -48,6 +50,11 @@ CASES = {
     "three_tilts": ("cube", "change_box all triclinic\n"
                     "change_box all xy final 0.09 xz final -0.045 yz final 0.18 remap",
                     [[0, 0.01, -0.005], [0, 0, 0.02], [0, 0, 0]]),
+    # fix deform every 2 steps: at step 2 the tilt 4.3 + 0.4 * 2/3 passes half the length,
+    # step 3 flips it by - 9 (and deforms no more): the fields of step 3
+    "flipped": ("cube", "change_box all triclinic\nchange_box all xy final 4.3 remap\n"
+                "fix d all deform 2 xy delta 0.4 remap x flip yes",
+                [[0, (4.3 + 0.4 * 2 / 3) / 9, 0], [0, 0, 0], [0, 0, 0]], 3, 1.0),
 }
 
 DECK = """units lj
@@ -72,11 +79,16 @@ thermo_style custom step v_mt v_lx v_ly v_lz v_xy v_xz v_yz c_st[1] c_st[2] c_st
 thermo_modify format float %%.17g
 run 0
 %s
-run 1
+run %d
 """
 
-for name, (data, change, H) in CASES.items():
-    outs, first = runs_on_ranks(DECK % (LIB, DATA[data], change), name, "field_1.vti")
+for name, case in CASES.items():
+    data, change, H = case[:3]
+    nrun = case[3] if len(case) > 3 else 1
+    # a box tilted near half its length reaches more nodes (the skew): a narrower kernel
+    kernel = "kernel %g" % (case[4] if len(case) > 4 else 1.2)
+    outs, first = runs_on_ranks((DECK % (LIB, DATA[data], change, nrun)).replace(
+        "kernel 1.2", kernel), name, "field_%d.vti" % nrun)
     if first:
         path, log = first
         f = read_vti(path)
@@ -84,10 +96,12 @@ for name, (data, change, H) in CASES.items():
         n, h = f["n"], f["spacing"]
         period = np.array([[row["v_lx"], 0, 0], [row["v_xy"], row["v_ly"], 0],
                            [row["v_xz"], row["v_yz"], row["v_lz"]]])
+        if name == "flipped":
+            check(row["v_xy"] < -4.0, "flipped: the box did not flip (xy %r)" % row["v_xy"])
         length = np.linalg.norm(period, axis=1)
         check(all(abs(n[k] * h[k] - length[k]) <= 1e-12 * length[k] for k in range(3)),
               "%s: grid %r x %r, period vectors %r" % (name, n, h, period))
-        check(np.abs(f["direction"].T - period / length[:, None]).max() <= 1e-15,
+        check(np.abs(f["direction"].T - period / length[:, None]).max() <= 1e-14,
               "%s: Direction %r, period vectors %r" % (name, f["direction"], period))
         check(("Direction" in open(path, "rb").read(2000).decode("latin-1")) ==
               bool(np.abs(period - np.diag(np.diag(period))).max() > 0),
@@ -126,7 +140,7 @@ for name, (data, change, H) in CASES.items():
     if name != "pure_shear":
         continue
     # the reference box survives a restart written after the deformation
-    deck = DECK % (LIB, DATA[data], change)
+    deck = DECK % (LIB, DATA[data], change, nrun)
     run_lmp(deck[:deck.rindex("run 1\n")] + "write_restart deformed.restart\n", cwd="restart")
     run_lmp("""atom_style lsdem library %s
 read_restart deformed.restart

@@ -2,7 +2,10 @@
  * (lsdem_fields.h). */
 #include "lsdem_fields.h"
 
+#include "../base/lsdem_vec3.h"
+
 #include <math.h>
+#include <string.h>
 
 size_t lsdem_field_grid_nodes(const lsdem_field_grid *g)
 {
@@ -32,6 +35,31 @@ void lsdem_field_box_skew(const lsdem_field_box *box, double skew[3])
   skew[0] = box->tilt[0] != 0.0 ? box->tilt[0] / l[1] : 0.0; /* xy / ly */
   skew[1] = box->tilt[1] != 0.0 ? box->tilt[1] / l[2] : 0.0; /* xz / lz */
   skew[2] = box->tilt[2] != 0.0 ? box->tilt[2] / l[2] : 0.0; /* yz / lz */
+}
+
+int lsdem_field_box_rebase(const double last[3][3], const double now[3][3], double ref[3][3])
+{
+  /* M = now last^-1 (rows): last^-1's columns are the cross products of last's rows over
+   * its determinant */
+  double c[3][3];
+  lsdem_cross3(last[1], last[2], c[0]);
+  lsdem_cross3(last[2], last[0], c[1]);
+  lsdem_cross3(last[0], last[1], c[2]);
+  const double det = lsdem_dot3(last[0], c[0]);
+  double M[3][3];
+  int changed = 0;
+  for (int k = 0; k < 3; k++)
+    for (int j = 0; j < 3; j++) {
+      M[k][j] = round(lsdem_dot3(now[k], c[j]) / det);
+      changed |= M[k][j] != (k == j);
+    }
+  if (!changed) return 0;
+  double r[3][3];
+  for (int k = 0; k < 3; k++)
+    for (int i = 0; i < 3; i++)
+      r[k][i] = M[k][0] * ref[0][i] + M[k][1] * ref[1][i] + M[k][2] * ref[2][i];
+  memcpy(ref, r, sizeof r);
+  return 1;
 }
 
 void lsdem_field_node_position(const lsdem_field_grid *g, const int i[3], double x[3])
@@ -98,8 +126,10 @@ lsdem_status lsdem_field_grid_cover_box(const lsdem_field_box *box, const double
       const int reach = lsdem_field_grid_reach(g, width, k);
       if (2 * reach + 2 > g->n[k])
         return lsdem_fail(err, LSDEM_ERR_ARG, "field grid: the kernel's reach %g (3 W) is not "
-                          "below half the period %g on periodic axis %d",
-                          LSDEM_FIELD_KERNEL_CUT * width, period, k);
+                          "below half the period %g on periodic axis %d (%d + 1 of %d nodes "
+                          "each way; a tilted box's skew lengthens the reach in nodes): use a "
+                          "narrower kernel or a larger box",
+                          LSDEM_FIELD_KERNEL_CUT * width, period, k, reach, g->n[k]);
     } else {
       if (!(hi[k] >= lo[k]) || !isfinite(hi[k] - lo[k]))
         return lsdem_fail(err, LSDEM_ERR_ARG, "field grid: empty box on axis %d", k);

@@ -68,6 +68,14 @@ void lsdem_field_to_lattice(const double skew[3], const double x[3], double xi[3
 void lsdem_field_from_lattice(const double skew[3], const double xi[3], double x[3]);
 /* The skew of box (lsdem_field_grid): tilt factors over the box's lengths. */
 void lsdem_field_box_skew(const lsdem_field_box *box, double skew[3]);
+/* A box's period vectors (rows) last seen and now, and the reference's (rows, ref): when
+ * `now` is another basis of last's lattice (a flip: LAMMPS's fix deform resets a tilt
+ * beyond half a length by subtracting a period vector), the integer change of basis
+ * M = round(now last^-1) is applied to ref as well, so that ref_k stays the reference image
+ * of period vector k (what lsdem_field_box's jump_k = now_k - ref_k needs). last and now
+ * must differ by little more than a flip (a step's deformation). Returns 1 when it acted,
+ * 0 when M = I. */
+int lsdem_field_box_rebase(const double last[3][3], const double now[3][3], double ref[3][3]);
 /* Node i's position x = T (origin + h i). */
 void lsdem_field_node_position(const lsdem_field_grid *g, const int i[3], double x[3]);
 /* The grid over the box [lo, hi] (bounds of every point that will be deposited) with
