@@ -27,6 +27,7 @@ inputs() {
     avalanche) echo grains.lslib source.data valley.asc valley.band ;;
     net_drop) echo all.lslib net.data net.in net.net ;;
     barrier) echo all.lslib net.data net.in net.net cube.in ;;
+    shear_cell) echo grains.lslib packed.data ;;
   esac
 }
 
@@ -44,7 +45,7 @@ EOF
 }
 
 names=("$@")
-[ ${#names[@]} -gt 0 ] || names=(settle avatars ct_scan container_release triaxial c_driver drum hopper avalanche net_drop barrier)
+[ ${#names[@]} -gt 0 ] || names=(settle avatars ct_scan container_release triaxial c_driver drum hopper avalanche net_drop barrier shear_cell)
 for name in "${names[@]}"; do
   files=$(inputs "$name")
   [ -n "$files" ] || { echo "make_inputs.sh: no example '$name'" >&2; exit 2; }

@@ -8,13 +8,12 @@ set -euo pipefail
 out=$1
 n=${2:-200}
 seed=${3:-5}
-shape=${LSDEM_SHAPE_TOOL:-$(dirname "$0")/../../build/lsdem-shape}
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+. "$here/../common.sh"
 mkdir -p "$out"
 cd "$out"
-"$shape" random small.lslib --count 6 --size 0.6 --elongation 0.75 --flatness 0.75 \
-  --angularity 0.15 --roughness 0.02 --nodes 100 --spacing 0.03 --seed 11 --name d0.6 >/dev/null 2>&1
-"$shape" random large.lslib --count 6 --size 0.9 --elongation 0.75 --flatness 0.75 \
-  --angularity 0.15 --roughness 0.02 --nodes 100 --spacing 0.045 --seed 12 --name d0.9 >/dev/null 2>&1
+sand_shapes small.lslib 0.6 0.03 11 d0.6
+sand_shapes large.lslib 0.9 0.045 12 d0.9
 "$shape" merge grains.lslib small.lslib large.lslib >/dev/null
 rm -f small.lslib large.lslib
 # box 7 x 2.4 x 8: its corners 5.3 from the axis once centred, inside the radius 6

@@ -9,11 +9,11 @@
 set -euo pipefail
 out=$1
 seed=${2:-3}
-shape=${LSDEM_SHAPE_TOOL:-$(dirname "$0")/../../build/lsdem-shape}
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+. "$here/../common.sh"
 mkdir -p "$out"
 cd "$out"
-"$shape" random grains.lslib --count 6 --size 0.6 --elongation 0.75 --flatness 0.75 \
-  --angularity 0.15 --roughness 0.02 --nodes 100 --spacing 0.03 --seed 11 --name d0.6 >/dev/null 2>&1
+sand_shapes grains.lslib 0.6 0.03 11 d0.6
 "$shape" analytic ball.lslib sphere 0.08 --analytic >/dev/null
 "$shape" merge all.lslib grains.lslib ball.lslib >/dev/null
 rm -f grains.lslib ball.lslib

@@ -35,6 +35,8 @@ DECKS = [
     ("net_drop", "in.net_drop", {"nsteps": 40, "vtk": 20},
      ["net_drop.csv", "vtk/net_drop.pvd", "vtk/net_drop_net.pvd"]),
     ("barrier", "in.barrier", {"settle": 20, "nsteps": 40, "nrest": 20}, ["barrier.csv"]),
+    ("shear_cell", "in.shear_cell", {"ncomp": 20, "nrelax": 20, "nshear": 40, "every": 20},
+     ["shear.csv", "fields/shear.pvd", "vtk/grains.pvd", "sheared.data"]),
 ]
 
 
