@@ -95,10 +95,10 @@ lsdem_status lsdem_field_grid_cover(const double lo[3], const double hi[3], doub
 lsdem_status lsdem_field_grid_cover_box(const lsdem_field_box *box, const double lo[3],
                                         const double hi[3], double h, double width,
                                         lsdem_field_grid *g, lsdem_error *err);
-/* The trilinear cell of x (in lattice coordinates): its 8 nodes (wrapped on periodic
- * axes), their weights (>= 0, sum 1) and, if offset is not NULL, x minus each node's
- * position (world frame; the node's image next to x). x must lie inside the grid's padded interior on the open axes; on a periodic axis
- * anywhere. */
+/* The trilinear cell of x (world frame; the cell found from x's lattice coordinates): its 8
+ * nodes (wrapped on periodic axes), their weights (>= 0, sum 1) and, if offset is not NULL,
+ * x minus each node's position (world frame; the node's image next to x). x must lie inside
+ * the grid's padded interior on the open axes; on a periodic axis anywhere. */
 void lsdem_field_cell(const lsdem_field_grid *g, const double x[3], size_t node[8],
                       double weight[8], double offset[8][3]);
 /* Adds value[c] times the trilinear weights of x to channel c (channels: nchan arrays of

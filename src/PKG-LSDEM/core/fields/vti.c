@@ -2,6 +2,8 @@
  * binary (each array a UInt64 byte count, then its values, little-endian as written). */
 #include "lsdem_fields.h"
 
+#include "../base/lsdem_vec3.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdint.h>
@@ -27,7 +29,7 @@ static void write_geometry(FILE *fp, const lsdem_field_grid *g)
     double e[3] = {0.0, 0.0, 0.0};
     e[k] = 1.0;
     lsdem_field_from_lattice(g->skew, e, col[k]);
-    const double len = sqrt(col[k][0] * col[k][0] + col[k][1] * col[k][1] + col[k][2] * col[k][2]);
+    const double len = sqrt(lsdem_dot3(col[k], col[k]));
     for (int i = 0; i < 3; i++) col[k][i] /= len;
     spacing[k] = g->h[k] * len;
   }
