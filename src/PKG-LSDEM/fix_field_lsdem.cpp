@@ -349,14 +349,16 @@ void FixFieldLsdem::write_fields()
 void FixFieldLsdem::set_box()
 {
   const int periodic[3] = {domain->xperiodic, domain->yperiodic, domain->zperiodic};
-  const double *h = domain->h;
   double now[3][3];
   period_vectors(now);
+  // the tilt factors xy, xz, yz: the off-diagonal of the period vectors (0: orthogonal)
+  params.box.tilt[0] = now[1][0];
+  params.box.tilt[1] = now[2][0];
+  params.box.tilt[2] = now[2][1];
   for (int k = 0; k < 3; k++) {
     params.box.periodic[k] = periodic[k];
     params.box.lo[k] = domain->boxlo[k];
     params.box.hi[k] = domain->boxhi[k];
-    params.box.tilt[k] = domain->triclinic ? (k == 0 ? h[5] : k == 1 ? h[4] : h[3]) : 0.0;
     for (int i = 0; i < 3; i++)
       params.box.jump[k][i] = periodic[k] ? now[k][i] - ref_period[k][i] : 0.0;
   }

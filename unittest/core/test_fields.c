@@ -668,9 +668,8 @@ static void check_smooth_and_stress(const char *name, const double tilt[3])
   const size_t nodes = lsdem_field_grid_nodes(&g);
   double *K = malloc(nodes * sizeof(double));
   lsdem_field_kernel(&g, 0.4, K);
-  const double dxi[3] = {g.h[0], -g.h[1], 0.0};
-  double d[3];
-  lsdem_field_from_lattice(g.skew, dxi, d);
+  /* lattice offset (h0, -h1, 0): world (h0 - xy/ly h1, -h1, 0) */
+  const double d[3] = {g.h[0] - tilt[0] / hi[1] * g.h[1], -g.h[1], 0.0};
   const size_t k1 = (size_t)(g.n[0] - 1) + (size_t)g.n[0] * 1; /* offset -(1, -1, 0) */
   CHECK_REL(K[k1] / K[0], exp(-lsdem_dot3(d, d) / (2.0 * 0.4 * 0.4)), 1e-14);
   free(K);

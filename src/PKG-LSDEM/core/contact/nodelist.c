@@ -72,7 +72,7 @@ void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
 {
   L->skin = det->node_skin > 0.0 ? det->node_skin : 0.0;
   L->use = L->cached = L->building = 0;
-  L->moved = L->slack_unit = L->slack_per_length = 0.0;
+  L->moved = L->slack_unit = L->slack_per_length = L->inv_lip = 0.0;
   L->nslack = 0;
   L->node_in = NULL;
   L->nnode_in = L->node_cursor = 0;

@@ -53,12 +53,8 @@ static void box_gradient(const lsdem_field_box *box, double L[9])
   for (int k = 0; k < 9; k++) L[k] = 0.0;
   for (int k = 0; k < 3; k++) {
     if (!box->periodic[k]) continue;
-    double e[3] = {0.0, 0.0, 0.0}, d[3];
-    e[k] = 1.0;
-    /* row k of T^-1 = T^-T e_k, by T^T d = e_k (forward substitution) */
-    d[0] = e[0];
-    d[1] = e[1] - skew[0] * d[0];
-    d[2] = e[2] - skew[1] * d[0] - skew[2] * d[1];
+    double d[3];
+    lsdem_field_inverse_row(skew, k, d);
     const double l = box->hi[k] - box->lo[k];
     for (int i = 0; i < 3; i++)
       for (int j = 0; j < 3; j++) L[3 * i + j] += box->jump[k][i] * d[j] / l;

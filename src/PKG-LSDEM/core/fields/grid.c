@@ -69,13 +69,20 @@ void lsdem_field_node_position(const lsdem_field_grid *g, const int i[3], double
   lsdem_field_from_lattice(g->skew, xi, x);
 }
 
+void lsdem_field_inverse_row(const double skew[3], int k, double row[3])
+{
+  /* T^-1 = [[1, -s0, s0 s2 - s1], [0, 1, -s2], [0, 0, 1]] */
+  const double *s = skew;
+  const double rows[3][3] = {{1.0, -s[0], s[0] * s[2] - s[1]}, {0.0, 1.0, -s[2]},
+                             {0.0, 0.0, 1.0}};
+  memcpy(row, rows[k], sizeof rows[k]);
+}
+
 int lsdem_field_grid_reach(const lsdem_field_grid *g, double width, int k)
 {
-  /* the rows of T^-1 = [[1, -s0, s0 s2 - s1], [0, 1, -s2], [0, 0, 1]]: a node offset of
-   * length r has |xi_k| <= r |row k| */
-  const double *s = g->skew, c = s[0] * s[2] - s[1];
-  const double row[3] = {sqrt(1.0 + s[0] * s[0] + c * c), sqrt(1.0 + s[2] * s[2]), 1.0};
-  return (int)ceil(LSDEM_FIELD_KERNEL_CUT * width * row[k] / g->h[k]);
+  double row[3];
+  lsdem_field_inverse_row(g->skew, k, row);
+  return (int)ceil(LSDEM_FIELD_KERNEL_CUT * width * sqrt(lsdem_dot3(row, row)) / g->h[k]);
 }
 
 /* the smallest m >= n whose only prime factors are 2, 3, 5, 7 (FFTW's fast sizes) */

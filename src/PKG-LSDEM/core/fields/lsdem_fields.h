@@ -66,6 +66,9 @@ int lsdem_field_grid_reach(const lsdem_field_grid *g, double width, int k);
  * Zero skew: xi = x, bit for bit. */
 void lsdem_field_to_lattice(const double skew[3], const double x[3], double xi[3]);
 void lsdem_field_from_lattice(const double skew[3], const double xi[3], double x[3]);
+/* Row k of T^-1 for skew s (lsdem_field_grid): a node offset of length r has |xi_k| <=
+ * r |row|, and row / l_k is the dual of period vector k (row . a_j = l_k delta_kj). */
+void lsdem_field_inverse_row(const double skew[3], int k, double row[3]);
 /* The skew of box (lsdem_field_grid): tilt factors over the box's lengths. */
 void lsdem_field_box_skew(const lsdem_field_box *box, double skew[3]);
 /* A box's period vectors (rows) last seen and now, and the reference's (rows, ref): when
