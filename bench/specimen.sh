@@ -29,7 +29,9 @@
 # reused by later runs with the same grains, shapes, nodes, spacing, size and seed.
 #
 # With --full also specimen.png: phi and eps_v against eps_a with the report's values, and the
-# peak, dilatancy and critical-state figures of examples/triaxial/compare.py.
+# peak, dilatancy and critical-state figures of examples/triaxial/compare.py; and the figure
+# pack of report Figures 3.12-3.25 in OUTDIR/figures/ (examples/triaxial/figures.py on the
+# snapshots in.triaxial takes at 5, 10, 15 %: fields, force chains, band grains, fabric).
 # Prints the time split (shapes, packing, preparation, membrane, consolidation, shearing, and
 # LAMMPS's Pair/Bond/Neigh/Comm/Modify split of the shearing run), the workload per grain-step
 # (compute pair lsdem), memory (LAMMPS's own per-rank figure at the start of shearing, and the
@@ -255,6 +257,10 @@ if [ "$full" = 1 ]; then
   /usr/bin/python3 "$ex/compare.py" specimen.png "$grains grains=triaxial_full.csv" \
     --title "LSDEM, $grains grains of $shapes shapes x $nodes nodes, against PEER 2022/06 Figs 3.12-3.13" \
     | tee -a summary.txt
+  t0=$(now)
+  /usr/bin/python3 "$ex/figures.py" . --out figures > figures.log 2>&1 \
+    || say "figures.py failed (figures.log)"
+  say "figure pack: figures/ ($(secs "$t0" "$(now)") s); band and theories: figures/summary.txt"
 fi
 
 # ---- 5. figures ------------------------------------------------------------------------

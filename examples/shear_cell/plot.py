@@ -4,6 +4,7 @@ tau / p, the pressure and the inertial number against the shear strain, and the 
 field (von Mises shear of the Green strain, fix field/lsdem's shear_strain) on the grid's
 middle layer in z, drawn where its nodes are: the grid is skewed with the tilted box.
     plot.py [shear.csv] [fields/shear.pvd] [shear.png]"""
+import os
 import re
 import sys
 
@@ -11,6 +12,9 @@ import numpy as np
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from lsdem_vti import node_grid, node_positions, read_vti  # noqa: E402
 
 
 def last_vti(pvd):
@@ -21,26 +25,12 @@ def last_vti(pvd):
 
 
 def middle_layer(path, name="shear_strain"):
-    """(x, y, values) of node layer n_z / 2 of a fix field/lsdem .vti: world positions of a
-    possibly skewed grid, origin + Direction (spacing * index)"""
-    raw = open(path, "rb").read()
-    start = raw.index(b'<AppendedData encoding="raw">')
-    base = raw.index(b"_", start) + 1
-    head = raw[:base].decode()
-    num = lambda key: np.array(re.search(key + r'="([^"]+)"', head).group(1).split(), float)
-    n = (num("WholeExtent")[1::2] + 1).astype(int)
-    d = re.search(r'Direction="([^"]+)"', head)
-    direction = np.array(d.group(1).split(), float).reshape(3, 3) if d else np.eye(3)
-    m = re.search(r'Name="%s" NumberOfComponents="1" format="appended" offset="(\d+)"' % name,
-                  head)
-    at = base + int(m.group(1))
-    count = int(np.frombuffer(raw, "<u8", 1, at)[0]) // 8
-    values = np.frombuffer(raw, "<f8", count, at + 8).reshape(n[2], n[1], n[0])
-    k = n[2] // 2
-    i, j = np.meshgrid(np.arange(n[0]), np.arange(n[1]))
-    index = np.stack([i, j, np.full_like(i, k)], axis=-1) * num("Spacing")
-    world = num("Origin") + index @ direction.T
-    return world[..., 0], world[..., 1], values[k]
+    """(x, y, values) of node layer n_z / 2 of a fix field/lsdem .vti, at the world positions
+    of its (possibly skewed) nodes"""
+    vti = read_vti(path)
+    k = vti["n"][2] // 2
+    world = node_positions(vti, k)
+    return world[..., 0], world[..., 1], node_grid(vti, name)[k, :, :, 0]
 
 
 src = sys.argv[1] if len(sys.argv) > 1 else "shear.csv"

@@ -49,6 +49,7 @@ from matplotlib.collections import LineCollection  # noqa: E402
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "tools"))
 import lsdem_rose as rose  # noqa: E402
+from lsdem_vti import node_grid, read_vti  # noqa: E402
 import plot as curves  # noqa: E402
 
 # dump.band's columns (in.triaxial): id x y z rotation flag band long-axis[3]
@@ -82,30 +83,14 @@ def read_dump_frames(paths):
     return frames
 
 
-def read_vti(path):
-    """fix field/lsdem's VTK ImageData: (grid dict with n (nx, ny, nz), origin, h), and
-    {array name: array of shape (nz, ny, nx, components)}."""
-    raw = open(path, "rb").read()
-    mark = raw.index(b'<AppendedData encoding="raw">') + len(b'<AppendedData encoding="raw">')
-    base = raw.index(b"_", mark) + 1
-    head = raw[:base].decode()
-    attr = lambda name: [float(v) for v in re.search(name + r'="([^"]+)"', head).group(1).split()]
-    if "Direction=" in head:  # a tilted periodic box's skewed grid: not this script's slices
+def read_grid(path):
+    """A fields file's grid (lsdem_vti.read_vti) and its arrays as (nz, ny, nx, components);
+    the slices are drawn for orthogonal grids only."""
+    vti = read_vti(path)
+    if vti["skewed"]:  # a tilted periodic box's skewed grid
         sys.exit("figures.py: %s holds a skewed grid (a tilted box); its slices are drawn for "
                  "orthogonal grids only -- open the file in ParaView (5.10 or later)" % path)
-    ext = [int(v) for v in attr("WholeExtent")]
-    n = (ext[1] + 1, ext[3] + 1, ext[5] + 1)
-    grid = {"n": n, "origin": np.array(attr("Origin")), "h": attr("Spacing")[0]}
-    arrays = {}
-    for kind, name, comps, off in re.findall(
-            r'type="(\w+)" Name="(\w+)" NumberOfComponents="(\d+)" format="appended" '
-            r'offset="(\d+)"', head):
-        start = base + int(off)
-        nbytes = int(np.frombuffer(raw, "<u8", 1, start)[0])
-        dtype = np.dtype("<f8" if kind == "Float64" else "u1")
-        values = np.frombuffer(raw, dtype, nbytes // dtype.itemsize, start + 8)
-        arrays[name] = values.reshape(n[2], n[1], n[0], int(comps))
-    return grid, arrays
+    return vti, {name: node_grid(vti, name) for name in vti["names"]}
 
 
 def read_vtp(path):
@@ -310,7 +295,7 @@ def sample_slices(snaps, p0, t, out):
     extent = slice_extent(snaps, p0, t)
     result = []
     for snap in snaps:
-        grid, arr = read_vti(snap["vti"])
+        grid, arr = read_grid(snap["vti"])
         s, z, pts = slice_samples(grid, p0, t, extent, 0.5 * grid["h"])
         strain = trilinear(grid, arr["shear_strain"][..., 0], pts)
         angle = np.degrees(np.linalg.norm(arr["rotation"], axis=3))
