@@ -24,8 +24,9 @@ cyclic run, cycles.csv. Writes into DIR (examples/triaxial/README.md maps them t
   cycles.png, loops.csv the loading-unloading cycles (Figure 3.25; plot.py --cycles)
 and the numbers: slice_<step>.csv (the slice's samples: s, z, x, y, shear strain, rotation
 angle), chains.csv (strong-chain statistics per snapshot), fabric.csv (long-axis and
-contact-normal fabric inside and outside the band per snapshot), summary.txt (band,
-theories, chains).
+contact-normal fabric inside and outside the band per snapshot), bands.csv (the bands of
+each snapshot's strain field: tools/lsdem_bands.py's count of shear and micro bands, their
+dip, azimuth and size), summary.txt (band, theories, strain-field bands, chains).
 
 The slice: the vertical plane through the band of the last snapshot that has one, containing
 its dip direction (so the band shows at its true dip), through the centroid of the grains
@@ -48,6 +49,7 @@ from matplotlib.collections import LineCollection  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "tools"))
+import lsdem_bands  # noqa: E402
 import lsdem_rose as rose  # noqa: E402
 from lsdem_vti import node_grid, read_vti  # noqa: E402
 import plot as curves  # noqa: E402
@@ -289,13 +291,34 @@ def slice_extent(snaps, p0, t):
     return np.abs(s).max() + pad, z.min() - pad, z.max() + pad
 
 
+def field_bands(grid, arr, d50):
+    """The bands of the shear strain field inside the membrane where the fit is regular
+    (lsdem_bands: detrended, cut at mean + 2 sd, sheets 6 D50 long found by RANSAC)."""
+    mask = (arr["inside"][..., 0] > 0) & (arr["regular"][..., 0] > 0)
+    zones, planes, _ = lsdem_bands.strain_zones(arr["shear_strain"][..., 0], mask,
+                                                grid["origin"], grid["h"], d50)
+    return zones, planes
+
+
+def band_rows(snaps):
+    """bands.csv: every snapshot's bands of the strain field, one row each."""
+    return [{"step": snap["step"], "eps_a": snap["eps_a"], "zones": len(snap["zones"]),
+             "bands": len(snap["planes"]), "band": i + 1, "dip": p["dip"],
+             "azimuth": p["azimuth"], "length_D50": p["length"], "breadth_D50": p["breadth"],
+             "thickness_D50": p["thickness"], "pieces": p["pieces"],
+             "x": p["centre"][0], "y": p["centre"][1], "z": p["centre"][2]}
+            for snap in snaps for i, p in enumerate(snap["planes"])]
+
+
 def sample_slices(snaps, p0, t, out):
-    """Shear strain and rotation angle on the slice of every snapshot; writes
-    slice_<step>.csv and returns [(s, z, strain (nz, ns), rotation (nz, ns))]."""
+    """Shear strain and rotation angle on the slice of every snapshot, and the bands of its
+    strain field (snap["zones"], snap["planes"]: field_bands); writes slice_<step>.csv and
+    returns [(s, z, strain (nz, ns), rotation (nz, ns))]."""
     extent = slice_extent(snaps, p0, t)
     result = []
     for snap in snaps:
         grid, arr = read_grid(snap["vti"])
+        snap["zones"], snap["planes"] = field_bands(grid, arr, snap["D50"])
         s, z, pts = slice_samples(grid, p0, t, extent, 0.5 * grid["h"])
         strain = trilinear(grid, arr["shear_strain"][..., 0], pts)
         angle = np.degrees(np.linalg.norm(arr["rotation"], axis=3))
@@ -514,7 +537,8 @@ def main(argv):
 
 
 def draw_snapshots(snaps, out):
-    """The figures of the snapshots; returns the slice (p0, t) and the chains' statistics."""
+    """The figures of the snapshots; returns the slice (p0, t), the chains' statistics and
+    the snapshots (with their strain fields' bands)."""
     p0, t = slice_plane(snaps)
     slices = sample_slices(snaps, p0, t, out)
     draw_slices(snaps, slices, 2, p0, t, "strain_slices.png", "von Mises shear strain", out)
@@ -522,10 +546,12 @@ def draw_snapshots(snaps, out):
     draw_band_grains(snaps, p0, t, out)
     chains = draw_chains(snaps, p0, t, out)
     write_rows(os.path.join(out, "chains.csv"), chains)
+    if any(snap["planes"] for snap in snaps):
+        write_rows(os.path.join(out, "bands.csv"), band_rows(snaps))
     write_rows(os.path.join(out, "fabric.csv"), fabric_rows(snaps))
     draw_fabric(snaps[-1], out)
     draw_contact_roses(snaps[-1], out)
-    return p0, t, chains
+    return p0, t, chains, snaps
 
 
 def write_summary(rows, phi, psi, th, snapped, out):
@@ -536,13 +562,19 @@ def write_summary(rows, phi, psi, th, snapped, out):
         if not snapped:
             f.write("no snapshots (in.triaxial writes them at snap_at = 5 %, 10 %, ...)\n")
         else:
-            p0, t, chains = snapped
+            p0, t, chains, _ = snapped
             f.write("slice: through (%.1f, %.1f, %.1f) px along (%.4f, %.4f, 0)\n"
                     % (*p0, t[0], t[1]))
         f.write("band at eps_a %s: dip %.1f deg, thickness %.2f D50; theories from peak phi "
                 "%.1f and largest psi %.1f deg: %s\n"
                 % (pct(last["eps_a"]), last["band_dip"], last["band_thickness"], phi, psi,
                    ", ".join("%s %.1f" % kv for kv in th.items())))
+        for snap in (snapped[3] if snapped else []):
+            f.write("strain field at eps_a %s: %d localised zones, %d bands (dip/azimuth deg, "
+                    "length D50: %s)\n"
+                    % (pct(snap["eps_a"]), len(snap["zones"]), len(snap["planes"]),
+                       "; ".join("%.1f/%.0f, %.1f" % (p["dip"], p["azimuth"], p["length"])
+                                 for p in snap["planes"]) or "none"))
         for c in (snapped[2] if snapped else []):
             f.write("chains at eps_a %s: %d lines (%d grain, %d platen, %d membrane), strong "
                     "%.3f of them carrying %.3f; grain contacts strong %.3f, strong normals "
