@@ -21,19 +21,22 @@ L has variance L^2 / 12 along each, so the zone's length, breadth and thickness 
 sqrt(12 l), in D50. The normal is the axis of l3 (n_z >= 0); dip = arccos n_z and azimuth
 = the direction of (n_x, n_y) from +x counterclockwise, as compute shearband/lsdem's.
 
-Crossing bands touch, so one zone can hold several; the bands are found in each zone by
+Crossing bands touch, so one zone can hold several, and a weak band breaks under the cut
+into several zones. So sheets are sought in every zone at least min_length / 2 long by
 sequential RANSAC: the plane (through three of its nodes, 400 deterministic draws; then
-refitted to the principal axes of its nodes within 3 tol) with the most nodes within `tol` D50 of it (default 1) is a
-**band** when it is a sheet: its inliers' length >= min_length D50 and their breadth >=
-aspect x the thickness of the zone's nodes within 3 tol of the plane (defaults 6 D50 and 2).
-The nodes within 3 tol are then set aside and the next plane is sought in the rest, until
-one fails. A weak band can break into separate zones under the cut: bands of all zones
-within 10 deg of one another and 2 tol of one another's plane are pieces of one plane,
-counted once. Why these defaults: smoothed noise (the fields' 1 d Gaussian kernel) cut at mean +
-2 sd leaves worm-like zones up to 5.6 D50 long but under 3 D50 broad and about as thick as
-broad (rods, not sheets; unittest/lmp/test_band_zones.py); a blob is as thick as broad.
-The report counts micro bands by eye on its strain pictures; this count is the rule above,
-and each zone's and band's sizes are returned so another rule can be applied."""
+refitted to the principal axes of its nodes within 3 tol) with the most nodes within tol
+D50 of it (default 1) is a **sheet** when its inliers are at least min_length / 2 long and
+their breadth is at least aspect x the thickness of the zone's nodes within 3 tol of the
+plane (a sheet, not a rod or a blob); those nodes are set aside and the next plane sought
+in the rest, until one fails. Sheets of all zones whose normals lie within 10 deg of one
+another and whose centres lie within 2 tol of one another's plane are pieces of one plane;
+each plane, its pieces' nodes refitted together, is a **band** when at least min_length D50
+long. Defaults: min_length 6 D50, aspect 2, tol 1 D50. Why: smoothed noise (the fields'
+1 d Gaussian kernel) cut at mean + 2 sd leaves worm-like zones up to 5.6 D50 long, under
+3 D50 broad and about as thick as broad (rods; unittest/lmp/test_band_zones.py); a blob is
+as thick as broad. The report counts micro bands by eye on its strain pictures; this count
+is the rule above, and each zone's and band's sizes are returned so another rule can be
+applied."""
 import math
 
 import numpy as np
@@ -95,9 +98,10 @@ def best_plane(pts, tol, rng):
     return centre, n
 
 
-def zone_bands(pts, d50, tol, min_length, aspect, rng):
-    """The bands of one zone's node positions by sequential RANSAC (module docstring)."""
-    bands = []
+def zone_sheets(pts, tol, min_piece, aspect, rng):
+    """The sheets of one zone's node positions by sequential RANSAC (module docstring): dicts
+    of points (the inliers), centre, normal, thickness (distance units)."""
+    sheets = []
     left = pts
     while len(left) >= 3:
         centre, n = best_plane(left, tol, rng)
@@ -106,14 +110,11 @@ def zone_bands(pts, d50, tol, min_length, aspect, rng):
         length, breadth, _, _ = principal_sizes(left[inl])
         near = np.abs(dist) <= 3 * tol
         thick = math.sqrt(12.0 * dist[near].var())
-        if length < min_length * d50 or breadth < aspect * thick:
+        if length < min_piece or breadth < aspect * thick:
             break
-        dip, az = dip_azimuth(n)
-        bands.append({"nodes": int(inl.sum()), "normal": n, "length": length / d50,
-                      "breadth": breadth / d50, "thickness": thick / d50,
-                      "dip": dip, "azimuth": az, "centre": centre})
+        sheets.append({"points": left[inl], "centre": centre, "normal": n, "thickness": thick})
         left = left[~near]
-    return bands
+    return sheets
 
 
 def axisymmetric_trend(shear, mask, origin, h):
@@ -131,31 +132,46 @@ def axisymmetric_trend(shear, mask, origin, h):
     return sum(c * f for c, f in zip(coef, basis))
 
 
-def distinct_planes(bands, tol, angle=10.0):
-    """The bands of all zones grouped by plane, largest first: a band whose normal lies
-    within `angle` deg of a larger one's and whose centre lies within 2 tol of that one's
-    plane is a piece of it (a band broken by the cut into separate zones); each plane is its
-    largest piece's dict with `pieces`, their number."""
-    planes = []
-    for b in sorted(bands, key=lambda b: -b["nodes"]):
-        for p in planes:
-            if (abs(b["normal"] @ p["normal"]) >= math.cos(math.radians(angle))
-                    and abs((b["centre"] - p["centre"]) @ p["normal"]) <= 2 * tol):
-                p["pieces"] += 1
+def distinct_planes(sheets, d50, tol, min_length, angle=10.0):
+    """The sheets of all zones grouped by plane: a sheet whose normal lies within `angle` deg
+    of a larger one's and whose centre lies within 2 tol of that one's plane is a piece of
+    it (a band broken by the cut into separate zones). Each group measured as one: its
+    pieces' points refitted (centre, normal, length and breadth), thickness their
+    node-weighted mean; the groups at least min_length D50 long are the bands, largest
+    first, dicts of nodes, pieces, normal, centre, length, breadth, thickness (D50), dip,
+    azimuth (deg)."""
+    groups = []
+    for sh in sorted(sheets, key=lambda x: -len(x["points"])):
+        for g in groups:
+            lead = g[0]
+            if (abs(sh["normal"] @ lead["normal"]) >= math.cos(math.radians(angle))
+                    and abs((sh["centre"] - lead["centre"]) @ lead["normal"]) <= 2 * tol):
+                g.append(sh)
                 break
         else:
-            planes.append(dict(b, pieces=1))
-    return planes
+            groups.append([sh])
+    bands = []
+    for g in groups:
+        pts = np.concatenate([sh["points"] for sh in g])
+        length, breadth, _, n = principal_sizes(pts)
+        if length < min_length * d50:
+            continue
+        dip, az = dip_azimuth(n)
+        thick = sum(len(sh["points"]) * sh["thickness"] for sh in g) / len(pts)
+        bands.append({"nodes": len(pts), "pieces": len(g), "normal": n,
+                      "centre": pts.mean(axis=0), "length": length / d50,
+                      "breadth": breadth / d50, "thickness": thick / d50, "dip": dip,
+                      "azimuth": az})
+    return bands
 
 
 def strain_zones(shear, mask, origin, h, d50, k=2.0, min_length=MIN_LENGTH, aspect=ASPECT,
                  tol=TOL, detrend=True, seed=1):
-    """The localised zones and bands of a field (module docstring), as (zones, planes, cut):
+    """The localised zones and bands of a field (module docstring), as (zones, bands, cut):
     zones largest first, each a dict of nodes, volume (D50^3), length, breadth, thickness
-    (D50), dip, azimuth (deg), centre (world) and its bands (dicts of nodes, normal, length,
-    breadth, thickness, dip, azimuth, centre); planes the bands of all zones, pieces of one
-    plane counted once (distinct_planes); cut the value above which a node is localised
-    (of the field less its axisymmetric trend with detrend)."""
+    (D50), dip, azimuth (deg), centre (world) and the number of sheets found in it; bands
+    those of distinct_planes; cut the value above which a node is localised (of the field
+    less its axisymmetric trend with detrend)."""
     if detrend:
         shear = shear - axisymmetric_trend(shear, mask, origin, h)
     values = shear[mask]
@@ -164,7 +180,7 @@ def strain_zones(shear, mask, origin, h, d50, k=2.0, min_length=MIN_LENGTH, aspe
     order = np.argsort(labels, axis=None, kind="stable")
     starts = np.searchsorted(labels.ravel()[order], np.arange(1, count + 2))
     rng = np.random.default_rng(seed)
-    zones = []
+    zones, sheets = [], []
     for lab in range(1, count + 1):
         kk, jj, ii = np.unravel_index(order[starts[lab - 1]:starts[lab]], shear.shape)
         pts = np.asarray(origin, float) + h * np.stack([ii, jj, kk], axis=1)
@@ -173,9 +189,11 @@ def strain_zones(shear, mask, origin, h, d50, k=2.0, min_length=MIN_LENGTH, aspe
         dip, az = dip_azimuth(n)
         zone = {"nodes": len(pts), "volume": len(pts) * h ** 3 / d50 ** 3,
                 "length": length / d50, "breadth": breadth / d50, "thickness": thick / d50,
-                "dip": dip, "azimuth": az, "centre": pts.mean(axis=0), "bands": []}
-        if length >= min_length * d50:
-            zone["bands"] = zone_bands(pts, d50, tol * d50, min_length, aspect, rng)
+                "dip": dip, "azimuth": az, "centre": pts.mean(axis=0), "sheets": 0}
+        if length >= 0.5 * min_length * d50:
+            found = zone_sheets(pts, tol * d50, 0.5 * min_length * d50, aspect, rng)
+            zone["sheets"] = len(found)
+            sheets += found
         zones.append(zone)
     zones.sort(key=lambda z: -z["nodes"])
-    return zones, distinct_planes([b for z in zones for b in z["bands"]], tol * d50), cut
+    return zones, distinct_planes(sheets, d50, tol * d50, min_length), cut

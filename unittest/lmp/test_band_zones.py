@@ -92,8 +92,8 @@ if bands:
 # 2. an X
 zones, bands = find(back + np.maximum(band(xyz, 55, 0, mid), band(xyz, 55, 180, mid)),
                     mask, origin, H)
-check(len(bands) == 2 and len(zones[0]["bands"]) == 2, "X: %d bands, %d in the largest zone"
-      % (len(bands), len(zones[0]["bands"]) if zones else 0))
+check(len(bands) == 2 and zones[0]["sheets"] == 2, "X: %d bands, %d sheets in the largest zone"
+      % (len(bands), zones[0]["sheets"] if zones else 0))
 got = sorted(((b["azimuth"] + 90.0) % 360.0 - 90.0, b["dip"]) for b in bands)
 if len(got) == 2:
     check(all(abs(d - 55) <= 1.5 for _, d in got) and angle_off(got[0][0], 0) <= 3
