@@ -302,6 +302,7 @@ std::vector<double> FixFieldLsdem::branch_rows() const
 
 void FixFieldLsdem::write_fields()
 {
+  const double t0 = MPI_Wtime();
   const std::vector<double> grains = lsdem_gather_sorted(world, grain_rows(), GRAIN_ROW);
   const std::vector<double> branches = lsdem_gather_sorted(world, branch_rows(), BRANCH_ROW);
   const std::vector<double> nodes = lsdem_gather_sorted(world, membrane_rows(), 4);
@@ -331,10 +332,17 @@ void FixFieldLsdem::write_fields()
   if (mask_kind == MASK_CYLINDER)
     lsdem_fields_mask_cylinder(&f, mask_centre, mask_radius, mask_zlo, mask_zhi);
   if (mask_kind == MASK_MEMBRANE) mask_membrane(&f, nodes);
+  const double t1 = MPI_Wtime();
   const std::string file = series.step_file(update->ntimestep);
   const lsdem_status s = lsdem_fields_write_vti(file.c_str(), &f, &err);
+  const int nn[3] = {f.grid.n[0], f.grid.n[1], f.grid.n[2]};
   lsdem_fields_free(&f);
   if (s != LSDEM_OK) error->one(FLERR, "Fix field/lsdem: {}", err.msg);
+  // the snapshot's cost, for progress and for bench/analysis_cost.sh (rank 0's wall time;
+  // the other ranks wait for it at their next collective)
+  utils::logmesg(lmp, "fix field/lsdem {}: step {}: {} grains on {}x{}x{} nodes: gathered and "
+                 "computed in {:.3f} s, written in {:.3f} s: {}\n", id, update->ntimestep, n,
+                 nn[0], nn[1], nn[2], t1 - t0, MPI_Wtime() - t1, file);
   const double time = update->atime + (update->ntimestep - update->atimestep) * update->dt;
   if (!series.add(update->ntimestep, time))
     error->one(FLERR, "Fix field/lsdem: writing {} failed: {}", series.index_file(),

@@ -102,8 +102,9 @@ def tan_scene(root, which, positions, rotations, box=None):
 
 
 def thermo(log_text, run_index=-1):
-    """Thermo rows of one run (default: the last) as a list of dicts of floats; warnings
-    and the examples' PROGRESS lines printed between rows are passed over."""
+    """Thermo rows of one run (default: the last) as a list of dicts of floats; warnings,
+    the examples' PROGRESS lines and fix field/lsdem's line per file written, printed
+    between rows, are passed over."""
     runs = []
     lines = log_text.splitlines()
     i = 0
@@ -114,7 +115,7 @@ def thermo(log_text, run_index=-1):
             i += 1
             while i < len(lines):
                 parts = lines[i].split()
-                if parts[:1] in (["WARNING:"], ["PROGRESS"]):  # printed between rows
+                if parts[:1] in (["WARNING:"], ["PROGRESS"], ["fix"]):  # printed between rows
                     i += 1
                     continue
                 if len(parts) != len(header):
