@@ -78,7 +78,8 @@ def plane_of(points):
 def best_plane(pts, tol, rng):
     """RANSAC: of DRAWS planes through three of pts, the one with the most points within tol;
     then refitted (three times) to the principal axes of the points within 3 tol of it, the
-    band's whole thickness; returns (centre, normal)."""
+    band's whole thickness; returns (centre, normal), or None when every draw was
+    degenerate (the points on one line)."""
     best, best_count = None, -1
     for _ in range(DRAWS):
         a, b, c = pts[rng.choice(len(pts), 3, replace=False)]
@@ -89,6 +90,8 @@ def best_plane(pts, tol, rng):
         count = np.count_nonzero(np.abs((pts - a) @ (n / norm)) <= tol)
         if count > best_count:
             best, best_count = (a, n / norm), count
+    if best is None:
+        return None
     centre, n = best
     for _ in range(3):
         near = pts[np.abs((pts - centre) @ n) <= 3 * tol]
@@ -104,7 +107,10 @@ def zone_sheets(pts, tol, min_piece, aspect, rng):
     sheets = []
     left = pts
     while len(left) >= 3:
-        centre, n = best_plane(left, tol, rng)
+        plane = best_plane(left, tol, rng)
+        if plane is None:
+            break
+        centre, n = plane
         dist = (left - centre) @ n
         inl = np.abs(dist) <= tol
         length, breadth, _, _ = principal_sizes(left[inl])

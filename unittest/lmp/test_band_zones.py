@@ -18,7 +18,8 @@ across known planes (the strain of an erf displacement profile), 0.1 high, 2 D50
    higher on the axis than at the membrane) under a band 0.03 or 0.015 high: the detrended
    count finds one band (dip within 1.5 deg, over 20 D50 long; the weaker one in pieces
    counted once) and nothing else; without the detrending the cut keeps only the band's
-   part in the barrel's belly (under 15 D50 long), or nothing."""
+   part in the barrel's belly (under 15 D50 long), or nothing.
+7. A zone whose nodes lie on one line (every RANSAC draw degenerate): no sheet."""
 import math
 import os
 import sys
@@ -123,6 +124,11 @@ xyz2, mask2, origin2 = grid(H2)
 zones, bands = find(noise(mask2.shape, H2) + band(xyz2, 55, 30, mid), mask2, origin2, H2)
 check(len(bands) == 1 and abs(bands[0]["dip"] - 55) <= 1,
       "grid D50/2: %s" % [(round(b["dip"], 2), round(b["azimuth"], 1)) for b in bands])
+
+# 7. nodes on one line
+line = np.array([[0.0, 0.0, float(z)] for z in range(30)])
+check(lsdem_bands.zone_sheets(line, 1.0, 3.0, 2.0, np.random.default_rng(1)) == [],
+      "nodes on one line: no sheet")
 
 # 6. a barrel
 x, y, z = xyz
