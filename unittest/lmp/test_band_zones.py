@@ -137,6 +137,7 @@ for amp in (0.03, 0.015):
     _, bands, _ = lsdem_bands.strain_zones(f, mask, origin, H, D50, detrend=False)
     check(all(b["length"] < 15 for b in bands), "barrel, band %.2f, not detrended: lengths %s"
           % (amp, [round(b["length"], 1) for b in bands]))
+
 # 7. nodes on one line
 line = np.array([[0.0, 0.0, float(z)] for z in range(30)])
 check(lsdem_bands.zone_sheets(line, 1.0, 3.0, 2.0, np.random.default_rng(1)) == [],
