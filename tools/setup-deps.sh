@@ -26,7 +26,7 @@ have_cmd() { command -v "$1" >/dev/null 2>&1; }
 have_pkg() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q 'install ok installed'; }
 for p in build-essential cmake ninja-build ccache pkg-config openmpi-bin libopenmpi-dev \
          python3 python3-numpy python3-matplotlib dpkg-dev \
-         libtiff-dev libpng-dev libfftw3-dev libtiff-tools python3-skimage python3-tifffile python3-sphinx; do
+         libtiff-dev libpng-dev libfftw3-dev libtiff-tools python3-scipy python3-skimage python3-tifffile python3-sphinx; do
   have_pkg "$p" || need_pkgs+=("$p")
 done
 
