@@ -26,7 +26,8 @@ and the numbers: slice_<step>.csv (the slice's samples: s, z, x, y, shear strain
 angle), chains.csv (strong-chain statistics per snapshot), fabric.csv (long-axis and
 contact-normal fabric inside and outside the band per snapshot), bands.csv (the bands of
 each snapshot's strain field: tools/lsdem_bands.py's count of shear and micro bands, their
-dip, azimuth and size), summary.txt (band, theories, strain-field bands, chains).
+dip, azimuth and size; only its header when there is none), summary.txt (band, theories,
+strain-field bands, chains).
 
 The slice: the vertical plane through the band of the last snapshot that has one, containing
 its dip direction (so the band shows at its true dip), through the centroid of the grains
@@ -300,13 +301,16 @@ def field_bands(grid, arr, d50):
     return zones, planes
 
 
+BAND_FIELDS = ("step", "eps_a", "zones", "bands", "band", "dip", "azimuth", "length_D50",
+               "breadth_D50", "thickness_D50", "pieces", "x", "y", "z")
+
+
 def band_rows(snaps):
-    """bands.csv: every snapshot's bands of the strain field, one row each."""
-    return [{"step": snap["step"], "eps_a": snap["eps_a"], "zones": len(snap["zones"]),
-             "bands": len(snap["planes"]), "band": i + 1, "dip": p["dip"],
-             "azimuth": p["azimuth"], "length_D50": p["length"], "breadth_D50": p["breadth"],
-             "thickness_D50": p["thickness"], "pieces": p["pieces"],
-             "x": p["centre"][0], "y": p["centre"][1], "z": p["centre"][2]}
+    """bands.csv: every snapshot's bands of the strain field, one row each (BAND_FIELDS)."""
+    return [dict(zip(BAND_FIELDS, (snap["step"], snap["eps_a"], len(snap["zones"]),
+                                   len(snap["planes"]), i + 1, p["dip"], p["azimuth"],
+                                   p["length"], p["breadth"], p["thickness"], p["pieces"],
+                                   *p["centre"])))
             for snap in snaps for i, p in enumerate(snap["planes"])]
 
 
@@ -496,9 +500,11 @@ def draw_contact_roses(snap, out):
                   "contact normals %s the band, eps_a %s" % (name, pct(snap["eps_a"])))
 
 
-def write_rows(path, rows):
+def write_rows(path, rows, fields=None):
+    """A CSV of rows (dicts); its columns those of the first row, or `fields` (so that a file
+    of no rows still has its header)."""
     with open(path, "w") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w = csv.DictWriter(f, fieldnames=fields or list(rows[0]))
         w.writeheader()
         for r in rows:
             w.writerow({k: ("%.10g" % v if isinstance(v, float) else v) for k, v in r.items()})
@@ -546,8 +552,7 @@ def draw_snapshots(snaps, out):
     draw_band_grains(snaps, p0, t, out)
     chains = draw_chains(snaps, p0, t, out)
     write_rows(os.path.join(out, "chains.csv"), chains)
-    if any(snap["planes"] for snap in snaps):
-        write_rows(os.path.join(out, "bands.csv"), band_rows(snaps))
+    write_rows(os.path.join(out, "bands.csv"), band_rows(snaps), BAND_FIELDS)
     write_rows(os.path.join(out, "fabric.csv"), fabric_rows(snaps))
     draw_fabric(snaps[-1], out)
     draw_contact_roses(snaps[-1], out)

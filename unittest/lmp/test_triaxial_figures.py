@@ -8,7 +8,7 @@ Independent expectations:
    count D from the start of shearing, step0 + ceil((1 - e^-eps) / (erate dt)); their eps_a is
    -ln(1 - D erate dt) (the platen moves erate H0 dt a step); fix field/lsdem and fix
    network/lsdem (N = v_snap_next) write on those steps and no others;
-2. every PNG of the pack is written and is a PNG;
+2. every PNG of the pack is written and is a PNG; bands.csv has its header;
 3. the strain slice: every sample of slice_<step>.csv lies on the vertical plane through the
    band's grain centroid (dump.band, band number 1) normal to the band's horizontal
    direction (snapshots.csv's normal), and its shear strain equals a trilinear interpolation,
@@ -61,6 +61,11 @@ for png in ("response", "band", "strain_slices", "rotation_slices", "band_grains
     path = os.path.join("figures", png + ".png")
     ok = os.path.exists(path) and open(path, "rb").read(8) == b"\x89PNG\r\n\x1a\n"
     check(ok, "%s is a PNG" % path)
+# bands.csv is written with its header even when no snapshot has a band
+bands = open(os.path.join("figures", "bands.csv")).read().splitlines() \
+    if os.path.exists(os.path.join("figures", "bands.csv")) else []
+check(bands[:1] == ["step,eps_a,zones,bands,band,dip,azimuth,length_D50,breadth_D50,"
+                    "thickness_D50,pieces,x,y,z"], "figures/bands.csv header: %s" % bands[:1])
 
 
 def grains_of(step):
