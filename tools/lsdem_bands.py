@@ -20,11 +20,18 @@ principal axes (covariance eigenvalues l1 >= l2 >= l3); a uniformly filled box o
 L has variance L^2 / 12 along each, so the zone's length, breadth and thickness are
 sqrt(12 l), in D50. The normal is the axis of l3 (n_z >= 0); dip = arccos n_z and azimuth
 = the direction of (n_x, n_y) from +x counterclockwise, as compute shearband/lsdem's.
+The geometry (principal sizes, the sheets' RANSAC and refits, the joining of pieces) is the
+core's (lsdem_point_sizes, lsdem_sheets_fit, lsdem_sheets_join in
+src/PKG-LSDEM/core/specimen/shearband.c, the RANSAC and least-squares refit compute
+shearband/lsdem uses), reached through `lsdem-shape bands`: found as $LSDEM_SHAPE_TOOL,
+else in $LSDEM_BUILD_DIR or the repository's build/, else on the PATH. This module does the
+field's part: the trend, the cut and the zones.
 
 Crossing bands touch, so one zone can hold several, and a weak band breaks under the cut
 into several zones. So sheets are sought in every zone at least min_length / 2 long by
 sequential RANSAC: the plane (through three of its nodes, 400 deterministic draws; then
-refitted to the principal axes of its nodes within 3 tol) with the most nodes within tol
+refitted to the principal axes of its nodes within 3 tol until that set no longer changes)
+with the most nodes within tol
 D50 of it (default 1) is a **sheet** when its inliers are at least min_length / 2 long and
 their breadth is at least aspect x the thickness of the zone's nodes within 3 tol of the
 plane (a sheet, not a rod or a blob); those nodes are set aside and the next plane sought
@@ -37,7 +44,10 @@ long. Defaults: min_length 6 D50, aspect 2, tol 1 D50. Why: smoothed noise (the 
 as thick as broad. The report counts micro bands by eye on its strain pictures; this count
 is the rule above, and each zone's and band's sizes are returned so another rule can be
 applied."""
-import math
+import os
+import shutil
+import subprocess
+import tempfile
 
 import numpy as np
 from scipy import ndimage
@@ -48,79 +58,58 @@ TOL = 1.0          # D50, the slab half-width of a plane's inliers
 DRAWS = 400
 
 
-def principal_sizes(points):
-    """(length, breadth, thickness, normal) of a point set: sqrt(12 eigenvalue) of its
-    covariance (the sides of a uniformly filled box with that covariance), the normal the
-    smallest eigenvalue's axis, pointing up."""
-    c = np.cov(points.T, bias=True)
-    lam, vec = np.linalg.eigh(c)
-    sizes = np.sqrt(12.0 * np.clip(lam[::-1], 0.0, None))
-    n = vec[:, 0]
-    if n[2] < 0:
-        n = -n
-    return sizes[0], sizes[1], sizes[2], n
+def shape_tool():
+    """The lsdem-shape executable (module docstring)."""
+    if os.environ.get("LSDEM_SHAPE_TOOL"):
+        return os.environ["LSDEM_SHAPE_TOOL"]
+    here = os.path.dirname(os.path.abspath(__file__))
+    for build in (os.environ.get("LSDEM_BUILD_DIR"), os.path.join(here, "..", "build")):
+        if build and os.access(os.path.join(build, "lsdem-shape"), os.X_OK):
+            return os.path.join(build, "lsdem-shape")
+    found = shutil.which("lsdem-shape")
+    if not found:
+        raise RuntimeError("lsdem_bands: cannot find lsdem-shape (build LSDEM first, or set "
+                           "LSDEM_SHAPE_TOOL)")
+    return found
 
 
-def dip_azimuth(n):
-    """Dip (deg from the horizontal) and dip direction (deg from +x counterclockwise) of a
-    plane of upward unit normal n."""
-    dip = math.degrees(math.acos(min(1.0, max(-1.0, n[2]))))
-    az = math.degrees(math.atan2(n[1], n[0])) % 360.0 if dip > 1e-9 else 0.0
-    return dip, az
+def zone_bands(zones, tol, min_length, aspect=ASPECT, seed=1):
+    """The core's measure of zones of node positions (a list of (m, 3) arrays, distance
+    units): per zone (length, breadth, thickness, dip, azimuth, centre, sheets), then the
+    bands of their sheets joined across zones (dicts of nodes, pieces, normal, centre, length,
+    breadth, thickness, dip, azimuth: distance units and degrees). lsdem-shape bands."""
+    rec = np.concatenate([np.column_stack([np.full(len(z), k, float), z]) for k, z in
+                          enumerate(zones)]) if zones else np.zeros((0, 4))
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "points.f64")
+        rec.astype("<f8").tofile(path)
+        p = subprocess.run([shape_tool(), "bands", path, "--tol", repr(tol), "--min-length",
+                            repr(min_length), "--aspect", repr(aspect), "--samples",
+                            str(DRAWS), "--seed", str(seed)], stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, text=True)
+    if p.returncode != 0:
+        raise RuntimeError("lsdem-shape bands failed: " + p.stderr.strip())
+    measured, bands = [], []
+    for line in p.stdout.splitlines():
+        kind, item = parse_line(line.split())
+        (measured if kind == "zone" else bands).append(item)
+    return measured, bands
 
 
-def plane_of(points):
-    """A plane's (centre, upward unit normal) from three or more points (least squares)."""
-    centre = points.mean(axis=0)
-    return centre, principal_sizes(points)[3]
-
-
-def best_plane(pts, tol, rng):
-    """RANSAC: of DRAWS planes through three of pts, the one with the most points within tol;
-    then refitted (three times) to the principal axes of the points within 3 tol of it, the
-    band's whole thickness; returns (centre, normal), or None when every draw was
-    degenerate (the points on one line)."""
-    best, best_count = None, -1
-    for _ in range(DRAWS):
-        a, b, c = pts[rng.choice(len(pts), 3, replace=False)]
-        n = np.cross(b - a, c - a)
-        norm = np.linalg.norm(n)
-        if norm == 0.0:
-            continue
-        count = np.count_nonzero(np.abs((pts - a) @ (n / norm)) <= tol)
-        if count > best_count:
-            best, best_count = (a, n / norm), count
-    if best is None:
-        return None
-    centre, n = best
-    for _ in range(3):
-        near = pts[np.abs((pts - centre) @ n) <= 3 * tol]
-        if len(near) < 3:
-            break
-        centre, n = plane_of(near)
-    return centre, n
-
-
-def zone_sheets(pts, tol, min_piece, aspect, rng):
-    """The sheets of one zone's node positions by sequential RANSAC (module docstring): dicts
-    of points (the inliers), centre, normal, thickness (distance units)."""
-    sheets = []
-    left = pts
-    while len(left) >= 3:
-        plane = best_plane(left, tol, rng)
-        if plane is None:
-            break
-        centre, n = plane
-        dist = (left - centre) @ n
-        inl = np.abs(dist) <= tol
-        length, breadth, _, _ = principal_sizes(left[inl])
-        near = np.abs(dist) <= 3 * tol
-        thick = math.sqrt(12.0 * dist[near].var())
-        if length < min_piece or breadth < aspect * thick:
-            break
-        sheets.append({"points": left[inl], "centre": centre, "normal": n, "thickness": thick})
-        left = left[~near]
-    return sheets
+def parse_line(words):
+    """A line of lsdem-shape bands: its kind (zone, band) and its values (numbers; centre
+    and normal as arrays; counts as ints)."""
+    kind, i, item = words[0], 2 if words[0] == "zone" else 1, {}
+    while i < len(words):
+        key = words[i]
+        if key in ("centre", "normal"):
+            item[key] = np.array([float(v) for v in words[i + 1:i + 4]])
+            i += 4
+        else:
+            item[key] = int(words[i + 1]) if key in ("nodes", "sheets", "pieces") else \
+                float(words[i + 1])
+            i += 2
+    return kind, item
 
 
 def axisymmetric_trend(shear, mask, origin, h):
@@ -138,45 +127,13 @@ def axisymmetric_trend(shear, mask, origin, h):
     return sum(c * f for c, f in zip(coef, basis))
 
 
-def distinct_planes(sheets, d50, tol, min_length, angle=10.0):
-    """The sheets of all zones grouped by plane: a sheet whose normal lies within `angle` deg
-    of a larger one's and whose centre lies within 2 tol of that one's plane is a piece of
-    it (a band broken by the cut into separate zones). Each group measured as one: its
-    pieces' points refitted (centre, normal, length and breadth), thickness their
-    node-weighted mean; the groups at least min_length D50 long are the bands, largest
-    first, dicts of nodes, pieces, normal, centre, length, breadth, thickness (D50), dip,
-    azimuth (deg)."""
-    groups = []
-    for sh in sorted(sheets, key=lambda x: -len(x["points"])):
-        for g in groups:
-            lead = g[0]
-            if (abs(sh["normal"] @ lead["normal"]) >= math.cos(math.radians(angle))
-                    and abs((sh["centre"] - lead["centre"]) @ lead["normal"]) <= 2 * tol):
-                g.append(sh)
-                break
-        else:
-            groups.append([sh])
-    bands = []
-    for g in groups:
-        pts = np.concatenate([sh["points"] for sh in g])
-        length, breadth, _, n = principal_sizes(pts)
-        if length < min_length * d50:
-            continue
-        dip, az = dip_azimuth(n)
-        thick = sum(len(sh["points"]) * sh["thickness"] for sh in g) / len(pts)
-        bands.append({"nodes": len(pts), "pieces": len(g), "normal": n,
-                      "centre": pts.mean(axis=0), "length": length / d50,
-                      "breadth": breadth / d50, "thickness": thick / d50, "dip": dip,
-                      "azimuth": az})
-    return bands
-
-
 def strain_zones(shear, mask, origin, h, d50, k=2.0, min_length=MIN_LENGTH, aspect=ASPECT,
                  tol=TOL, detrend=True, seed=1):
     """The localised zones and bands of a field (module docstring), as (zones, bands, cut):
     zones largest first, each a dict of nodes, volume (D50^3), length, breadth, thickness
     (D50), dip, azimuth (deg), centre (world) and the number of sheets found in it; bands
-    those of distinct_planes; cut the value above which a node is localised (of the field
+    largest group first, dicts of nodes, pieces, normal, centre, length, breadth, thickness
+    (D50), dip, azimuth (deg); cut the value above which a node is localised (of the field
     less its axisymmetric trend with detrend)."""
     if detrend:
         shear = shear - axisymmetric_trend(shear, mask, origin, h)
@@ -185,21 +142,22 @@ def strain_zones(shear, mask, origin, h, d50, k=2.0, min_length=MIN_LENGTH, aspe
     labels, count = ndimage.label(mask & (shear > cut), structure=np.ones((3, 3, 3), bool))
     order = np.argsort(labels, axis=None, kind="stable")
     starts = np.searchsorted(labels.ravel()[order], np.arange(1, count + 2))
-    rng = np.random.default_rng(seed)
-    zones, sheets = [], []
+    points = []
     for lab in range(1, count + 1):
         kk, jj, ii = np.unravel_index(order[starts[lab - 1]:starts[lab]], shear.shape)
-        pts = np.asarray(origin, float) + h * np.stack([ii, jj, kk], axis=1)
-        length, breadth, thick, n = principal_sizes(pts) if len(pts) > 1 else \
-            (h, h, h, np.array([0.0, 0.0, 1.0]))
-        dip, az = dip_azimuth(n)
-        zone = {"nodes": len(pts), "volume": len(pts) * h ** 3 / d50 ** 3,
-                "length": length / d50, "breadth": breadth / d50, "thickness": thick / d50,
-                "dip": dip, "azimuth": az, "centre": pts.mean(axis=0), "sheets": 0}
-        if length >= 0.5 * min_length * d50:
-            found = zone_sheets(pts, tol * d50, 0.5 * min_length * d50, aspect, rng)
-            zone["sheets"] = len(found)
-            sheets += found
-        zones.append(zone)
+        points.append(np.asarray(origin, float) + h * np.stack([ii, jj, kk], axis=1))
+    measured, bands = zone_bands(points, tol * d50, min_length * d50, aspect, seed)
+    zones = []
+    for pts, z in zip(points, measured):
+        single = len(pts) == 1  # no extent: a node's own size
+        zones.append({"nodes": len(pts), "volume": len(pts) * h ** 3 / d50 ** 3,
+                      "length": (h if single else z["length"]) / d50,
+                      "breadth": (h if single else z["breadth"]) / d50,
+                      "thickness": (h if single else z["thickness"]) / d50,
+                      "dip": z["dip"], "azimuth": z["azimuth"], "centre": pts.mean(axis=0),
+                      "sheets": z["sheets"]})
     zones.sort(key=lambda z: -z["nodes"])
-    return zones, distinct_planes(sheets, d50, tol * d50, min_length), cut
+    for b in bands:
+        for key in ("length", "breadth", "thickness"):
+            b[key] /= d50
+    return zones, bands, cut

@@ -18,6 +18,7 @@
  *   lsdem-shape net PREFIX --library LIB --shape ID --rb RB --spacing A ... (shape_net.c)
  *   lsdem-shape to-raw IMAGE.tif OUT.raw                              (shape_image.c)
  *   lsdem-shape voids LIB DATA (--cylinder R Z0 Z1 | --box ...) [options] (shape_voids.c)
+ *   lsdem-shape bands POINTS --tol T --min-length L [options]           (shape_bands.c)
  *   lsdem-shape wall MESH.stl|.obj OUT.band --spacing H [--width W] [--scale S]
  *                                                                     (shape_wall.c)
  *   lsdem-shape terrain HEIGHTMAP OUT.band --spacing H [--width W] [--cell C] [--zscale Z]
@@ -74,6 +75,8 @@ static int usage(void)
           "                   [--types TFREE TCLAMP] [--grains DATA] [--name NAME] [--margin D]\n"
           "       lsdem-shape voids LIB DATA (--cylinder R Z0 Z1 | --box X0 X1 Y0 Y1 Z0 Z1)\n"
           "                   [--centre X Y] [--inset D] [--spacing H]\n"
+          "       lsdem-shape bands POINTS --tol T --min-length L [--aspect A] [--angle DEG]\n"
+          "                   [--samples N] [--seed S]\n"
           "       lsdem-shape wall MESH.stl|MESH.obj OUT.band --spacing H [--width W] [--scale S]\n"
           "       lsdem-shape terrain HEIGHTMAP.asc|.tif|.png OUT.band --spacing H [--width W]\n"
           "                   [--cell C] [--zscale Z]\n");
@@ -596,7 +599,7 @@ int main(int argc, char **argv)
               {"random", cmd_random}, {"pack", cmd_pack}, {"membrane", cmd_membrane},
               {"net", cmd_net},
               {"to-raw", cmd_to_raw}, {"voids", cmd_voids}, {"pick", cmd_pick},
-              {"wall", cmd_wall}, {"terrain", cmd_terrain}};
+              {"wall", cmd_wall}, {"terrain", cmd_terrain}, {"bands", cmd_bands}};
   if (argc < 2) return usage();
   for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++)
     if (!strcmp(argv[1], cmds[i].name)) return cmds[i].run(argc - 2, argv + 2);

@@ -20,5 +20,6 @@ int cmd_net(int argc, char **argv);      /* shape_net.c */
 int cmd_wall(int argc, char **argv);     /* shape_wall.c */
 int cmd_terrain(int argc, char **argv);  /* shape_wall.c */
 int cmd_voids(int argc, char **argv);    /* shape_voids.c */
+int cmd_bands(int argc, char **argv);    /* shape_bands.c */
 
 #endif

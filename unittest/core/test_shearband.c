@@ -1,7 +1,9 @@
 /* test_shearband.c -- shear-band measurement (shearband.c): a synthetic band (indicator large
  * in a slab of known normal and width inside a cylinder of jittered lattice points, small
  * noise elsewhere) gives back its dip, azimuth and width; an X of two slabs gives two
- * planes; the per-point flags, determinism, the theory angles against hand values. */
+ * planes; the per-point flags, determinism, the theory angles against hand values; the
+ * principal sizes of a tilted lattice box against closed forms; sheets of an X, a rod and a
+ * ball, and pieces of one plane joined across zones. */
 #include "lsdem.h"
 #include "lsdem_test.h"
 
@@ -221,6 +223,167 @@ static void test_median_diameter(void)
   CHECK(lsdem_median_diameter(0, a) == 0.0, "no grains");
 }
 
+/* Principal sizes: a lattice box of 21 x 11 x 3 points at spacing 1 (per axis the variance
+ * of 0..n-1 is (n^2 - 1)/12, so sqrt(12 var) = sqrt(n^2 - 1)), tilted by a known rotation:
+ * sizes sqrt(440), sqrt(120), sqrt(8), the normal the rotated short axis, pointing up. */
+static void test_point_sizes(void)
+{
+  static double x[3 * 21 * 11 * 3];
+  const double dip = 30.0 * PI / 180.0; /* rotation about y: z axis -> (sin, 0, cos) */
+  int n = 0;
+  for (int i = 0; i < 21; i++)
+    for (int j = 0; j < 11; j++)
+      for (int k = 0; k < 3; k++) {
+        const double p[3] = {i - 10.0, j - 5.0, k - 1.0};
+        x[3 * n] = cos(dip) * p[0] + sin(dip) * p[2];
+        x[3 * n + 1] = p[1] + 7.0;
+        x[3 * n + 2] = -sin(dip) * p[0] + cos(dip) * p[2] + 3.0;
+        n++;
+      }
+  lsdem_shearband_plane pl;
+  double sizes[3];
+  CHECK(lsdem_point_sizes(n, x, &pl, sizes) == LSDEM_OK, "point sizes failed");
+  CHECK_REL(sizes[0], sqrt(440.0), 1e-12);
+  CHECK_REL(sizes[1], sqrt(120.0), 1e-12);
+  CHECK_REL(sizes[2], sqrt(8.0), 1e-12);
+  CHECK(fabs(pl.dip - 30.0) < 1e-9 && fabs(pl.azimuth - 0.0) < 1e-9 &&
+            fabs(pl.centre[1] - 7.0) < 1e-12 && fabs(pl.centre[2] - 3.0) < 1e-12,
+        "box: dip %g azimuth %g centre %g %g %g", pl.dip, pl.azimuth, pl.centre[0],
+        pl.centre[1], pl.centre[2]);
+  CHECK(lsdem_point_sizes(1, x, &pl, sizes) == LSDEM_ERR_ARG, "one point accepted");
+}
+
+/* points of a jittered lattice (spacing 1) inside a disc of radius r about c, in the plane
+ * of unit normal nrm, `layers` thick; returns their count (appended at x + 3 n0) */
+static int disc_points(double *x, int n0, const double c[3], const double nrm[3], double r,
+                       int layers)
+{
+  double t1[3], t2[3];
+  const double e[3] = {fabs(nrm[0]) < 0.9 ? 1.0 : 0.0, fabs(nrm[0]) < 0.9 ? 0.0 : 1.0, 0.0};
+  lsdem_cross3(nrm, e, t1);
+  const double l = sqrt(lsdem_dot3(t1, t1));
+  for (int a = 0; a < 3; a++) t1[a] /= l;
+  lsdem_cross3(nrm, t1, t2);
+  int n = n0;
+  for (int i = -(int) r; i <= (int) r; i++)
+    for (int j = -(int) r; j <= (int) r; j++)
+      for (int k = 0; k < layers; k++) {
+        if (i * i + j * j > r * r) continue;
+        const double u = i + 0.2 * srand1(), v = j + 0.2 * srand1();
+        const double w = k - 0.5 * (layers - 1) + 0.2 * srand1();
+        for (int a = 0; a < 3; a++) x[3 * n + a] = c[a] + u * t1[a] + v * t2[a] + w * nrm[a];
+        n++;
+      }
+  return n;
+}
+
+/* Sheets: an X of two slabs (dips 55 deg, azimuths 0 and 180) is two sheets whose normals
+ * and points come back, a rod and a ball none; two coplanar pieces found apart are joined
+ * into one band of both pieces' points, a third one tilted 30 deg is a band of its own, a
+ * short piece is none. */
+static void test_sheets(void)
+{
+  static double x[3 * MAXPTS];
+  static int label[MAXPTS], group[64];
+  lsdem_sheet sheet[64], band[64];
+  const lsdem_sheet_params p = {1.0, 3.0, 6.0, 2.0, 400, 7};
+  double na[3], nb[3];
+  normal_of(55.0, 0.0, na);
+  normal_of(55.0, 180.0, nb);
+  const double origin[3] = {0.0, 0.0, 0.0};
+  int n = disc_points(x, 0, origin, na, 10.0, 3);
+  const int first = n;
+  n = disc_points(x, n, origin, nb, 10.0, 3);
+  int ns = 0;
+  CHECK(lsdem_sheets_fit(n, x, &p, 64, sheet, &ns, label) == LSDEM_OK && ns == 2,
+        "X: %d sheets", ns);
+  if (ns == 2) {
+    int found_a = 0, found_b = 0, wrong = 0;
+    for (int s = 0; s < 2; s++) {
+      const double *m = sheet[s].plane.normal;
+      const int is_a = fabs(lsdem_dot3(m, na)) > cos(1.5 * PI / 180.0);
+      const int is_b = fabs(lsdem_dot3(m, nb)) > cos(1.5 * PI / 180.0);
+      found_a |= is_a;
+      found_b |= is_b;
+      for (int i = 0; i < n; i++) /* a point labelled with a sheet lies in its slab */
+        wrong += label[i] == s && ((i < first) != is_a) && fabs(x[3 * i]) > 2.0;
+      /* thickness: the 3 layers' sqrt(8), and the other slab's points where they cross */
+      CHECK(sheet[s].length > 12.0 && sheet[s].breadth > 12.0 && sheet[s].plane.thickness < 4.5,
+            "X sheet %d: %g x %g x %g", s, sheet[s].length, sheet[s].breadth,
+            sheet[s].plane.thickness);
+    }
+    CHECK(found_a && found_b && wrong == 0, "X: normals %d %d, %d points in the other sheet",
+          found_a, found_b, wrong);
+  }
+  /* a rod (3 x 3 x 30) and a ball of radius 4: no sheet */
+  n = 0;
+  for (int k = 0; k < 30; k++)
+    for (int i = -1; i <= 1; i++)
+      for (int j = -1; j <= 1; j++) {
+        const double q[3] = {i + 0.1 * srand1(), j + 0.1 * srand1(), k + 0.1 * srand1()};
+        memcpy(x + 3 * n++, q, sizeof q);
+      }
+  CHECK(lsdem_sheets_fit(n, x, &p, 64, sheet, &ns, label) == LSDEM_OK && ns == 0,
+        "rod: %d sheets", ns);
+  n = 0;
+  for (int i = -4; i <= 4; i++)
+    for (int j = -4; j <= 4; j++)
+      for (int k = -4; k <= 4; k++)
+        if (i * i + j * j + k * k <= 16) {
+          const double q[3] = {i, j, k};
+          memcpy(x + 3 * n++, q, sizeof q);
+        }
+  CHECK(lsdem_sheets_fit(n, x, &p, 64, sheet, &ns, label) == LSDEM_OK && ns == 0,
+        "ball: %d sheets", ns);
+
+  /* joining: pieces of one plane (dip 55; discs of radius 8, 24 apart along it), a tilted
+   * piece (radius 12: sqrt(3) 12 = 20.8 long), a short one (radius 4: 6.9 long, a sheet
+   * of its zone, not a band) */
+  double t[3], c2[3], nt[3];
+  const double e[3] = {0.0, 1.0, 0.0};
+  lsdem_cross3(na, e, t); /* in the plane */
+  for (int a = 0; a < 3; a++) c2[a] = 24.0 * t[a];
+  normal_of(25.0, 90.0, nt);
+  const double c3[3] = {0.0, 40.0, 0.0};
+  const double c4[3] = {10.0 * na[0], -40.0, 10.0 * na[2]}; /* parallel, 10 off the plane */
+  int ends[5] = {0};
+  n = disc_points(x, 0, origin, na, 8.0, 3);
+  ends[1] = n;
+  n = disc_points(x, n, c2, na, 8.0, 3);
+  ends[2] = n;
+  n = disc_points(x, n, c3, nt, 12.0, 3);
+  ends[3] = n;
+  n = disc_points(x, n, c4, na, 4.0, 3);
+  ends[4] = n;
+  /* each piece fitted apart, as zones are; labels made global */
+  int total = 0;
+  for (int z = 0; z < 4; z++) {
+    int found = 0;
+    lsdem_sheet_params pz = p;
+    pz.min_length = 3.0;
+    CHECK(lsdem_sheets_fit(ends[z + 1] - ends[z], x + 3 * ends[z], &pz, 64 - total,
+                           sheet + total, &found, label + ends[z]) == LSDEM_OK && found == 1,
+          "piece %d: %d sheets", z, found);
+    for (int i = ends[z]; i < ends[z + 1]; i++)
+      if (label[i] >= 0) label[i] += total;
+    total += found;
+  }
+  int nbands = 0;
+  CHECK(lsdem_sheets_join(n, x, label, total, sheet, 10.0, 2.0, 20.0, group, band, &nbands) ==
+            LSDEM_OK && nbands == 2, "join: %d bands", nbands);
+  if (nbands == 2 && total == 4) {
+    /* the largest group first: the tilted piece */
+    CHECK(group[0] == 1 && group[1] == 1 && group[2] == 0 && group[3] == -1,
+          "join: groups %d %d %d %d", group[0], group[1], group[2], group[3]);
+    CHECK(band[1].plane.ninliers == sheet[0].plane.ninliers + sheet[1].plane.ninliers &&
+              band[1].length > 35.0 && fabs(lsdem_dot3(band[1].plane.normal, na)) >
+              cos(1.0 * PI / 180.0) && fabs(band[0].plane.dip - 25.0) < 1.5,
+          "join: %d points, length %g, dip %g; tilted dip %g", band[1].plane.ninliers,
+          band[1].length, band[1].plane.dip, band[0].plane.dip);
+  }
+  CHECK(lsdem_sheets_fit(n, x, &p, 64, sheet, &ns, NULL) == LSDEM_ERR_ARG, "no labels accepted");
+}
+
 int main(void)
 {
   test_single_band();
@@ -229,5 +392,7 @@ int main(void)
   test_theory();
   test_profile_width();
   test_median_diameter();
+  test_point_sizes();
+  test_sheets();
   return lsdem_test_summary();
 }

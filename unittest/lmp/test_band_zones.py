@@ -140,6 +140,8 @@ for amp in (0.03, 0.015):
 
 # 7. nodes on one line
 line = np.array([[0.0, 0.0, float(z)] for z in range(30)])
-check(lsdem_bands.zone_sheets(line, 1.0, 3.0, 2.0, np.random.default_rng(1)) == [],
-      "nodes on one line: no sheet")
+measured, bands = lsdem_bands.zone_bands([line], 1.0, 6.0)
+check(measured[0]["sheets"] == 0 and bands == [] and abs(measured[0]["length"] - math.sqrt(
+    12 * np.var(line[:, 2]))) < 1e-6, "nodes on one line: no sheet, length %.3f (%s, %s)"
+      % (measured[0]["length"], measured, bands))
 finish()

@@ -157,6 +157,58 @@ typedef struct {
 lsdem_status lsdem_shearband_fit(int n, const double *x, const double *value,
                                  const lsdem_shearband_params *p, lsdem_shearband_plane plane[2],
                                  int *nplanes, int *band);
+/* The principal sizes of n >= 2 points (x: 3n): sizes[0] >= sizes[1] >= sizes[2] are
+ * sqrt(12 l) of their covariance's eigenvalues l (the sides of a uniformly filled box of
+ * that covariance: length, breadth, thickness); plane: their centroid, the unit axis of the
+ * smallest pointing up with its dip and azimuth (as lsdem_shearband_fit's planes),
+ * thickness sizes[2], ninliers n, inlier_fraction 1. LSDEM_ERR_ARG for n < 2,
+ * LSDEM_ERR_NOMEM. */
+lsdem_status lsdem_point_sizes(int n, const double *x, lsdem_shearband_plane *plane,
+                               double sizes[3]);
+
+/* Sheets in a point set: the planes of the micro-band count of a strain field
+ * (tools/lsdem_bands.py, run through lsdem-shape bands). Planes are sought in turn among
+ * the points not yet set aside: RANSAC as lsdem_shearband_fit's (`samples` planes through 3
+ * points drawn by its LCG from `seed`, the one with most points within tol), then refitted
+ * by least squares to the points within `slab` (>= tol: the band's whole thickness) until
+ * that set no longer changes (at most 20 times). The plane is a SHEET when its points
+ * within tol are at least min_length long and at least aspect times the slab's thickness
+ * broad (length and breadth: lsdem_point_sizes of those points; thickness: sqrt(12) x the
+ * sd of the slab's distances): a sheet, not a rod or a blob. Then its slab's points are set
+ * aside and the next plane sought, until a plane is not a sheet, no plane has 3 points, or
+ * cap sheets are found. */
+typedef struct {
+  double tol;        /* half-width of a sheet's slab of points (length) */
+  double slab;       /* half-width of the refit's and the thickness's slab (>= tol) */
+  double min_length; /* a sheet's points at least this long (length) */
+  double aspect;     /* ... and at least this broad times its thickness */
+  int samples;       /* RANSAC planes per sheet (> 0) */
+  uint64_t seed;
+} lsdem_sheet_params;
+typedef struct {
+  lsdem_shearband_plane plane; /* normal (up), centre, dip, azimuth, thickness (of the
+                                  slab); ninliers: its points within tol; inlier_fraction:
+                                  ninliers over all points */
+  double length, breadth;      /* of its points within tol (lsdem_point_sizes) */
+} lsdem_sheet;
+/* The sheets of n points (x: 3n) into sheet[0..*nsheets-1]; label[i] the sheet whose points
+ * within tol hold point i, else -1. The result depends only on the points' order and
+ * values. LSDEM_ERR_ARG for bad parameters, LSDEM_ERR_NOMEM. */
+lsdem_status lsdem_sheets_fit(int n, const double *x, const lsdem_sheet_params *p, int cap,
+                              lsdem_sheet *sheet, int *nsheets, int *label);
+/* Sheets found apart (say in the separate zones of a cut strain field) joined into planes:
+ * in order of their point counts, largest first (ties: index order), a sheet joins the
+ * first group whose leading sheet's normal lies within `angle` degrees of its own and whose
+ * leading plane passes within `dist` of its centre, else leads a new group. Each group is
+ * measured as one: its sheets' points (the points i with label[i] its sheets' indices: x
+ * 3n, label n, as lsdem_sheets_fit's over all points) refitted (lsdem_point_sizes: centre,
+ * normal, length, breadth, dip, azimuth), thickness its sheets' point-weighted mean; a group
+ * at least min_length long is a BAND: band[0..*nbands-1] in the groups' order (at most ns).
+ * group[k]: the band sheet k belongs to, else -1. LSDEM_ERR_ARG, LSDEM_ERR_NOMEM. */
+lsdem_status lsdem_sheets_join(int n, const double *x, const int *label, int ns,
+                               const lsdem_sheet *sheet, double angle, double dist,
+                               double min_length, int *group, lsdem_sheet *band, int *nbands);
+
 /* The band's width from the indicator's profile across a fitted plane (issue 35 item 3):
  * the finite values averaged in bins of width `bin` of the points' signed distance to the
  * plane (bins from the plane's centre outwards, one centred on it); the full width at half

@@ -74,19 +74,19 @@ static int select_inliers(int m, const int *cand, const double *x, const double 
   return count;
 }
 
-/* RANSAC: the plane through 3 sampled candidates with most candidates within threshold;
- * 0 when every sample was degenerate */
-static int ransac_plane(int m, const int *cand, const double *x, const lsdem_shearband_params *p,
+/* RANSAC: of `samples` planes through 3 sampled candidates, the one with most candidates
+ * within threshold (the first on ties); its count, 0 when every sample was degenerate */
+static int ransac_plane(int m, const int *cand, const double *x, int samples, double threshold,
                         uint64_t *rng, unsigned char *mask, double centre[3], double normal[3])
 {
   int best = 0;
-  for (int s = 0; s < p->samples; s++) {
+  for (int s = 0; s < samples; s++) {
     const double *a = x + 3 * cand[lcg_index(rng, m)];
     const double *b = x + 3 * cand[lcg_index(rng, m)];
     const double *c = x + 3 * cand[lcg_index(rng, m)];
     double n[3];
     if (!plane_through(a, b, c, n)) continue;
-    const int count = select_inliers(m, cand, x, a, n, p->threshold, mask);
+    const int count = select_inliers(m, cand, x, a, n, threshold, mask);
     if (count > best) {
       best = count;
       memcpy(centre, a, sizeof(double) * 3);
@@ -96,12 +96,13 @@ static int ransac_plane(int m, const int *cand, const double *x, const lsdem_she
   return best;
 }
 
-/* least squares: the masked candidates' centroid and the smallest-eigenvalue eigenvector of
- * their covariance */
-static void pca_plane(int m, const int *cand, const double *x, const unsigned char *mask,
-                      double centre[3], double normal[3])
+/* the masked candidates' centroid and the eigen-decomposition of their scatter matrix
+ * about it, count times their covariance (eigenvalues ascending in w, unit eigenvectors in
+ * V's columns, lsdem_sym_eigen); returns the count */
+static int principal_axes(int m, const int *cand, const double *x, const unsigned char *mask,
+                           double centre[3], double w[3], double V[9])
 {
-  double C[9] = {0.0}, w[3], V[9];
+  double C[9] = {0.0};
   int count = 0;
   centre[0] = centre[1] = centre[2] = 0.0;
   for (int j = 0; j < m; j++)
@@ -118,6 +119,16 @@ static void pca_plane(int m, const int *cand, const double *x, const unsigned ch
         for (int c = 0; c < 3; c++) C[3 * r + c] += d[r] * d[c];
     }
   lsdem_sym_eigen(C, w, V);
+  return count;
+}
+
+/* least squares: the masked candidates' centroid and the smallest-eigenvalue eigenvector of
+ * their covariance */
+static void pca_plane(int m, const int *cand, const double *x, const unsigned char *mask,
+                      double centre[3], double normal[3])
+{
+  double w[3], V[9];
+  principal_axes(m, cand, x, mask, centre, w, V);
   for (int r = 0; r < 3; r++) normal[r] = V[3 * r];
 }
 
@@ -170,17 +181,20 @@ static void plane_angles(lsdem_shearband_plane *pl)
   pl->azimuth = az < 0.0 ? az + 360.0 : az;
 }
 
-/* one plane fitted to the m candidates; mask marks its inliers; 0 when none was found */
-static int fit_one_plane(int m, const int *cand, const double *x, const lsdem_shearband_params *p,
-                         int nflagged, uint64_t *rng, unsigned char *mask, unsigned char *trial,
+/* one plane fitted to the m candidates: RANSAC within threshold, then refitted to the
+ * candidates within slab (>= threshold) until that set is stable; mask marks them, the
+ * plane's ninliers counts them and its thickness is theirs; 0 when none was found */
+static int fit_one_plane(int m, const int *cand, const double *x, int samples, double threshold,
+                         double slab, uint64_t *rng, unsigned char *mask, unsigned char *trial,
                          lsdem_shearband_plane *pl)
 {
-  if (m < 3 || ransac_plane(m, cand, x, p, rng, trial, pl->centre, pl->normal) < 3) return 0;
-  select_inliers(m, cand, x, pl->centre, pl->normal, p->threshold, mask);
-  pl->ninliers = refine_plane(m, cand, x, p->threshold, mask, trial, pl->centre, pl->normal);
+  if (m < 3 || ransac_plane(m, cand, x, samples, threshold, rng, trial, pl->centre,
+                            pl->normal) < 3)
+    return 0;
+  select_inliers(m, cand, x, pl->centre, pl->normal, slab, mask);
+  pl->ninliers = refine_plane(m, cand, x, slab, mask, trial, pl->centre, pl->normal);
   orient_up(pl->normal);
   plane_angles(pl);
-  pl->inlier_fraction = (double) pl->ninliers / nflagged;
   pl->thickness = slab_thickness(m, cand, x, mask, pl->ninliers, pl->centre, pl->normal);
   return 1;
 }
@@ -228,8 +242,10 @@ lsdem_status lsdem_shearband_fit(int n, const double *x, const double *value,
   const int nflagged = flag_points(n, value, p->k, cand);
   uint64_t rng = p->seed;
   int m = nflagged;
-  while (*nplanes < p->planes &&
-         fit_one_plane(m, cand, x, p, nflagged, &rng, mask, trial, &plane[*nplanes])) {
+  while (*nplanes < p->planes && fit_one_plane(m, cand, x, p->samples, p->threshold,
+                                               p->threshold, &rng, mask, trial,
+                                               &plane[*nplanes])) {
+    plane[*nplanes].inlier_fraction = (double) plane[*nplanes].ninliers / nflagged;
     m = drop_inliers(m, cand, mask);
     (*nplanes)++;
   }
@@ -237,6 +253,193 @@ lsdem_status lsdem_shearband_fit(int n, const double *x, const double *value,
   free(cand);
   free(mask);
   free(trial);
+  return LSDEM_OK;
+}
+
+/* sqrt(12 w / count) of a scatter matrix's eigenvalues w (ascending) into sizes, largest
+ * first: the sides of a uniformly filled box of that covariance */
+static void sizes_of(const double w[3], int count, double sizes[3])
+{
+  for (int r = 0; r < 3; r++) sizes[r] = sqrt(12.0 * fmax(w[2 - r], 0.0) / count);
+}
+
+/* the principal sizes, centroid and upward normal (smallest axis) of the masked candidates */
+static void masked_sizes(int m, const int *cand, const double *x, const unsigned char *mask,
+                         double centre[3], double sizes[3], double normal[3])
+{
+  double w[3], V[9];
+  const int count = principal_axes(m, cand, x, mask, centre, w, V);
+  sizes_of(w, count, sizes);
+  for (int r = 0; r < 3; r++) normal[r] = V[3 * r];
+  orient_up(normal);
+}
+
+lsdem_status lsdem_point_sizes(int n, const double *x, lsdem_shearband_plane *plane,
+                               double sizes[3])
+{
+  if (n < 2 || !x || !plane || !sizes) return LSDEM_ERR_ARG;
+  int *all = malloc(sizeof(int) * (size_t) n);
+  unsigned char *mask = malloc((size_t) n);
+  if (!all || !mask) {
+    free(all);
+    free(mask);
+    return LSDEM_ERR_NOMEM;
+  }
+  for (int i = 0; i < n; i++) {
+    all[i] = i;
+    mask[i] = 1;
+  }
+  memset(plane, 0, sizeof *plane);
+  masked_sizes(n, all, x, mask, plane->centre, sizes, plane->normal);
+  plane_angles(plane);
+  plane->thickness = sizes[2];
+  plane->ninliers = n;
+  plane->inlier_fraction = 1.0;
+  free(all);
+  free(mask);
+  return LSDEM_OK;
+}
+
+/* the sheet of the plane just fitted (pl, its slab's points in mask): its points within tol
+ * (marked in inl) measured; 1 when they form a sheet (long and broad enough) */
+static int measure_sheet(int m, const int *cand, const double *x, const lsdem_sheet_params *p,
+                         unsigned char *inl, lsdem_sheet *sh)
+{
+  sh->plane.ninliers = select_inliers(m, cand, x, sh->plane.centre, sh->plane.normal, p->tol,
+                                      inl);
+  sh->length = sh->breadth = 0.0;
+  if (sh->plane.ninliers >= 2) {
+    double c[3], sizes[3], n[3];
+    masked_sizes(m, cand, x, inl, c, sizes, n);
+    sh->length = sizes[0];
+    sh->breadth = sizes[1];
+  }
+  return sh->length >= p->min_length && sh->breadth >= p->aspect * sh->plane.thickness;
+}
+
+lsdem_status lsdem_sheets_fit(int n, const double *x, const lsdem_sheet_params *p, int cap,
+                              lsdem_sheet *sheet, int *nsheets, int *label)
+{
+  if (n < 0 || (n > 0 && (!x || !label)) || !p || cap < 0 || (cap > 0 && !sheet) ||
+      !nsheets || !(p->tol > 0.0) || !(p->slab >= p->tol) || !(p->min_length >= 0.0) ||
+      !(p->aspect >= 0.0) || p->samples <= 0)
+    return LSDEM_ERR_ARG;
+  *nsheets = 0;
+  for (int i = 0; i < n; i++) label[i] = -1;
+  const size_t size = n > 0 ? (size_t) n : 1;
+  int *cand = malloc(sizeof(int) * size);
+  unsigned char *mask = malloc(size), *trial = malloc(size), *inl = malloc(size);
+  if (!cand || !mask || !trial || !inl) {
+    free(cand);
+    free(mask);
+    free(trial);
+    free(inl);
+    return LSDEM_ERR_NOMEM;
+  }
+  for (int i = 0; i < n; i++) cand[i] = i;
+  uint64_t rng = p->seed;
+  int m = n;
+  while (*nsheets < cap) {
+    lsdem_sheet *sh = &sheet[*nsheets];
+    if (!fit_one_plane(m, cand, x, p->samples, p->tol, p->slab, &rng, mask, trial, &sh->plane))
+      break;
+    if (!measure_sheet(m, cand, x, p, inl, sh)) break;
+    sh->plane.inlier_fraction = (double) sh->plane.ninliers / n;
+    for (int j = 0; j < m; j++)
+      if (inl[j]) label[cand[j]] = *nsheets;
+    (*nsheets)++;
+    m = drop_inliers(m, cand, mask); /* the slab set aside */
+  }
+  free(cand);
+  free(mask);
+  free(trial);
+  free(inl);
+  return LSDEM_OK;
+}
+
+/* the order of the sheets by their point counts, largest first (ties: index order) */
+static void order_by_size(int ns, const lsdem_sheet *sheet, int *order)
+{
+  for (int k = 0; k < ns; k++) {
+    int j = k;
+    while (j > 0 && sheet[order[j - 1]].plane.ninliers < sheet[k].plane.ninliers) {
+      order[j] = order[j - 1];
+      j--;
+    }
+    order[j] = k;
+  }
+}
+
+lsdem_status lsdem_sheets_join(int n, const double *x, const int *label, int ns,
+                               const lsdem_sheet *sheet, double angle, double dist,
+                               double min_length, int *group, lsdem_sheet *band, int *nbands)
+{
+  if (n < 0 || ns < 0 || (n > 0 && (!x || !label)) || (ns > 0 && (!sheet || !group || !band)) ||
+      !nbands || !(angle >= 0.0) || !(dist >= 0.0) || !(min_length >= 0.0))
+    return LSDEM_ERR_ARG;
+  *nbands = 0;
+  const size_t size = n > 0 ? (size_t) n : 1, ssize = ns > 0 ? (size_t) ns : 1;
+  int *order = malloc(sizeof(int) * ssize), *lead = malloc(sizeof(int) * ssize);
+  int *all = malloc(sizeof(int) * size);
+  unsigned char *mask = malloc(size);
+  if (!order || !lead || !all || !mask) {
+    free(order);
+    free(lead);
+    free(all);
+    free(mask);
+    return LSDEM_ERR_NOMEM;
+  }
+  /* groups: each sheet, largest first, joins the first group whose lead is parallel to it
+   * within angle and whose plane passes within dist of its centre */
+  const double cosmin = cos(angle / DEG);
+  int ngroups = 0;
+  order_by_size(ns, sheet, order);
+  for (int k = 0; k < ns; k++) {
+    const lsdem_shearband_plane *sp = &sheet[order[k]].plane;
+    int g = 0;
+    for (; g < ngroups; g++) {
+      const lsdem_shearband_plane *lp = &sheet[lead[g]].plane;
+      if (fabs(lsdem_dot3(sp->normal, lp->normal)) >= cosmin &&
+          fabs(signed_distance(sp->centre, lp->centre, lp->normal)) <= dist)
+        break;
+    }
+    if (g == ngroups) lead[ngroups++] = order[k];
+    group[order[k]] = g;
+  }
+  /* each group measured as one: its sheets' points refitted, thickness their point-weighted
+   * mean; a band when at least min_length long (groups renumbered as bands, -1: none) */
+  for (int i = 0; i < n; i++) all[i] = i;
+  int *band_of = lead; /* reused: group -> band */
+  for (int g = 0; g < ngroups; g++) {
+    int count = 0;
+    double tsum = 0.0;
+    for (int i = 0; i < n; i++) {
+      mask[i] = label[i] >= 0 && label[i] < ns && group[label[i]] == g;
+      count += mask[i];
+    }
+    for (int k = 0; k < ns; k++)
+      if (group[k] == g) tsum += sheet[k].plane.ninliers * sheet[k].plane.thickness;
+    band_of[g] = -1;
+    if (count < 2) continue;
+    lsdem_sheet b;
+    memset(&b, 0, sizeof b);
+    double sizes[3];
+    masked_sizes(n, all, x, mask, b.plane.centre, sizes, b.plane.normal);
+    if (sizes[0] < min_length) continue;
+    b.length = sizes[0];
+    b.breadth = sizes[1];
+    b.plane.ninliers = count;
+    b.plane.inlier_fraction = (double) count / n;
+    b.plane.thickness = tsum / count;
+    plane_angles(&b.plane);
+    band_of[g] = *nbands;
+    band[(*nbands)++] = b;
+  }
+  for (int k = 0; k < ns; k++) group[k] = band_of[group[k]];
+  free(order);
+  free(lead);
+  free(all);
+  free(mask);
   return LSDEM_OK;
 }
 
