@@ -44,7 +44,7 @@ R=$(sed -n 's/.* R \([0-9]*\) px.*/\1/p' "$run/summary.txt" | head -1)
 [ -n "$R" ] || { echo "analysis_cost.sh: no radius in $run/summary.txt" >&2; exit 1; }
 mpi=()
 [ "$np" -gt 1 ] && mpi=(mpirun --allow-run-as-root --oversubscribe -np "$np")
-erate=5.0e-4 dt=0.006
+source "$here/triaxial_rate.sh"  # erate, dt and shear_strain, from the deck
 work=$run/cost
 mkdir -p "$work"
 cd "$work"
@@ -53,8 +53,7 @@ cp "$run/shear_state.in" .
 printf 'read_restart %s\nprint "CKPT_STEP $(step)"\n' "$ckpt" > in.step
 s_c=$("$lmp" -in in.step -log none -echo none -screen /dev/stdout | sed -n 's/^CKPT_STEP //p')
 step0=$(sed -n 's/^variable step0 equal //p' shear_state.in)
-strain() { awk -v s="$1" -v s0="$step0" -v r="$erate" -v dt="$dt" \
-  'BEGIN { printf "%.12g", -log(1 - (s - s0) * r * dt) }'; }
+strain() { shear_strain $(($1 - step0)); }  # eps_a at step $1 of the run
 epsmax=$(strain $((s_c + steps)))
 snap_mid=$(strain $((s_c + steps / 2)))
 echo "checkpoint $(basename "$ckpt") at step $s_c (eps_a $(strain "$s_c")); $steps steps to eps_a $epsmax, $np rank(s)"

@@ -208,11 +208,11 @@ base_pid=$!
 sleep 1
 sample_memory "$base_pid" mem_baseline.txt
 wait "$base_pid" || true
-erate=5.0e-4 dt=0.006
+source "$here/triaxial_rate.sh"  # erate, dt and shear_strain, from the deck
 if [ "$full" = 1 ]; then
   em=$epsmax
 else
-  em=$(awk -v s="$shear" -v r="$erate" -v dt="$dt" 'BEGIN { printf "%.9g", -log(1 - s * r * dt) }')
+  em=$(shear_strain "$shear" %.9g)
 fi
 # a --full run checkpoints every 2000 shearing steps; --resume goes on from the newest
 # checkpoint that LAMMPS can read (a run killed while writing one leaves it truncated)

@@ -8,6 +8,7 @@
 #include "atom.h"
 #include "comm.h"
 #include "lsdem_pair_threads.h"
+#include "lsdem_thread_range.h"
 #include "neigh_list.h"
 #include "neighbor.h"
 #include "suffix.h"
@@ -43,7 +44,17 @@ void PairLsdemOMP::compute(int eflag, int vflag)
   const int nthreads = comm->nthreads;  // lanes set up for them at init_style
   const int inum = list->inum;
   begin_force_call(nthreads);
-  update_poses(0, atom->nlocal + atom->nghost);
+  {
+    const int nl = atom->nlocal, nall = nl + atom->nghost;
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(nthreads)
+#endif
+    { // owned grains in fix nve/lsdem/omp's runs, so that their lines stay in one core
+      const LsdemThreadRange r(nl, nthreads), g(nall - nl, nthreads);
+      update_poses(r.from, r.to);
+      update_poses(nl + g.from, nl + g.to);
+    }
+  }
   if (neighbor->ago == 0 || !master_built) build_master_pairs();
 
   // runs of equal work: a grain weighs 1 + its node tests on the last force call
