@@ -17,7 +17,7 @@
 # snapshot costs, Modify much less), the fields' own times as fix field/lsdem logs them
 # (gathering and computing, writing the .vti) and that cost as a share of 1 % of axial strain's
 # shearing (B's loop time per step x the steps of 1 %: 0.01 / (erate dt), the deck's erate
-# 5e-4 and dt 0.006):
+# and timestep as bench/triaxial_rate.sh reads them):
 #   snapshot_s=<x> loop_diff_s=<A - B in loop time> shearing_s_per_pct=<y> share_at_one_per_pct=<z>
 # Environment: LSDEM_BUILD_DIR (default ./build) or LSDEM_LMP.
 set -euo pipefail

@@ -49,7 +49,8 @@ void PairLsdemOMP::compute(int eflag, int vflag)
 #if defined(_OPENMP)
 #pragma omp parallel num_threads(nthreads)
 #endif
-    { // owned grains in fix nve/lsdem/omp's runs, so that their lines stay in one core
+    { // owned grains in the equal runs fix nve/lsdem/omp steps them in (when it steps all
+      // local grains), so that their lines stay in one core's cache
       const LsdemThreadRange r(nl, nthreads), g(nall - nl, nthreads);
       update_poses(r.from, r.to);
       update_poses(nl + g.from, nl + g.to);
