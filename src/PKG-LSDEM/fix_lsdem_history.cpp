@@ -47,11 +47,13 @@ FixLsdemHistory::FixLsdemHistory(LAMMPS *lmp, int narg, char **arg) :
   for (auto &lanes : pool) lanes.resize(1);
   for (auto &lanes : pool)
     for (Pool &p : lanes) {
-      p.slot = nullptr;
-      p.ns = p.nslot = p.maxslot = p.atom_slice = p.atom_records = p.maxrecords = 0;
+      p.word = nullptr;
+      p.ns = p.nword = p.maxword = p.atom_slice = p.atom_records = p.maxrecords = 0;
     }
-  static_assert(sizeof(Slot) == 64 && sizeof(lsdem_nodelist_head) <= HEAD_SLOTS * sizeof(Slot),
-                "a list head fits two slots");
+  static_assert(sizeof(lsdem_nodelist_head) % sizeof(Word) == 0 &&
+                    sizeof(lsdem_shear_hist) % sizeof(Word) == 0 &&
+                    sizeof(lsdem_nodelist_entry) == sizeof(Word),
+                "a pair's state is whole words");
 
   FixLsdemHistory::grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
@@ -81,26 +83,22 @@ int FixLsdemHistory::setmask()
 
 void FixLsdemHistory::release(Pool &p)
 {
-  memory->sfree(p.slot);
-  p.slot = nullptr;
-  p.maxslot = 0;
+  memory->sfree(p.word);
+  p.word = nullptr;
+  p.maxword = 0;
 }
 
-/* ----------------------------------------------------------------------
-   room in pool p for ns more slices and nslot more slots (grows by doubling; the step's
-   pointers into p are taken after this)
-------------------------------------------------------------------------- */
-
-/* room for ns more slices and nslot more slots; grows by a quarter (not doubling: the
-   pools are most of a grain's memory, and they reach their size in the first steps) */
-void FixLsdemHistory::pool_room(Pool &p, int ns, int nslot)
+/* room for ns more slices and nword more words; grows by a quarter (not doubling: the
+   pools are most of a grain's memory, and they reach their size in the first steps; the
+   step's pointers into p are taken after this) */
+void FixLsdemHistory::pool_room(Pool &p, int ns, int nword)
 {
   const size_t need = (size_t) p.ns + (size_t) ns;
   if (need > p.slice.size())
     p.slice.resize(std::max({need, p.slice.size() + p.slice.size() / 4, (size_t) 16}));
-  if (p.nslot + nslot > p.maxslot) {
-    p.maxslot = std::max(p.maxslot + p.maxslot / 4, p.nslot + nslot);
-    p.slot = (Slot *) memory->srealloc(p.slot, sizeof(Slot) * p.maxslot, "lsdem/history:slots");
+  if (p.nword + nword > p.maxword) {
+    p.maxword = std::max(p.maxword + p.maxword / 4, p.nword + nword);
+    p.word = (Word *) memory->srealloc(p.word, sizeof(Word) * p.maxword, "lsdem/history:words");
   }
 }
 
@@ -111,11 +109,11 @@ void FixLsdemHistory::pool_room(Pool &p, int ns, int nslot)
 
 void FixLsdemHistory::slice_state(const Pool &p, const Slice &s, lsdem_pair_state &st)
 {
-  Slot *run = p.slot + s.first;
+  Word *run = p.word + s.first;
   st.list.valid = s.list_valid;
   st.list.head = reinterpret_cast<lsdem_nodelist_head *>(run);
-  st.list.entry = &run[HEAD_SLOTS].entry;
-  st.shear = &run[s.list_valid ? HEAD_SLOTS + s.nentry : 0].shear;
+  st.list.entry = reinterpret_cast<lsdem_nodelist_entry *>(run + HEAD_WORDS);
+  st.shear = reinterpret_cast<lsdem_shear_hist *>(run + (s.list_valid ? HEAD_WORDS + s.nlistword : 0));
   st.nshear = s.nshear;
 }
 
@@ -144,10 +142,10 @@ void FixLsdemHistory::begin_step(int nlanes)
   const int had = (int) next.size();
   next.resize(nlanes);
   for (int l = had; l < nlanes; l++) {
-    next[l].slot = nullptr;
-    next[l].maxslot = 0;
+    next[l].word = nullptr;
+    next[l].maxword = 0;
   }
-  for (Pool &p : next) p.ns = p.nslot = p.maxrecords = 0;
+  for (Pool &p : next) p.ns = p.nword = p.maxrecords = 0;
   generation = generation < INT_MAX ? generation + 1 : 1;  // wraps, never to 0 (new atoms)
 }
 
@@ -161,29 +159,30 @@ void FixLsdemHistory::begin_atom(int lane)
 }
 
 /* ----------------------------------------------------------------------
-   room in pool p for one more pair's state, a run of slots after the used ones (head,
-   list_cap entries, then the shear entries wherever place_shear puts them), and keeping
-   what was written there: a pair with a list or shear entries becomes the pool's next
-   slice; returns the records it takes (0: nothing kept)
+   room in pool p for one more pair's state, a run of words after the used ones (head,
+   list_words words of entries, then the shear entries wherever place_shear puts them),
+   and keeping what was written there: a pair with a list or shear entries becomes the
+   pool's next slice; returns the records it takes (0: nothing kept)
 ------------------------------------------------------------------------- */
 
-lsdem_pair_state FixLsdemHistory::pair_room(Pool &p, int list_cap, int shear_cap)
+lsdem_pair_state FixLsdemHistory::pair_room(Pool &p, int list_words, int shear_cap)
 {
-  pool_room(p, 1, HEAD_SLOTS + list_cap + shear_cap);
-  Slot *run = p.slot + p.nslot;
+  pool_room(p, 1, HEAD_WORDS + list_words + SHEAR_WORDS * shear_cap);
+  Word *run = p.word + p.nword;
   lsdem_pair_state st;
   st.list.valid = 0;
   st.list.head = reinterpret_cast<lsdem_nodelist_head *>(run);
-  st.list.entry = &run[HEAD_SLOTS].entry;
-  st.shear = &run[HEAD_SLOTS + list_cap].shear;  // until place_shear knows the list
+  st.list.entry = reinterpret_cast<lsdem_nodelist_entry *>(run + HEAD_WORDS);
+  st.shear = reinterpret_cast<lsdem_shear_hist *>(run + HEAD_WORDS + list_words);  // until place_shear
   st.nshear = 0;
   return st;
 }
 
 void FixLsdemHistory::place_shear(lsdem_pair_state &out)
 {
-  Slot *run = reinterpret_cast<Slot *>(out.list.head);
-  out.shear = &run[out.list.valid ? HEAD_SLOTS + out.list.head->count : 0].shear;
+  Word *run = reinterpret_cast<Word *>(out.list.head);
+  out.shear = reinterpret_cast<lsdem_shear_hist *>(
+      run + (out.list.valid ? HEAD_WORDS + out.list.head->words : 0));
 }
 
 int FixLsdemHistory::keep_pair(Pool &p, tagint ptag, const lsdem_pair_state &st)
@@ -191,11 +190,12 @@ int FixLsdemHistory::keep_pair(Pool &p, tagint ptag, const lsdem_pair_state &st)
   if (!st.list.valid && st.nshear <= 0) return 0;
   Slice &s = p.slice[p.ns++];
   s.partner = ptag;
-  s.first = p.nslot;
+  s.first = p.nword;
   s.list_valid = st.list.valid;
   s.nentry = st.list.valid ? st.list.head->count : 0;
+  s.nlistword = st.list.valid ? st.list.head->words : 0;
   s.nshear = st.nshear;
-  p.nslot += (st.list.valid ? HEAD_SLOTS + s.nentry : 0) + st.nshear;
+  p.nword += (st.list.valid ? HEAD_WORDS + s.nlistword : 0) + SHEAR_WORDS * st.nshear;
   return (st.list.valid ? 2 + s.nentry : 0) + st.nshear;
 }
 
@@ -204,9 +204,9 @@ int FixLsdemHistory::keep_pair(Pool &p, tagint ptag, const lsdem_pair_state &st)
    kernel wrote there
 ------------------------------------------------------------------------- */
 
-lsdem_pair_state FixLsdemHistory::reserve(int lane, int list_cap, int shear_cap)
+lsdem_pair_state FixLsdemHistory::reserve(int lane, int list_words, int shear_cap)
 {
-  return pair_room(pool[1 - cur][lane], list_cap, shear_cap);
+  return pair_room(pool[1 - cur][lane], list_words, shear_cap);
 }
 
 void FixLsdemHistory::commit(int lane, tagint ptag, const lsdem_pair_state &out)
@@ -308,6 +308,15 @@ void FixLsdemHistory::set_arrays(int i)
   nslice[i] = 0;
 }
 
+/* ---------------------------------------------------------------------- */
+
+AtomVecLsdem *FixLsdemHistory::lsdem_avec()
+{
+  auto avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
+  if (!avec) error->one(FLERR, "Fix LSDEM_HISTORY requires atom_style lsdem");
+  return avec;
+}
+
 /* ----------------------------------------------------------------------
    count, then per record: partner, id/aux, stamp, a[3], b[3] (each pair's records
    together, lsdem_pair_state_encode)
@@ -315,6 +324,7 @@ void FixLsdemHistory::set_arrays(int i)
 
 int FixLsdemHistory::pack_state(int i, double *buf)
 {
+  const double *nodes = lsdem_avec()->shape_of(i)->nodes;
   int m = 0;
   buf[m++] = ubuf(count_records(i)).d;
   const Pool &p = pool[cur][lane_of[i]];
@@ -323,7 +333,7 @@ int FixLsdemHistory::pack_state(int i, double *buf)
     lsdem_pair_state st;
     slice_state(p, s, st);
     records.resize(std::max(records.size(), (size_t) lsdem_pair_state_records(&st)));
-    const int n = lsdem_pair_state_encode(&st, records.data());
+    const int n = lsdem_pair_state_encode(&st, nodes, records.data());
     for (int r = 0; r < n; r++) {
       const lsdem_state_record &rec = records[r];
       buf[m++] = ubuf(s.partner).d;
@@ -345,9 +355,7 @@ int FixLsdemHistory::pack_state(int i, double *buf)
 int FixLsdemHistory::unpack_state(int i, const double *buf)
 {
   const int n = (int) ubuf(buf[0]).i;
-  auto avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
-  if (!avec) error->one(FLERR, "Fix LSDEM_HISTORY requires atom_style lsdem");
-  const int nnodes = avec->shape_of(i)->nnodes;
+  const int nnodes = lsdem_avec()->shape_of(i)->nnodes;
   Pool &p = pool[cur][0];  // exchange and restart are serial: the first lane
   lane_of[i] = 0;
   sfirst[i] = p.ns;
@@ -368,7 +376,7 @@ int FixLsdemHistory::unpack_state(int i, const double *buf)
       }
       len++;
     }
-    lsdem_pair_state st = pair_room(p, len, len);
+    lsdem_pair_state st = pair_room(p, len * LSDEM_NODELIST_MAX_WORDS, len);
     lsdem_pair_state_decode(records.data(), len, nnodes, &st);
     // the decoded shear entries go behind the list, in the run's own layout
     lsdem_pair_state kept = st;
@@ -436,20 +444,25 @@ int FixLsdemHistory::maxsize_restart()
 
 /* ---------------------------------------------------------------------- */
 
-void FixLsdemHistory::held(double &pairs, double &entries, double &shears,
+void FixLsdemHistory::held(double &pairs, double &entries, double &whole, double &shears,
                            double &bytes_used) const
 {
-  pairs = entries = shears = 0.0;
-  double slots = 0.0;
+  pairs = entries = whole = shears = 0.0;
+  double words = 0.0;
   for (const Pool &p : pool[cur])
     for (int k = 0; k < p.ns; k++) {
       const Slice &s = p.slice[k];
       pairs += 1.0;
-      entries += s.list_valid ? s.nentry : 0;
       shears += s.nshear;
-      slots += (s.list_valid ? HEAD_SLOTS + s.nentry : 0) + s.nshear;
+      words += (s.list_valid ? HEAD_WORDS + s.nlistword : 0) + SHEAR_WORDS * s.nshear;
+      if (!s.list_valid) continue;
+      lsdem_pair_state st;
+      slice_state(p, s, st);
+      const int extra = LSDEM_NODELIST_X_WORDS + (st.list.head->cells ? LSDEM_NODELIST_SAMPLE_WORDS : 0);
+      entries += s.nentry;
+      whole += (s.nlistword - s.nentry) / extra;
     }
-  bytes_used = slots * sizeof(Slot);
+  bytes_used = words * sizeof(Word);
 }
 
 double FixLsdemHistory::memory_usage()
@@ -457,7 +470,7 @@ double FixLsdemHistory::memory_usage()
   double bytes = (double) nmax_atom * 4 * sizeof(int);
   for (const auto &lanes : pool)
     for (const Pool &p : lanes)
-      bytes += (double) p.slice.size() * sizeof(Slice) + (double) p.maxslot * sizeof(Slot);
+      bytes += (double) p.slice.size() * sizeof(Slice) + (double) p.maxword * sizeof(Word);
   bytes += (double) records.size() * sizeof(lsdem_state_record);
   return bytes;
 }

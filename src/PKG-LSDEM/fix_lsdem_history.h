@@ -9,10 +9,11 @@
    (exchange) and is saved in restart files (as lsdem_state_record records, the layout of
    earlier versions, so that their restart files still load).
 
-   Storage: all grains' states sit in a pool of 64-byte slots, pair after pair in the
-   order the styles visit the grains, each pair's state in one run: its list head (two
-   slots), its list entries, its shear entries (the layout of earlier versions in memory
-   too, so that a step reads one stream and writes one). A step reads the current pool and
+   Storage: all grains' states sit in a pool of 8-byte words, pair after pair in the
+   order the styles visit the grains, each pair's state in one run: its list head, its
+   list entries (one word with slack; else four, eight with the cell's samples:
+   lsdem_contact.h), its shear entries (eight words each), so that a step reads one stream
+   and writes one. A step reads the current pool and
    writes the next one, so the kernel writes its output where it will be read next step
    (no copy). A pool is split into lanes, one per thread (pair_style lsdem/omp): each
    lane is written by one thread only and each grain's state lies in one lane, so that
@@ -56,7 +57,8 @@ class FixLsdemHistory : public Fix {
   bool find(int i, tagint partner, lsdem_pair_state &in) const;
   bool holds(int i) const { return nslice[i] > 0; }  // atom i keeps state
   void begin_atom(int lane);
-  lsdem_pair_state reserve(int lane, int list_cap, int shear_cap);  // out.shear: place_shear
+  // room for a pair's output: list_words words of list entries, shear_cap shear entries
+  lsdem_pair_state reserve(int lane, int list_words, int shear_cap);  // out.shear: place_shear
   static void place_shear(lsdem_pair_state &out);  // after detection: behind the list
   void commit(int lane, tagint partner, const lsdem_pair_state &out);
   void end_atom(int lane, int i);
@@ -71,27 +73,24 @@ class FixLsdemHistory : public Fix {
   int size_restart(int) override;
   int maxsize_restart() override;
   double memory_usage() override;
-  // what the current pool holds: pair states, node-list entries, shear entries, and the
-  // bytes they take (64 a slot: two a list head, one an entry); memory_usage(): all the
-  // store reserves
-  void held(double &pairs, double &entries, double &shears, double &bytes_used) const;
+  // what the current pool holds: pair states, node-list entries (and the whole ones among
+  // them: without slack, carrying their nodes and cells), shear entries, and the bytes they
+  // take; memory_usage(): all the store reserves
+  void held(double &pairs, double &entries, double &whole, double &shears,
+            double &bytes_used) const;
 
  private:
-  // a slot holds a shear entry or a list entry; a list head takes two
-  union Slot {
-    lsdem_shear_hist shear;
-    lsdem_nodelist_entry entry;
-    unsigned char bytes[64];
-  };
-  static constexpr int HEAD_SLOTS = 2;
-  struct Slice {   // one pair's state in a pool: its run of slots from `first`
+  typedef uint64_t Word;
+  static constexpr int HEAD_WORDS = sizeof(lsdem_nodelist_head) / sizeof(Word);
+  static constexpr int SHEAR_WORDS = sizeof(lsdem_shear_hist) / sizeof(Word);
+  struct Slice {   // one pair's state in a pool: its run of words from `first`
     tagint partner;
-    int first, list_valid, nentry, nshear;
+    int first, list_valid, nentry, nlistword, nshear;
   };
   struct Pool {    // one lane: the states of its atoms, one after the other
     std::vector<Slice> slice;
-    Slot *slot;
-    int ns, nslot, maxslot;  // used; slots allocated
+    Word *word;
+    int ns, nword, maxword;  // used; words allocated
     int atom_slice;          // where the atom being visited starts (while written)
     int atom_records;        // and the records its committed pairs take
     int maxrecords;          // the largest state written to this lane this step
@@ -105,11 +104,12 @@ class FixLsdemHistory : public Fix {
   int maxrecords;             // largest state seen, in records (sizes exchange buffers)
   std::vector<lsdem_state_record> records;  // scratch for packing and unpacking
 
-  void pool_room(Pool &p, int ns, int nslot);
+  void pool_room(Pool &p, int ns, int nword);
   void release(Pool &p);
-  lsdem_pair_state pair_room(Pool &p, int list_cap, int shear_cap);
+  lsdem_pair_state pair_room(Pool &p, int list_words, int shear_cap);
   static int keep_pair(Pool &p, tagint partner, const lsdem_pair_state &st);
   static void slice_state(const Pool &p, const Slice &s, lsdem_pair_state &st);
+  class AtomVecLsdem *lsdem_avec();
   void note_records(int n);
   int count_records(int i) const;
   int pack_state(int i, double *buf);

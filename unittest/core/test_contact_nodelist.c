@@ -38,7 +38,7 @@ enum { STEPS = 400, CAP = 2 * FIX_GRAIN_NODES + 8 };
 /* A pair's state (node list and shear history) with its storage. */
 typedef struct {
   lsdem_nodelist_head head;
-  lsdem_nodelist_entry entry[CAP];
+  lsdem_nodelist_entry entry[CAP * LSDEM_NODELIST_MAX_WORDS];
   lsdem_shear_hist shear[CAP];
   lsdem_pair_state st;
 } pair_buf;
@@ -376,7 +376,9 @@ static void test_damaged_entry(const lsdem_shape *A, const lsdem_shape *B, const
   step_pair(A, &pa, B, pb, &listed, 0, NULL, &h0, &r0);
   const int nn = h0.head.count;
   CHECK(nn > 4 && r0.ntested >= nn, "%d listed of %d looked up", nn, r0.ntested);
-  h0.entry[nn / 2].node = LSDEM_TEST_BAD_NODE;
+  const lsdem_nodelist_entry *mid = h0.entry;
+  for (int k = 0; k < nn / 2; k++) mid = lsdem_nodelist_after(&h0.head, mid);
+  ((lsdem_nodelist_entry *)mid)->node = LSDEM_TEST_BAD_NODE;
   h0.head.slack_unit = 0.0; /* as a list read from state records: no lookup skipped */
   step_pair(A, &pa, B, pb, &listed, 1, &h0, &h1, &r1);
   CHECK(r1.ntested == nn - 1, "damaged list: %d lookups, want %d", r1.ntested, nn - 1);

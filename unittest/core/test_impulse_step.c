@@ -517,7 +517,7 @@ static void test_wall_guard_lists(void)
   lsdem_impulse_guard_wall w;
   plane_wall(&plane, &w, (lsdem_wall_params){0.02, 1e-8, 0.5});
   w.detect.node_skin = 0.01;
-  static lsdem_nodelist_entry entry[FIX_GRAIN_NODES];
+  static lsdem_nodelist_entry entry[FIX_GRAIN_NODES * LSDEM_NODELIST_MAX_WORDS];
   static lsdem_contact_point pts[FIX_GRAIN_NODES];
   lsdem_nodelist_head head;
   lsdem_nodelist list = {0, &head, entry};

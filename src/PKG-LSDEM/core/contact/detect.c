@@ -125,11 +125,12 @@ static void detect_batch(detection *restrict dt, node_batch *b)
         nodelist_write(L, &L->out->entry[b->slot[i]], b->node[i], &b->x[3 * i], &b->cell[i],
                        b->slack[i]);
     } else if (L->use) {
-      if (L->out) nodelist_write(L, nodelist_next(L), b->node[i], &b->x[3 * i], &b->cell[i], 0);
+      if (L->out)
+        nodelist_write(L, nodelist_next(L, 0), b->node[i], &b->x[3 * i], &b->cell[i], 0);
     } else if (L->building && b->phi[i] < L->reach) {
       const unsigned slack = nodelist_slack(L, b->phi[i]);
       L->nslack += slack > 0;
-      nodelist_write(L, nodelist_next(L), b->node[i], &b->x[3 * i], &b->cell[i], slack);
+      nodelist_write(L, nodelist_next(L, slack), b->node[i], &b->x[3 * i], &b->cell[i], slack);
     } else if (L->building) {
       nodelist_margin(L, b->phi[i] / L->lip); /* phi >= L s: L > 0 here */
     }
@@ -347,20 +348,21 @@ static void detect_screened_nodes(detection *restrict dt, const double cb[3], do
 }
 
 /* Only the nodes of the pair's list, in increasing order, looked up in batches: their
- * coordinates and cells from the list's entries; with `skipping` (the list keeps slack), a
- * node whose slack is not used up is not looked up, its entry carried over. An entry that
- * names no node of A (a damaged restart file) is dropped. Inlined twice, so that a list
- * without slack (most in a dense packing: their nodes touch) pays no test per entry. */
+ * coordinates and cells from the list's entries (an entry with slack, when its slack is
+ * used up: its node from A); with `skipping` (the list keeps slack), a node whose slack is
+ * not used up is not looked up, its entry carried over. An entry that names no node of A
+ * (a damaged restart file) is dropped. Inlined twice, so that a list without slack (most
+ * in a dense packing: their nodes touch) pays no test per entry. */
 static inline __attribute__((always_inline)) void
 listed_nodes(detection *restrict dt, node_batch *batch, const int skipping)
 {
   const node_list *L = &dt->list;
-  for (int e = 0; e < L->nnode_in; e++) {
-    const lsdem_nodelist_entry *h = &L->node_in[e];
+  const lsdem_nodelist_entry *h = L->node_in;
+  for (int e = 0; e < L->nnode_in; e++, h = lsdem_nodelist_after(L->head_in, h)) {
     if ((int)h->node >= dt->A->nnodes) continue;
-    lsdem_nodelist_entry *out = skipping && L->out ? nodelist_next(L) : NULL;
+    lsdem_nodelist_entry *out = skipping && L->out ? nodelist_next(L, h->slack) : NULL;
     if (skipping && nodelist_skips(L, h)) {
-      if (out) *out = *h;
+      if (out) *out = *h; /* with slack: one word */
       continue;
     }
     const int i = batch->n++;
@@ -369,8 +371,9 @@ listed_nodes(detection *restrict dt, node_batch *batch, const int skipping)
       batch->slack[i] = (unsigned char)h->slack;
     }
     batch->node[i] = h->node;
-    memcpy(&batch->x[3 * i], h->x, 3 * sizeof(double));
-    if (L->cached) nodelist_entry_cell(h, &batch->cell[i]);
+    memcpy(&batch->x[3 * i], h->slack ? &dt->A->nodes[3 * h->node] : lsdem_nodelist_x(h),
+           3 * sizeof(double));
+    if (L->cached) nodelist_entry_cell(L, h, &batch->cell[i]);
     if (batch->n == NODE_BATCH) detect_batch(dt, batch);
   }
   detect_batch(dt, batch);

@@ -109,26 +109,37 @@ lsdem_manifold lsdem_manifold_over(lsdem_contact_point *storage, int cap);
  * up. A node is left out when it is farther than rB + s from B's centre or, when B's
  * level set has a known gradient bound L (exact distances: 1; grids:
  * lsdem_grid_outer_lipschitz), when phi_B >= L s there: it cannot reach phi < 0 before
- * the list is rebuilt. Against a grid each entry also keeps the 8 samples of the cell its
- * node was last looked up in, and a lookup in the same cell reads those instead of the
- * grid (lsdem_grid_eval_many_cached). The contacts found are the same, bit for bit, as
- * without a list; only lookups of nodes that cannot touch, and grid reads, are saved.
+ * the list is rebuilt. Against a grid a listed node looked up at every step also keeps
+ * the 8 samples of the cell it was last looked up in, and a lookup in the same cell reads
+ * those instead of the grid (lsdem_grid_eval_many_cached). The contacts found are the
+ * same, bit for bit, as without a list; only lookups of nodes that cannot touch, and grid
+ * reads, are saved.
  * The skin adapts per pair: a list outlived within 8 steps is followed by one wide
  * enough to last 8 steps at the pair's rate of motion (at most 4 s, and within B's
  * gradient bound), and a wide list (validity radius above 2 s) is rebuilt after 32
  * steps. A list built with another stride is rebuilt. A node listed at phi > 0 keeps
  * its slack min(phi, the bound's limit) / L (rounded down to 31sts of the build's skin):
  * it cannot touch while the motion bound since the build is below that, and its lookups
- * are skipped till then (settled pairs: most of them), its entry carried over. */
+ * are skipped till then (settled pairs: most of them), its entry carried over.
+ *
+ * Layout (8-byte words, one stream per pair): the head, then the entries in increasing
+ * node order. An entry with slack is one word (node, slack); an entry without slack (its
+ * node is looked up at every step) is followed by its node's coordinates in A's frame
+ * (3 words: such a step reads none of A's node memory) and, when the list keeps cells (B
+ * a grid), its cell's samples (4 words): lsdem_nodelist_entry_words. */
 typedef struct {
-  double M[9], t[3]; /* pose of B relative to A when built: node x -> M x + t (B's frame) */
+  float M[9], t[3];  /* pose of B relative to A when built: node x -> M x + t (B's frame),
+                        rounded to float (the motion bound allows for the rounding) */
   int64_t built;     /* step it was built at */
-  double radius;     /* validity radius: the least distance any left-out node had to move
-                        to touch B (at least the skin) */
+  float radius;      /* validity radius: the least distance any left-out node had to move
+                        to touch B (at least the skin), rounded down */
+  float slack_unit;  /* the unit of its entries' slack: the build's skin / 31, rounded down
+                        (0: none, B has no gradient bound or the list came from state
+                        records; its entries' slack is then 0) */
   int32_t stride;    /* node stride it was built with */
   int32_t count;     /* node entries */
-  double slack_unit; /* the unit of its entries' slack: the build's skin / 31 (0: none, B
-                        has no gradient bound or the list came from state records) */
+  int32_t words;     /* the entries' size in 8-byte words */
+  int32_t cells;     /* 1: entries without slack carry their cells' samples (B a grid) */
 } lsdem_nodelist_head;
 
 typedef struct {
@@ -137,26 +148,55 @@ typedef struct {
   uint32_t slack : 5; /* the node cannot touch B before the motion bound since the build
                          reaches slack x head.slack_unit (its lookup is skipped till then;
                          0: looked up) */
-  int32_t cell;  /* grid index of the kept cell's sample 000, -1: none kept */
-  float v[8];    /* that cell's samples (lsdem_grid_cell order) */
-  double x[3];   /* the node in A's frame (so a step using the list reads none of A) */
-} lsdem_nodelist_entry;
+  int32_t cell;  /* without slack in a list of cells: grid index of the kept cell's
+                    sample 000, -1: none kept */
+} lsdem_nodelist_entry; /* one word; without slack its node and samples follow it */
 
 #define LSDEM_NODELIST_NO_NODE ((1u << 27) - 1u)
+#define LSDEM_NODELIST_X_WORDS 3      /* double x[3], the node in A's frame */
+#define LSDEM_NODELIST_SAMPLE_WORDS 4 /* float v[8], lsdem_grid_cell order */
+#define LSDEM_NODELIST_MAX_WORDS (1 + LSDEM_NODELIST_X_WORDS + LSDEM_NODELIST_SAMPLE_WORDS)
+
+/* Words entry e of a list with head h takes. */
+static inline int lsdem_nodelist_entry_words(const lsdem_nodelist_head *h,
+                                             const lsdem_nodelist_entry *e)
+{
+  return e->slack ? 1 : 1 + LSDEM_NODELIST_X_WORDS + (h->cells ? LSDEM_NODELIST_SAMPLE_WORDS : 0);
+}
+
+/* The node an entry without slack carries (A's frame). */
+static inline double *lsdem_nodelist_x(const lsdem_nodelist_entry *e)
+{
+  return (double *)(e + 1);
+}
+
+/* The cell samples an entry without slack carries in a list of cells. */
+static inline float *lsdem_nodelist_samples(const lsdem_nodelist_entry *e)
+{
+  return (float *)(e + 1 + LSDEM_NODELIST_X_WORDS);
+}
+
+/* The entry after e in its list. */
+static inline const lsdem_nodelist_entry *lsdem_nodelist_after(const lsdem_nodelist_head *h,
+                                                               const lsdem_nodelist_entry *e)
+{
+  return e + lsdem_nodelist_entry_words(h, e);
+}
 
 /* A node list as detection reads and writes it, in the caller's storage: valid = 0 means
- * none. As output, head points to room for the head and entry[] holds
- * lsdem_nodelist_capacity(A) entries; detection sets valid. */
+ * none. As output, head points to room for the head and entry to room for
+ * lsdem_nodelist_capacity(A) words of entries; detection sets valid. */
 typedef struct {
   int valid;
   lsdem_nodelist_head *head;
   lsdem_nodelist_entry *entry;
 } lsdem_nodelist;
 
-/* Entries a node list of master A can need: A's node count (0 for a sphere). */
+/* Words of entries a node list of master A can need: one whole entry per node of A (0
+ * for a sphere). */
 static inline int lsdem_nodelist_capacity(const lsdem_shape *A)
 {
-  return A->sdf.kind == LSDEM_SDF_SPHERE ? 0 : A->nnodes;
+  return A->sdf.kind == LSDEM_SDF_SPHERE ? 0 : A->nnodes * LSDEM_NODELIST_MAX_WORDS;
 }
 
 /* ----------------------------------------------------------------- detection ---- */
@@ -267,7 +307,7 @@ int lsdem_penalty_apply(const lsdem_manifold *m, const lsdem_penalty_law *law, d
 
 /* The state a pair keeps between steps (owned by the master): node list and shear
  * history, each may be absent. As output, list.entry needs lsdem_nodelist_capacity(A)
- * entries and shear lsdem_manifold_capacity(A). */
+ * words and shear lsdem_manifold_capacity(A). */
 typedef struct {
   lsdem_nodelist list;
   lsdem_shear_hist *shear;
@@ -334,8 +374,8 @@ double lsdem_contact_roles(const lsdem_shape *a, double scale_a, int64_t id_a,
  * the layout of every earlier version so that their restart files still load:
  *   list head  two records: id -2 {aux stride, stamp built, a M[0..2], b M[3..5]} and
  *              id -1 {aux count, stamp = the bits of radius, a M[6..8], b t};
- *   list node  one per entry: id -(1 << 29) + node {aux cell, stamp and a = v[0..7] as
- *              32 bits each, b x};
+ *   list node  one per entry: id -(1 << 29) + node {aux cell (-1: no samples), stamp and
+ *              a = the samples v[0..7] as 32 bits each, b x (the node in A's frame)};
  *   shear      one per entry: id = node >= 0 {stamp, a shear, b normal}. */
 typedef struct {
   int32_t id, aux;
@@ -345,10 +385,13 @@ typedef struct {
 
 /* Records st needs: 2 + list count (if valid) + nshear. */
 int lsdem_pair_state_records(const lsdem_pair_state *st);
-/* st as records (lsdem_pair_state_records of them); returns the count. */
-int lsdem_pair_state_encode(const lsdem_pair_state *st, lsdem_state_record *rec);
-/* Records back into st, whose list.head points to room for a head and whose list.entry
- * and shear hold n entries at least. A list is
+/* st as records (lsdem_pair_state_records of them), nodes: its master's node coordinates
+ * (A's frame, the x of the node records; NULL: zeros); returns the count. */
+int lsdem_pair_state_encode(const lsdem_pair_state *st, const double *nodes,
+                            lsdem_state_record *rec);
+/* Records back into st, whose list.head points to room for a head, list.entry to room for
+ * n whole entries (n LSDEM_NODELIST_MAX_WORDS words) and shear to n shear entries. A
+ * decoded list has no slack; its entries carry the records' nodes and cells. A list is
  * taken when a head is followed by its node entries (ids of nodes < nnodes); records
  * of an older layout (shear entries ahead of the list's nodes, masks with ids -3..) leave
  * no list, their shear entries kept. Shear entries are kept in increasing node order

@@ -25,14 +25,22 @@ static double list_reach(const lsdem_sdf *s, double skin)
 
 /* How far any node of A (radius ra) may have moved relative to B since the list was
  * built at M0, t0: |M - M0| ra + |t - t0|, the rotation part exact for rotations as
- * |M - M0|_F / sqrt(2). */
+ * |M - M0|_F / sqrt(2). The head keeps M0 and t0 rounded to float (M0f, t0f, each entry
+ * within 2^-24 of its own size): |M - M0|_F <= |M - M0f|_F + 2^-24 |M0|_F (= sqrt 3) and
+ * |t - t0| <= |t - t0f| + 2^-24 |t0|, covered by FLOAT_POSE_ALLOWANCE (ra + |t0f|), twice
+ * those terms. */
+#define FLOAT_POSE_ALLOWANCE 1.2e-7
+
 static double list_motion(const lsdem_nodelist_head *h, const double M[9], const double t[3],
                           double ra)
 {
-  double dm = 0.0, dt = 0.0;
+  double dm = 0.0, dt = 0.0, t0 = 0.0;
   for (int i = 0; i < 9; i++) dm += (M[i] - h->M[i]) * (M[i] - h->M[i]);
-  for (int i = 0; i < 3; i++) dt += (t[i] - h->t[i]) * (t[i] - h->t[i]);
-  return (sqrt(0.5 * dm) + 1e-12) * ra + sqrt(dt);
+  for (int i = 0; i < 3; i++) {
+    dt += (t[i] - h->t[i]) * (t[i] - h->t[i]);
+    t0 += (double)h->t[i] * h->t[i];
+  }
+  return (sqrt(0.5 * dm) + 1e-12) * ra + sqrt(dt) + FLOAT_POSE_ALLOWANCE * (ra + sqrt(t0));
 }
 
 /* Skin of a list built now against B, for the base skin s: a list that lasted fewer than
@@ -74,8 +82,9 @@ void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
   L->use = L->cached = L->building = 0;
   L->moved = L->slack_unit = L->slack_per_length = L->inv_lip = 0.0;
   L->nslack = 0;
-  L->node_in = NULL;
-  L->nnode_in = L->node_cursor = 0;
+  L->head_in = NULL;
+  L->node_in = L->cursor = NULL;
+  L->nnode_in = L->cursor_left = 0;
   L->out = NULL;
   if (out) out->valid = 0;
   if (L->skin == 0.0) return;
@@ -83,9 +92,10 @@ void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
   L->cached = sdfB->kind == LSDEM_SDF_GRID && !sdfB->inverted;
   const int stride = det->node_stride > 1 ? det->node_stride : 1;
   if (in && in->valid) {
+    L->head_in = in->head;
     if (in->head->count > 0) {
-      L->node_in = in->entry;
-      L->nnode_in = in->head->count;
+      L->node_in = L->cursor = in->entry;
+      L->nnode_in = L->cursor_left = in->head->count;
     }
     const double motion = list_motion(in->head, M, t, A->radius);
     L->use = list_holds(in->head, motion, L->skin, step, stride);
@@ -102,16 +112,17 @@ void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
   out->valid = 1;
   if (L->use) {
     *out->head = *in->head;
-    out->head->count = 0;
+    out->head->count = out->head->words = 0;
     return;
   }
   L->building = 1;
-  out->head->count = 0;
-  memcpy(out->head->M, M, sizeof out->head->M);
-  memcpy(out->head->t, t, sizeof out->head->t);
+  out->head->count = out->head->words = 0;
+  out->head->cells = L->cached;
+  for (int i = 0; i < 9; i++) out->head->M[i] = (float)M[i];
+  for (int i = 0; i < 3; i++) out->head->t[i] = (float)t[i];
   out->head->built = step;
   out->head->stride = stride; /* radius: when the list is finished */
-  out->head->slack_unit = L->lip > 0.0 ? L->skin / 31.0 : 0.0;
+  out->head->slack_unit = L->lip > 0.0 ? nodelist_float_below(L->skin / 31.0) : 0.0f;
   if (L->lip > 0.0) {
     L->slack_per_length = 31.0 / L->skin * (1.0 - 1e-12);
     L->inv_lip = 1.0 / L->lip * (1.0 - 1e-12);
@@ -123,11 +134,31 @@ void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
  * scene, where most listed nodes touch: bench/README.md). */
 #define SLACK_MIN_FRACTION 0.5
 
+/* A list built (every entry whole): entries with slack give up their node and samples
+ * (they are not looked up at every step), moved down behind the ones before; a list that
+ * keeps no slack clears its entries' slack (they stay whole). */
+static void settle_entries(lsdem_nodelist *out)
+{
+  lsdem_nodelist_head *h = out->head;
+  const lsdem_nodelist_entry whole = {0, 0, -1};
+  const int stride = lsdem_nodelist_entry_words(h, &whole);
+  lsdem_nodelist_entry *src = out->entry, *dst = out->entry;
+  for (int k = 0; k < h->count; k++, src += stride) {
+    if (h->slack_unit == 0.0f) src->slack = 0;
+    const int words = lsdem_nodelist_entry_words(h, src);
+    if (words == 1) src->cell = -1;
+    if (dst != src) memmove(dst, src, 8 * (size_t)words);
+    dst += words;
+  }
+  h->words = (int32_t)(dst - out->entry);
+}
+
 void nodelist_finish(node_list *L)
 {
   if (!L->building) return;
   lsdem_nodelist_head *h = L->out->head;
   const double radius = L->margin < L->cap ? L->margin : L->cap;
-  h->radius = radius > L->skin ? radius : L->skin;
-  if (L->nslack < SLACK_MIN_FRACTION * h->count) h->slack_unit = 0.0;
+  h->radius = nodelist_float_below(radius > L->skin ? radius : L->skin);
+  if (L->nslack < SLACK_MIN_FRACTION * h->count) h->slack_unit = 0.0f;
+  settle_entries(L->out);
 }

@@ -6,6 +6,7 @@
 
 #include "lsdem_contact.h"
 
+#include <math.h>
 #include <string.h>
 
 /* The list state of one detection call. */
@@ -23,8 +24,11 @@ typedef struct {
   double slack_per_length; /* a list built: 1 / its slack unit, a trillionth less (0: none) */
   double inv_lip;          /* a list built with slack: 1 / lip, a trillionth less */
   int nslack;              /* a list built: entries with slack */
-  const lsdem_nodelist_entry *node_in; /* the input list's entries (increasing node) */
-  int nnode_in, node_cursor;
+  const lsdem_nodelist_head *head_in;  /* the input list's head */
+  const lsdem_nodelist_entry *node_in; /* and its entries (increasing node) */
+  int nnode_in;
+  const lsdem_nodelist_entry *cursor; /* nodelist_cell_of's place in them */
+  int cursor_left;                    /* entries from the cursor on */
   lsdem_nodelist *out; /* where this step's list goes, or NULL (also without a skin) */
 } node_list;
 
@@ -34,6 +38,13 @@ typedef struct {
 void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
                     const lsdem_detect_params *det, int64_t step, const lsdem_nodelist *in,
                     lsdem_nodelist *out, const double M[9], const double t[3]);
+/* x >= 0 rounded to a float no larger: a head's radius or slack unit the list may trust. */
+static inline float nodelist_float_below(double x)
+{
+  const float f = (float)x;
+  return (double)f > x ? nextafterf(f, 0.0f) : f;
+}
+
 /* The per-node steps are inline: they run for every looked-up node. */
 
 /* A left-out node (or cluster) that must move by d to touch B: the list holds until d. */
@@ -58,40 +69,62 @@ static inline int nodelist_skips(const node_list *L, const lsdem_nodelist_entry 
   return e->slack && L->moved < e->slack * L->slack_unit;
 }
 
-/* Entry e of the output list: node k at x (A's frame) with its cell c and slack. */
+/* Words an entry of the output list with this slack takes: every entry whole while the
+ * list is built (nodelist_finish then shortens those with slack), else
+ * lsdem_nodelist_entry_words. */
+static inline int nodelist_out_words(const node_list *L, unsigned slack)
+{
+  const lsdem_nodelist_entry e = {0, L->building ? 0 : slack, -1};
+  return lsdem_nodelist_entry_words(L->out->head, &e);
+}
+
+/* Entry e of the output list (nodelist_next's place): node k at x (A's frame) with its
+ * cell c, and slack; x and the cell's samples kept when the entry is whole. */
 static inline void nodelist_write(const node_list *L, lsdem_nodelist_entry *e, int k,
                                   const double x[3], const lsdem_grid_cell *c, unsigned slack)
 {
-  const int kept = L->cached && c && c->index >= 0 && c->index <= INT32_MAX;
+  const int words = nodelist_out_words(L, slack);
+  const int samples = words == LSDEM_NODELIST_MAX_WORDS;
+  const int kept = samples && c && c->index >= 0 && c->index <= INT32_MAX;
   e->node = (uint32_t)k;
   e->slack = slack;
   e->cell = kept ? (int32_t)c->index : -1;
+  if (words > 1) memcpy(lsdem_nodelist_x(e), x, 3 * sizeof(double));
   if (kept)
-    memcpy(e->v, c->v, sizeof e->v);
-  else
-    memset(e->v, 0, sizeof e->v);
-  memcpy(e->x, x, sizeof e->x);
+    memcpy(lsdem_nodelist_samples(e), c->v, sizeof c->v);
+  else if (samples)
+    memset(lsdem_nodelist_samples(e), 0, sizeof c->v);
 }
 
-/* The next entry of the output list (its place: entries stay in increasing node order). */
-static inline lsdem_nodelist_entry *nodelist_next(const node_list *L)
+/* The place of the output list's next entry, of this slack (entries stay in increasing
+ * node order). */
+static inline lsdem_nodelist_entry *nodelist_next(const node_list *L, unsigned slack)
 {
-  return &L->out->entry[L->out->head->count++];
+  lsdem_nodelist_head *h = L->out->head;
+  lsdem_nodelist_entry *e = L->out->entry + h->words;
+  h->words += nodelist_out_words(L, slack);
+  h->count++;
+  return e;
 }
 
-/* The cell kept in an entry. */
-static inline void nodelist_entry_cell(const lsdem_nodelist_entry *e, lsdem_grid_cell *c)
+/* The cell kept in entry e of the input list (one without slack). */
+static inline void nodelist_entry_cell(const node_list *L, const lsdem_nodelist_entry *e,
+                                       lsdem_grid_cell *c)
 {
-  c->index = e->cell;
-  if (e->cell >= 0) memcpy(c->v, e->v, sizeof c->v);
+  const int kept = L->head_in->cells && !e->slack && e->cell >= 0;
+  c->index = kept ? e->cell : -1;
+  if (kept) memcpy(c->v, lsdem_nodelist_samples(e), sizeof c->v);
 }
 
 /* The cell the input list kept for node k (nodes asked in increasing order), or none. */
 static inline void nodelist_cell_of(node_list *L, int k, lsdem_grid_cell *c)
 {
-  while (L->node_cursor < L->nnode_in && L->node_in[L->node_cursor].node < k) L->node_cursor++;
-  if (L->node_cursor < L->nnode_in && L->node_in[L->node_cursor].node == k)
-    nodelist_entry_cell(&L->node_in[L->node_cursor], c);
+  while (L->cursor_left > 0 && (int)L->cursor->node < k) {
+    L->cursor = lsdem_nodelist_after(L->head_in, L->cursor);
+    L->cursor_left--;
+  }
+  if (L->cursor_left > 0 && (int)L->cursor->node == k)
+    nodelist_entry_cell(L, L->cursor, c);
   else
     c->index = -1;
 }

@@ -1,7 +1,7 @@
 /* state.c -- a pair's contact state (node list and shear history) as fixed-size records
  * for exchange between ranks and restart files, in the layout of every earlier version
  * (lsdem_contact.h), so that their restart files still load. */
-#include "lsdem_contact.h"
+#include "nodelist.h"
 
 #include <string.h>
 
@@ -9,12 +9,12 @@
 enum { HEAD_POSE = -2, HEAD_COUNT = -1 };
 #define LIST_NODE (-(1 << 29))
 
-_Static_assert(sizeof(((lsdem_nodelist_entry *)0)->v) ==
+_Static_assert(LSDEM_NODELIST_SAMPLE_WORDS * 8 ==
                    sizeof(((lsdem_state_record *)0)->stamp) +
                        sizeof(((lsdem_state_record *)0)->a),
                "a node record holds a cell's 8 samples in its stamp and a");
-
-_Static_assert(sizeof(lsdem_nodelist_entry) == 64, "a node-list entry fills one 64-byte slot");
+_Static_assert(sizeof(lsdem_nodelist_entry) == 8, "a node-list entry is one word");
+_Static_assert(sizeof(lsdem_nodelist_head) % 8 == 0, "a list head is whole words");
 _Static_assert(LSDEM_LIBRARY_MAX_NODES < LSDEM_NODELIST_NO_NODE, "node indices fit an entry");
 
 static int is_node_record(int32_t id, int nnodes)
@@ -35,7 +35,8 @@ static void encode_head(const lsdem_nodelist_head *h, lsdem_state_record *rec)
   pose->stamp = h->built;
   count->id = HEAD_COUNT;
   count->aux = h->count;
-  memcpy(&count->stamp, &h->radius, sizeof count->stamp);
+  const double radius = h->radius;
+  memcpy(&count->stamp, &radius, sizeof count->stamp);
   for (int i = 0; i < 3; i++) {
     pose->a[i] = h->M[i];
     pose->b[i] = h->M[3 + i];
@@ -49,29 +50,39 @@ static void decode_head(const lsdem_state_record *rec, lsdem_nodelist_head *h)
   h->stride = rec[0].aux;
   h->built = rec[0].stamp;
   h->count = rec[1].aux;
-  h->slack_unit = 0.0; /* not in the records: no lookups skipped till the next build */
-  memcpy(&h->radius, &rec[1].stamp, sizeof h->radius);
-  for (int i = 0; i < 3; i++) {
-    h->M[i] = rec[0].a[i];
-    h->M[3 + i] = rec[0].b[i];
-    h->M[6 + i] = rec[1].a[i];
-    h->t[i] = rec[1].b[i];
+  h->slack_unit = 0.0f; /* not in the records: no lookups skipped till the next build */
+  double radius;
+  memcpy(&radius, &rec[1].stamp, sizeof radius);
+  h->radius = nodelist_float_below(radius); /* an earlier version's double */
+  for (int i = 0; i < 3; i++) { /* rounded to float, as when built */
+    h->M[i] = (float)rec[0].a[i];
+    h->M[3 + i] = (float)rec[0].b[i];
+    h->M[6 + i] = (float)rec[1].a[i];
+    h->t[i] = (float)rec[1].b[i];
   }
 }
 
-int lsdem_pair_state_encode(const lsdem_pair_state *st, lsdem_state_record *rec)
+int lsdem_pair_state_encode(const lsdem_pair_state *st, const double *nodes,
+                            lsdem_state_record *rec)
 {
   int n = 0;
   if (st->list.valid) {
-    encode_head(st->list.head, rec);
+    const lsdem_nodelist_head *h = st->list.head;
+    encode_head(h, rec);
     n = 2;
-    for (int k = 0; k < st->list.head->count; k++, n++) {
-      const lsdem_nodelist_entry *e = &st->list.entry[k];
+    const lsdem_nodelist_entry *e = st->list.entry;
+    for (int k = 0; k < h->count; k++, n++, e = lsdem_nodelist_after(h, e)) {
       lsdem_state_record *r = &rec[n];
       r->id = LIST_NODE + e->node;
-      r->aux = e->cell;
-      memcpy(&r->stamp, e->v, sizeof e->v); /* stamp and a, 32 bytes */
-      memcpy(r->b, e->x, sizeof r->b);
+      const int whole = !e->slack, samples = whole && h->cells;
+      r->aux = samples ? e->cell : -1;
+      if (samples) /* stamp and a, 32 bytes */
+        memcpy(&r->stamp, lsdem_nodelist_samples(e), 8 * LSDEM_NODELIST_SAMPLE_WORDS);
+      else
+        memset(&r->stamp, 0, 8 * LSDEM_NODELIST_SAMPLE_WORDS);
+      const int known = nodes && e->node != LSDEM_NODELIST_NO_NODE;
+      for (int d = 0; d < 3; d++)
+        r->b[d] = whole ? lsdem_nodelist_x(e)[d] : known ? nodes[3 * e->node + d] : 0.0;
     }
   }
   for (int k = 0; k < st->nshear; k++, n++) {
@@ -97,15 +108,22 @@ static int decode_list(const lsdem_state_record *rec, int n, int nnodes, lsdem_n
   if (count < 0 || count > n - 2 || (count > 0 && !is_node_record(rec[2].id, nnodes)))
     return 0;
   decode_head(rec, list->head);
-  for (int k = 0; k < count; k++) {
+  list->head->cells = 0; /* the records' kept cells are carried (none: no samples) */
+  for (int k = 0; k < count; k++) list->head->cells |= rec[2 + k].aux >= 0;
+  list->head->words = 0;
+  lsdem_nodelist_entry *e = list->entry;
+  for (int k = 0; k < count; k++) { /* whole entries: no slack */
     const lsdem_state_record *r = &rec[2 + k];
-    lsdem_nodelist_entry *e = &list->entry[k];
     e->node = is_node_record(r->id, nnodes) ? (uint32_t)(r->id - LIST_NODE)
                                             : LSDEM_NODELIST_NO_NODE; /* dropped */
     e->slack = 0;
-    e->cell = r->aux;
-    memcpy(e->v, &r->stamp, sizeof e->v);
-    memcpy(e->x, r->b, sizeof e->x);
+    e->cell = list->head->cells ? r->aux : -1;
+    memcpy(lsdem_nodelist_x(e), r->b, 3 * sizeof(double));
+    if (list->head->cells)
+      memcpy(lsdem_nodelist_samples(e), &r->stamp, 8 * LSDEM_NODELIST_SAMPLE_WORDS);
+    const int words = lsdem_nodelist_entry_words(list->head, e);
+    list->head->words += words;
+    e += words;
   }
   list->valid = 1;
   return 2 + count;
