@@ -11,10 +11,9 @@
 
    Storage: all grains' states sit in a pool of 8-byte words, pair after pair in the
    order the styles visit the grains, each pair's state in one run: its list head, its
-   list entries (one word with slack; else four, eight with the cell's samples:
+   list entries (a short one a word; a whole one four, eight with its cell's samples:
    lsdem_contact.h), its shear entries (eight words each), so that a step reads one stream
-   and writes one. A step reads the current pool and
-   writes the next one, so the kernel writes its output where it will be read next step
+   and writes one. A step reads the current pool and writes the next one, so the kernel writes its output where it will be read next step
    (no copy). A pool is split into lanes, one per thread (pair_style lsdem/omp): each
    lane is written by one thread only and each grain's state lies in one lane, so that
    writing is race-free by construction (a pair's state has one owner, its master's
@@ -74,8 +73,8 @@ class FixLsdemHistory : public Fix {
   int maxsize_restart() override;
   double memory_usage() override;
   // what the current pool holds: pair states, node-list entries (and the whole ones among
-  // them: without slack, carrying their nodes and cells), shear entries, and the bytes they
-  // take; memory_usage(): all the store reserves
+  // them, carrying their nodes and cells), shear entries, and the bytes they take;
+  // memory_usage(): all the store reserves
   void held(double &pairs, double &entries, double &whole, double &shears,
             double &bytes_used) const;
 

@@ -56,7 +56,7 @@ PairLsdem::PairLsdem(LAMMPS *lmp) :
   // workload of the last force call, for compute pair: pairs tested, contacts,
   // nodes looked up, penetrating nodes; the contact state it left: bytes of the history
   // store (reserved), pair states, node-list entries, shear entries, bytes the states take,
-  // whole node-list entries (no slack: node and cell kept) (compute pair sums over ranks)
+  // whole node-list entries (node and cell kept) (compute pair sums over ranks)
   nextra = 10;
   pvector = new double[nextra];
   for (int k = 0; k < nextra; k++) pvector[k] = 0.0;

@@ -256,6 +256,9 @@ static void test_hover_skips(const lsdem_shape *A, const lsdem_shape *plane,
   CHECK(touching == 0 && entries > 0 && later_lookups == 0,
         "hover: %d touching nodes, %d listed, %d lookups after the build", touching, entries,
         later_lookups);
+  /* none looked up since the build: every entry short, one word */
+  CHECK(fast.buf[fast.cur].head.words == entries, "hover: %d words for %d short entries",
+        fast.buf[fast.cur].head.words, entries);
   lsdem_pose low;
   path_pose(REST, 0, lift - 0.25, &low);
   step_run(&plain, A, &low, plane, pw, &prm, 40, &rp);
@@ -263,6 +266,13 @@ static void test_hover_skips(const lsdem_shape *A, const lsdem_shape *plane,
   CHECK(rp.npen > 0 && rf.npen == rp.npen &&
             memcmp(rp.force, rf.force, sizeof rp.force) == 0,
         "hover, lowered: %d nodes touch, %d found with the list", rp.npen, rf.npen);
+  /* the list held; the looked-up nodes' entries are whole now (node: 3 words more; a plane
+   * keeps no cells), the others still short */
+  const lsdem_nodelist_head *h = &fast.buf[fast.cur].head;
+  CHECK(h->count == entries && rf.ntested > 0 && rf.ntested < entries &&
+            h->words == entries + LSDEM_NODELIST_X_WORDS * rf.ntested,
+        "hover, lowered: %d words for %d entries, %d of them looked up", h->words, h->count,
+        rf.ntested);
 }
 
 /* The widening stops where B's gradient bound stops: against a grid whose bound holds only

@@ -284,8 +284,8 @@ static void test_roles(void)
 
 static void test_state_records(void)
 {
-  /* three whole entries (node and samples; the second without a kept cell), then one
-   * with slack (one word) that the records carry whole, without its slack */
+  /* three whole entries (node and samples; the second without a kept cell), then a short
+   * one with slack (one word) that the records carry whole, without its slack */
   enum { W = LSDEM_NODELIST_MAX_WORDS, WORDS = 3 * W + 1 };
   lsdem_nodelist_entry words[WORDS], back_words[4 * W], *entries = words;
   lsdem_nodelist_head head, back_head;
@@ -316,7 +316,7 @@ static void test_state_records(void)
   }
   entries[3 * W].node = 33;
   entries[3 * W].slack = 5;
-  entries[3 * W].cell = -1;
+  entries[3 * W].cell = LSDEM_NODELIST_SHORT;
   CHECK(lsdem_nodelist_after(&head, &entries[3 * W]) == &entries[WORDS] &&
             lsdem_nodelist_after(&head, entries) == &entries[W],
         "entry sizes");

@@ -89,8 +89,8 @@ if off and auto and skin and par:
         check(row["c_w[6]"] >= row["c_w[2]"], "%s: %d pair states for %d contacts"
               % (name, row["c_w[6]"], row["c_w[2]"]))
         # bytes in use (value 9) against the kernel's own count: 64 a penetrating node's
-        # shear entry, 8 a node-list entry and 56 more for a whole one (value 10: no slack,
-        # its node and cell kept; every partner here is a grid grain), 80 a list head (at
+        # shear entry, 8 a node-list entry and 56 more for a whole one (value 10: looked up since
+        # its list was built, node and cell kept; every partner here is a grid grain), 80 a list head (at
         # most one a pair state)
         check(0 <= row["c_w[10]"] <= row["c_w[7]"], "%s: %d of %d node-list entries whole"
               % (name, row["c_w[10]"], row["c_w[7]"]))

@@ -123,10 +123,11 @@ lsdem_manifold lsdem_manifold_over(lsdem_contact_point *storage, int cap);
  * are skipped till then (settled pairs: most of them), its entry carried over.
  *
  * Layout (8-byte words, one stream per pair): the head, then the entries in increasing
- * node order. An entry with slack is one word (node, slack); an entry without slack (its
- * node is looked up at every step) is followed by its node's coordinates in A's frame
- * (3 words: such a step reads none of A's node memory) and, when the list keeps cells (B
- * a grid), its cell's samples (4 words): lsdem_nodelist_entry_words. */
+ * node order. An entry whose node has not been looked up since the list was built (it has
+ * slack) is short, one word (node, slack); an entry whose node is looked up is whole: its
+ * word is followed by the node's coordinates in A's frame (3 words: a step that uses the
+ * list reads none of A's node memory for it) and, when the list keeps cells (B a grid), its
+ * cell's samples (4 words): lsdem_nodelist_entry_words. */
 typedef struct {
   float M[9], t[3];  /* pose of B relative to A when built: node x -> M x + t (B's frame),
                         rounded to float (the motion bound allows for the rounding) */
@@ -139,7 +140,7 @@ typedef struct {
   int32_t stride;    /* node stride it was built with */
   int32_t count;     /* node entries */
   int32_t words;     /* the entries' size in 8-byte words */
-  int32_t cells;     /* 1: entries without slack carry their cells' samples (B a grid) */
+  int32_t cells;     /* 1: whole entries carry their cells' samples (B a grid) */
 } lsdem_nodelist_head;
 
 typedef struct {
@@ -148,29 +149,36 @@ typedef struct {
   uint32_t slack : 5; /* the node cannot touch B before the motion bound since the build
                          reaches slack x head.slack_unit (its lookup is skipped till then;
                          0: looked up) */
-  int32_t cell;  /* without slack in a list of cells: grid index of the kept cell's
-                    sample 000, -1: none kept */
-} lsdem_nodelist_entry; /* one word; without slack its node and samples follow it */
+  int32_t cell;  /* a whole entry in a list of cells: grid index of the kept cell's sample
+                    000, -1: none kept; LSDEM_NODELIST_SHORT: a short entry */
+} lsdem_nodelist_entry; /* one word; a whole entry's node and samples follow it */
 
 #define LSDEM_NODELIST_NO_NODE ((1u << 27) - 1u)
+#define LSDEM_NODELIST_SHORT INT32_MIN  /* the cell of a short entry */
 #define LSDEM_NODELIST_X_WORDS 3      /* double x[3], the node in A's frame */
 #define LSDEM_NODELIST_SAMPLE_WORDS 4 /* float v[8], lsdem_grid_cell order */
 #define LSDEM_NODELIST_MAX_WORDS (1 + LSDEM_NODELIST_X_WORDS + LSDEM_NODELIST_SAMPLE_WORDS)
+
+/* Words a whole entry of a list with head h takes. */
+static inline int lsdem_nodelist_whole_words(const lsdem_nodelist_head *h)
+{
+  return 1 + LSDEM_NODELIST_X_WORDS + (h->cells ? LSDEM_NODELIST_SAMPLE_WORDS : 0);
+}
 
 /* Words entry e of a list with head h takes. */
 static inline int lsdem_nodelist_entry_words(const lsdem_nodelist_head *h,
                                              const lsdem_nodelist_entry *e)
 {
-  return e->slack ? 1 : 1 + LSDEM_NODELIST_X_WORDS + (h->cells ? LSDEM_NODELIST_SAMPLE_WORDS : 0);
+  return e->cell == LSDEM_NODELIST_SHORT ? 1 : lsdem_nodelist_whole_words(h);
 }
 
-/* The node an entry without slack carries (A's frame). */
+/* The node a whole entry carries (A's frame). */
 static inline double *lsdem_nodelist_x(const lsdem_nodelist_entry *e)
 {
   return (double *)(e + 1);
 }
 
-/* The cell samples an entry without slack carries in a list of cells. */
+/* The cell samples a whole entry carries in a list of cells. */
 static inline float *lsdem_nodelist_samples(const lsdem_nodelist_entry *e)
 {
   return (float *)(e + 1 + LSDEM_NODELIST_X_WORDS);

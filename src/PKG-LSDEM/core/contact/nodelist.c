@@ -134,19 +134,18 @@ void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
  * scene, where most listed nodes touch: bench/README.md). */
 #define SLACK_MIN_FRACTION 0.5
 
-/* A list built (every entry whole): entries with slack give up their node and samples
- * (they are not looked up at every step), moved down behind the ones before; a list that
- * keeps no slack clears its entries' slack (they stay whole). */
+/* A list built (every entry whole): entries with slack become short (their nodes are not
+ * looked up till their slack is used up), moved down behind the ones before; a list that
+ * keeps no slack clears its entries' slack. */
 static void settle_entries(lsdem_nodelist *out)
 {
   lsdem_nodelist_head *h = out->head;
-  const lsdem_nodelist_entry whole = {0, 0, -1};
-  const int stride = lsdem_nodelist_entry_words(h, &whole);
+  const int stride = lsdem_nodelist_whole_words(h);
   lsdem_nodelist_entry *src = out->entry, *dst = out->entry;
   for (int k = 0; k < h->count; k++, src += stride) {
     if (h->slack_unit == 0.0f) src->slack = 0;
+    if (src->slack) src->cell = LSDEM_NODELIST_SHORT;
     const int words = lsdem_nodelist_entry_words(h, src);
-    if (words == 1) src->cell = -1;
     if (dst != src) memmove(dst, src, 8 * (size_t)words);
     dst += words;
   }

@@ -69,49 +69,40 @@ static inline int nodelist_skips(const node_list *L, const lsdem_nodelist_entry 
   return e->slack && L->moved < e->slack * L->slack_unit;
 }
 
-/* Words an entry of the output list with this slack takes: every entry whole while the
- * list is built (nodelist_finish then shortens those with slack), else
- * lsdem_nodelist_entry_words. */
-static inline int nodelist_out_words(const node_list *L, unsigned slack)
-{
-  const lsdem_nodelist_entry e = {0, L->building ? 0 : slack, -1};
-  return lsdem_nodelist_entry_words(L->out->head, &e);
-}
-
-/* Entry e of the output list (nodelist_next's place): node k at x (A's frame) with its
- * cell c, and slack; x and the cell's samples kept when the entry is whole. */
+/* Entry e of the output list (nodelist_next's place): node k with its slack, and when
+ * whole, its coordinates x (A's frame) and cell c. */
 static inline void nodelist_write(const node_list *L, lsdem_nodelist_entry *e, int k,
-                                  const double x[3], const lsdem_grid_cell *c, unsigned slack)
+                                  const double x[3], const lsdem_grid_cell *c, unsigned slack,
+                                  int whole)
 {
-  const int words = nodelist_out_words(L, slack);
-  const int samples = words == LSDEM_NODELIST_MAX_WORDS;
+  const int samples = whole && L->out->head->cells;
   const int kept = samples && c && c->index >= 0 && c->index <= INT32_MAX;
   e->node = (uint32_t)k;
   e->slack = slack;
-  e->cell = kept ? (int32_t)c->index : -1;
-  if (words > 1) memcpy(lsdem_nodelist_x(e), x, 3 * sizeof(double));
+  e->cell = !whole ? LSDEM_NODELIST_SHORT : kept ? (int32_t)c->index : -1;
+  if (whole) memcpy(lsdem_nodelist_x(e), x, 3 * sizeof(double));
   if (kept)
     memcpy(lsdem_nodelist_samples(e), c->v, sizeof c->v);
   else if (samples)
     memset(lsdem_nodelist_samples(e), 0, sizeof c->v);
 }
 
-/* The place of the output list's next entry, of this slack (entries stay in increasing
+/* The place of the output list's next entry, whole or short (entries stay in increasing
  * node order). */
-static inline lsdem_nodelist_entry *nodelist_next(const node_list *L, unsigned slack)
+static inline lsdem_nodelist_entry *nodelist_next(const node_list *L, int whole)
 {
   lsdem_nodelist_head *h = L->out->head;
   lsdem_nodelist_entry *e = L->out->entry + h->words;
-  h->words += nodelist_out_words(L, slack);
+  h->words += whole ? lsdem_nodelist_whole_words(h) : 1;
   h->count++;
   return e;
 }
 
-/* The cell kept in entry e of the input list (one without slack). */
+/* The cell kept in entry e of the input list. */
 static inline void nodelist_entry_cell(const node_list *L, const lsdem_nodelist_entry *e,
                                        lsdem_grid_cell *c)
 {
-  const int kept = L->head_in->cells && !e->slack && e->cell >= 0;
+  const int kept = L->head_in->cells && e->cell >= 0;
   c->index = kept ? e->cell : -1;
   if (kept) memcpy(c->v, lsdem_nodelist_samples(e), sizeof c->v);
 }

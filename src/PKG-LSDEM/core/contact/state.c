@@ -74,7 +74,7 @@ int lsdem_pair_state_encode(const lsdem_pair_state *st, const double *nodes,
     for (int k = 0; k < h->count; k++, n++, e = lsdem_nodelist_after(h, e)) {
       lsdem_state_record *r = &rec[n];
       r->id = LIST_NODE + e->node;
-      const int whole = !e->slack, samples = whole && h->cells;
+      const int whole = e->cell != LSDEM_NODELIST_SHORT, samples = whole && h->cells;
       r->aux = samples ? e->cell : -1;
       if (samples) /* stamp and a, 32 bytes */
         memcpy(&r->stamp, lsdem_nodelist_samples(e), 8 * LSDEM_NODELIST_SAMPLE_WORDS);
@@ -112,12 +112,12 @@ static int decode_list(const lsdem_state_record *rec, int n, int nnodes, lsdem_n
   for (int k = 0; k < count; k++) list->head->cells |= rec[2 + k].aux >= 0;
   list->head->words = 0;
   lsdem_nodelist_entry *e = list->entry;
-  for (int k = 0; k < count; k++) { /* whole entries: no slack */
+  for (int k = 0; k < count; k++) { /* whole entries without slack */
     const lsdem_state_record *r = &rec[2 + k];
     e->node = is_node_record(r->id, nnodes) ? (uint32_t)(r->id - LIST_NODE)
                                             : LSDEM_NODELIST_NO_NODE; /* dropped */
     e->slack = 0;
-    e->cell = list->head->cells ? r->aux : -1;
+    e->cell = list->head->cells && r->aux >= 0 ? r->aux : -1;
     memcpy(lsdem_nodelist_x(e), r->b, 3 * sizeof(double));
     if (list->head->cells)
       memcpy(lsdem_nodelist_samples(e), &r->stamp, 8 * LSDEM_NODELIST_SAMPLE_WORDS);
