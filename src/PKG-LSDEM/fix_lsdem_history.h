@@ -13,11 +13,12 @@
    order the styles visit the grains, each pair's state in one run: its list head, its
    list entries (a short one a word; a whole one four, eight with its cell's samples:
    lsdem_contact.h), its shear entries (eight words each), so that a step reads one stream
-   and writes one. A step reads the current pool and writes the next one, so the kernel writes its output where it will be read next step
-   (no copy). A pool is split into lanes, one per thread (pair_style lsdem/omp): each
-   lane is written by one thread only and each grain's state lies in one lane, so that
-   writing is race-free by construction (a pair's state has one owner, its master's
-   lane); reading (find) is of the current pool only. Use per step:
+   and writes one. A step reads the current pool and writes the next one, so the kernel
+   writes its output where it will be read next step (no copy). A pool is split into
+   lanes, one per thread (pair_style lsdem/omp): each lane is written by one thread only
+   and each grain's state lies in one lane, so that writing is race-free by construction
+   (a pair's state has one owner, its master's lane); reading (find) is of the current
+   pool only. Use per step:
      begin_step(nlanes);
      for each owned grain i, by the thread of lane L:
        begin_atom(L);
