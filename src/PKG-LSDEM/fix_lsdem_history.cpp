@@ -194,6 +194,10 @@ int FixLsdemHistory::keep_pair(Pool &p, tagint ptag, const lsdem_pair_state &st)
   s.list_valid = st.list.valid;
   s.nentry = st.list.valid ? st.list.head->count : 0;
   s.nlistword = st.list.valid ? st.list.head->words : 0;
+  const int added = s.nlistword - s.nentry;  // the words the whole entries add to theirs
+  s.nwhole = s.list_valid && st.list.head->cells
+                 ? added / (LSDEM_NODELIST_X_WORDS + LSDEM_NODELIST_SAMPLE_WORDS)
+                 : added / LSDEM_NODELIST_X_WORDS;  // constant divisors
   s.nshear = st.nshear;
   p.nword += (st.list.valid ? HEAD_WORDS + s.nlistword : 0) + SHEAR_WORDS * st.nshear;
   return (st.list.valid ? 2 + s.nentry : 0) + st.nshear;
@@ -453,14 +457,10 @@ void FixLsdemHistory::held(double &pairs, double &entries, double &whole, double
     for (int k = 0; k < p.ns; k++) {
       const Slice &s = p.slice[k];
       pairs += 1.0;
+      entries += s.nentry;
+      whole += s.nwhole;
       shears += s.nshear;
       words += (s.list_valid ? HEAD_WORDS + s.nlistword : 0) + SHEAR_WORDS * s.nshear;
-      if (!s.list_valid) continue;
-      lsdem_pair_state st;
-      slice_state(p, s, st);
-      const int extra = LSDEM_NODELIST_X_WORDS + (st.list.head->cells ? LSDEM_NODELIST_SAMPLE_WORDS : 0);
-      entries += s.nentry;
-      whole += (s.nlistword - s.nentry) / extra;
     }
   bytes_used = words * sizeof(Word);
 }

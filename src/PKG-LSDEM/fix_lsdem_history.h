@@ -85,7 +85,7 @@ class FixLsdemHistory : public Fix {
   static constexpr int SHEAR_WORDS = sizeof(lsdem_shear_hist) / sizeof(Word);
   struct Slice {   // one pair's state in a pool: its run of words from `first`
     tagint partner;
-    int first, list_valid, nentry, nlistword, nshear;
+    int first, list_valid, nentry, nwhole, nlistword, nshear;  // nwhole: held()'s count
   };
   struct Pool {    // one lane: the states of its atoms, one after the other
     std::vector<Slice> slice;

@@ -358,14 +358,14 @@ static inline __attribute__((always_inline)) void
 listed_nodes(detection *restrict dt, node_batch *batch, const int skipping)
 {
   const node_list *L = &dt->list;
-  const lsdem_nodelist_entry *h = L->node_in;
-  for (int e = 0; e < L->nnode_in; e++, h = lsdem_nodelist_after(L->head_in, h)) {
-    if ((int)h->node >= dt->A->nnodes) continue;
+  const int whole_words = lsdem_nodelist_whole_words(L->head_in);
+  const lsdem_nodelist_entry *h = L->node_in, *next;
+  for (int e = 0; e < L->nnode_in; e++, h = next) {
     const int short_entry = h->cell == LSDEM_NODELIST_SHORT;
+    next = h + (short_entry ? 1 : whole_words); /* lsdem_nodelist_after */
+    if ((int)h->node >= dt->A->nnodes) continue;
     if (skipping && nodelist_skips(L, h)) {
-      if (L->out)
-        memcpy(nodelist_next(L, !short_entry), h,
-               8 * (size_t)lsdem_nodelist_entry_words(L->head_in, h));
+      if (L->out) memcpy(nodelist_next(L, !short_entry), h, 8 * (size_t)(next - h));
       continue;
     }
     const int i = batch->n++;

@@ -136,7 +136,7 @@ typedef struct {
                         to touch B (at least the skin), rounded down */
   float slack_unit;  /* the unit of its entries' slack: the build's skin / 31, rounded down
                         (0: none, B has no gradient bound or the list came from state
-                        records; its entries' slack is then 0) */
+                        records; its entries' slack is then ignored) */
   int32_t stride;    /* node stride it was built with */
   int32_t count;     /* node entries */
   int32_t words;     /* the entries' size in 8-byte words */

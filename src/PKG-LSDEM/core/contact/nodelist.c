@@ -27,20 +27,20 @@ static double list_reach(const lsdem_sdf *s, double skin)
  * built at M0, t0: |M - M0| ra + |t - t0|, the rotation part exact for rotations as
  * |M - M0|_F / sqrt(2). The head keeps M0 and t0 rounded to float (M0f, t0f, each entry
  * within 2^-24 of its own size): |M - M0|_F <= |M - M0f|_F + 2^-24 |M0|_F (= sqrt 3) and
- * |t - t0| <= |t - t0f| + 2^-24 |t0|, covered by FLOAT_POSE_ALLOWANCE (ra + |t0f|), twice
+ * |t - t0| <= |t - t0f| + 2^-24 |t0|, covered by FLOAT_POSE_ALLOWANCE (ra + |t0f|_1), twice
  * those terms. */
 #define FLOAT_POSE_ALLOWANCE 1.2e-7
 
 static double list_motion(const lsdem_nodelist_head *h, const double M[9], const double t[3],
                           double ra)
 {
-  double dm = 0.0, dt = 0.0, t0 = 0.0;
+  double dm = 0.0, dt = 0.0, t0 = 0.0; /* t0: |t0f|_1 >= |t0f| */
   for (int i = 0; i < 9; i++) dm += (M[i] - h->M[i]) * (M[i] - h->M[i]);
   for (int i = 0; i < 3; i++) {
     dt += (t[i] - h->t[i]) * (t[i] - h->t[i]);
-    t0 += (double)h->t[i] * h->t[i];
+    t0 += fabs((double)h->t[i]);
   }
-  return (sqrt(0.5 * dm) + 1e-12) * ra + sqrt(dt) + FLOAT_POSE_ALLOWANCE * (ra + sqrt(t0));
+  return (sqrt(0.5 * dm) + 1e-12) * ra + sqrt(dt) + FLOAT_POSE_ALLOWANCE * (ra + t0);
 }
 
 /* Skin of a list built now against B, for the base skin s: a list that lasted fewer than
@@ -134,20 +134,28 @@ void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
  * scene, where most listed nodes touch: bench/README.md). */
 #define SLACK_MIN_FRACTION 0.5
 
-/* A list built (every entry whole): entries with slack become short (their nodes are not
- * looked up till their slack is used up), moved down behind the ones before; a list that
- * keeps no slack clears its entries' slack. */
+/* A list built (every entry whole) that keeps slack: entries with slack become short
+ * (their nodes are not looked up till their slack is used up), moved down behind the ones
+ * before. */
 static void settle_entries(lsdem_nodelist *out)
 {
   lsdem_nodelist_head *h = out->head;
   const int stride = lsdem_nodelist_whole_words(h);
+  h->words = h->count * stride;
+  if (h->slack_unit == 0.0f) return;
   lsdem_nodelist_entry *src = out->entry, *dst = out->entry;
   for (int k = 0; k < h->count; k++, src += stride) {
-    if (h->slack_unit == 0.0f) src->slack = 0;
-    if (src->slack) src->cell = LSDEM_NODELIST_SHORT;
-    const int words = lsdem_nodelist_entry_words(h, src);
-    if (dst != src) memmove(dst, src, 8 * (size_t)words);
-    dst += words;
+    if (src->slack) { /* short: its word alone */
+      src->cell = LSDEM_NODELIST_SHORT;
+      memmove(dst, src, sizeof *src);
+      dst += 1;
+    } else {
+      if (stride == LSDEM_NODELIST_MAX_WORDS) /* constant sizes: copied inline */
+        memmove(dst, src, 8 * LSDEM_NODELIST_MAX_WORDS);
+      else
+        memmove(dst, src, 8 * (1 + LSDEM_NODELIST_X_WORDS));
+      dst += stride;
+    }
   }
   h->words = (int32_t)(dst - out->entry);
 }

@@ -6,7 +6,6 @@
 
 #include "lsdem_contact.h"
 
-#include <math.h>
 #include <string.h>
 
 /* The list state of one detection call. */
@@ -41,8 +40,14 @@ void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
 /* x >= 0 rounded to a float no larger: a head's radius or slack unit the list may trust. */
 static inline float nodelist_float_below(double x)
 {
-  const float f = (float)x;
-  return (double)f > x ? nextafterf(f, 0.0f) : f;
+  float f = (float)x;
+  if ((double)f > x) { /* the next float down: f > 0, one less in its bits */
+    uint32_t u;
+    memcpy(&u, &f, sizeof u);
+    u--;
+    memcpy(&f, &u, sizeof f);
+  }
+  return f;
 }
 
 /* The per-node steps are inline: they run for every looked-up node. */
