@@ -288,7 +288,7 @@ t_parts = sum(os.path.getmtime(f) - float(t0) for f, t0 in parts if os.path.exis
 tail = log[log.rfind("Loop time of"):]
 split = {m.group(1): float(m.group(2)) for m in
          re.finditer(r"^(Pair|Bond|Neigh|Comm|Output|Modify|Other)\s*\|[^|]*\|\s*(\S+)", tail, re.M)}
-# workload and contact state: thermo rows of the shearing run, columns c_work[1..10]
+# workload and contact state: thermo rows of the shearing run, columns c_work[1..9]
 rows = []
 blocks = log.split("\nStep ")
 head, body = blocks[-1].split("\n", 1)
@@ -303,7 +303,7 @@ for line in body.splitlines():
         rows.append([float(x) for x in w])
     except ValueError:
         pass
-iw = [cols.index("c_work[%d]" % (k + 1)) if "c_work[%d]" % (k + 1) in cols else None for k in range(10)]
+iw = [cols.index("c_work[%d]" % (k + 1)) if "c_work[%d]" % (k + 1) in cols else None for k in range(9)]
 work = [sum(r[i] for r in rows) / len(rows) if rows and i is not None else float("nan") for i in iw]
 mem = re.findall(r"Per MPI rank memory allocation \(min/avg/max\) = \S+ \| (\S+) \| \S+ Mbytes", log)
 lmp_mb = float(mem[-1]) * np if mem else float("nan")
@@ -325,9 +325,9 @@ print("workload per step: %.0f pairs within bounding spheres, %.0f contacting pa
       % (work[0], work[1], work[2], work[3], work[2] / grains))
 print("contact state (pair_style's history store): %.2f KB per grain in use, %.2f KB reserved "
       "(both pools as allocated); held per grain: %.1f pair states (80-byte list heads), %.1f "
-      "node-list entries (8 bytes, %.1f of them whole: 64), %.1f shear entries (64 bytes)"
+      "node-list entries (64 bytes against grid grains), %.1f shear entries (64 bytes)"
       % (work[8] / grains / 1024, work[4] / grains / 1024, work[5] / grains, work[6] / grains,
-         work[9] / grains, work[7] / grains))
+         work[7] / grains))
 print("memory: LAMMPS's own %.0f MB (%d ranks x per-rank average at the start of shearing) = "
       "%.2f KB per grain; resident anonymous %.0f MB, of which %.0f MB LAMMPS and MPI with no "
       "atoms: %.2f KB per grain of state, history, neighbour lists and the membrane; "

@@ -194,10 +194,6 @@ int FixLsdemHistory::keep_pair(Pool &p, tagint ptag, const lsdem_pair_state &st)
   s.list_valid = st.list.valid;
   s.nentry = st.list.valid ? st.list.head->count : 0;
   s.nlistword = st.list.valid ? st.list.head->words : 0;
-  const int added = s.nlistword - s.nentry;  // the words the whole entries add to theirs
-  s.nwhole = s.list_valid && st.list.head->cells
-                 ? added / (LSDEM_NODELIST_X_WORDS + LSDEM_NODELIST_SAMPLE_WORDS)
-                 : added / LSDEM_NODELIST_X_WORDS;  // constant divisors
   s.nshear = st.nshear;
   p.nword += (st.list.valid ? HEAD_WORDS + s.nlistword : 0) + SHEAR_WORDS * st.nshear;
   return (st.list.valid ? 2 + s.nentry : 0) + st.nshear;
@@ -312,15 +308,6 @@ void FixLsdemHistory::set_arrays(int i)
   nslice[i] = 0;
 }
 
-/* ---------------------------------------------------------------------- */
-
-AtomVecLsdem *FixLsdemHistory::lsdem_avec()
-{
-  auto avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
-  if (!avec) error->one(FLERR, "Fix LSDEM_HISTORY requires atom_style lsdem");
-  return avec;
-}
-
 /* ----------------------------------------------------------------------
    count, then per record: partner, id/aux, stamp, a[3], b[3] (each pair's records
    together, lsdem_pair_state_encode)
@@ -328,7 +315,6 @@ AtomVecLsdem *FixLsdemHistory::lsdem_avec()
 
 int FixLsdemHistory::pack_state(int i, double *buf)
 {
-  const double *nodes = lsdem_avec()->shape_of(i)->nodes;
   int m = 0;
   buf[m++] = ubuf(count_records(i)).d;
   const Pool &p = pool[cur][lane_of[i]];
@@ -337,7 +323,7 @@ int FixLsdemHistory::pack_state(int i, double *buf)
     lsdem_pair_state st;
     slice_state(p, s, st);
     records.resize(std::max(records.size(), (size_t) lsdem_pair_state_records(&st)));
-    const int n = lsdem_pair_state_encode(&st, nodes, records.data());
+    const int n = lsdem_pair_state_encode(&st, records.data());
     for (int r = 0; r < n; r++) {
       const lsdem_state_record &rec = records[r];
       buf[m++] = ubuf(s.partner).d;
@@ -359,7 +345,9 @@ int FixLsdemHistory::pack_state(int i, double *buf)
 int FixLsdemHistory::unpack_state(int i, const double *buf)
 {
   const int n = (int) ubuf(buf[0]).i;
-  const int nnodes = lsdem_avec()->shape_of(i)->nnodes;
+  auto avec = dynamic_cast<AtomVecLsdem *>(atom->style_match("lsdem"));
+  if (!avec) error->one(FLERR, "Fix LSDEM_HISTORY requires atom_style lsdem");
+  const int nnodes = avec->shape_of(i)->nnodes;
   Pool &p = pool[cur][0];  // exchange and restart are serial: the first lane
   lane_of[i] = 0;
   sfirst[i] = p.ns;
@@ -448,17 +436,16 @@ int FixLsdemHistory::maxsize_restart()
 
 /* ---------------------------------------------------------------------- */
 
-void FixLsdemHistory::held(double &pairs, double &entries, double &whole, double &shears,
+void FixLsdemHistory::held(double &pairs, double &entries, double &shears,
                            double &bytes_used) const
 {
-  pairs = entries = whole = shears = 0.0;
+  pairs = entries = shears = 0.0;
   double words = 0.0;
   for (const Pool &p : pool[cur])
     for (int k = 0; k < p.ns; k++) {
       const Slice &s = p.slice[k];
       pairs += 1.0;
-      entries += s.nentry;
-      whole += s.nwhole;
+      entries += s.list_valid ? s.nentry : 0;
       shears += s.nshear;
       words += (s.list_valid ? HEAD_WORDS + s.nlistword : 0) + SHEAR_WORDS * s.nshear;
     }

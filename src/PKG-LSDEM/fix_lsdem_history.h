@@ -11,7 +11,7 @@
 
    Storage: all grains' states sit in a pool of 8-byte words, pair after pair in the
    order the styles visit the grains, each pair's state in one run: its list head, its
-   list entries (a short one a word; a whole one four, eight with its cell's samples:
+   list entries (four words each, eight with the cells' samples against a grid:
    lsdem_contact.h), its shear entries (eight words each), so that a step reads one stream
    and writes one. A step reads the current pool and writes the next one, so the kernel
    writes its output where it will be read next step (no copy). A pool is split into
@@ -73,11 +73,9 @@ class FixLsdemHistory : public Fix {
   int size_restart(int) override;
   int maxsize_restart() override;
   double memory_usage() override;
-  // what the current pool holds: pair states, node-list entries (and the whole ones among
-  // them, carrying their nodes and cells), shear entries, and the bytes they take;
-  // memory_usage(): all the store reserves
-  void held(double &pairs, double &entries, double &whole, double &shears,
-            double &bytes_used) const;
+  // what the current pool holds: pair states, node-list entries, shear entries, and the
+  // bytes they take; memory_usage(): all the store reserves
+  void held(double &pairs, double &entries, double &shears, double &bytes_used) const;
 
  private:
   typedef uint64_t Word;
@@ -85,7 +83,7 @@ class FixLsdemHistory : public Fix {
   static constexpr int SHEAR_WORDS = sizeof(lsdem_shear_hist) / sizeof(Word);
   struct Slice {   // one pair's state in a pool: its run of words from `first`
     tagint partner;
-    int first, list_valid, nentry, nwhole, nlistword, nshear;  // nwhole: held()'s count
+    int first, list_valid, nentry, nlistword, nshear;
   };
   struct Pool {    // one lane: the states of its atoms, one after the other
     std::vector<Slice> slice;
@@ -109,7 +107,6 @@ class FixLsdemHistory : public Fix {
   lsdem_pair_state pair_room(Pool &p, int list_words, int shear_cap);
   static int keep_pair(Pool &p, tagint partner, const lsdem_pair_state &st);
   static void slice_state(const Pool &p, const Slice &s, lsdem_pair_state &st);
-  class AtomVecLsdem *lsdem_avec();
   void note_records(int n);
   int count_records(int i) const;
   int pack_state(int i, double *buf);

@@ -55,9 +55,9 @@ PairLsdem::PairLsdem(LAMMPS *lmp) :
   comm_reverse = 1;
   // workload of the last force call, for compute pair: pairs tested, contacts,
   // nodes looked up, penetrating nodes; the contact state it left: bytes of the history
-  // store (reserved), pair states, node-list entries, shear entries, bytes the states take,
-  // whole node-list entries (node and cell kept) (compute pair sums over ranks)
-  nextra = 10;
+  // store (reserved), pair states, node-list entries, shear entries, bytes the states take
+  // (compute pair sums over ranks)
+  nextra = 9;
   pvector = new double[nextra];
   for (int k = 0; k < nextra; k++) pvector[k] = 0.0;
 }
@@ -571,7 +571,7 @@ void PairLsdem::tally_workload(double touching)
   for (int k = 0; k < nextra; k++) pvector[k] = 0.0;
   if (fix_history) {
     pvector[4] = fix_history->memory_usage();
-    fix_history->held(pvector[5], pvector[6], pvector[9], pvector[7], pvector[8]);
+    fix_history->held(pvector[5], pvector[6], pvector[7], pvector[8]);
   }
   if (sphere_shear) {  // a sphere master's pair state is its one spring
     const double springs = sphere_shear->springs_held();

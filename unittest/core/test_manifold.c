@@ -284,15 +284,13 @@ static void test_roles(void)
 
 static void test_state_records(void)
 {
-  /* three whole entries (node and samples; the second without a kept cell), then a short
-   * one with slack (one word) that the records carry whole, without its slack */
-  enum { W = LSDEM_NODELIST_MAX_WORDS, WORDS = 3 * W + 1 };
-  lsdem_nodelist_entry words[WORDS], back_words[4 * W], *entries = words;
+  /* three entries with their nodes and samples (the second without a kept cell), in 8
+   * words each */
+  enum { W = LSDEM_NODELIST_MAX_WORDS, WORDS = 3 * W };
+  lsdem_nodelist_entry words[WORDS], back_words[WORDS], *entries = words;
   lsdem_nodelist_head head, back_head;
   lsdem_shear_hist shear[2], back_shear[8];
   lsdem_pair_state st, back;
-  double nodes[3 * 40];
-  for (int i = 0; i < 3 * 40; i++) nodes[i] = 0.25 * i - 7.0;
   memset(&st, 0, sizeof st);
   memset(&head, 0, sizeof head);
   memset(words, 0, sizeof words);
@@ -303,23 +301,20 @@ static void test_state_records(void)
   st.list.head->built = 123456789012LL;
   st.list.head->radius = 0.0625f;
   st.list.head->stride = 2;
-  st.list.head->count = 4;
+  st.list.head->count = 3;
   st.list.head->words = WORDS;
   st.list.head->cells = 1;
   st.list.entry = entries;
+  CHECK(lsdem_nodelist_entry_words(&head) == W && lsdem_nodelist_at(&head, entries, 2) ==
+                                                      &entries[2 * W],
+        "entry size");
   for (int k = 0; k < 3; k++) {
-    lsdem_nodelist_entry *e = &entries[k * W];
+    lsdem_nodelist_entry *e = lsdem_nodelist_at(&head, entries, k);
     e->node = 10 * k + 1;
     e->cell = k == 1 ? -1 : 1000 + k;
     for (int i = 0; i < 3; i++) lsdem_nodelist_x(e)[i] = k + 0.25 * i;
     for (int j = 0; j < 8; j++) lsdem_nodelist_samples(e)[j] = (float)(0.5 * j - k);
   }
-  entries[3 * W].node = 33;
-  entries[3 * W].slack = 5;
-  entries[3 * W].cell = LSDEM_NODELIST_SHORT;
-  CHECK(lsdem_nodelist_after(&head, &entries[3 * W]) == &entries[WORDS] &&
-            lsdem_nodelist_after(&head, entries) == &entries[W],
-        "entry sizes");
   memset(shear, 0, sizeof shear);
   for (int k = 0; k < 2; k++) {
     shear[k].node = 4 + 7 * k;
@@ -332,29 +327,20 @@ static void test_state_records(void)
   st.shear = shear;
   st.nshear = 2;
   lsdem_state_record rec[8];
-  const int n = lsdem_pair_state_encode(&st, nodes, rec);
-  CHECK(n == lsdem_pair_state_records(&st) && n == 8, "%d records", n);
-  CHECK(rec[0].id == -2 && rec[1].id == -1 && rec[2].id == -(1 << 29) + 1 && rec[6].id == 4,
-        "record ids %d %d %d %d", rec[0].id, rec[1].id, rec[2].id, rec[6].id);
-  CHECK(rec[3].b[1] == 1.25 && rec[5].b[2] == nodes[3 * 33 + 2] && rec[5].aux == -1,
-        "node records: the nodes' coordinates (from the shape for one with slack), no cell "
-        "without samples");
+  const int n = lsdem_pair_state_encode(&st, rec);
+  CHECK(n == lsdem_pair_state_records(&st) && n == 7, "%d records", n);
+  CHECK(rec[0].id == -2 && rec[1].id == -1 && rec[2].id == -(1 << 29) + 1 && rec[5].id == 4,
+        "record ids %d %d %d %d", rec[0].id, rec[1].id, rec[2].id, rec[5].id);
+  CHECK(rec[3].b[1] == 1.25 && rec[3].aux == -1 && rec[4].aux == 1002,
+        "node records: the nodes' coordinates and cells");
   memset(&back, 0, sizeof back);
   memset(back_words, 0xff, sizeof back_words);
   back.list.head = &back_head;
   back.list.entry = back_words;
   back.shear = back_shear;
   lsdem_pair_state_decode(rec, n, 40, &back);
-  /* the same list but that the slack entry comes back without slack, with (empty) samples */
-  lsdem_nodelist_entry last[W];
-  memset(last, 0, sizeof last);
-  last[0].node = 33;
-  last[0].cell = -1;
-  memcpy(lsdem_nodelist_x(last), &nodes[3 * 33], 3 * sizeof(double));
-  head.words = 4 * W;
   CHECK(back.list.valid && memcmp(&back_head, &head, sizeof head) == 0 &&
-            memcmp(back_words, words, 3 * W * sizeof words[0]) == 0 &&
-            memcmp(&back_words[3 * W], last, sizeof last) == 0,
+            memcmp(back_words, words, sizeof words) == 0,
         "the list came back changed");
   CHECK(back.nshear == 2 && memcmp(back_shear, shear, sizeof shear) == 0,
         "the shear came back changed (%d)", back.nshear);
@@ -363,7 +349,7 @@ static void test_state_records(void)
   CHECK(!back.list.valid && back.nshear == 2, "list for another shape taken");
   /* shear only (no list) */
   st.list.valid = 0;
-  const int ns = lsdem_pair_state_encode(&st, NULL, rec);
+  const int ns = lsdem_pair_state_encode(&st, rec);
   lsdem_pair_state_decode(rec, ns, 40, &back);
   CHECK(ns == 2 && !back.list.valid && back.nshear == 2, "shear only: %d records", ns);
 }

@@ -45,7 +45,7 @@ fix 1 all nve/lsdem
 fix floor all wall/lsdem plane 0 0 0 0 0 1 3000 2500 0.4 cn 2.0%s
 compute er all erotate/lsdem
 compute w all pair lsdem
-thermo_style custom step ke c_er f_floor[1] f_floor[2] f_floor[3] c_w[2] c_w[3] c_w[4] c_w[5] c_w[6] c_w[7] c_w[8] c_w[9] c_w[10]
+thermo_style custom step ke c_er f_floor[1] f_floor[2] f_floor[3] c_w[2] c_w[3] c_w[4] c_w[5] c_w[6] c_w[7] c_w[8] c_w[9]
 %s
 thermo 100
 timestep 5e-4
@@ -89,21 +89,16 @@ if off and auto and skin and par:
         check(row["c_w[6]"] >= row["c_w[2]"], "%s: %d pair states for %d contacts"
               % (name, row["c_w[6]"], row["c_w[2]"]))
         # bytes in use (value 9) against the kernel's own count: 64 a penetrating node's
-        # shear entry, 8 a node-list entry and 56 more for a whole one (value 10: looked up since
-        # its list was built, node and cell kept; every partner here is a grid grain), 80 a list head (at
-        # most one a pair state)
-        check(0 <= row["c_w[10]"] <= row["c_w[7]"], "%s: %d of %d node-list entries whole"
-              % (name, row["c_w[10]"], row["c_w[7]"]))
-        heads = (row["c_w[9]"] - 64 * row["c_w[4]"] - 8 * row["c_w[7]"] - 56 * row["c_w[10]"]) / 80
+        # shear entry, 64 a node-list entry (its node and cell: every partner here is a
+        # grid grain), 80 a list head (at most one a pair state)
+        heads = (row["c_w[9]"] - 64 * row["c_w[4]"] - 64 * row["c_w[7]"]) / 80
         if name == "off":
             check(row["c_w[9]"] == 64 * row["c_w[4]"], "off: %d bytes in use for %d shear entries"
                   % (row["c_w[9]"], row["c_w[4]"]))
         else:
             check(heads == int(heads) and row["c_w[2]"] <= heads <= row["c_w[6]"],
-                  "%s: %d bytes in use: %g list heads beside %d entries (%d whole), "
-                  "%d pair states, %d contacts" % (name, row["c_w[9]"], heads, row["c_w[7]"],
-                                                   row["c_w[10]"], row["c_w[6]"], row["c_w[2]"]))
-            check(row["c_w[10]"] > 0, "%s: no whole node-list entry" % name)
+                  "%s: %d bytes in use: %g list heads beside %d entries, %d pair states, %d contacts"
+                  % (name, row["c_w[9]"], heads, row["c_w[7]"], row["c_w[6]"], row["c_w[2]"]))
         check(row["c_w[9]"] <= row["c_w[5]"] <= 8 * row["c_w[9]"] + 2e6,
               "%s: store %d bytes reserved for %d in use" % (name, row["c_w[5]"], row["c_w[9]"]))
 

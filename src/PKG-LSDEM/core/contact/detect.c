@@ -123,14 +123,14 @@ static void detect_batch(detection *restrict dt, node_batch *b)
     if (L->use && b->slotted) {
       if (b->slot[i] >= 0)
         nodelist_write(L, &L->out->entry[b->slot[i]], b->node[i], &b->x[3 * i], &b->cell[i],
-                       b->slack[i], 1);
+                       b->slack[i]);
     } else if (L->use) {
       if (L->out)
-        nodelist_write(L, nodelist_next(L, 1), b->node[i], &b->x[3 * i], &b->cell[i], 0, 1);
+        nodelist_write(L, nodelist_next(L), b->node[i], &b->x[3 * i], &b->cell[i], 0);
     } else if (L->building && b->phi[i] < L->reach) {
       const unsigned slack = nodelist_slack(L, b->phi[i]);
       L->nslack += slack > 0;
-      nodelist_write(L, nodelist_next(L, 1), b->node[i], &b->x[3 * i], &b->cell[i], slack, 1);
+      nodelist_write(L, nodelist_next(L), b->node[i], &b->x[3 * i], &b->cell[i], slack);
     } else if (L->building) {
       nodelist_margin(L, b->phi[i] / L->lip); /* phi >= L s: L > 0 here */
     }
@@ -348,34 +348,30 @@ static void detect_screened_nodes(detection *restrict dt, const double cb[3], do
 }
 
 /* Only the nodes of the pair's list, in increasing order, looked up in batches: their
- * coordinates and cells from the list's entries (a short entry: its node from A); with
- * `skipping` (the list keeps slack), a node whose slack is not used up is not looked up,
- * its entry carried over as it is, and a looked-up one's entry is kept whole (its
- * coordinates and cell at hand for its next lookups). An entry that names no node of A (a
- * damaged restart file) is dropped. Inlined twice, so that a list without slack (most in
- * a dense packing: their nodes touch) pays no test per entry. */
+ * coordinates and cells from the list's entries; with `skipping` (the list keeps slack), a
+ * node whose slack is not used up is not looked up, its entry carried over. An entry that
+ * names no node of A (a damaged restart file) is dropped. Inlined twice, so that a list
+ * without slack (most in a dense packing: their nodes touch) pays no test per entry. */
 static inline __attribute__((always_inline)) void
 listed_nodes(detection *restrict dt, node_batch *batch, const int skipping)
 {
   const node_list *L = &dt->list;
-  const int whole_words = lsdem_nodelist_whole_words(L->head_in);
-  const lsdem_nodelist_entry *h = L->node_in, *next;
-  for (int e = 0; e < L->nnode_in; e++, h = next) {
-    const int short_entry = h->cell == LSDEM_NODELIST_SHORT;
-    next = h + (short_entry ? 1 : whole_words); /* lsdem_nodelist_after */
+  const int words = lsdem_nodelist_entry_words(L->head_in);
+  const lsdem_nodelist_entry *h = L->node_in;
+  for (int e = 0; e < L->nnode_in; e++, h += words) {
     if ((int)h->node >= dt->A->nnodes) continue;
+    lsdem_nodelist_entry *out = skipping && L->out ? nodelist_next(L) : NULL;
     if (skipping && nodelist_skips(L, h)) {
-      if (L->out) memcpy(nodelist_next(L, !short_entry), h, 8 * (size_t)(next - h));
+      if (out) memcpy(out, h, 8 * (size_t)words);
       continue;
     }
     const int i = batch->n++;
     if (skipping) { /* its place in the output list, taken now: entries stay in order */
-      batch->slot[i] = L->out ? (int)(nodelist_next(L, 1) - L->out->entry) : -1;
+      batch->slot[i] = out ? (int)(out - L->out->entry) : -1;
       batch->slack[i] = (unsigned char)h->slack;
     }
     batch->node[i] = h->node;
-    memcpy(&batch->x[3 * i], short_entry ? &dt->A->nodes[3 * h->node] : lsdem_nodelist_x(h),
-           3 * sizeof(double));
+    memcpy(&batch->x[3 * i], lsdem_nodelist_x(h), 3 * sizeof(double));
     if (L->cached) nodelist_entry_cell(L, h, &batch->cell[i]);
     if (batch->n == NODE_BATCH) detect_batch(dt, batch);
   }

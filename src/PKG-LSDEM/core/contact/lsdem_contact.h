@@ -109,11 +109,10 @@ lsdem_manifold lsdem_manifold_over(lsdem_contact_point *storage, int cap);
  * up. A node is left out when it is farther than rB + s from B's centre or, when B's
  * level set has a known gradient bound L (exact distances: 1; grids:
  * lsdem_grid_outer_lipschitz), when phi_B >= L s there: it cannot reach phi < 0 before
- * the list is rebuilt. Against a grid a listed node looked up at every step also keeps
- * the 8 samples of the cell it was last looked up in, and a lookup in the same cell reads
- * those instead of the grid (lsdem_grid_eval_many_cached). The contacts found are the
- * same, bit for bit, as without a list; only lookups of nodes that cannot touch, and grid
- * reads, are saved.
+ * the list is rebuilt. Against a grid each entry also keeps the 8 samples of the cell its
+ * node was last looked up in, and a lookup in the same cell reads those instead of the
+ * grid (lsdem_grid_eval_many_cached). The contacts found are the same, bit for bit, as
+ * without a list; only lookups of nodes that cannot touch, and grid reads, are saved.
  * The skin adapts per pair: a list outlived within 8 steps is followed by one wide
  * enough to last 8 steps at the pair's rate of motion (at most 4 s, and within B's
  * gradient bound), and a wide list (validity radius above 2 s) is rebuilt after 32
@@ -123,11 +122,12 @@ lsdem_manifold lsdem_manifold_over(lsdem_contact_point *storage, int cap);
  * are skipped till then (settled pairs: most of them), its entry carried over.
  *
  * Layout (8-byte words, one stream per pair): the head, then the entries in increasing
- * node order. An entry whose node has not been looked up since the list was built (it has
- * slack) is short, one word (node, slack); an entry whose node is looked up is whole: its
- * word is followed by the node's coordinates in A's frame (3 words: a step that uses the
- * list reads none of A's node memory for it) and, when the list keeps cells (B a grid), its
- * cell's samples (4 words): lsdem_nodelist_entry_words. */
+ * node order, each a word (node, slack, cell index) followed by the node's coordinates in
+ * A's frame (3 words: a step that uses the list reads none of A's node memory) and, when
+ * the list keeps cells (B a grid), the cell's samples (4 words): lsdem_nodelist_entry_words.
+ * (Entries with slack kept as their first word alone until looked up were measured: a
+ * quarter less history on a 750-node specimen, 7 % slower on the reference scene, where
+ * their first lookup reads the grid: bench/README.md.) */
 typedef struct {
   float M[9], t[3];  /* pose of B relative to A when built: node x -> M x + t (B's frame),
                         rounded to float (the motion bound allows for the rounding) */
@@ -136,11 +136,11 @@ typedef struct {
                         to touch B (at least the skin), rounded down */
   float slack_unit;  /* the unit of its entries' slack: the build's skin / 31, rounded down
                         (0: none, B has no gradient bound or the list came from state
-                        records; its entries' slack is then ignored) */
+                        records: its entries' slack is ignored) */
   int32_t stride;    /* node stride it was built with */
   int32_t count;     /* node entries */
   int32_t words;     /* the entries' size in 8-byte words */
-  int32_t cells;     /* 1: whole entries carry their cells' samples (B a grid) */
+  int32_t cells;     /* 1: the entries carry their cells' samples (B a grid) */
 } lsdem_nodelist_head;
 
 typedef struct {
@@ -149,46 +149,38 @@ typedef struct {
   uint32_t slack : 5; /* the node cannot touch B before the motion bound since the build
                          reaches slack x head.slack_unit (its lookup is skipped till then;
                          0: looked up) */
-  int32_t cell;  /* a whole entry in a list of cells: grid index of the kept cell's sample
-                    000, -1: none kept; LSDEM_NODELIST_SHORT: a short entry */
-} lsdem_nodelist_entry; /* one word; a whole entry's node and samples follow it */
+  int32_t cell;  /* in a list of cells: grid index of the kept cell's sample 000, -1: none
+                    kept */
+} lsdem_nodelist_entry; /* one word; the node and the samples follow it */
 
 #define LSDEM_NODELIST_NO_NODE ((1u << 27) - 1u)
-#define LSDEM_NODELIST_SHORT INT32_MIN  /* the cell of a short entry */
 #define LSDEM_NODELIST_X_WORDS 3      /* double x[3], the node in A's frame */
 #define LSDEM_NODELIST_SAMPLE_WORDS 4 /* float v[8], lsdem_grid_cell order */
 #define LSDEM_NODELIST_MAX_WORDS (1 + LSDEM_NODELIST_X_WORDS + LSDEM_NODELIST_SAMPLE_WORDS)
 
-/* Words a whole entry of a list with head h takes. */
-static inline int lsdem_nodelist_whole_words(const lsdem_nodelist_head *h)
+/* Words each entry of a list with head h takes. */
+static inline int lsdem_nodelist_entry_words(const lsdem_nodelist_head *h)
 {
   return 1 + LSDEM_NODELIST_X_WORDS + (h->cells ? LSDEM_NODELIST_SAMPLE_WORDS : 0);
 }
 
-/* Words entry e of a list with head h takes. */
-static inline int lsdem_nodelist_entry_words(const lsdem_nodelist_head *h,
-                                             const lsdem_nodelist_entry *e)
-{
-  return e->cell == LSDEM_NODELIST_SHORT ? 1 : lsdem_nodelist_whole_words(h);
-}
-
-/* The node a whole entry carries (A's frame). */
+/* The node an entry carries (A's frame). */
 static inline double *lsdem_nodelist_x(const lsdem_nodelist_entry *e)
 {
   return (double *)(e + 1);
 }
 
-/* The cell samples a whole entry carries in a list of cells. */
+/* The cell samples an entry carries in a list of cells. */
 static inline float *lsdem_nodelist_samples(const lsdem_nodelist_entry *e)
 {
   return (float *)(e + 1 + LSDEM_NODELIST_X_WORDS);
 }
 
-/* The entry after e in its list. */
-static inline const lsdem_nodelist_entry *lsdem_nodelist_after(const lsdem_nodelist_head *h,
-                                                               const lsdem_nodelist_entry *e)
+/* Entry k of the list with head h whose entries begin at e. */
+static inline lsdem_nodelist_entry *lsdem_nodelist_at(const lsdem_nodelist_head *h,
+                                                      lsdem_nodelist_entry *e, int k)
 {
-  return e + lsdem_nodelist_entry_words(h, e);
+  return e + (size_t)k * lsdem_nodelist_entry_words(h);
 }
 
 /* A node list as detection reads and writes it, in the caller's storage: valid = 0 means
@@ -200,8 +192,8 @@ typedef struct {
   lsdem_nodelist_entry *entry;
 } lsdem_nodelist;
 
-/* Words of entries a node list of master A can need: one whole entry per node of A (0
- * for a sphere). */
+/* Words of entries a node list of master A can need: one entry with its samples per node
+ * of A (0 for a sphere). */
 static inline int lsdem_nodelist_capacity(const lsdem_shape *A)
 {
   return A->sdf.kind == LSDEM_SDF_SPHERE ? 0 : A->nnodes * LSDEM_NODELIST_MAX_WORDS;
@@ -393,13 +385,11 @@ typedef struct {
 
 /* Records st needs: 2 + list count (if valid) + nshear. */
 int lsdem_pair_state_records(const lsdem_pair_state *st);
-/* st as records (lsdem_pair_state_records of them), nodes: its master's node coordinates
- * (A's frame, the x of the node records; NULL: zeros); returns the count. */
-int lsdem_pair_state_encode(const lsdem_pair_state *st, const double *nodes,
-                            lsdem_state_record *rec);
+/* st as records (lsdem_pair_state_records of them); returns the count. */
+int lsdem_pair_state_encode(const lsdem_pair_state *st, lsdem_state_record *rec);
 /* Records back into st, whose list.head points to room for a head, list.entry to room for
- * n whole entries (n LSDEM_NODELIST_MAX_WORDS words) and shear to n shear entries. A
- * decoded list has no slack; its entries carry the records' nodes and cells. A list is
+ * n entries with samples (n LSDEM_NODELIST_MAX_WORDS words) and shear to n shear entries.
+ * A decoded list has no slack; its entries carry the records' nodes and cells. A list is
  * taken when a head is followed by its node entries (ids of nodes < nnodes); records
  * of an older layout (shear entries ahead of the list's nodes, masks with ids -3..) leave
  * no list, their shear entries kept. Shear entries are kept in increasing node order

@@ -134,32 +134,6 @@ void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
  * scene, where most listed nodes touch: bench/README.md). */
 #define SLACK_MIN_FRACTION 0.5
 
-/* A list built (every entry whole) that keeps slack: entries with slack become short
- * (their nodes are not looked up till their slack is used up), moved down behind the ones
- * before. */
-static void settle_entries(lsdem_nodelist *out)
-{
-  lsdem_nodelist_head *h = out->head;
-  const int stride = lsdem_nodelist_whole_words(h);
-  h->words = h->count * stride;
-  if (h->slack_unit == 0.0f) return;
-  lsdem_nodelist_entry *src = out->entry, *dst = out->entry;
-  for (int k = 0; k < h->count; k++, src += stride) {
-    if (src->slack) { /* short: its word alone */
-      src->cell = LSDEM_NODELIST_SHORT;
-      memmove(dst, src, sizeof *src);
-      dst += 1;
-    } else {
-      if (stride == LSDEM_NODELIST_MAX_WORDS) /* constant sizes: copied inline */
-        memmove(dst, src, 8 * LSDEM_NODELIST_MAX_WORDS);
-      else
-        memmove(dst, src, 8 * (1 + LSDEM_NODELIST_X_WORDS));
-      dst += stride;
-    }
-  }
-  h->words = (int32_t)(dst - out->entry);
-}
-
 void nodelist_finish(node_list *L)
 {
   if (!L->building) return;
@@ -167,5 +141,4 @@ void nodelist_finish(node_list *L)
   const double radius = L->margin < L->cap ? L->margin : L->cap;
   h->radius = nodelist_float_below(radius > L->skin ? radius : L->skin);
   if (L->nslack < SLACK_MIN_FRACTION * h->count) h->slack_unit = 0.0f;
-  settle_entries(L->out);
 }

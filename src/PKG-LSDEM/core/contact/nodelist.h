@@ -74,31 +74,28 @@ static inline int nodelist_skips(const node_list *L, const lsdem_nodelist_entry 
   return e->slack && L->moved < e->slack * L->slack_unit;
 }
 
-/* Entry e of the output list (nodelist_next's place): node k with its slack, and when
- * whole, its coordinates x (A's frame) and cell c. */
+/* Entry e of the output list: node k at x (A's frame) with its cell c and slack. */
 static inline void nodelist_write(const node_list *L, lsdem_nodelist_entry *e, int k,
-                                  const double x[3], const lsdem_grid_cell *c, unsigned slack,
-                                  int whole)
+                                  const double x[3], const lsdem_grid_cell *c, unsigned slack)
 {
-  const int samples = whole && L->out->head->cells;
+  const int samples = L->out->head->cells;
   const int kept = samples && c && c->index >= 0 && c->index <= INT32_MAX;
   e->node = (uint32_t)k;
   e->slack = slack;
-  e->cell = !whole ? LSDEM_NODELIST_SHORT : kept ? (int32_t)c->index : -1;
-  if (whole) memcpy(lsdem_nodelist_x(e), x, 3 * sizeof(double));
+  e->cell = kept ? (int32_t)c->index : -1;
+  memcpy(lsdem_nodelist_x(e), x, 3 * sizeof(double));
   if (kept)
     memcpy(lsdem_nodelist_samples(e), c->v, sizeof c->v);
   else if (samples)
     memset(lsdem_nodelist_samples(e), 0, sizeof c->v);
 }
 
-/* The place of the output list's next entry, whole or short (entries stay in increasing
- * node order). */
-static inline lsdem_nodelist_entry *nodelist_next(const node_list *L, int whole)
+/* The place of the output list's next entry (entries stay in increasing node order). */
+static inline lsdem_nodelist_entry *nodelist_next(const node_list *L)
 {
   lsdem_nodelist_head *h = L->out->head;
   lsdem_nodelist_entry *e = L->out->entry + h->words;
-  h->words += whole ? lsdem_nodelist_whole_words(h) : 1;
+  h->words += lsdem_nodelist_entry_words(h);
   h->count++;
   return e;
 }
@@ -116,7 +113,7 @@ static inline void nodelist_entry_cell(const node_list *L, const lsdem_nodelist_
 static inline void nodelist_cell_of(node_list *L, int k, lsdem_grid_cell *c)
 {
   while (L->cursor_left > 0 && (int)L->cursor->node < k) {
-    L->cursor = lsdem_nodelist_after(L->head_in, L->cursor);
+    L->cursor += lsdem_nodelist_entry_words(L->head_in);
     L->cursor_left--;
   }
   if (L->cursor_left > 0 && (int)L->cursor->node == k)

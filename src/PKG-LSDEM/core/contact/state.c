@@ -62,27 +62,24 @@ static void decode_head(const lsdem_state_record *rec, lsdem_nodelist_head *h)
   }
 }
 
-int lsdem_pair_state_encode(const lsdem_pair_state *st, const double *nodes,
-                            lsdem_state_record *rec)
+int lsdem_pair_state_encode(const lsdem_pair_state *st, lsdem_state_record *rec)
 {
   int n = 0;
   if (st->list.valid) {
     const lsdem_nodelist_head *h = st->list.head;
     encode_head(h, rec);
     n = 2;
+    const int words = lsdem_nodelist_entry_words(h);
     const lsdem_nodelist_entry *e = st->list.entry;
-    for (int k = 0; k < h->count; k++, n++, e = lsdem_nodelist_after(h, e)) {
+    for (int k = 0; k < h->count; k++, n++, e += words) {
       lsdem_state_record *r = &rec[n];
       r->id = LIST_NODE + e->node;
-      const int whole = e->cell != LSDEM_NODELIST_SHORT, samples = whole && h->cells;
-      r->aux = samples ? e->cell : -1;
-      if (samples) /* stamp and a, 32 bytes */
+      r->aux = h->cells ? e->cell : -1;
+      if (h->cells) /* stamp and a, 32 bytes */
         memcpy(&r->stamp, lsdem_nodelist_samples(e), 8 * LSDEM_NODELIST_SAMPLE_WORDS);
       else
         memset(&r->stamp, 0, 8 * LSDEM_NODELIST_SAMPLE_WORDS);
-      const int known = nodes && e->node != LSDEM_NODELIST_NO_NODE;
-      for (int d = 0; d < 3; d++)
-        r->b[d] = whole ? lsdem_nodelist_x(e)[d] : known ? nodes[3 * e->node + d] : 0.0;
+      memcpy(r->b, lsdem_nodelist_x(e), sizeof r->b);
     }
   }
   for (int k = 0; k < st->nshear; k++, n++) {
@@ -110,9 +107,10 @@ static int decode_list(const lsdem_state_record *rec, int n, int nnodes, lsdem_n
   decode_head(rec, list->head);
   list->head->cells = 0; /* the records' kept cells are carried (none: no samples) */
   for (int k = 0; k < count; k++) list->head->cells |= rec[2 + k].aux >= 0;
-  list->head->words = 0;
+  const int words = lsdem_nodelist_entry_words(list->head);
+  list->head->words = count * words;
   lsdem_nodelist_entry *e = list->entry;
-  for (int k = 0; k < count; k++) { /* whole entries without slack */
+  for (int k = 0; k < count; k++, e += words) {
     const lsdem_state_record *r = &rec[2 + k];
     e->node = is_node_record(r->id, nnodes) ? (uint32_t)(r->id - LIST_NODE)
                                             : LSDEM_NODELIST_NO_NODE; /* dropped */
@@ -121,9 +119,6 @@ static int decode_list(const lsdem_state_record *rec, int n, int nnodes, lsdem_n
     memcpy(lsdem_nodelist_x(e), r->b, 3 * sizeof(double));
     if (list->head->cells)
       memcpy(lsdem_nodelist_samples(e), &r->stamp, 8 * LSDEM_NODELIST_SAMPLE_WORDS);
-    const int words = lsdem_nodelist_entry_words(list->head, e);
-    list->head->words += words;
-    e += words;
   }
   list->valid = 1;
   return 2 + count;
