@@ -325,7 +325,7 @@ print("workload per step: %.0f pairs within bounding spheres, %.0f contacting pa
       % (work[0], work[1], work[2], work[3], work[2] / grains))
 print("contact state (pair_style's history store): %.2f KB per grain in use, %.2f KB reserved "
       "(both pools as allocated); held per grain: %.1f pair states (80-byte list heads), %.1f "
-      "node-list entries (64 bytes against grid grains), %.1f shear entries (64 bytes)"
+      "node-list entries (64 bytes against grid grains), %.1f shear entries (56 bytes)"
       % (work[8] / grains / 1024, work[4] / grains / 1024, work[5] / grains, work[6] / grains,
          work[7] / grains))
 print("memory: LAMMPS's own %.0f MB (%d ranks x per-rank average at the start of shearing) = "

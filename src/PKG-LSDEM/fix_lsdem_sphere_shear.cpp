@@ -184,8 +184,7 @@ int FixLsdemSphereShear::unpack_held(int i, const double *buf)
     lsdem_shear_hist &h = slots(i)[k];
     partner[(bigint) i * cap + k] = (tagint) ubuf(buf[m++]).i;
     h.node = 0;
-    h.pad_ = 0;
-    h.stamp = (int64_t) ubuf(buf[m++]).i;
+    h.stamp = lsdem_shear_stamp((int64_t) ubuf(buf[m++]).i);
     for (int d = 0; d < 3; d++) h.shear[d] = buf[m++];
     for (int d = 0; d < 3; d++) h.normal[d] = buf[m++];
   }

@@ -304,7 +304,7 @@ static void test_history_slide_and_cap(void)
                         &r);
     cur = 1 - cur;
     n = n_out;
-    CHECK(n == 1 && h[cur][0].node == 0 && h[cur][0].stamp == step, "history at step %d",
+    CHECK(n == 1 && h[cur][0].node == 0 && h[cur][0].stamp == lsdem_shear_stamp(step), "history at step %d",
           step);
     const double expect = fmin(step * inc, cap);
     if (step * inc > cap) capped_steps++;

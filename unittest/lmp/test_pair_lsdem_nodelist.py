@@ -10,8 +10,9 @@ the pair style looks up far fewer nodes (compute pair lsdem, third value). On 2 
 with lists, migrating grains carry their lists: the serial answer to 1e-8 (only the order
 of ghost force sums differs). The contact state compute pair reports (values 5-8): every
 penetrating node of a step keeps one shear entry (mu > 0 everywhere), node-list entries only
-with lists, each stored pair at most one list, and the store's bytes cover what it holds at
-64 bytes an entry (two slots a list head); the bytes it reports in use (value 9) are that
+with lists, each stored pair at most one list, and the store's bytes cover what it holds
+(56 bytes a shear entry, 64 a node-list entry against a grid, 80 a list head); the bytes it
+reports in use (value 9) are that
 count of the entries it holds, the shear entries being one a penetrating node. A bad
 keyword value is named."""
 import os
@@ -88,12 +89,12 @@ if off and auto and skin and par:
               % (name, row["c_w[7]"]))
         check(row["c_w[6]"] >= row["c_w[2]"], "%s: %d pair states for %d contacts"
               % (name, row["c_w[6]"], row["c_w[2]"]))
-        # bytes in use (value 9) against the kernel's own count: 64 a penetrating node's
+        # bytes in use (value 9) against the kernel's own count: 56 a penetrating node's
         # shear entry, 64 a node-list entry (its node and cell: every partner here is a
         # grid grain), 80 a list head (at most one a pair state)
-        heads = (row["c_w[9]"] - 64 * row["c_w[4]"] - 64 * row["c_w[7]"]) / 80
+        heads = (row["c_w[9]"] - 56 * row["c_w[4]"] - 64 * row["c_w[7]"]) / 80
         if name == "off":
-            check(row["c_w[9]"] == 64 * row["c_w[4]"], "off: %d bytes in use for %d shear entries"
+            check(row["c_w[9]"] == 56 * row["c_w[4]"], "off: %d bytes in use for %d shear entries"
                   % (row["c_w[9]"], row["c_w[4]"]))
         else:
             check(heads == int(heads) and row["c_w[2]"] <= heads <= row["c_w[6]"],

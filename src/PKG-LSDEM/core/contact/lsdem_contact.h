@@ -263,14 +263,20 @@ double lsdem_flat_contact_nodes(const lsdem_shape *s, lsdem_normal_law normal);
 
 /* Per-node tangential history (report eq 2.8): the shear force carried by node `node`
  * of the master against one partner, the contact normal it was last rotated to, and the
- * step it was last advanced. World frame. */
+ * step it was last advanced (its low 32 bits: lsdem_shear_stamp; an entry is kept from
+ * one step to the next only). World frame. 56 bytes. */
 typedef struct {
   int32_t node;
-  int32_t pad_;
-  int64_t stamp;
+  uint32_t stamp;
   double shear[3];
   double normal[3];
 } lsdem_shear_hist;
+
+/* The stamp of step `step`. */
+static inline uint32_t lsdem_shear_stamp(int64_t step)
+{
+  return (uint32_t)(uint64_t)step;
+}
 
 /* What the penalty law made of one manifold. Forces and torques are world-frame and act
  * on the master A; the slave B receives -force and torque_b. */
@@ -376,7 +382,7 @@ double lsdem_contact_roles(const lsdem_shape *a, double scale_a, int64_t id_a,
  *              id -1 {aux count, stamp = the bits of radius, a M[6..8], b t};
  *   list node  one per entry: id -(1 << 29) + node {aux cell (-1: no samples), stamp and
  *              a = the samples v[0..7] as 32 bits each, b x (the node in A's frame)};
- *   shear      one per entry: id = node >= 0 {stamp, a shear, b normal}. */
+ *   shear      one per entry: id = node >= 0 {aux 0, stamp, a shear, b normal}. */
 typedef struct {
   int32_t id, aux;
   int64_t stamp;

@@ -134,7 +134,7 @@ static inline double law_normal(const lsdem_penalty_law *restrict law, double st
 static inline int law_carried_shear(const lsdem_shear_hist *h, int64_t step, const double n[3],
                                     double s[3])
 {
-  const int fresh = !(h && h->stamp == step);
+  const int fresh = !(h && h->stamp == lsdem_shear_stamp(step));
   if (!h) {
     s[0] = s[1] = s[2] = 0.0;
   } else if (!fresh) {
@@ -176,8 +176,7 @@ static inline void law_history(lsdem_shear_hist *out, int node, int64_t step, co
                                const double n[3])
 {
   out->node = node;
-  out->pad_ = 0;
-  out->stamp = step;
+  out->stamp = lsdem_shear_stamp(step);
   for (int i = 0; i < 3; i++) {
     out->shear[i] = s[i];
     out->normal[i] = n[i];

@@ -86,7 +86,7 @@ int lsdem_pair_state_encode(const lsdem_pair_state *st, lsdem_state_record *rec)
     const lsdem_shear_hist *h = &st->shear[k];
     lsdem_state_record *r = &rec[n];
     r->id = h->node;
-    r->aux = h->pad_;
+    r->aux = 0;
     r->stamp = h->stamp;
     memcpy(r->a, h->shear, sizeof r->a);
     memcpy(r->b, h->normal, sizeof r->b);
@@ -134,8 +134,7 @@ void lsdem_pair_state_decode(const lsdem_state_record *rec, int n, int nnodes,
     if (r->id < 0 || (st->nshear > 0 && r->id <= st->shear[st->nshear - 1].node)) continue;
     lsdem_shear_hist *h = &st->shear[st->nshear++];
     h->node = r->id;
-    h->pad_ = r->aux;
-    h->stamp = r->stamp;
+    h->stamp = lsdem_shear_stamp(r->stamp);
     memcpy(h->shear, r->a, sizeof h->shear);
     memcpy(h->normal, r->b, sizeof h->normal);
   }
