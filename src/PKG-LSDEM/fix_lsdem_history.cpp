@@ -113,7 +113,8 @@ void FixLsdemHistory::slice_state(const Pool &p, const Slice &s, lsdem_pair_stat
   st.list.valid = s.list_valid;
   st.list.head = reinterpret_cast<lsdem_nodelist_head *>(run);
   st.list.entry = reinterpret_cast<lsdem_nodelist_entry *>(run + HEAD_WORDS);
-  st.shear = reinterpret_cast<lsdem_shear_hist *>(run + (s.list_valid ? HEAD_WORDS + s.nlistword : 0));
+  st.shear = reinterpret_cast<lsdem_shear_hist *>(
+      run + (s.list_valid ? HEAD_WORDS + s.nlistword : 0));
   st.nshear = s.nshear;
 }
 
@@ -173,7 +174,8 @@ lsdem_pair_state FixLsdemHistory::pair_room(Pool &p, int list_words, int shear_c
   st.list.valid = 0;
   st.list.head = reinterpret_cast<lsdem_nodelist_head *>(run);
   st.list.entry = reinterpret_cast<lsdem_nodelist_entry *>(run + HEAD_WORDS);
-  st.shear = reinterpret_cast<lsdem_shear_hist *>(run + HEAD_WORDS + list_words);  // until place_shear
+  // the shear entries until place_shear knows the list
+  st.shear = reinterpret_cast<lsdem_shear_hist *>(run + HEAD_WORDS + list_words);
   st.nshear = 0;
   return st;
 }

@@ -304,8 +304,8 @@ static void test_history_slide_and_cap(void)
                         &r);
     cur = 1 - cur;
     n = n_out;
-    CHECK(n == 1 && h[cur][0].node == 0 && h[cur][0].stamp == lsdem_shear_stamp(step), "history at step %d",
-          step);
+    CHECK(n == 1 && h[cur][0].node == 0 && h[cur][0].stamp == lsdem_shear_stamp(step),
+          "history at step %d", step);
     const double expect = fmin(step * inc, cap);
     if (step * inc > cap) capped_steps++;
     CHECK_REL(r.force[1], -expect, 1e-9);
