@@ -372,7 +372,7 @@ listed_nodes(detection *restrict dt, node_batch *batch, const int skipping)
     }
     batch->node[i] = h->node;
     memcpy(&batch->x[3 * i], lsdem_nodelist_x(h), 3 * sizeof(double));
-    if (L->cached) nodelist_entry_cell(L, h, &batch->cell[i]);
+    if (L->cached) nodelist_entry_cell(h, &batch->cell[i]);
     if (batch->n == NODE_BATCH) detect_batch(dt, batch);
   }
   detect_batch(dt, batch);

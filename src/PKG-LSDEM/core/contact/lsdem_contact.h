@@ -149,8 +149,8 @@ typedef struct {
   uint32_t slack : 5; /* the node cannot touch B before the motion bound since the build
                          reaches slack x head.slack_unit (its lookup is skipped till then;
                          0: looked up) */
-  int32_t cell;  /* in a list of cells: grid index of the kept cell's sample 000, -1: none
-                    kept */
+  int32_t cell;  /* grid index of the kept cell's sample 000, -1: none kept (always, in a
+                    list without cells) */
 } lsdem_nodelist_entry; /* one word; the node and the samples follow it */
 
 #define LSDEM_NODELIST_NO_NODE ((1u << 27) - 1u)

@@ -83,8 +83,8 @@ void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
   L->moved = L->slack_unit = L->slack_per_length = L->inv_lip = 0.0;
   L->nslack = 0;
   L->head_in = NULL;
-  L->node_in = L->cursor = NULL;
-  L->nnode_in = L->cursor_left = 0;
+  L->node_in = NULL;
+  L->nnode_in = L->node_cursor = 0;
   L->out = NULL;
   if (out) out->valid = 0;
   if (L->skin == 0.0) return;
@@ -94,8 +94,8 @@ void nodelist_begin(node_list *L, const lsdem_shape *A, const lsdem_sdf *sdfB,
   if (in && in->valid) {
     L->head_in = in->head;
     if (in->head->count > 0) {
-      L->node_in = L->cursor = in->entry;
-      L->nnode_in = L->cursor_left = in->head->count;
+      L->node_in = in->entry;
+      L->nnode_in = in->head->count;
     }
     const double motion = list_motion(in->head, M, t, A->radius);
     L->use = list_holds(in->head, motion, L->skin, step, stride);

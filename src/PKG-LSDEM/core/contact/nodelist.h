@@ -25,9 +25,7 @@ typedef struct {
   int nslack;              /* a list built: entries with slack */
   const lsdem_nodelist_head *head_in;  /* the input list's head */
   const lsdem_nodelist_entry *node_in; /* and its entries (increasing node) */
-  int nnode_in;
-  const lsdem_nodelist_entry *cursor; /* nodelist_cell_of's place in them */
-  int cursor_left;                    /* entries from the cursor on */
+  int nnode_in, node_cursor;
   lsdem_nodelist *out; /* where this step's list goes, or NULL (also without a skin) */
 } node_list;
 
@@ -100,26 +98,22 @@ static inline lsdem_nodelist_entry *nodelist_next(const node_list *L)
   return e;
 }
 
-/* The cell kept in entry e of the input list. */
-static inline void nodelist_entry_cell(const node_list *L, const lsdem_nodelist_entry *e,
-                                       lsdem_grid_cell *c)
+/* The cell kept in an entry (cell -1: none; an entry without samples keeps none). */
+static inline void nodelist_entry_cell(const lsdem_nodelist_entry *e, lsdem_grid_cell *c)
 {
-  const int kept = L->head_in->cells && e->cell >= 0;
-  c->index = kept ? e->cell : -1;
-  if (kept) memcpy(c->v, lsdem_nodelist_samples(e), sizeof c->v);
+  c->index = e->cell;
+  if (e->cell >= 0) memcpy(c->v, lsdem_nodelist_samples(e), sizeof c->v);
 }
 
 /* The cell the input list kept for node k (nodes asked in increasing order), or none. */
 static inline void nodelist_cell_of(node_list *L, int k, lsdem_grid_cell *c)
 {
-  while (L->cursor_left > 0 && (int)L->cursor->node < k) {
-    L->cursor += lsdem_nodelist_entry_words(L->head_in);
-    L->cursor_left--;
-  }
-  if (L->cursor_left > 0 && (int)L->cursor->node == k)
-    nodelist_entry_cell(L, L->cursor, c);
-  else
-    c->index = -1;
+  c->index = -1;
+  if (L->node_cursor >= L->nnode_in) return;
+  const int words = lsdem_nodelist_entry_words(L->head_in);
+  const lsdem_nodelist_entry *e = L->node_in + (size_t)L->node_cursor * words;
+  for (; L->node_cursor < L->nnode_in && (int)e->node < k; e += words) L->node_cursor++;
+  if (L->node_cursor < L->nnode_in && (int)e->node == k) nodelist_entry_cell(e, c);
 }
 
 /* Finishes the output list (its validity radius when built, its node count). */

@@ -74,7 +74,7 @@ int lsdem_pair_state_encode(const lsdem_pair_state *st, lsdem_state_record *rec)
     for (int k = 0; k < h->count; k++, n++, e += words) {
       lsdem_state_record *r = &rec[n];
       r->id = LIST_NODE + e->node;
-      r->aux = h->cells ? e->cell : -1;
+      r->aux = e->cell; /* -1 in a list without cells */
       if (h->cells) /* stamp and a, 32 bytes */
         memcpy(&r->stamp, lsdem_nodelist_samples(e), 8 * LSDEM_NODELIST_SAMPLE_WORDS);
       else
