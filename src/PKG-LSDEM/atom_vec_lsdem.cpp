@@ -131,6 +131,8 @@ AtomVecLsdem::AtomVecLsdem(LAMMPS *lmp) : AtomVec(lmp)
   radius = rmass = nullptr;
   omega = nullptr;
   lib = nullptr;
+  shape0 = nullptr;
+  nshape_open = 0;
   maxradius = 0.0;
   min_grain_radius = HUGE_VAL;
   rmass_one = 0.0;
@@ -288,11 +290,15 @@ void AtomVecLsdem::open_library(const char *path)
   err.msg[0] = '\0';
   lsdem_library_close(lib);
   lib = nullptr;
+  shape0 = nullptr;
+  nshape_open = 0;
   libpath = path;
   if (lsdem_library_open(path, &lib, &err) != LSDEM_OK)
     error->all(FLERR, "atom_style lsdem: cannot open shape library {}: {}", path, err.msg);
   if (lsdem_library_count(lib) <= 0)
     error->all(FLERR, "atom_style lsdem: shape library {} holds no shapes", path);
+  shape0 = lsdem_library_shape(lib, 0);
+  nshape_open = lsdem_library_count(lib);
   // open reads no section (grids, nodes): rank 0 checks their checksums and values once
   std::string damaged;
   if (comm->me == 0 && lsdem_library_verify(lib, -1, &err) != LSDEM_OK)

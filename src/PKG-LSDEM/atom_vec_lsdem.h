@@ -60,7 +60,13 @@ class AtomVecLsdem : public AtomVec {
   double **dwprev;   // previous corrector increment Delta omega^{n-1}, body frame
 
   const lsdem_library *library() const { return lib; }
-  const lsdem_shape *shape_of(int i) const { return lsdem_library_shape(lib, shape[i]); }
+  // lsdem_library_shape inline (every style asks it for every grain every step): the
+  // library's shapes are one array, of nshape_open shapes from shape0; nullptr out of range
+  const lsdem_shape *shape_of(int i) const
+  {
+    const int s = shape[i];
+    return s >= 0 && s < nshape_open ? shape0 + s : nullptr;
+  }
   int nshapes() const { return lsdem_library_count(lib); }
   double max_shape_radius() const { return maxradius; }
 
@@ -93,6 +99,8 @@ class AtomVecLsdem : public AtomVec {
  private:
   Storage *store;
   lsdem_library *lib;
+  const lsdem_shape *shape0;  // the library's first shape, and their number (shape_of)
+  int nshape_open;
   std::string libpath;
   double maxradius;
   double min_grain_radius;  // smallest bounding radius of a non-sphere shape (HUGE_VAL: none)

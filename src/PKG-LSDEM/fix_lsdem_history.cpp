@@ -36,7 +36,7 @@ static void unpack_ids(int64_t v, lsdem_state_record &r)
 
 FixLsdemHistory::FixLsdemHistory(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), cur(0), nmax_atom(0), lane_of(nullptr), sfirst(nullptr),
-  nslice(nullptr), visited(nullptr), generation(0), maxrecords(0)
+  nslice(nullptr), visited(nullptr), generation(0), maybe_held(false), maxrecords(0)
 {
   if (narg != 3) error->all(FLERR, "Illegal fix LSDEM_HISTORY command (internal fix)");
 
@@ -146,7 +146,10 @@ void FixLsdemHistory::begin_step(int nlanes)
     next[l].word = nullptr;
     next[l].maxword = 0;
   }
-  for (Pool &p : next) p.ns = p.nword = p.maxrecords = 0;
+  for (Pool &p : next) {
+    p.ns = p.nword = p.maxrecords = 0;
+    p.kept = false;
+  }
   generation = generation < INT_MAX ? generation + 1 : 1;  // wraps, never to 0 (new atoms)
 }
 
@@ -239,20 +242,27 @@ void FixLsdemHistory::end_atom(int lane, int i)
   sfirst[i] = next.atom_slice;
   nslice[i] = ns;
   visited[i] = generation;
+  if (ns > 0) next.kept = true;
   next.maxrecords = std::max(next.maxrecords, next.atom_records);
 }
 
 /* ----------------------------------------------------------------------
    the written pool becomes the current one; owned atoms the step did not visit have
-   nothing in it
+   nothing in it (none to clear when no atom held a state: a store that spheres' slots
+   leave empty costs nothing per atom)
 ------------------------------------------------------------------------- */
 
 void FixLsdemHistory::end_step()
 {
   const int nlocal = atom->nlocal;
-  for (int i = 0; i < nlocal; i++)
-    if (visited[i] != generation) nslice[i] = 0;
-  for (const Pool &p : pool[1 - cur]) note_records(p.maxrecords);
+  if (maybe_held)
+    for (int i = 0; i < nlocal; i++)
+      if (visited[i] != generation) nslice[i] = 0;
+  maybe_held = false;
+  for (const Pool &p : pool[1 - cur]) {
+    note_records(p.maxrecords);
+    maybe_held = maybe_held || p.kept;
+  }
   cur = 1 - cur;
 }
 
@@ -377,6 +387,7 @@ int FixLsdemHistory::unpack_state(int i, const double *buf)
     place_shear(kept);
     memmove(kept.shear, st.shear, sizeof(lsdem_shear_hist) * st.nshear);
     if (keep_pair(p, ptag, kept) > 0) nslice[i]++;
+    maybe_held = maybe_held || nslice[i] > 0;
     k += len;
     m += RECORD_DOUBLES * len;
   }

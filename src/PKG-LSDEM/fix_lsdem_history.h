@@ -92,6 +92,7 @@ class FixLsdemHistory : public Fix {
     int atom_slice;          // where the atom being visited starts (while written)
     int atom_records;        // and the records its committed pairs take
     int maxrecords;          // the largest state written to this lane this step
+    bool kept;               // some atom's state was written to this lane this step
     LsdemLanePadding apart;  // written by its thread at every pair: off the next lane's lines
   };
   std::vector<Pool> pool[2];  // the lanes of the two pools
@@ -99,6 +100,7 @@ class FixLsdemHistory : public Fix {
   int nmax_atom;              // length of the per-atom arrays
   int *lane_of, *sfirst, *nslice;  // per atom: its slices in pool[cur][lane_of]
   int *visited, generation;   // atoms visited since begin_step() carry its generation
+  bool maybe_held;            // false: no atom holds a state in pool[cur]
   int maxrecords;             // largest state seen, in records (sizes exchange buffers)
   std::vector<lsdem_state_record> records;  // scratch for packing and unpacking
 

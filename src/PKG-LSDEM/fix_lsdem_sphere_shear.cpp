@@ -8,6 +8,7 @@
 
 #include "atom.h"
 #include "error.h"
+#include "fix_lsdem_history.h"
 #include "memory.h"
 
 #include <algorithm>
@@ -118,6 +119,29 @@ void FixLsdemSphereShear::assign(int i, const tagint *partners, int n)
       }
   }
   nslot[i] = n;
+}
+
+/* ----------------------------------------------------------------------
+   slots of sphere i without a spring take the one history holds for their partner (the
+   kernel's one entry, node 0), where a restart file of an earlier version left it
+------------------------------------------------------------------------- */
+
+void FixLsdemSphereShear::take_over(int i, const FixLsdemHistory *history)
+{
+  if (!history || !history->holds(i)) return;
+  lsdem_shear_hist *s = slots(i);
+  for (int k = 0; k < nslot[i]; k++) {
+    lsdem_pair_state in;
+    if (!held(s[k]) && history->find(i, partner[(bigint) i * cap + k], in) && in.nshear > 0 &&
+        in.shear[0].node == 0)
+      s[k] = in.shear[0];
+  }
+}
+
+void FixLsdemSphereShear::drop_all()
+{
+  for (int i = 0; i < atom->nlocal; i++)
+    for (int k = 0; k < nslot[i]; k++) drop(slot[(bigint) i * cap + k]);
 }
 
 /* ---------------------------------------------------------------------- */

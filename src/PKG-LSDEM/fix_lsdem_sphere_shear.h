@@ -1,15 +1,19 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   LSDEM package for LAMMPS: the shear springs of analytic spheres' pairs (internal fix).
+   LSDEM package for LAMMPS: the shear springs of analytic spheres' contacts (internal fix).
 
-   Created by pair_style lsdem when a type pair has friction, never by the user. A sphere
-   master keeps one shear entry per partner (lsdem_contact_sphere: node 0), so its pairs
-   need none of fix LSDEM_HISTORY's node lists, pools or per-step turnover: each owned
-   sphere holds one slot per partner it is master of in the neighbour list, in the order
-   of the pair style's master pairs, updated in place by the kernel every step.
+   Created by pair_style lsdem and by each fix wall/lsdem when their law has friction,
+   never by the user. A sphere keeps one shear entry per partner (lsdem_contact_sphere:
+   node 0), so its contacts need none of fix LSDEM_HISTORY's node lists, pools or per-step
+   turnover: each owned sphere holds one slot per partner (the pair style: each partner it
+   is master of in the neighbour list, in the order of its master pairs; a wall: the wall),
+   updated in place by the kernel every step.
      assign(i, partners, n)  at each neighbour-list build: the slots of sphere i become one
                              per partner (in that order), each keeping its spring when i
                              held one for that partner; held() says whether it does
-     slots(i)                the slots, slot k the k-th master pair's: node 0 = a spring
+     take_over(i, history)   slots of i without a spring take the one fix LSDEM_HISTORY
+                             holds for their partner (a restart file of an earlier version)
+     drop_all()              every spring dropped (a wall that fix impulse/lsdem takes over)
+     slots(i)                the slots, slot k the k-th partner's: node 0 = a spring
                              held (the pair touched on the last step), node -1 = none
    The held springs travel with the sphere (exchange) and are saved in restart files.
 ------------------------------------------------------------------------- */
@@ -37,6 +41,8 @@ class FixLsdemSphereShear : public Fix {
   int setmask() override { return 0; }
 
   void assign(int i, const tagint *partners, int n);
+  void take_over(int i, const class FixLsdemHistory *history);
+  void drop_all();  // every owned sphere's springs
   lsdem_shear_hist *slots(int i) { return slot + (bigint) i * cap; }
   static bool held(const lsdem_shear_hist &h) { return h.node == 0; }
   static void drop(lsdem_shear_hist &h) { h.node = -1; }

@@ -18,6 +18,7 @@
 #include "domain.h"
 #include "error.h"
 #include "fix_lsdem_history.h"
+#include "fix_lsdem_sphere_shear.h"
 #include "force.h"
 #include "lsdem_vtk_series.h"
 #include "input.h"
@@ -48,7 +49,8 @@ static constexpr tagint WALL_POINTS_PARTNER = -2;
 /* ---------------------------------------------------------------------- */
 
 FixWallLsdem::FixWallLsdem(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), nlanes(1), ncand(0), fix_history(nullptr), avec(nullptr),
+  Fix(lmp, narg, arg), nlanes(1), ncand(0), fix_history(nullptr), sphere_shear(nullptr),
+  avec(nullptr),
   band_file(nullptr), twoway(false), point_cap(0), map_every(0), map_restart_steps(0),
   map_booked(-1), fall_valid(0), moving(false), passive(false), contact_step(-1), cand(nullptr), maxcand(0),
   cand_nlocal(0), cand_built(-1), cand_margin(0.0), cand_step(-1), drift_step(-1),
@@ -277,10 +279,12 @@ FixWallLsdem::~FixWallLsdem()
   lsdem_pseudonormals_free(&exact_pn);
   lsdem_band_points_free(&points);
   lsdem_band_close(band_file);
-  if (fix_history && modify) {
-    int ifix = modify->find_fix(history_id);
-    if (ifix >= 0) modify->delete_fix(ifix);
-  }
+  if (modify)
+    for (const std::string &fid : {history_id, sphere_shear_id}) {
+      if (fid.empty()) continue;
+      int ifix = modify->find_fix(fid);
+      if (ifix >= 0) modify->delete_fix(ifix);
+    }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -293,8 +297,11 @@ int FixWallLsdem::setmask()
 }
 
 /* ----------------------------------------------------------------------
-   the history store is created here (not in init) so that a restart file's
-   per-atom history reaches it when the fix is re-specified after read_restart
+   the history stores are created here (not in init) so that a restart file's
+   per-atom history reaches them when the fix is re-specified after read_restart:
+   the general one (node lists, level-set grains' springs) and, with friction, the
+   analytic spheres' springs, one slot per sphere (fix_lsdem_sphere_shear.h; not with
+   twoway, whose points keep their springs in the general store)
 ------------------------------------------------------------------------- */
 
 void FixWallLsdem::post_constructor()
@@ -303,6 +310,10 @@ void FixWallLsdem::post_constructor()
   history_id = std::string("LSDEM_WALL_HISTORY_") + id;
   fix_history = dynamic_cast<FixLsdemHistory *>(
       modify->add_fix(fmt::format("{} all LSDEM_HISTORY", history_id)));
+  if (opts.law.mu <= 0.0 || twoway) return;
+  sphere_shear_id = std::string("LSDEM_WALL_SPHERE_SHEAR_") + id;
+  sphere_shear = dynamic_cast<FixLsdemSphereShear *>(
+      modify->add_fix(fmt::format("{} all LSDEM_SPHERE_SHEAR", sphere_shear_id)));
 }
 
 /* ---------------------------------------------------------------------- */
@@ -603,6 +614,7 @@ void FixWallLsdem::find_candidates(const lsdem_pose &w)
       cand[ncand++] = i;
   cand_built = keep ? neighbor->lastcall : -1;
   cand_nlocal = nlocal;
+  if (sphere_shear) assign_sphere_slots();
   for (int d = 0; d < 3; d++) cand_wall_x[d] = w.x[d];
   // the wall guard's record (guard_gap): only when fix impulse/lsdem runs the wall and the
   // margin leaves a gap to use
@@ -616,6 +628,42 @@ void FixWallLsdem::find_candidates(const lsdem_pose &w)
   cand_x.resize(3 * (size_t) nlocal);
   for (int i = 0; i < nlocal; i++)
     for (int d = 0; d < 3; d++) cand_x[3 * i + d] = atom->x[i][d];
+}
+
+/* ----------------------------------------------------------------------
+   fix impulse/lsdem takes the wall over (on) or gives it back: the candidates are
+   searched again, and the springs the wall's own contacts kept end
+------------------------------------------------------------------------- */
+
+void FixWallLsdem::set_passive(bool on)
+{
+  passive = on;
+  cand_built = -1;
+  if (on && sphere_shear) sphere_shear->drop_all();
+}
+
+/* ----------------------------------------------------------------------
+   each owned sphere's slot for its spring on this wall, at each search for candidates:
+   kept by the candidates (and taken over from the general store where a restart file of
+   an earlier version left it there), emptied for the others, which cannot reach the wall
+   before the next search; all emptied while fix impulse/lsdem runs the wall
+------------------------------------------------------------------------- */
+
+bool FixWallLsdem::keeps_sphere_slot(int i) const
+{
+  return sphere_shear && avec->shape_of(i)->sdf.kind == LSDEM_SDF_SPHERE;
+}
+
+void FixWallLsdem::assign_sphere_slots()
+{
+  int c = 0;  // cand is in atom order
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (avec->shape_of(i)->sdf.kind != LSDEM_SDF_SPHERE) continue;
+    sphere_shear->assign(i, &WALL_PARTNER, 1);
+    while (c < ncand && cand[c] < i) c++;
+    if (!passive && c < ncand && cand[c] == i) sphere_shear->take_over(i, fix_history);
+    else FixLsdemSphereShear::drop(sphere_shear->slots(i)[0]);
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -845,18 +893,47 @@ void FixWallLsdem::visit_candidates(Lane &lane, int from, int to, const lsdem_po
 {
   const int *mask = atom->mask;
   const bigint step = update->ntimestep;
-  each_candidate(lane, from, to, w, nullptr, [&](int i, bool test) {
-    if (test) {
-      const bool began = map_every > 0 && !lane.path.touched(i, WALL_PARTNER);  // maps only
-      lsdem_pose p;
-      LsdemContactPath::pose_of(atom, avec, i, p);
-      lsdem_contact_result res;
-      lane.path.test(i, WALL_PARTNER, avec->shape_of(i), p, &bnd.shape, w, prm, step, res);
-      if (res.npen > 0) apply_contact(lane, i, res, w, began, true);
-      if (twoway) test_points(lane, i, p, w);
+  for (int c = from; c < to; c++) {
+    const int i = cand[c];
+    const bool test = reaches(i, w);
+    if (keeps_sphere_slot(i)) {
+      lsdem_shear_hist &slot = sphere_shear->slots(i)[0];
+      if (!test && !FixLsdemSphereShear::held(slot)) continue;  // far, nothing kept
+      if (test) test_sphere(lane, i, w, slot);
+      else FixLsdemSphereShear::drop(slot);
+    } else {
+      if (!test && !lane.path.keeps_state(i)) continue;  // far, nothing kept
+      lane.path.begin_atom();
+      if (test) test_grain(lane, i, w, step);
+      lane.path.end_atom(i);
     }
     if ((mask[i] & groupbit) && lane.crossing.empty()) lane.crossing = crossing(i, w);
-  });
+  }
+}
+
+/* grain i, which the wall reaches, through the shared contact path (pair states in the
+   general store) */
+void FixWallLsdem::test_grain(Lane &lane, int i, const lsdem_pose &w, bigint step)
+{
+  const bool began = map_every > 0 && !lane.path.touched(i, WALL_PARTNER);  // maps only
+  lsdem_pose p;
+  LsdemContactPath::pose_of(atom, avec, i, p);
+  lsdem_contact_result res;
+  lane.path.test(i, WALL_PARTNER, avec->shape_of(i), p, &bnd.shape, w, prm, step, res);
+  if (res.npen > 0) apply_contact(lane, i, res, w, began, true);
+  if (twoway) test_points(lane, i, p, w);
+}
+
+/* sphere i, which the wall reaches, with its spring in its slot, in place */
+void FixWallLsdem::test_sphere(Lane &lane, int i, const lsdem_pose &w, lsdem_shear_hist &slot)
+{
+  const bool began = map_every > 0 && !FixLsdemSphereShear::held(slot);  // maps only
+  lsdem_pose p;
+  LsdemContactPath::pose_of(atom, avec, i, p);
+  lsdem_contact_result res;
+  LsdemContactPath::test_sphere_in_place(avec->shape_of(i)->sdf.a[0], p, &bnd.shape, w, prm,
+                                         update->ntimestep, slot, res);
+  if (res.npen > 0) apply_contact(lane, i, res, w, began, true);
 }
 
 /* ----------------------------------------------------------------------

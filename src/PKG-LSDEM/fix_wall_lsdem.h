@@ -70,7 +70,7 @@ class FixWallLsdem : public Fix {
   // passive = no penalty forces of its own
   const lsdem_boundary &boundary() const { return bnd; }
   double wall_friction() const { return opts.law.mu; }
-  void set_passive(bool on) { passive = on; }
+  void set_passive(bool on);
   // the wall's pose s after now (lsdem_boundary_pose_at; s = -dt: at the step's start)
   lsdem_pose pose_at(double s) const;
   // the wall acts on grain i at pose w: i is of the wall's group and its bounding sphere
@@ -148,6 +148,12 @@ class FixWallLsdem : public Fix {
   lsdem_quantum force_q, torque_q;  // order-free sums of the wall's force and torque
   std::string history_id;
   class FixLsdemHistory *fix_history;  // nullptr when mu == 0 and node lists are off
+  // the analytic spheres' springs, one slot per sphere (nullptr without friction or with
+  // twoway); keeps_sphere_slot(i): sphere i's spring is there, not in fix_history
+  std::string sphere_shear_id;
+  class FixLsdemSphereShear *sphere_shear;
+  bool keeps_sphere_slot(int i) const;
+  void assign_sphere_slots();
   class AtomVecLsdem *avec;
 
   double flocal[3], fall[3];   // force of the grains on the wall: this rank, all ranks
@@ -182,6 +188,8 @@ class FixWallLsdem : public Fix {
   void apply_contact(Lane &, int, const lsdem_contact_result &, const lsdem_pose &w, bool began,
                      bool through_band);
   void test_points(Lane &, int, const lsdem_pose &p, const lsdem_pose &w);
+  void test_grain(Lane &, int, const lsdem_pose &w, bigint step);
+  void test_sphere(Lane &, int, const lsdem_pose &w, lsdem_shear_hist &slot);
   void make_points(const char *path);
   template <class Visit>
   void each_candidate(Lane &, int from, int to, const lsdem_pose &w, const char *take,

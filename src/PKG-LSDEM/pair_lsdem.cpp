@@ -469,14 +469,7 @@ void PairLsdem::assign_sphere_slots(int i)
   partner_tags.resize(master_num[i]);
   for (int k = 0; k < master_num[i]; k++) partner_tags[k] = atom->tag[master_j[master_first[i] + k]];
   sphere_shear->assign(i, partner_tags.data(), master_num[i]);
-  if (!fix_history || !fix_history->holds(i)) return;
-  lsdem_shear_hist *slot = sphere_shear->slots(i);
-  for (int k = 0; k < master_num[i]; k++) {
-    lsdem_pair_state in;
-    if (!FixLsdemSphereShear::held(slot[k]) && fix_history->find(i, partner_tags[k], in) &&
-        in.nshear > 0 && in.shear[0].node == 0)
-      slot[k] = in.shear[0];
-  }
+  sphere_shear->take_over(i, fix_history);
 }
 
 /* ----------------------------------------------------------------------
