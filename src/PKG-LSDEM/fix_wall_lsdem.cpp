@@ -895,7 +895,10 @@ void FixWallLsdem::visit_candidates(Lane &lane, int from, int to, const lsdem_po
   const bigint step = update->ntimestep;
   for (int c = from; c < to; c++) {
     const int i = cand[c];
-    const bool test = reaches(i, w);
+    const bool mine = mask[i] & groupbit;
+    // the centre's distance: reaches() from it, and the cheap rejection of crossing()
+    const double phi = lsdem_boundary_distance(&bnd, &w, atom->x[i], nullptr);
+    const bool test = mine && lsdem_boundary_reaches(&bnd, phi, atom->radius[i]);
     if (keeps_sphere_slot(i)) {
       lsdem_shear_hist &slot = sphere_shear->slots(i)[0];
       if (!test && !FixLsdemSphereShear::held(slot)) continue;  // far, nothing kept
@@ -907,7 +910,12 @@ void FixWallLsdem::visit_candidates(Lane &lane, int from, int to, const lsdem_po
       if (test) test_grain(lane, i, w, step);
       lane.path.end_atom(i);
     }
-    if ((mask[i] & groupbit) && lane.crossing.empty()) lane.crossing = crossing(i, w);
+    if (mine && lane.crossing.empty()) {
+      double v[3];
+      velocity_after_force(i, v);
+      if (!lsdem_boundary_clear_of_crossing(&bnd, &w, atom->x[i], phi, v, update->dt))
+        lane.crossing = crossing(i, w);
+    }
   }
 }
 
@@ -1114,13 +1122,19 @@ void FixWallLsdem::end_force_call()
    it (|v_n| dt <= 0.1 R)
 ------------------------------------------------------------------------- */
 
+void FixWallLsdem::velocity_after_force(int i, double v[3]) const
+{
+  const double kick = update->dt * force->ftm2v / atom->rmass[i];
+  for (int k = 0; k < 3; k++) v[k] = atom->v[i][k] + kick * atom->f[i][k];
+}
+
 std::string FixWallLsdem::crossing(int i, const lsdem_pose &w) const
 {
   // d: the centre's distance in front of the wall's surface; vn: its velocity relative to
   // the wall along the wall's normal there (< 0: towards the wall)
-  const double dt = update->dt, kick = dt * force->ftm2v / atom->rmass[i];
+  const double dt = update->dt;
   double v[3], d, vn;
-  for (int k = 0; k < 3; k++) v[k] = atom->v[i][k] + kick * atom->f[i][k];
+  velocity_after_force(i, v);
   if (!lsdem_boundary_crossing(&bnd, &w, atom->x[i], v, dt, &d, &vn)) return std::string();
   const double R = atom->radius[i], dt_hold = vn < 0.0 ? 0.1 * R / -vn : 0.0;
   return fmt::format(

@@ -205,6 +205,8 @@ class FixWallLsdem : public Fix {
   void check_band_width() const;
 
   bool may_touch(int, const lsdem_pose &w, double margin) const;
+  // grain i's velocity after this step's force, v + dt f / m (fix nve/lsdem's next v)
+  void velocity_after_force(int i, double v[3]) const;
   std::string crossing(int, const lsdem_pose &wall) const;
   std::string tunnelled(int, double depth) const;
   void find_thinnest();

@@ -198,7 +198,12 @@ double lsdem_boundary_distance(const lsdem_boundary *b, const lsdem_pose *w, con
 int lsdem_boundary_may_touch(const lsdem_boundary *b, const lsdem_pose *w, const double c[3],
                              double r)
 {
-  return lsdem_boundary_distance(b, w, c, NULL) < lsdem_sdf_lipschitz(&b->shape.sdf) * r;
+  return lsdem_boundary_reaches(b, lsdem_boundary_distance(b, w, c, NULL), r);
+}
+
+int lsdem_boundary_reaches(const lsdem_boundary *b, double phi, double r)
+{
+  return phi < lsdem_sdf_lipschitz(&b->shape.sdf) * r;
 }
 
 int lsdem_boundary_crossing(const lsdem_boundary *b, const lsdem_pose *w, const double c[3],
@@ -214,6 +219,23 @@ int lsdem_boundary_crossing(const lsdem_boundary *b, const lsdem_pose *w, const 
   if (vn) *vn = un;
   const int beyond_band = b->shape.sdf.kind == LSDEM_SDF_BAND && phi >= b->shape.sdf.band->width;
   return !(phi >= 0.0 && (beyond_band || phi + un * dt >= 0.0));
+}
+
+/* phi is L-Lipschitz: over the step it falls by at most L times the distance the centre
+ * moves relative to the wall, |v - w.v - w.omega x (c - w.x)| dt, itself at most
+ * (|v| + |w.v| + |w.omega| |c - w.x|) dt, whose square is at most 3 times the sum of the
+ * three squares (no square root) */
+int lsdem_boundary_clear_of_crossing(const lsdem_boundary *b, const lsdem_pose *w,
+                                     const double c[3], double phi, const double v[3],
+                                     double dt)
+{
+  const double L = lsdem_sdf_lipschitz(&b->shape.sdf);
+  if (!(L > 0.0) || !(phi > 0.0)) return 0;
+  double rel[3];
+  lsdem_sub3(c, w->x, rel);
+  const double speed2 = 3.0 * (lsdem_dot3(v, v) + lsdem_dot3(w->v, w->v) +
+                               lsdem_dot3(w->omega, w->omega) * lsdem_dot3(rel, rel));
+  return phi * phi > L * L * dt * dt * speed2;
 }
 
 int lsdem_boundary_tunnelled(const lsdem_boundary *b, double depth)

@@ -125,6 +125,8 @@ double lsdem_boundary_distance(const lsdem_boundary *b, const lsdem_pose *w, con
  * cylinders); 1 when it may. */
 int lsdem_boundary_may_touch(const lsdem_boundary *b, const lsdem_pose *w, const double c[3],
                              double r);
+/* The same from the centre's phi(c) (lsdem_boundary_distance) already at hand. */
+int lsdem_boundary_reaches(const lsdem_boundary *b, double phi, double r);
 /* Has a grain crossed the wall at pose w: its centre c is behind the surface (d < 0), or
  * will be after dt when it moves at velocity v against the wall's motion at c,
  * d + vn dt < 0 with vn = n . (v - w.v - w.omega x (c - w.x)) (the relative velocity of
@@ -133,6 +135,13 @@ int lsdem_boundary_may_touch(const lsdem_boundary *b, const lsdem_pose *w, const
  * out when not NULL. */
 int lsdem_boundary_crossing(const lsdem_boundary *b, const lsdem_pose *w, const double c[3],
                             const double v[3], double dt, double *d, double *vn);
+/* Cheap rejection for lsdem_boundary_crossing: 1 when the centre c, at phi = phi(c)
+ * (lsdem_boundary_distance) and moving at v, cannot cross the wall at pose w by dt, as
+ * phi > L dt (|v| + |w.v| + |w.omega| |c - w.x|) keeps phi > 0 over the step (L as in
+ * lsdem_boundary_may_touch); 0 when it may, or when phi is NaN. */
+int lsdem_boundary_clear_of_crossing(const lsdem_boundary *b, const lsdem_pose *w,
+                                     const double c[3], double phi, const double v[3],
+                                     double dt);
 /* Whether a contact whose deepest node is `depth` inside the wall went through it: for a
  * band, the node read the solid-side background (lsdem_band_tunnelled); other kinds
  * never. */
