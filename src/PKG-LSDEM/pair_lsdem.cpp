@@ -520,11 +520,9 @@ void PairLsdem::apply_contacts(Lane &lane, double **f, double **torque) const
     // the ghosts' share LAMMPS sums back: rounded to the quanta, every order gives the
     // same sum (the same on any rank count, lsdem_quantum_for)
     double fk[3], ta[3], tb[3];
-    for (int d = 0; d < 3; d++) {
-      fk[d] = lsdem_quantize(scale * k.res.force[d], force_q);
-      ta[d] = lsdem_quantize(scale * k.res.torque_a[d], torque_q);
-      tb[d] = lsdem_quantize(scale * k.res.torque_b[d], torque_q);
-    }
+    lsdem_quantize3_scaled(scale, k.res.force, force_q, fk);
+    lsdem_quantize3_scaled(scale, k.res.torque_a, torque_q, ta);
+    lsdem_quantize3_scaled(scale, k.res.torque_b, torque_q, tb);
     for (int d = 0; d < 3; d++) {
       f[k.i][d] += fk[d];
       torque[k.i][d] += ta[d];

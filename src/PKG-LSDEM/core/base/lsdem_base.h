@@ -87,16 +87,29 @@ lsdem_quantum lsdem_quantum_for(double scale);
  * x / q and back are exact (powers of two), and adding and removing 1.5 * 2^52 rounds a
  * double below 2^51 to an integer in the default rounding mode (inline: it runs for every
  * contact). Terms beyond 2^51 q (and NaN) pass unchanged: far outside the exact range. */
-static inline double lsdem_quantize(double x, lsdem_quantum qt)
+static inline double lsdem_quantize_on(double x, lsdem_quantum qt) /* qt.q > 0 */
 {
   const double y = x * qt.inv_q, round = 0x1.8p52;
-  if (!(qt.q > 0.0) || !(y < 0x1p51 && y > -0x1p51)) return x;
-  return ((y + round) - round) * qt.q;
+  const double rounded = ((y + round) - round) * qt.q;
+  return fabs(y) < 0x1p51 ? rounded : x; /* a select, not a branch */
 }
-/* The same for the three components of v into out (out may alias v). */
+static inline double lsdem_quantize(double x, lsdem_quantum qt)
+{
+  return qt.q > 0.0 ? lsdem_quantize_on(x, qt) : x;
+}
+/* The same for the three components of s v into out (out may alias v): one test of the
+ * quantum for the three. */
+static inline void lsdem_quantize3_scaled(double s, const double v[3], lsdem_quantum qt,
+                                          double out[3])
+{
+  if (qt.q > 0.0)
+    for (int i = 0; i < 3; i++) out[i] = lsdem_quantize_on(s * v[i], qt);
+  else
+    for (int i = 0; i < 3; i++) out[i] = s * v[i];
+}
 static inline void lsdem_quantize3(const double v[3], lsdem_quantum qt, double out[3])
 {
-  for (int i = 0; i < 3; i++) out[i] = lsdem_quantize(v[i], qt);
+  lsdem_quantize3_scaled(1.0, v, qt, out);
 }
 
 /* Symmetric 3x3 eigen-decomposition (Jacobi). Eigenvalues ascending in w; column k of V
