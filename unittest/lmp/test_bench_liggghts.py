@@ -6,7 +6,8 @@ reference integration of the contact law with 50 times shorter steps; an elastic
 keeps e = 1; the settled bed is at rest, the vertical force on LSDEM's walls equals the
 spheres' weight (computed from the data file, and checked against LAMMPS's mass(all)), and
 the two codes' beds settle to the same centre-of-mass height within 3 %; the plot is
-written; a bad option is refused."""
+written; --instructions resumes both settled beds and prints their instructions per
+grain-step; a bad option is refused."""
 import csv
 import os
 import subprocess
@@ -18,7 +19,8 @@ RUN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "benc
 env = dict(os.environ, LSDEM_BUILD_DIR=os.path.dirname(SHAPE_TOOL))
 # 0.4 s: rotating spheres with no rolling resistance still creep at 0.2 s (kinetic energy
 # ~3e-8 J in both codes, the walls 0.3 % off the weight); at 0.4 s the bed is at rest
-p = subprocess.run(["bash", RUN, "out", "--grains", "200", "--time", "0.4"], env=env,
+p = subprocess.run(["bash", RUN, "out", "--grains", "200", "--time", "0.4", "--instructions", "40"],
+                   env=env,
                    stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=900)
 check(p.returncode == 0, "run.sh failed (%d): %s%s" % (p.returncode, p.stdout[-2000:],
                                                        p.stderr[-2000:]))
@@ -60,5 +62,22 @@ for code in ("lsdem", "liggghts"):
     check(float(val[("settle", code, "cpu_us_per_grain_step")]["value"]) > 0,
           "%s: a CPU time" % code)
 
+# --instructions: each code's settled bed run on from its restart file under callgrind, the
+# instructions of 40 steps less those of 0 steps per grain-step; both resumed runs go on
+# from the settled state (the restart files keep it: the same kinetic energy as the end of
+# the settling, to its printed digits)
+line = [l for l in p.stdout.splitlines() if l.startswith("instructions per grain-step")]
+check(len(line) == 1, "the instructions line is printed")
+if line:
+    words = line[0].split()
+    a, b, ratio = int(words[-5]), int(words[-3]), float(words[-1])
+    check(a > 100 and b > 100, "instructions per grain-step: lsdem %d liggghts %d" % (a, b))
+    near(ratio, a / b, rtol=2e-3, msg="the printed ratio")
+for code in ("lsdem", "liggghts"):
+    settled = thermo(open("out/settle.%s.log" % code).read())[-1]["KinEng"]
+    resumed = thermo(open("out/resume.%s.0.log" % code).read())[0]["KinEng"]
+    near(resumed, settled, rtol=1e-6, msg="%s resumes from the settled bed" % code)
 script_refuses(RUN, ["--grains", "0"], env, "--grains must be a positive integer", "bad")
+script_refuses(RUN, ["--instructions", "x"], env, "--instructions must be a non-negative integer",
+               "bad2")
 finish()
