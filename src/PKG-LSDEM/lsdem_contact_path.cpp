@@ -9,7 +9,6 @@
 #include "atom.h"
 #include "atom_vec_lsdem.h"
 #include "fix_lsdem_history.h"
-#include "fix_lsdem_sphere_shear.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -188,20 +187,5 @@ int LsdemContactPath::test_sphere(int i, tagint partner, double ra, const lsdem_
   lsdem_contact_sphere(ra, &pa, B, &pb, &prm.law, prm.dt, step, found ? in.shear : nullptr,
                        found ? in.nshear : 0, out.shear, &out.nshear, &res);
   store->commit(lane, partner, out);
-  return res.npen;
-}
-
-/* ---------------------------------------------------------------------- */
-
-int LsdemContactPath::test_sphere_in_place(double ra, const lsdem_pose &pa, const lsdem_shape *B,
-                                           const lsdem_pose &pb, const lsdem_contact_params &prm,
-                                           bigint step, lsdem_shear_hist &slot,
-                                           lsdem_contact_result &res)
-{
-  const bool held = FixLsdemSphereShear::held(slot);  // the kernel reads it, then writes it
-  int kept = 0;
-  lsdem_contact_sphere(ra, &pa, B, &pb, &prm.law, prm.dt, step, held ? &slot : nullptr,
-                       held ? 1 : 0, &slot, &kept, &res);
-  if (!kept) FixLsdemSphereShear::drop(slot);
   return res.npen;
 }

@@ -13,6 +13,7 @@
 #ifndef LMP_LSDEM_CONTACT_PATH_H
 #define LMP_LSDEM_CONTACT_PATH_H
 
+#include "fix_lsdem_sphere_shear.h"
 #include "lmptype.h"
 #include "lsdem_kernel.h"
 
@@ -67,9 +68,18 @@ class LsdemContactPath {
   // test() for an analytic sphere A of radius ra whose pair keeps its one spring in `slot`
   // (not in the store; FixLsdemSphereShear), read and written in place. Returns the
   // penetrating nodes (0 or 1).
+  // (inline: every sphere pair, every step)
   static int test_sphere_in_place(double ra, const lsdem_pose &pa, const lsdem_shape *B,
                                   const lsdem_pose &pb, const lsdem_contact_params &prm,
-                                  bigint step, lsdem_shear_hist &slot, lsdem_contact_result &res);
+                                  bigint step, lsdem_shear_hist &slot, lsdem_contact_result &res)
+  {
+    const bool held = FixLsdemSphereShear::held(slot);  // the kernel reads it, then writes it
+    int kept = 0;
+    lsdem_contact_sphere(ra, &pa, B, &pb, &prm.law, prm.dt, step, held ? &slot : nullptr,
+                         held ? 1 : 0, &slot, &kept, &res);
+    if (!kept) FixLsdemSphereShear::drop(slot);
+    return res.npen;
+  }
   // the manifold of the last test or detect
   const lsdem_manifold &manifold() const { return m; }
 
