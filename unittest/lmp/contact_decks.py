@@ -4,13 +4,20 @@ and the common head of an input deck."""
 import math
 import os
 
-from lsdemtest import shape_tool
+from lsdemtest import shape_tool, run_lmp, check
 
 
 def sphere_library(path, radius, spacing, nodes):
     """A level-set (grid) sphere; one shape."""
     if not os.path.exists(path):
         shape_tool("analytic", path, "sphere", radius, "--spacing", spacing, "--nodes", nodes)
+    return path
+
+
+def ball_library(path, radius):
+    """An analytic sphere (one contact point per pair); one shape."""
+    if not os.path.exists(path):
+        shape_tool("analytic", path, "sphere", radius, "--analytic")
     return path
 
 
@@ -121,3 +128,52 @@ def write_ridges_stl(path, xs, half_y, half_base=0.3, height=0.5):
             outward = sum(n[i] * (t[0][i] - centre[i]) for i in range(3)) > 0
             tris.append(t if outward else (t[0], t[2], t[1]))
     return write_stl(path, tris, "ridges")
+
+
+def atoms_of(path):
+    """The Atoms and Velocities lines of a data file, each section sorted by atom ID (ranks
+    write their atoms in their own order); empty when the file is missing."""
+    text = open(path).read() if os.path.exists(path) else ""
+    atoms, _, vels = text[text.find("Atoms"):].partition("Velocities")
+    return [sorted((l for l in s.splitlines() if l.split() and l.split()[0].isdigit()),
+                   key=lambda l: int(l.split()[0]))
+            for s in (atoms, vels)]
+
+
+def largest_move(a, b):
+    """The largest difference of a coordinate between two Atoms sections (atoms_of);
+    1.0 when either is empty."""
+    return max([abs(float(p) - float(q)) for la, lb in zip(a, b)
+                for p, q in zip(la.split()[4:7], lb.split()[4:7])] or [1.0])
+
+
+def lattice(rng, layers, z0, dz, velocity):
+    """4 x 4 analytic-sphere grains per layer on a 1.2 lattice (jittered by up to 0.1 in x and
+    y), layer k at z0 + k dz, each with velocity(rng)."""
+    grains = []
+    for k in range(layers):
+        for j in range(4):
+            for i in range(4):
+                g = Grain((0.6 + 1.2 * i + 0.1 * rng.random(),
+                           0.6 + 1.2 * j + 0.1 * rng.random(), z0 + dz * k))
+                g.v = velocity(rng)
+                grains.append(g)
+    return grains
+
+
+def final_state(deck, name, np=1, args=None):
+    """deck run in folder `name` on np ranks, then its atoms written: (atoms_of, log)."""
+    where = os.path.abspath(name)
+    rc, log = run_lmp(deck + "write_data final.data nocoeff\n", np=np, cwd=where, args=args)
+    return atoms_of(os.path.join(where, "final.data")), log
+
+
+def check_ranks_threads(make_deck, body, serial, name):
+    """make_deck(np) + body ends with the serial run's bits on 2 ranks and on 2 threads (in
+    folders name-ranks and name-threads)."""
+    ranks, _ = final_state(make_deck(2) + body, name + "-ranks", np=2)
+    check(ranks == serial, "%s, 2 ranks: the serial bits" % name)
+    threads, _ = final_state(make_deck(1) + body, name + "-threads",
+                             args=["-sf", "omp", "-pk", "omp", "2"])
+    check(threads == serial, "%s, 2 threads: the serial bits" % name)
+
