@@ -896,13 +896,15 @@ void FixWallLsdem::visit_candidates(Lane &lane, int from, int to, const lsdem_po
   for (int c = from; c < to; c++) {
     const int i = cand[c];
     const bool mine = mask[i] & groupbit;
-    // the centre's distance: reaches() from it, and the cheap rejection of crossing()
-    const double phi = lsdem_boundary_distance(&bnd, &w, atom->x[i], nullptr);
+    // the centre's distance and the wall's normal there: reaches() from it, a sphere's
+    // overlap, and the cheap rejection of crossing()
+    double n[3];
+    const double phi = lsdem_boundary_distance(&bnd, &w, atom->x[i], n);
     const bool test = mine && lsdem_boundary_reaches(&bnd, phi, atom->radius[i]);
     if (keeps_sphere_slot(i)) {
       lsdem_shear_hist &slot = sphere_shear->slots(i)[0];
       if (!test && !FixLsdemSphereShear::held(slot)) continue;  // far, nothing kept
-      if (test) test_sphere(lane, i, w, slot);
+      if (test) test_sphere(lane, i, w, slot, phi, n);
       else FixLsdemSphereShear::drop(slot);
     } else {
       if (!test && !lane.path.keeps_state(i)) continue;  // far, nothing kept
@@ -932,16 +934,26 @@ void FixWallLsdem::test_grain(Lane &lane, int i, const lsdem_pose &w, bigint ste
   if (twoway) test_points(lane, i, p, w);
 }
 
-/* sphere i, which the wall reaches, with its spring in its slot, in place */
-void FixWallLsdem::test_sphere(Lane &lane, int i, const lsdem_pose &w, lsdem_shear_hist &slot)
+/* sphere i, which the wall reaches, its centre at phi with the wall's normal n there,
+   with its spring in its slot, in place: the sphere's overlap is the centre's (the one
+   lookup lsdem_sphere_overlap would make again; a wall has no grid, whose outside it
+   would handle) */
+void FixWallLsdem::test_sphere(Lane &lane, int i, const lsdem_pose &w, lsdem_shear_hist &slot,
+                               double phi, const double n[3])
 {
+  const double ra = avec->shape_of(i)->sdf.a[0];
+  const double d = lsdem_sphere_depth(&bnd.shape.sdf, phi, ra);
+  if (!(d > 0.0)) {
+    FixLsdemSphereShear::drop(slot);
+    return;
+  }
   const bool began = map_every > 0 && !FixLsdemSphereShear::held(slot);  // maps only
   lsdem_pose p;
   LsdemContactPath::pose_of(atom, avec, i, p);
   lsdem_contact_result res;
-  LsdemContactPath::test_sphere_in_place(avec->shape_of(i)->sdf.a[0], p, &bnd.shape, w, prm,
-                                         update->ntimestep, slot, res);
-  if (res.npen > 0) apply_contact(lane, i, res, w, began, true);
+  LsdemContactPath::overlapping_sphere_in_place(ra, p, w, n, d, prm, update->ntimestep, slot,
+                                                res);
+  apply_contact(lane, i, res, w, began, true);
 }
 
 /* ----------------------------------------------------------------------

@@ -189,7 +189,8 @@ class FixWallLsdem : public Fix {
                      bool through_band);
   void test_points(Lane &, int, const lsdem_pose &p, const lsdem_pose &w);
   void test_grain(Lane &, int, const lsdem_pose &w, bigint step);
-  void test_sphere(Lane &, int, const lsdem_pose &w, lsdem_shear_hist &slot);
+  void test_sphere(Lane &, int, const lsdem_pose &w, lsdem_shear_hist &slot, double phi,
+                   const double n[3]);
   void make_points(const char *path);
   template <class Visit>
   void each_candidate(Lane &, int from, int to, const lsdem_pose &w, const char *take,

@@ -73,17 +73,38 @@ class LsdemContactPath {
                                   const lsdem_pose &pb, const lsdem_contact_params &prm,
                                   bigint step, lsdem_shear_hist &slot, lsdem_contact_result &res)
   {
-    const bool held = FixLsdemSphereShear::held(slot);  // the kernel reads it, then writes it
-    int kept = 0;
-    lsdem_contact_sphere(ra, &pa, B, &pb, &prm.law, prm.dt, step, held ? &slot : nullptr,
-                         held ? 1 : 0, &slot, &kept, &res);
-    if (!kept) FixLsdemSphereShear::drop(slot);
+    with_slot(slot, [&](const lsdem_shear_hist *in, int n_in, int *kept) {
+      lsdem_contact_sphere(ra, &pa, B, &pb, &prm.law, prm.dt, step, in, n_in, &slot, kept,
+                           &res);
+    });
+    return res.npen;
+  }
+  // the same for a sphere whose overlap the caller found: B's outward normal n and the
+  // depth d > 0 (lsdem_contact_sphere_overlapping; fix wall/lsdem). Returns 1.
+  static int overlapping_sphere_in_place(double ra, const lsdem_pose &pa, const lsdem_pose &pb,
+                                         const double n[3], double d,
+                                         const lsdem_contact_params &prm, bigint step,
+                                         lsdem_shear_hist &slot, lsdem_contact_result &res)
+  {
+    with_slot(slot, [&](const lsdem_shear_hist *in, int n_in, int *kept) {
+      lsdem_contact_sphere_overlapping(ra, &pa, &pb, n, d, &prm.law, prm.dt, step, in, n_in,
+                                       &slot, kept, &res);
+    });
     return res.npen;
   }
   // the manifold of the last test or detect
   const lsdem_manifold &manifold() const { return m; }
 
  private:
+  // kernel(in, n_in, kept) with the spring the slot holds (in: nullptr when none), which
+  // it reads and then writes back in place (*kept: 1 when it keeps one); dropped otherwise
+  template <class Kernel> static void with_slot(lsdem_shear_hist &slot, Kernel kernel)
+  {
+    const bool held = FixLsdemSphereShear::held(slot);
+    int kept = 0;
+    kernel(held ? &slot : nullptr, held ? 1 : 0, &kept);
+    if (!kept) FixLsdemSphereShear::drop(slot);
+  }
   // test() for an analytic sphere A of radius ra
   int test_sphere(int i, tagint partner, double ra, const lsdem_pose &pa, const lsdem_shape *B,
                   const lsdem_pose &pb, const lsdem_contact_params &prm, bigint step,

@@ -581,13 +581,8 @@ int lsdem_sphere_overlap_shape(double radius, const lsdem_pose *pa, const lsdem_
   if (B->sdf.kind == LSDEM_SDF_GRID && !B->sdf.inverted &&
       !lsdem_grid_box_contains(&B->sdf.grid, q))
     *d = radius - outside_distance(&B->sdf, q, g, lookups);
-  else {
-    const double phi = lsdem_sdf_eval(&B->sdf, q, g);
-    /* a band's value at or beyond its width is a bound, not a distance: no depth to take
-     * from it (fix wall/lsdem requires bands wider than the spheres) */
-    if (B->sdf.kind == LSDEM_SDF_BAND && phi >= B->sdf.band->width) return 0;
-    *d = radius - phi;
-  }
+  else
+    *d = lsdem_sphere_depth(&B->sdf, lsdem_sdf_eval(&B->sdf, q, g), radius);
   if (!(*d > 0.0)) return 0;
   lsdem_mat_vec(pb->R, g, n);
   return 1;

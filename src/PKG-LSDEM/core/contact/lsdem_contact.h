@@ -240,6 +240,18 @@ int lsdem_detect_band_points(const lsdem_band *band, const lsdem_band_points *pt
                              const lsdem_pose *pa, const lsdem_shape *B,
                              const lsdem_pose *pb, lsdem_manifold *m);
 
+/* The depth d = radius - phi by which a sphere of that radius whose centre is at phi in
+ * level set s overlaps it (report §2.3.5), or 0 when it does not: also when s is a band and
+ * phi is at or beyond its width, where phi is a bound, not a distance (fix wall/lsdem
+ * requires bands wider than the spheres). The one rule of lsdem_sphere_overlap and of a
+ * wall that found phi itself (fix wall/lsdem). */
+static inline double lsdem_sphere_depth(const lsdem_sdf *s, double phi, double radius)
+{
+  if (s->kind == LSDEM_SDF_BAND && phi >= s->band->width) return 0.0;
+  const double d = radius - phi;
+  return d > 0.0 ? d : 0.0;
+}
+
 /* The sphere path's tributary area under the traction law: the cross-section pi r^2
  * (inline: the sphere kernel takes it for every contact). */
 static inline double lsdem_sphere_contact_area(double radius)
@@ -342,6 +354,16 @@ int lsdem_contact_sphere(double ra, const lsdem_pose *pa, const lsdem_shape *B,
                          const lsdem_pose *pb, const lsdem_penalty_law *law, double dt,
                          int64_t step, const lsdem_shear_hist *hist_in, int n_in,
                          lsdem_shear_hist *hist_out, int *n_out, lsdem_contact_result *res);
+/* Its second half, for a caller that found the overlap itself (fix wall/lsdem: the
+ * centre's distance phi to the wall, d = ra - phi > 0, n the wall's normal there): the
+ * point and the law from B's outward normal n and depth d > 0, B at pose pb; the same
+ * bits as lsdem_contact_sphere when n and d are its overlap's. Returns 1. */
+int lsdem_contact_sphere_overlapping(double ra, const lsdem_pose *pa, const lsdem_pose *pb,
+                                     const double n[3], double d,
+                                     const lsdem_penalty_law *law, double dt, int64_t step,
+                                     const lsdem_shear_hist *hist_in, int n_in,
+                                     lsdem_shear_hist *hist_out, int *n_out,
+                                     lsdem_contact_result *res);
 
 /* ------------------------------------------------------------- master and slave ---- */
 

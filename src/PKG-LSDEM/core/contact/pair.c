@@ -19,21 +19,14 @@ int lsdem_contact_penalty(const lsdem_shape *A, const lsdem_pose *pa, const lsde
   return res->npen;
 }
 
-/* The sphere path of lsdem_detect (lsdem_sphere_overlap, sphere_contact_point: one point,
- * node 0, stride 1, the cross-section as its area) and lsdem_penalty_apply on that one
- * point, formula by formula (point.h). */
-int lsdem_contact_sphere(double ra, const lsdem_pose *pa, const lsdem_shape *B,
-                         const lsdem_pose *pb, const lsdem_penalty_law *law, double dt,
-                         int64_t step, const lsdem_shear_hist *hist_in, int n_in,
-                         lsdem_shear_hist *hist_out, int *n_out, lsdem_contact_result *res)
+/* A sphere's one point from its overlap (B's outward normal n, depth d > 0) and the law
+ * there: the part of the sphere path after lsdem_sphere_overlap (below), inline in both
+ * entry points. */
+static inline __attribute__((always_inline)) void sphere_point_law(
+    double ra, const lsdem_pose *pa, const lsdem_pose *pb, const double n[3], double d,
+    const lsdem_penalty_law *law, double dt, int64_t step, const lsdem_shear_hist *hist_in,
+    int n_in, lsdem_shear_hist *hist_out, int *n_out, lsdem_contact_result *res)
 {
-  static const lsdem_contact_result no_result; /* all zero */
-  *res = no_result;
-  if (n_out) *n_out = 0;
-  double n[3], d;
-  const int touch = lsdem_sphere_overlap(ra, pa, B, pb, n, &d, &res->ntested);
-  if (!touch) return 0;
-
   pair_motion pm;
   lsdem_contact_point c;
   double p[3];
@@ -58,5 +51,36 @@ int lsdem_contact_sphere(double ra, const lsdem_pose *pa, const lsdem_shape *B,
   law_sum_point(res, &weight, r, f, fn, p, d); /* eqs 2.14-2.16 */
   res->npen = 1;
   law_finish(res, weight, pm.dab);
+}
+
+/* The sphere path of lsdem_detect (lsdem_sphere_overlap, sphere_contact_point: one point,
+ * node 0, stride 1, the cross-section as its area) and lsdem_penalty_apply on that one
+ * point, formula by formula (point.h): the overlap, then its point and law. */
+int lsdem_contact_sphere(double ra, const lsdem_pose *pa, const lsdem_shape *B,
+                         const lsdem_pose *pb, const lsdem_penalty_law *law, double dt,
+                         int64_t step, const lsdem_shear_hist *hist_in, int n_in,
+                         lsdem_shear_hist *hist_out, int *n_out, lsdem_contact_result *res)
+{
+  static const lsdem_contact_result no_result; /* all zero */
+  *res = no_result;
+  if (n_out) *n_out = 0;
+  double n[3], d;
+  if (!lsdem_sphere_overlap(ra, pa, B, pb, n, &d, &res->ntested)) return 0;
+  sphere_point_law(ra, pa, pb, n, d, law, dt, step, hist_in, n_in, hist_out, n_out, res);
+  return 1;
+}
+
+int lsdem_contact_sphere_overlapping(double ra, const lsdem_pose *pa, const lsdem_pose *pb,
+                                     const double n[3], double d,
+                                     const lsdem_penalty_law *law, double dt, int64_t step,
+                                     const lsdem_shear_hist *hist_in, int n_in,
+                                     lsdem_shear_hist *hist_out, int *n_out,
+                                     lsdem_contact_result *res)
+{
+  static const lsdem_contact_result no_result; /* all zero */
+  *res = no_result;
+  res->ntested = 1;
+  if (n_out) *n_out = 0;
+  sphere_point_law(ra, pa, pb, n, d, law, dt, step, hist_in, n_in, hist_out, n_out, res);
   return 1;
 }
