@@ -642,17 +642,19 @@ void FixWallLsdem::set_passive(bool on)
   if (on && sphere_shear) sphere_shear->drop_all();
 }
 
+/* grain i keeps its spring on this wall in a slot of sphere_shear: an analytic sphere, with
+   friction (and not twoway) */
+bool FixWallLsdem::keeps_sphere_slot(int i) const
+{
+  return sphere_shear && avec->shape_of(i)->sdf.kind == LSDEM_SDF_SPHERE;
+}
+
 /* ----------------------------------------------------------------------
    each owned sphere's slot for its spring on this wall, at each search for candidates:
    kept by the candidates (and taken over from the general store where a restart file of
    an earlier version left it there), emptied for the others, which cannot reach the wall
    before the next search; all emptied while fix impulse/lsdem runs the wall
 ------------------------------------------------------------------------- */
-
-bool FixWallLsdem::keeps_sphere_slot(int i) const
-{
-  return sphere_shear && avec->shape_of(i)->sdf.kind == LSDEM_SDF_SPHERE;
-}
 
 void FixWallLsdem::assign_sphere_slots()
 {
@@ -1123,6 +1125,13 @@ void FixWallLsdem::end_force_call()
   if (bnd.pivots) reduce_pivot_load();
 }
 
+/* grain i's velocity after this step's force: fix nve/lsdem's next v */
+void FixWallLsdem::velocity_after_force(int i, double v[3]) const
+{
+  const double kick = update->dt * force->ftm2v / atom->rmass[i];
+  for (int k = 0; k < 3; k++) v[k] = atom->v[i][k] + kick * atom->f[i][k];
+}
+
 /* ----------------------------------------------------------------------
    a grain whose centre is behind the wall's surface, or will be at the next step (moved
    by its velocity after this step's force, this wall's included: v + dt f / m), goes
@@ -1133,12 +1142,6 @@ void FixWallLsdem::end_force_call()
    fix nve/lsdem, naming the grain, the wall, the step and the time step that would hold
    it (|v_n| dt <= 0.1 R)
 ------------------------------------------------------------------------- */
-
-void FixWallLsdem::velocity_after_force(int i, double v[3]) const
-{
-  const double kick = update->dt * force->ftm2v / atom->rmass[i];
-  for (int k = 0; k < 3; k++) v[k] = atom->v[i][k] + kick * atom->f[i][k];
-}
 
 std::string FixWallLsdem::crossing(int i, const lsdem_pose &w) const
 {
