@@ -37,16 +37,16 @@ for f in "$lmp" "$tool"; do
   [ -x "$f" ] || { echo "run.sh: $f not found: build first (./lsdem build)" >&2; exit 1; }
 done
 liggghts=${LIGGGHTS:-liggghts}
-# install PACKAGE COMMAND: Debian's PACKAGE when COMMAND is missing
-install() {
+# need_package PACKAGE COMMAND: Debian's PACKAGE installed when COMMAND is missing
+need_package() {
   command -v "$2" >/dev/null 2>&1 && return 0
   echo "run.sh: installing Debian's $1 package" >&2
   local sudo=""; [ "$(id -u)" = 0 ] || sudo=sudo
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "$1" >/dev/null
 }
-install liggghts "$liggghts"
-[ "$instructions" -eq 0 ] || install valgrind valgrind
+need_package liggghts "$liggghts"
+[ "$instructions" -eq 0 ] || need_package valgrind valgrind
 
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
