@@ -535,7 +535,13 @@ bool FixWallLsdem::may_touch(int i, const lsdem_pose &w, double margin) const
 
 bool FixWallLsdem::reaches(int i, const lsdem_pose &w) const
 {
-  return (atom->mask[i] & groupbit) && may_touch(i, w, 0.0);
+  return reaches_at(i, lsdem_boundary_distance(&bnd, &w, atom->x[i], nullptr));
+}
+
+// the same from the centre's distance phi to the wall
+bool FixWallLsdem::reaches_at(int i, double phi) const
+{
+  return (atom->mask[i] & groupbit) && lsdem_boundary_reaches(&bnd, phi, atom->radius[i]);
 }
 
 lsdem_pose FixWallLsdem::pose_at(double s) const
@@ -643,10 +649,11 @@ void FixWallLsdem::set_passive(bool on)
 }
 
 /* grain i keeps its spring on this wall in a slot of sphere_shear: an analytic sphere, with
-   friction (and not twoway) */
+   friction (and not twoway), while the wall makes its own contacts (not passive: fix
+   impulse/lsdem's detection keeps its pair states in the general store) */
 bool FixWallLsdem::keeps_sphere_slot(int i) const
 {
-  return sphere_shear && avec->shape_of(i)->sdf.kind == LSDEM_SDF_SPHERE;
+  return sphere_shear && !passive && avec->shape_of(i)->sdf.kind == LSDEM_SDF_SPHERE;
 }
 
 /* ----------------------------------------------------------------------
@@ -864,10 +871,13 @@ void FixWallLsdem::begin_force_call(int n, lsdem_pose &w)
 }
 
 /* ----------------------------------------------------------------------
-   candidates [from, to) by the lane's path against the wall at pose w: a grain the wall
-   reaches (and take[i] != 0 when take is given) is tested, visit(i, true); one that keeps
-   a pair state from the last step but is not tested is visited too, visit(i, false), and
-   loses the state; both between the path's begin_atom and end_atom
+   candidates [from, to) by the lane's path against the wall at pose w, each grain's
+   centre distance phi and the wall's normal n there found once: a grain the wall reaches
+   (and take[i] != 0 when take is given) is tested, visit(i, true, phi, n, slot); one that
+   keeps a state from the last step (a pair state, or a sphere's spring in its slot) but is
+   not tested is visited too, visit(i, false, phi, n, slot), and loses it; slot: the
+   sphere's slot (keeps_sphere_slot), else nullptr and the visit between the path's
+   begin_atom and end_atom
 ------------------------------------------------------------------------- */
 
 template <class Visit>
@@ -876,51 +886,45 @@ void FixWallLsdem::each_candidate(Lane &lane, int from, int to, const lsdem_pose
 {
   for (int c = from; c < to; c++) {
     const int i = cand[c];
-    const bool test = (!take || take[i]) && reaches(i, w);
-    if (!test && !lane.path.keeps_state(i)) continue;  // far, nothing kept
-    lane.path.begin_atom();
-    visit(i, test);
-    lane.path.end_atom(i);
+    double n[3];
+    const double phi = lsdem_boundary_distance(&bnd, &w, atom->x[i], n);
+    const bool test = (!take || take[i]) && reaches_at(i, phi);
+    lsdem_shear_hist *slot = keeps_sphere_slot(i) ? sphere_shear->slots(i) : nullptr;
+    const bool kept = slot ? FixLsdemSphereShear::held(*slot) : lane.path.keeps_state(i);
+    if (!test && !kept) continue;  // far, nothing kept
+    if (!slot) lane.path.begin_atom();
+    visit(i, test, phi, n, slot);
+    if (!slot) lane.path.end_atom(i);
   }
 }
 
 /* ----------------------------------------------------------------------
    candidates [from, to) against wall pose w, by the lane's thread: each grain's contact
-   through the shared path, its force and torque added to the grain (owned: one thread
-   writes it) and, rounded to the quanta, to the lane's total on the wall, so that the
-   wall's totals over lanes and ranks are the same in any order (lsdem_quantum_for)
+   through the shared path (a sphere's with its spring in its slot), its force and torque
+   added to the grain (owned: one thread writes it) and, rounded to the quanta, to the
+   lane's total on the wall, so that the wall's totals over lanes and ranks are the same
+   in any order (lsdem_quantum_for); the centre's distance also rejects crossing() cheaply
 ------------------------------------------------------------------------- */
 
 void FixWallLsdem::visit_candidates(Lane &lane, int from, int to, const lsdem_pose &w)
 {
   const int *mask = atom->mask;
   const bigint step = update->ntimestep;
-  for (int c = from; c < to; c++) {
-    const int i = cand[c];
-    const bool mine = mask[i] & groupbit;
-    // the centre's distance and the wall's normal there: reaches() from it, a sphere's
-    // overlap, and the cheap rejection of crossing()
-    double n[3];
-    const double phi = lsdem_boundary_distance(&bnd, &w, atom->x[i], n);
-    const bool test = mine && lsdem_boundary_reaches(&bnd, phi, atom->radius[i]);
-    if (keeps_sphere_slot(i)) {
-      lsdem_shear_hist &slot = sphere_shear->slots(i)[0];
-      if (!test && !FixLsdemSphereShear::held(slot)) continue;  // far, nothing kept
-      if (test) test_sphere(lane, i, w, slot, phi, n);
-      else FixLsdemSphereShear::drop(slot);
-    } else {
-      if (!test && !lane.path.keeps_state(i)) continue;  // far, nothing kept
-      lane.path.begin_atom();
-      if (test) test_grain(lane, i, w, step);
-      lane.path.end_atom(i);
+  each_candidate(lane, from, to, w, nullptr,
+                 [&](int i, bool test, double phi, const double *n, lsdem_shear_hist *slot) {
+    if (slot) {
+      if (test) test_sphere(lane, i, w, *slot, phi, n);
+      else FixLsdemSphereShear::drop(*slot);
+    } else if (test) {
+      test_grain(lane, i, w, step);
     }
-    if (mine && lane.crossing.empty()) {
+    if ((mask[i] & groupbit) && lane.crossing.empty()) {
       double v[3];
       velocity_after_force(i, v);
       if (!lsdem_boundary_clear_of_crossing(&bnd, &w, atom->x[i], phi, v, update->dt))
         lane.crossing = crossing(i, w);
     }
-  }
+  });
 }
 
 /* grain i, which the wall reaches, through the shared contact path (pair states in the
@@ -1001,7 +1005,8 @@ void FixWallLsdem::detect_candidates(Lane &lane, int from, int to, const lsdem_p
   lane.found_i.clear();
   lane.found.clear();
   lane.found_points.clear();
-  each_candidate(lane, from, to, w, take, [&](int i, bool test) {
+  each_candidate(lane, from, to, w, take,
+                 [&](int i, bool test, double, const double *, lsdem_shear_hist *) {
     if (!test) return;
     lsdem_pose p;
     LsdemContactPath::pose_of(atom, avec, i, p);

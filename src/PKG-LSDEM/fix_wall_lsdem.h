@@ -76,6 +76,7 @@ class FixWallLsdem : public Fix {
   // the wall acts on grain i at pose w: i is of the wall's group and its bounding sphere
   // may reach the wall (lsdem_boundary_may_touch); the force path's rule
   bool reaches(int i, const lsdem_pose &w) const;
+  bool reaches_at(int i, double phi) const;  // the same, phi the centre's distance to it
   // the wall's contacts as manifolds (detection, no law) at its pose s after now, by the
   // force path's visit (candidates, reaches, the contact path with its pair states: node
   // lists): visit(i, manifold) for each owned grain i with take[i] != 0 whose nodes touch
