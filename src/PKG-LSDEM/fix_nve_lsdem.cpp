@@ -149,6 +149,27 @@ int FixNVELsdem::integrated_count() const
 }
 
 /* ----------------------------------------------------------------------
+   what is wrong with a grain's state (x, v, omega, quat; bounding radius) after its step,
+   or nullptr: a non-finite state, or a move of more than half its bounding radius in one
+   step (the run has gone unstable and every later step is garbage). Inline in the step's
+   loop, on the values it has just written
+------------------------------------------------------------------------- */
+
+static inline const char *state_problem(const double *x, const double *v, const double *w,
+                                        const double *q, double radius, double dt)
+{
+  double sum = 0.0;
+  for (int k = 0; k < 3; k++) sum += x[k] + v[k] + w[k];
+  sum += q[0] + q[1] + q[2] + q[3];
+  if (!std::isfinite(sum)) return "a non-finite (NaN/inf) state";
+
+  const double v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  const double rlim = 0.5 * radius;
+  if (v2 * dt * dt > rlim * rlim) return "a runaway speed";
+  return nullptr;
+}
+
+/* ----------------------------------------------------------------------
    one step of the group's local grains from..to-1; returns the first of them found
    unstable (what: how), or -1. Grains are independent: threads share them out
    (fix nve/lsdem/omp)
@@ -162,6 +183,8 @@ int FixNVELsdem::step_grains(int from, int to, const char *&what)
   double **omega = atom->omega;
   double **torque = atom->torque;
   double *rmass = atom->rmass;
+  double *radius = atom->radius;
+  double **quat = avec->quat;
   int *mask = atom->mask;
 
   const double dt = update->dt;
@@ -179,7 +202,7 @@ int FixNVELsdem::step_grains(int from, int to, const char *&what)
       const double ts[3] = {ftm2v * torque[i][0], ftm2v * torque[i][1], ftm2v * torque[i][2]};
       if (spheres_rotate && !(mask[i] & fixed_spin)) {
         // analytic spheres turn about their centre: one moment of inertia, no gyroscopic term
-        lsdem_step_sphere(x[i], v[i], avec->quat[i], omega[i], fs, ts, rmass[i],
+        lsdem_step_sphere(x[i], v[i], quat[i], omega[i], fs, ts, rmass[i],
                           avec->inertia[i][0], xi, dt);
       } else {
         // 3 degrees of freedom (membrane balls, report §3.3.2, or spheres fixed): torque is
@@ -190,13 +213,13 @@ int FixNVELsdem::step_grains(int from, int to, const char *&what)
       }
     } else {
       const double ts[3] = {ftm2v * torque[i][0], ftm2v * torque[i][1], ftm2v * torque[i][2]};
-      double *q = avec->quat[i];
+      double *q = quat[i];
       double wbody[3];
       lsdem_quat_rotate_inv(q, omega[i], wbody);  // omega^{n-1/2} to the body frame with q^n
       lsdem_step_body(x[i], v[i], q, wbody, avec->dwprev[i], fs, ts, rmass[i],
                       avec->inertia[i], xi, dt, omega[i]);
     }
-    if (bad < 0 && (what = grain_problem(i, dt))) bad = i;
+    if (bad < 0 && (what = state_problem(x[i], v[i], omega[i], quat[i], radius[i], dt))) bad = i;
   }
   return bad;
 }
@@ -212,27 +235,6 @@ void FixNVELsdem::stop_if_unstable(int bad, const char *what)
   std::string found = avec->take_deferred_stop();
   if (found.empty() && bad >= 0) found = unstable_message(bad, update->dt, what);
   AtomVecLsdem::stop_if_any_rank(lmp, FLERR, found);
-}
-
-/* ----------------------------------------------------------------------
-   what is wrong with grain i after its step, or nullptr: a non-finite state, or a move of
-   more than half its bounding radius in one step (the run has gone unstable and every
-   later step is garbage)
-------------------------------------------------------------------------- */
-
-const char *FixNVELsdem::grain_problem(int i, double dt) const
-{
-  const double *x = atom->x[i], *v = atom->v[i], *w = atom->omega[i];
-  const double *q = avec->quat[i];
-  double sum = 0.0;
-  for (int k = 0; k < 3; k++) sum += x[k] + v[k] + w[k];
-  sum += q[0] + q[1] + q[2] + q[3];
-  if (!std::isfinite(sum)) return "a non-finite (NaN/inf) state";
-
-  const double v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-  const double rlim = 0.5 * atom->radius[i];
-  if (v2 * dt * dt > rlim * rlim) return "a runaway speed";
-  return nullptr;
 }
 
 /* ---------------------------------------------------------------------- */

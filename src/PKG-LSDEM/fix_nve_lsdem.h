@@ -39,7 +39,6 @@ class FixNVELsdem : public Fix {
   double warned_dt;     // the time step last warned about (init runs at every run and write)
 
   void check_timestep();
-  const char *grain_problem(int, double) const;
   std::string unstable_message(int, double, const char *) const;
 };
 

@@ -296,7 +296,8 @@ typedef struct {
   double force[3];     /* sum of node forces on A (eq 2.14) */
   double torque_a[3];  /* about A's centroid (eq 2.16) */
   double torque_b[3];  /* about B's centroid, of the reaction on B */
-  double point[3];     /* mean contact point weighted by normal force (0 without contact) */
+  double point[3];     /* mean contact point weighted by normal force (one point: it; 0
+                          without contact) */
   double max_depth;    /* deepest penetration (>= 0) */
   int npen;            /* penetrating nodes (the manifold's points) */
   int ntested;         /* nodes looked up (the manifold's ntested) */

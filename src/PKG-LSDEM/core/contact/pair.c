@@ -47,10 +47,7 @@ static inline __attribute__((always_inline)) void sphere_point_law(
       if (n_out) *n_out = 1;
     }
   }
-  double weight = 0.0;
-  law_sum_point(res, &weight, r, f, fn, p, d); /* eqs 2.14-2.16 */
-  res->npen = 1;
-  law_finish(res, weight, pm.dab);
+  law_one_point(res, r, f, p, d, pm.dab); /* eqs 2.14-2.16 */
 }
 
 /* The sphere path of lsdem_detect (lsdem_sphere_overlap, sphere_contact_point: one point,
@@ -62,11 +59,16 @@ int lsdem_contact_sphere(double ra, const lsdem_pose *pa, const lsdem_shape *B,
                          lsdem_shear_hist *hist_out, int *n_out, lsdem_contact_result *res)
 {
   static const lsdem_contact_result no_result; /* all zero */
-  *res = no_result;
   if (n_out) *n_out = 0;
   double n[3], d;
-  if (!lsdem_sphere_overlap(ra, pa, B, pb, n, &d, &res->ntested)) return 0;
+  int lookups;
+  if (!lsdem_sphere_overlap(ra, pa, B, pb, n, &d, &lookups)) {
+    *res = no_result;
+    res->ntested = lookups;
+    return 0;
+  }
   sphere_point_law(ra, pa, pb, n, d, law, dt, step, hist_in, n_in, hist_out, n_out, res);
+  res->ntested = lookups;
   return 1;
 }
 
@@ -77,10 +79,8 @@ int lsdem_contact_sphere_overlapping(double ra, const lsdem_pose *pa, const lsde
                                      lsdem_shear_hist *hist_out, int *n_out,
                                      lsdem_contact_result *res)
 {
-  static const lsdem_contact_result no_result; /* all zero */
-  *res = no_result;
-  res->ntested = 1;
   if (n_out) *n_out = 0;
   sphere_point_law(ra, pa, pb, n, d, law, dt, step, hist_in, n_in, hist_out, n_out, res);
+  res->ntested = 1;
   return 1;
 }

@@ -112,7 +112,7 @@ int lsdem_penalty_apply(const lsdem_manifold *m, const lsdem_penalty_law *law, d
   *res = c.sum;
   res->npen = m->n;
   res->ntested = m->ntested;
-  law_finish(res, c.weight, m->dab);
+  law_finish(res, c.weight, m->dab, m->n == 1 ? m->point[0].point : NULL);
   if (n_out) *n_out = c.n_out;
   return m->n;
 }

@@ -201,15 +201,37 @@ static inline void law_sum_point(lsdem_contact_result *restrict sum, double *res
 }
 
 /* The sums completed: B's reaction torque about its centroid, (ra + dab) x (-f) summed,
- * is -(sum of ra x f) - dab x (sum of f) (eq 2.16), and the mean point is divided by its
- * weight. */
-static inline void law_finish(lsdem_contact_result *res, double weight, const double dab[3])
+ * is -(sum of ra x f) - dab x (sum of f) (eq 2.16), and the mean point: a manifold's one
+ * point itself (only, exactly: no weight to divide by, also when its force is 0), else the
+ * weighted sum divided by its weight. */
+static inline void law_finish(lsdem_contact_result *res, double weight, const double dab[3],
+                              const double only[3])
 {
   double dab_f[3];
   lsdem_cross3(dab, res->force, dab_f);
   for (int i = 0; i < 3; i++) res->torque_b[i] = -res->torque_a[i] - dab_f[i];
-  if (weight > 0.0)
+  if (only)
+    for (int i = 0; i < 3; i++) res->point[i] = only[i];
+  else if (weight > 0.0)
     for (int i = 0; i < 3; i++) res->point[i] /= weight;
+}
+
+/* The sums of a manifold of one point p, written (the sphere paths, one point every
+ * contact): the bits of law_sum_point on zeroed sums then law_finish, without zeroing the
+ * sums and reading them back. A sum of one term is 0 + the term (a term -0 gives +0). */
+static inline void law_one_point(lsdem_contact_result *res, const double ra[3],
+                                 const double f[3], const double p[3], double d,
+                                 const double dab[3])
+{
+  double ta[3];
+  lsdem_cross3(ra, f, ta); /* eq 2.16 */
+  for (int i = 0; i < 3; i++) {
+    res->force[i] = 0.0 + f[i]; /* eq 2.14 */
+    res->torque_a[i] = 0.0 + ta[i];
+  }
+  res->max_depth = d > 0.0 ? d : 0.0;
+  res->npen = 1;
+  law_finish(res, 0.0, dab, p);
 }
 
 #endif /* LSDEM_CONTACT_POINT_H */
