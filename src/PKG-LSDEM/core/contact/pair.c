@@ -28,20 +28,21 @@ static inline __attribute__((always_inline)) void sphere_point_law(
     int n_in, lsdem_shear_hist *hist_out, int *n_out, lsdem_contact_result *res)
 {
   pair_motion pm;
-  lsdem_contact_point c;
-  double p[3];
+  double p[3], r[3], vrel[3];
   pair_motion_of(pa, pb, &pm);
   sphere_contact_point(ra, pa->x, n, d, p);
-  point_set(&c, &pm, 0, p, n, d, lsdem_sphere_contact_area(ra));
+  for (int i = 0; i < 3; i++) r[i] = p[i] - pm.xa[i];
+  point_velocity(&pm, r, vrel);
 
-  double r[3], vt[3], f[3];
-  const double fn = law_normal(law, 1.0, pm.xa, &c, r, vt, f); /* eq 2.2 */
+  const double area = lsdem_sphere_contact_area(ra);
+  double vt[3], f[3];
+  const double fn = law_normal_at(law, 1.0, area, d, n, vrel, vt, f); /* eq 2.2 */
   if (law->mu > 0.0) {                                         /* eqs 2.7-2.10 */
     /* the pair's one entry is node 0's (entries are sorted by node, nodes >= 0) */
     const lsdem_shear_hist *h = hist_in && n_in > 0 && hist_in[0].node == 0 ? hist_in : NULL;
     double s[3];
     const int fresh = law_carried_shear(h, step, n, s);
-    law_tangential(law, 1.0, dt, c.area, fn, vt, s, fresh, f);
+    law_tangential(law, 1.0, dt, area, fn, vt, s, fresh, f);
     if (hist_out) {
       law_history(hist_out, 0, step, s, n);
       if (n_out) *n_out = 1;

@@ -31,6 +31,15 @@ static inline void pair_motion_of(const lsdem_pose *pa, const lsdem_pose *pb, pa
   for (int i = 0; i < 3; i++) m->v0[i] = pa->v[i] - pb->v[i] - wb_dab[i];
 }
 
+/* The relative velocity vrel of A's material point at arm r = p - xA (eq 2.6, see
+ * pair_motion). */
+static inline void point_velocity(const pair_motion *restrict pm, const double r[3],
+                                  double vrel[3])
+{
+  lsdem_cross3(pm->dw, r, vrel);
+  for (int i = 0; i < 3; i++) vrel[i] += pm->v0[i];
+}
+
 /* The contact point c at p (world) with B's outward normal n, depth d > 0 and area. */
 static inline __attribute__((always_inline)) void point_set(lsdem_contact_point *restrict c,
                                                             const pair_motion *restrict pm,
@@ -47,8 +56,7 @@ static inline __attribute__((always_inline)) void point_set(lsdem_contact_point 
   }
   c->depth = d;
   c->area = area;
-  lsdem_cross3(pm->dw, r, c->vrel); /* eq 2.6 (see pair_motion) */
-  for (int i = 0; i < 3; i++) c->vrel[i] += pm->v0[i];
+  point_velocity(pm, r, c->vrel);
 }
 
 /* Two analytic spheres in closed form (report §2.3.5): overlap d = ra + rb - |xA - xB| and
@@ -104,27 +112,36 @@ static inline double law_weight(const lsdem_penalty_law *law, double stride, dou
   return law->normal == LSDEM_NORMAL_TRACTION ? stride * area : stride;
 }
 
-/* Normal force of point p (eq 2.2, with damping, never attractive), returned, and what the
- * shear and the torques need: the arm ra = p - xA, the relative tangential velocity vt
- * (eq 2.6; 0 when neither damping nor friction needs it), fn n in f. */
-static inline double law_normal(const lsdem_penalty_law *restrict law, double stride,
-                                const double xa[3], const lsdem_contact_point *restrict p,
-                                double ra[3], double vt[3], double f[3])
+/* Normal force at a point of normal n, depth d and area with relative velocity vrel (eq
+ * 2.2, with damping, never attractive), returned, and what the shear needs: the relative
+ * tangential velocity vt (eq 2.6; 0 when neither damping nor friction needs it), and fn n
+ * in f. */
+static inline double law_normal_at(const lsdem_penalty_law *restrict law, double stride,
+                                   double area, double d, const double n[3],
+                                   const double vrel[3], double vt[3], double f[3])
 {
   const int relative = law->cn > 0.0 || law->mu > 0.0;
-  double fn = law->kn * law_weight(law, stride, p->area) * p->depth; /* eq 2.2: +n on A */
+  double fn = law->kn * law_weight(law, stride, area) * d; /* eq 2.2: +n on A */
   double vn = 0.0;
-  for (int i = 0; i < 3; i++) ra[i] = p->point[i] - xa[i];
-  if (relative) vn = lsdem_dot3(p->vrel, p->normal);
+  if (relative) vn = lsdem_dot3(vrel, n);
   if (law->cn > 0.0) {
     fn -= law->cn * stride * vn;
     if (fn < 0.0) fn = 0.0; /* a penalty contact pushes, never pulls */
   }
   for (int i = 0; i < 3; i++) {
-    f[i] = fn * p->normal[i];
-    vt[i] = relative ? p->vrel[i] - vn * p->normal[i] : 0.0;
+    f[i] = fn * n[i];
+    vt[i] = relative ? vrel[i] - vn * n[i] : 0.0;
   }
   return fn;
+}
+
+/* law_normal_at of contact point p, with its arm ra = p - xA (for the torques). */
+static inline double law_normal(const lsdem_penalty_law *restrict law, double stride,
+                                const double xa[3], const lsdem_contact_point *restrict p,
+                                double ra[3], double vt[3], double f[3])
+{
+  for (int i = 0; i < 3; i++) ra[i] = p->point[i] - xa[i];
+  return law_normal_at(law, stride, p->area, p->depth, p->normal, p->vrel, vt, f);
 }
 
 /* The shear spring carried over (report eq 2.8) into s: Z s_old, the stored spring of h
