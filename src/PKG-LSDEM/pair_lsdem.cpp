@@ -478,7 +478,7 @@ void PairLsdem::assign_sphere_slots(int i)
    new contact, which is kept when they touch
 ------------------------------------------------------------------------- */
 
-void PairLsdem::test_pair(Lane &lane, int i, int j, double scale, lsdem_shear_hist *slot)
+inline void PairLsdem::test_pair(Lane &lane, int i, int j, double scale, lsdem_shear_hist *slot)
 {
   lane.contact.emplace_back();
   Contact &c = lane.contact.back();
