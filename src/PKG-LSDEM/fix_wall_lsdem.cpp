@@ -1072,12 +1072,11 @@ void FixWallLsdem::apply_contact(Lane &lane, int i, const lsdem_contact_result &
   lsdem_quantize3(res.force, force_q, fk);
   lsdem_quantize3(res.torque_a, torque_q, ta);
   lsdem_quantize3(res.torque_b, torque_q, tb);
-  for (int d = 0; d < 3; d++) {
-    atom->f[i][d] += fk[d];
-    atom->torque[i][d] += ta[d];
-    lane.f[d] -= fk[d];
-    lane.t[d] += tb[d];
-  }
+  double *fi = atom->f[i], *ti = atom->torque[i];
+  for (int d = 0; d < 3; d++) fi[d] += fk[d];  // row by row: short loops the compiler pairs up
+  for (int d = 0; d < 3; d++) ti[d] += ta[d];
+  for (int d = 0; d < 3; d++) lane.f[d] -= fk[d];
+  for (int d = 0; d < 3; d++) lane.t[d] += tb[d];
   add_contact(lane, i, res, w, began);
   if (through_band && lane.crossing.empty() && lsdem_boundary_tunnelled(&bnd, res.max_depth))
     lane.crossing = tunnelled(i, res.max_depth);

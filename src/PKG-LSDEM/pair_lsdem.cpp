@@ -523,12 +523,11 @@ void PairLsdem::apply_contacts(Lane &lane, double **f, double **torque) const
     lsdem_quantize3_scaled(scale, k.res.force, force_q, fk);
     lsdem_quantize3_scaled(scale, k.res.torque_a, torque_q, ta);
     lsdem_quantize3_scaled(scale, k.res.torque_b, torque_q, tb);
-    for (int d = 0; d < 3; d++) {
-      f[k.i][d] += fk[d];
-      torque[k.i][d] += ta[d];
-      f[k.j][d] -= fk[d];
-      torque[k.j][d] += tb[d];
-    }
+    // row by row (each a short loop the compiler pairs up): the rows are distinct
+    for (int d = 0; d < 3; d++) f[k.i][d] += fk[d];
+    for (int d = 0; d < 3; d++) torque[k.i][d] += ta[d];
+    for (int d = 0; d < 3; d++) f[k.j][d] -= fk[d];
+    for (int d = 0; d < 3; d++) torque[k.j][d] += tb[d];
   }
 }
 

@@ -28,6 +28,42 @@ static double sum_in_order(const double *x, const int *idx, int n)
   return s;
 }
 
+/* lsdem_quantize3_scaled (two components at a time where SSE2 is there) gives the bits of
+ * lsdem_quantize_on on each scaled component: random terms, ties, signed zeros, terms at
+ * and beyond the exact range, infinities and NaN, out aliasing v; no quantum: s v. */
+static void test_vector_rounding(lsdem_quantum qt)
+{
+  const double special[] = {0.0, -0.0, 2.5, -3.5, 0x1p51, -0x1p51, 0x1.fffffffffffffp50,
+                            0x1p60, HUGE_VAL, -HUGE_VAL, NAN, 1e-300};
+  const int nspecial = (int)(sizeof special / sizeof special[0]);
+  int same = 1, trials = 0;
+  for (int t = 0; t < 3000; t++) {
+    double v[3], s = t % 5 ? srand1() * 3.0 : 1.0;
+    for (int i = 0; i < 3; i++)
+      v[i] = t % 4 == 0 ? special[(t / 4 + 5 * i) % nspecial] * qt.q
+                        : srand1() * pow(10.0, 4.0 * srand1());
+    for (int scaled_by_none = 0; scaled_by_none < 2; scaled_by_none++) {
+      const lsdem_quantum use = scaled_by_none ? lsdem_quantum_for(0.0) : qt;
+      double want[3], got[3], in_place[3];
+      for (int i = 0; i < 3; i++)
+        want[i] = use.q > 0.0 ? lsdem_quantize_on(s * v[i], use) : s * v[i];
+      lsdem_quantize3_scaled(s, v, use, got);
+      memcpy(in_place, v, sizeof v);
+      lsdem_quantize3_scaled(s, in_place, use, in_place);
+      for (int i = 0; i < 3; i++) /* NaN: any NaN */
+        if (!(isnan(want[i]) ? isnan(got[i]) && isnan(in_place[i])
+                             : memcmp(&want[i], &got[i], sizeof(double)) == 0 &&
+                                   memcmp(&want[i], &in_place[i], sizeof(double)) == 0)) {
+          same = 0;
+          CHECK(0, "trial %d: component %d of s v = %.17g: %.17g, not %.17g", t, i, s * v[i],
+                got[i], want[i]);
+        }
+      trials++;
+    }
+  }
+  CHECK(same && trials == 6000, "lsdem_quantize3_scaled differs from lsdem_quantize_on");
+}
+
 int main(void)
 {
   /* the quantum of a scale */
@@ -75,5 +111,6 @@ int main(void)
   /* beyond the exact range a term passes unchanged */
   CHECK(lsdem_quantize(0x1p52 * qt.q, qt) == 0x1p52 * qt.q && isnan(lsdem_quantize(NAN, qt)),
         "out-of-range terms");
+  test_vector_rounding(qt);
   return lsdem_test_summary();
 }

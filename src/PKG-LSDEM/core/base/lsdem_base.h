@@ -10,6 +10,10 @@
 #include "lsdem_vec3.h" /* dot, cross, 3x3 products: inline, one copy */
 #include "lsdem_quat.h" /* normalize, multiply, turn: inline, one copy */
 
+#if defined(__SSE2__) /* every x86-64: the order-free sums' rounding two terms at a time */
+#include <emmintrin.h>
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -97,15 +101,39 @@ static inline double lsdem_quantize(double x, lsdem_quantum qt)
 {
   return qt.q > 0.0 ? lsdem_quantize_on(x, qt) : x;
 }
+#if defined(__SSE2__)
+/* lsdem_quantize_on of both lanes of x, the same bits: the select as masks, so that the
+ * compiler need not branch (it may not compute the rounding for a term that passes, when
+ * floating-point traps are possible). */
+static inline __m128d lsdem_quantize2_on(__m128d x, lsdem_quantum qt) /* qt.q > 0 */
+{
+  const __m128d round = _mm_set1_pd(0x1.8p52);
+  const __m128d y = _mm_mul_pd(x, _mm_set1_pd(qt.inv_q));
+  const __m128d rounded = _mm_mul_pd(_mm_sub_pd(_mm_add_pd(y, round), round), _mm_set1_pd(qt.q));
+  const __m128d in_range = _mm_cmplt_pd(_mm_andnot_pd(_mm_set1_pd(-0.0), y), /* |y| < 2^51 */
+                                        _mm_set1_pd(0x1p51));
+  return _mm_or_pd(_mm_and_pd(in_range, rounded), _mm_andnot_pd(in_range, x));
+}
+#endif
 /* The same for the three components of s v into out (out may alias v): one test of the
- * quantum for the three. */
+ * quantum for the three (every contact's force and torques; with SSE2 two components at a
+ * time, the same bits). */
 static inline void lsdem_quantize3_scaled(double s, const double v[3], lsdem_quantum qt,
                                           double out[3])
 {
-  if (qt.q > 0.0)
-    for (int i = 0; i < 3; i++) out[i] = lsdem_quantize_on(s * v[i], qt);
-  else
+  if (!(qt.q > 0.0)) {
     for (int i = 0; i < 3; i++) out[i] = s * v[i];
+    return;
+  }
+#if defined(__SSE2__)
+  const __m128d sv = _mm_set1_pd(s);
+  const __m128d xy = lsdem_quantize2_on(_mm_mul_pd(sv, _mm_loadu_pd(v)), qt);
+  const __m128d z = lsdem_quantize2_on(_mm_mul_sd(sv, _mm_load_sd(v + 2)), qt);
+  _mm_storeu_pd(out, xy);
+  _mm_store_sd(out + 2, z);
+#else
+  for (int i = 0; i < 3; i++) out[i] = lsdem_quantize_on(s * v[i], qt);
+#endif
 }
 static inline void lsdem_quantize3(const double v[3], lsdem_quantum qt, double out[3])
 {
