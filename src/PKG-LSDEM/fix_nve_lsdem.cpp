@@ -189,6 +189,7 @@ int FixNVELsdem::step_grains(int from, int to, const char *&what)
 
   const double dt = update->dt;
   const double ftm2v = force->ftm2v;
+  const lsdem_damped_step k = lsdem_damped_step_of(xi, dt);  // eq 2.18's factors, once
   int bad = -1;
   what = nullptr;
 
@@ -202,13 +203,13 @@ int FixNVELsdem::step_grains(int from, int to, const char *&what)
       const double ts[3] = {ftm2v * torque[i][0], ftm2v * torque[i][1], ftm2v * torque[i][2]};
       if (spheres_rotate && !(mask[i] & fixed_spin)) {
         // analytic spheres turn about their centre: one moment of inertia, no gyroscopic term
-        lsdem_step_sphere(x[i], v[i], quat[i], omega[i], fs, ts, rmass[i],
-                          avec->inertia[i][0], xi, dt);
+        lsdem_step_sphere(x[i], v[i], quat[i], omega[i], fs, ts, rmass[i], avec->inertia[i][0],
+                          &k);
       } else {
         // 3 degrees of freedom (membrane balls, report §3.3.2, or spheres fixed): torque is
         // ignored, quat is unchanged and omega is held at zero (a spin left from a data file
         // would otherwise feed the contacts' friction)
-        lsdem_step_translation(x[i], v[i], fs, rmass[i], xi, dt);
+        lsdem_step_translation(x[i], v[i], fs, rmass[i], &k);
         omega[i][0] = omega[i][1] = omega[i][2] = 0.0;
       }
     } else {

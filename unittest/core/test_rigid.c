@@ -17,7 +17,8 @@ static void test_translation_constant_force(void)
   const double x0[3] = {1.0, 2.0, 3.0}, v0[3] = {0.5, -0.2, 0.1};
   const double f[3] = {2.0, -1.0, 0.5}, m = 3.0, dt = 0.01;
   const int n = 1000;
-  for (int s = 0; s < n; s++) lsdem_step_translation(x, v, f, m, 0.0, dt);
+  const lsdem_damped_step k = lsdem_damped_step_of(0.0, dt);
+  for (int s = 0; s < n; s++) lsdem_step_translation(x, v, f, m, &k);
   const double t = n * dt;
   for (int i = 0; i < 3; i++) {
     const double a = f[i] / m;
@@ -36,7 +37,8 @@ static void test_translation_damping(void)
   const double v0[3] = {1.0, -2.0, 0.25}, f[3] = {0, 0, 0};
   const double xi = 2.0, dt = 0.01, r = (1 - xi * dt / 2) / (1 + xi * dt / 2);
   const int n = 300;
-  for (int s = 0; s < n; s++) lsdem_step_translation(x, v, f, 7.0, xi, dt);
+  const lsdem_damped_step k = lsdem_damped_step_of(xi, dt);
+  for (int s = 0; s < n; s++) lsdem_step_translation(x, v, f, 7.0, &k);
   for (int i = 0; i < 3; i++) {
     CHECK_REL(v[i], v0[i] * pow(r, n), 1e-12);
     CHECK_REL(x[i], dt * v0[i] * r * (1 - pow(r, n)) / (1 - r), 1e-12);

@@ -13,36 +13,50 @@ extern "C" {
 /* The integrator of a grain with one moment of inertia (translation, a sphere's spin) is
  * inline: fix nve/lsdem runs it for every sphere every step. */
 
-/* The velocity half of lsdem_step_translation alone (report eq 2.18):
- * v <- [(1 - xi dt/2) v + dt f / m] / (1 + xi dt/2). */
-static inline void lsdem_step_velocity(double v[3], const double f[3], double mass, double xi,
-                                       double dt)
+/* A damped centred-difference step's factors (report eq 2.18), the same for every body with
+ * the same damping xi: dt, keep = 1 - xi dt/2 and inv = 1 / (1 + xi dt/2), so that a
+ * caller stepping many bodies finds them (and the division) once. */
+typedef struct {
+  double dt, keep, inv;
+} lsdem_damped_step;
+
+static inline lsdem_damped_step lsdem_damped_step_of(double xi, double dt)
 {
   const double h = 0.5 * xi * dt;
-  const double inv = 1.0 / (1.0 + h);
-  const double dt_m = dt / mass;
-  for (int i = 0; i < 3; i++) v[i] = ((1.0 - h) * v[i] + dt_m * f[i]) * inv; /* eq 2.18 */
+  const lsdem_damped_step k = {dt, 1.0 - h, 1.0 / (1.0 + h)};
+  return k;
 }
 
-/* Centred-difference translation with global damping xi (report eqs 2.18-2.19):
- * the velocity of lsdem_step_velocity, then x <- x + dt v. */
-static inline void lsdem_step_translation(double x[3], double v[3], const double f[3],
-                                          double mass, double xi, double dt)
+/* The velocity half of lsdem_step_translation alone (report eq 2.18):
+ * v <- [(1 - xi dt/2) v + dt f / m] / (1 + xi dt/2), the factors from k. */
+static inline void lsdem_step_velocity(double v[3], const double f[3], double mass,
+                                       const lsdem_damped_step *k)
 {
-  lsdem_step_velocity(v, f, mass, xi, dt);
-  for (int i = 0; i < 3; i++) x[i] += dt * v[i]; /* eq 2.19 */
+  const double dt_m = k->dt / mass;
+  for (int i = 0; i < 3; i++) v[i] = (k->keep * v[i] + dt_m * f[i]) * k->inv; /* eq 2.18 */
+}
+
+/* Centred-difference translation with global damping (report eqs 2.18-2.19, the factors
+ * k = lsdem_damped_step_of(xi, dt)): the velocity of lsdem_step_velocity, then
+ * x <- x + dt v. */
+static inline void lsdem_step_translation(double x[3], double v[3], const double f[3],
+                                          double mass, const lsdem_damped_step *k)
+{
+  lsdem_step_velocity(v, f, mass, k);
+  for (int i = 0; i < 3; i++) x[i] += k->dt * v[i]; /* eq 2.19 */
 }
 
 /* The rotation of a body with one moment of inertia I about the axes it turns about (a
  * sphere; a pivoting platen): the centred difference of eq 2.18 in the world frame,
  * omega <- [(1 - xi dt/2) omega + dt torque / I] / (1 + xi dt/2) (Euler's equation, eq 2.20,
  * without its gyroscopic terms, which vanish for equal moments), then q (body -> world)
- * advanced from n to n+1 by omega^{n+1/2} over dt (eq 2.28). omega and torque world-frame. */
+ * advanced from n to n+1 by omega^{n+1/2} over dt (eq 2.28). omega and torque world-frame;
+ * k = lsdem_damped_step_of(xi, dt). */
 static inline void lsdem_step_spin(double q[4], double omega[3], const double torque[3],
-                                   double inertia, double xi, double dt)
+                                   double inertia, const lsdem_damped_step *k)
 {
-  lsdem_step_velocity(omega, torque, inertia, xi, dt); /* eq 2.18 as eq 2.20, I isotropic */
-  lsdem_quat_turn(q, omega, dt);                       /* q^n -> q^{n+1}, eq 2.28 */
+  lsdem_step_velocity(omega, torque, inertia, k); /* eq 2.18 as eq 2.20, I isotropic */
+  lsdem_quat_turn(q, omega, k->dt);               /* q^n -> q^{n+1}, eq 2.28 */
 }
 
 /* One step of an analytic sphere (isotropic moment of inertia I, report §2.3.5): the
@@ -50,10 +64,10 @@ static inline void lsdem_step_spin(double q[4], double omega[3], const double to
  * the levels of lsdem_step_body; omega and torque world-frame, as LAMMPS keeps them). */
 static inline void lsdem_step_sphere(double x[3], double v[3], double q[4], double omega[3],
                                      const double force[3], const double torque[3],
-                                     double mass, double inertia, double xi, double dt)
+                                     double mass, double inertia, const lsdem_damped_step *k)
 {
-  lsdem_step_translation(x, v, force, mass, xi, dt);
-  lsdem_step_spin(q, omega, torque, inertia, xi, dt);
+  lsdem_step_translation(x, v, force, mass, k);
+  lsdem_step_spin(q, omega, torque, inertia, k);
 }
 
 /* Predictor-corrector Euler equations in the principal frame (report eqs 2.21-2.25).

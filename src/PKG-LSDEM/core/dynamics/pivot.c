@@ -29,7 +29,8 @@ void lsdem_step_pivot(double q[4], double omega[3], const double torque_p[3],
   remove_along(t, axis);
   remove_along(omega, axis);
   /* omega^{n+1/2} = [(1 - c dt / 2I) omega^{n-1/2} + dt T / I] / (1 + c dt / 2I) */
-  lsdem_step_spin(q, omega, t, inertia, damping / inertia, dt);
+  const lsdem_damped_step k = lsdem_damped_step_of(damping / inertia, dt);
+  lsdem_step_spin(q, omega, t, inertia, &k);
 }
 
 void lsdem_pivot_pose(const double pivot[3], const double v_p[3], const double q[4],

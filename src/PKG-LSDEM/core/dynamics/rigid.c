@@ -39,7 +39,8 @@ void lsdem_step_body(double x[3], double v[3], double q[4], double omega_body[3]
                      double omega_world[3])
 {
   double torque_body[3];
-  lsdem_step_translation(x, v, force, mass, xi, dt);
+  const lsdem_damped_step k = lsdem_damped_step_of(xi, dt);
+  lsdem_step_translation(x, v, force, mass, &k);
   lsdem_quat_rotate_inv(q, torque, torque_body); /* world -> body with q^n */
   lsdem_step_rotation(omega_body, dw_prev, torque_body, inertia, xi, dt);
   lsdem_quat_advance(q, omega_body, dt);        /* q^n -> q^{n+1} */
