@@ -67,8 +67,7 @@ class LsdemContactPath {
              bigint step);
   // test() for an analytic sphere A of radius ra whose pair keeps its one spring in `slot`
   // (not in the store; FixLsdemSphereShear), read and written in place. Returns the
-  // penetrating nodes (0 or 1).
-  // (inline: every sphere pair, every step)
+  // penetrating nodes (0 or 1). Inline: every sphere pair, every step.
   static int test_sphere_in_place(double ra, const lsdem_pose &pa, const lsdem_shape *B,
                                   const lsdem_pose &pb, const lsdem_contact_params &prm,
                                   bigint step, lsdem_shear_hist &slot, lsdem_contact_result &res)

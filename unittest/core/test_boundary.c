@@ -1,7 +1,7 @@
 /* Walls (core/boundary): planes and cylindrical containers against closed forms written
  * here from the geometry (distance and normal of points, the bounding-sphere test, the
- * crossing test and its cheap rejection, the pose of a moving wall at time t, the pivoting platen), and bad input
- * refused with the parameter named. */
+ * crossing test and its cheap rejection, the pose of a moving wall at time t, the pivoting
+ * platen), and bad input refused with the parameter named. */
 #include "lsdem.h"
 #include "lsdem_test.h"
 
@@ -150,9 +150,6 @@ static void test_crossing(void)
   CHECK_NEAR(vn, -2.0, 1e-15);
 }
 
-/* a wall at constant velocity v: after n advances of dt its point is x0 + n dt v; the pose
- * at s is that moved by s v (the distance of a fixed point drops by s v.n), s = 0 the pose
- * as stored, and moving back one step returns the previous pose */
 /* the cheap rejection of the crossing test never clears a grain that crosses: random
  * centres and velocities against a moving, turning plane and a container, over many
  * steps' worth of motion; it clears most of those far from the wall; NaN is never clear */
@@ -190,6 +187,9 @@ static void test_clear_of_crossing(void)
         "NaN is never clear");
 }
 
+/* a wall at constant velocity v: after n advances of dt its point is x0 + n dt v; the pose
+ * at s is that moved by s v (the distance of a fixed point drops by s v.n), s = 0 the pose
+ * as stored, and moving back one step returns the previous pose */
 static void test_moving_pose(void)
 {
   lsdem_boundary b;
