@@ -1,8 +1,18 @@
-/* lsdem_vec3.h -- the one copy of the core's small vector and 3x3 matrix helpers, inline.
- * Vectors are double[3]; matrices 3x3 row-major double[9]. Every function may be called
- * with out aliasing an input (results are formed before they are stored). */
+/* lsdem_vec3.h -- the one copy of the core's small vector and 3x3 matrix helpers, inline,
+ * and the per-step paths' scalar max and min. Vectors are double[3]; matrices 3x3
+ * row-major double[9]. Every function may be called with out aliasing an input (results
+ * are formed before they are stored). */
 #ifndef LSDEM_VEC3_H
 #define LSDEM_VEC3_H
+
+/* The larger (smaller) of a and b as a select, for the per-step paths: GCC calls libm's
+ * fmax and fmin unless NaNs are ruled out, and every live floating-point register is
+ * saved around such a call (2 calls per resting update, 6 per clamp of a point into a
+ * grid's box). The same value as glibc's fmax(a, b) (fmin) whenever b is not a NaN,
+ * signed zeros included (b when they compare equal); a NaN in a gives b. So the argument
+ * that may be a NaN goes first. */
+static inline double lsdem_max(double a, double b) { return a > b ? a : b; }
+static inline double lsdem_min(double a, double b) { return a < b ? a : b; }
 
 static inline double lsdem_dot3(const double a[3], const double b[3])
 {

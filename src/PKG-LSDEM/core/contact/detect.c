@@ -169,7 +169,7 @@ static void clamp_to_box(const lsdem_grid *gr, const double p[3], double q[3])
   const double inset = 1e-6 * gr->h;
   for (int a = 0; a < 3; a++) {
     const double lo = gr->origin[a] + inset, hi = gr->origin[a] + gr->h * (gr->n[a] - 1) - inset;
-    q[a] = fmin(fmax(p[a], lo), hi);
+    q[a] = lsdem_min(lsdem_max(p[a], lo), hi);
   }
 }
 
@@ -211,7 +211,7 @@ static double box_gap_of(const lsdem_grid *gr, const double q[3], double c[3])
 
 static double grid_gap_of(const lsdem_grid *gr, double lip, const double c[3], double out)
 {
-  return fmax(out - 2e-6 * gr->h, lsdem_grid_value(gr, c) / lip - out);
+  return lsdem_max(out - 2e-6 * gr->h, lsdem_grid_value(gr, c) / lip - out);
 }
 
 /* For B with |grad phi| <= L (screening_lipschitz): no point of the ball of radius r

@@ -62,7 +62,7 @@ static double outside_value(const lsdem_grid *g, const double u[3], double grad[
 {
   double uc[3], d[3];
   for (int a = 0; a < 3; a++) {
-    uc[a] = fmin(fmax(u[a], 0.0), (double)(g->n[a] - 1));
+    uc[a] = lsdem_min(lsdem_max(u[a], 0.0), (double)(g->n[a] - 1));
     d[a] = (u[a] - uc[a]) * g->h;
   }
   const double dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);

@@ -49,7 +49,7 @@ static double current_overlap(const lsdem_impulse_body *bm, const lsdem_impulse_
   lsdem_manifold m = lsdem_manifold_over(points, npoints);
   double deepest = 0.0;
   lsdem_detect(gm->shape, &pm, gs->shape, &ps, det, step, NULL, NULL, &m);
-  for (int j = 0; j < m.n; j++) deepest = fmax(deepest, m.point[j].depth);
+  for (int j = 0; j < m.n; j++) deepest = lsdem_max(m.point[j].depth, deepest);
   return deepest;
 }
 
@@ -60,7 +60,7 @@ static double current_overlap(const lsdem_impulse_body *bm, const lsdem_impulse_
 static double lift(double d, double u_n, double rest_speed, double e, double dt)
 {
   const int collision = lsdem_wall_classify(u_n, rest_speed) == LSDEM_WALL_COLLIDING;
-  return collision ? fmax(d / dt, -(1.0 + e) * u_n) : d / dt;
+  return collision ? lsdem_max(d / dt, -(1.0 + e) * u_n) : d / dt;
 }
 
 /* Pair q at the predicted poses: 1 when its deepest point (after the push-out limit of the

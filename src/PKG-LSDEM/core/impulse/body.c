@@ -197,5 +197,5 @@ int lsdem_impulse_approaching(const lsdem_impulse_body *bodies, const lsdem_impu
   const double un = lsdem_impulse_contact_velocities(bodies, c, ua, ub, u);
   const double noise = 1e-12 * (sqrt(lsdem_dot3(ua, ua)) + sqrt(lsdem_dot3(ub, ub)));
   if (u_n) *u_n = un;
-  return un < -fmax(floor, noise);
+  return un < -lsdem_max(noise, floor);
 }

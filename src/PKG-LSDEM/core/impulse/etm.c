@@ -522,13 +522,13 @@ lsdem_status lsdem_etm_separate(lsdem_etm *s, lsdem_error *err)
     if (ng == 0) return st;
     for (int32_t g = 0; g < ng; g++) {
       const etm_contact *c = &s->c[s->group[g]];
-      double give = fmin(-kmin * s->share[g], c->W); /* a share of the largest energy */
+      double give = lsdem_min(-kmin * s->share[g], c->W); /* a share of the largest energy */
       if (c->W - give <= wtol) give = c->W;          /* no tiny remainder */
       /* eq 4.30 (for eq 4.29) from u_n >= 0: a contact still approaching would take the
        * elastic reversal -u_n -> u_n on top of its share, and the reversals of a group,
        * applied together, would add up on a shared body far beyond its stored energy */
       const double un =
-          fmax(s->un0[g] = relative_velocity(s, s->group[g], &s->ub[3 * g]), 0.0);
+          lsdem_max(s->un0[g] = relative_velocity(s, s->group[g], &s->ub[3 * g]), 0.0);
       s->du[g] = -un + sqrt(un * un + 2.0 * give * c->knn);
     }
     apply_group(s, ng);

@@ -26,7 +26,7 @@ static double accumulate(lsdem_impulse_contact *c, const lsdem_contact_point *p)
     c->point[i] += p->area * p->point[i];
     c->normal[i] += p->area * p->normal[i];
   }
-  c->depth = fmax(c->depth, p->depth);
+  c->depth = lsdem_max(p->depth, c->depth);
   return p->area;
 }
 

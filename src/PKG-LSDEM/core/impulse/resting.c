@@ -313,7 +313,7 @@ static double update_contact(lsdem_impulse_body *bodies, const lsdem_impulse_con
   }
 
   /* normal: u_n to the target, the total kept >= 0 */
-  const double pn1 = fmax(pn + (r->target - un1) * r->inv_knn, 0.0);
+  const double pn1 = lsdem_max(pn + (r->target - un1) * r->inv_knn, 0.0);
   if (pn1 != pn) {
     const double dpn = pn1 - pn;
     row_apply(r, a, b, DN, dpn);
@@ -509,7 +509,8 @@ static double update_run(lsdem_impulse_body *bodies, const lsdem_impulse_contact
   double worst = 0.0;
   for (int n = cl->run_first[r]; n < cl->run_first[r + 1]; n++) {
     const int32_t w = which[cl->seq[n]];
-    worst = fmax(worst, update_contact(bodies, &contacts[w], &rows[n], impulse[w], &cl->work[n]));
+    worst = lsdem_max(update_contact(bodies, &contacts[w], &rows[n], impulse[w], &cl->work[n]),
+                      worst);
   }
   return worst;
 }
@@ -558,17 +559,17 @@ static double sweep_colours(lsdem_impulse_body *bodies, const lsdem_impulse_cont
 #pragma omp for schedule(static) nowait
 #endif
       for (int n = from; n < to; n++)
-        worst = fmax(worst, update_run(bodies, contacts, which, rows, impulse, cl, n));
+        worst = lsdem_max(update_run(bodies, contacts, which, rows, impulse, cl, n), worst);
     } else if (thread_id() == 0) {
       for (int n = from; n < to; n++)
-        worst = fmax(worst, update_run(bodies, contacts, which, rows, impulse, cl, n));
+        worst = lsdem_max(update_run(bodies, contacts, which, rows, impulse, cl, n), worst);
     }
     team_barrier();
   }
   cl->part[8 * thread_id()] = worst;
   team_barrier();
   double all = 0.0;
-  for (int t = 0; t < team_size(); t++) all = fmax(all, cl->part[8 * t]);
+  for (int t = 0; t < team_size(); t++) all = lsdem_max(cl->part[8 * t], all);
   team_barrier(); /* every thread has read part before the next sweep writes it */
   return all;
 }
@@ -601,8 +602,9 @@ static void sweep_in_order(lsdem_impulse_body *bodies, const lsdem_impulse_conta
   for (int s = 0; s < max_sweeps; s++) {
     double worst = 0.0;
     for (int k = 0; k < nwhich; k++)
-      worst = fmax(worst, update_contact(bodies, &contacts[which[k]], &rows[k],
-                                         impulse[which[k]], &res->work));
+      worst = lsdem_max(update_contact(bodies, &contacts[which[k]], &rows[k],
+                                       impulse[which[k]], &res->work),
+                        worst);
     res->sweeps = s + 1;
     res->residual = worst;
     res->threads = 1;

@@ -49,7 +49,7 @@ double lsdem_impulse_stage_kick(lsdem_impulse_body *body, const lsdem_impulse_gr
     const lsdem_impulse_grain *g = &grain[k];
     if (work) *work += kick_work(&body[k], g, dt);
     lsdem_impulse_kick(&body[k], g->force, g->torque, dt); /* eqs 4.37, 4.39 */
-    amax = fmax(amax, sqrt(lsdem_dot3(g->force, g->force)) / g->mass);
+    amax = lsdem_max(sqrt(lsdem_dot3(g->force, g->force)) / g->mass, amax);
   }
   return amax;
 }
