@@ -113,34 +113,17 @@ static void tangents(const double n[3], double t1[3], double t2[3])
 }
 
 /* K's entry for directions d, e of the row: d . K e (eq 4.13 through the arms). */
-static double row_k(const row *r, int d, int e)
+static inline double row_k(const row *r, int d, int e)
 {
   return (r->ma + r->mb) * lsdem_dot3(r->dir[d], r->dir[e]) + lsdem_dot3(r->ra[d], r->ia[e]) +
          lsdem_dot3(r->rb[d], r->ib[e]);
 }
 
-/* The row of contact c; a frozen side (or a wall) takes no impulse. */
-static void make_row(const lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
-                     const lsdem_resting_params *p, int frozen, row *r)
+/* K's blocks (eq 4.13) from the row's arms, and the point velocity of an excluded side
+ * (a_out: a takes no impulse; b_out: b). */
+static void row_blocks(const lsdem_impulse_body *a, const lsdem_impulse_body *b,
+                       const lsdem_impulse_contact *c, int a_out, int b_out, row *r)
 {
-  const lsdem_impulse_body *a = &bodies[c->a], *b = &bodies[c->b];
-  const int a_out = frozen == FROZEN_A || lsdem_impulse_body_is_wall(a);
-  const int b_out = frozen == FROZEN_B || lsdem_impulse_body_is_wall(b);
-  memcpy(r->dir[DN], c->normal, sizeof r->dir[DN]);
-  tangents(c->normal, r->dir[DT1], r->dir[DT2]);
-  double ra[3], rb[3];
-  lsdem_sub3(c->point, a->x, ra);
-  lsdem_sub3(c->point, b->x, rb);
-  r->ma = a_out ? 0.0 : a->inv_mass;
-  r->mb = b_out ? 0.0 : b->inv_mass;
-  for (int d = 0; d < 3; d++) {
-    lsdem_cross3(ra, r->dir[d], r->ra[d]);
-    lsdem_cross3(rb, r->dir[d], r->rb[d]);
-    if (a_out) memset(r->ia[d], 0, sizeof r->ia[d]);
-    else lsdem_mat_vec(a->inv_inertia, r->ra[d], r->ia[d]);
-    if (b_out) memset(r->ib[d], 0, sizeof r->ib[d]);
-    else lsdem_mat_vec(b->inv_inertia, r->rb[d], r->ib[d]);
-  }
   r->knn = row_k(r, DN, DN);
   r->inv_knn = r->knn > 0.0 ? 1.0 / r->knn : 0.0;
   const double ka = row_k(r, DT1, DT1), kb = row_k(r, DT1, DT2), kd = row_k(r, DT2, DT2);
@@ -163,8 +146,50 @@ static void make_row(const lsdem_impulse_body *bodies, const lsdem_impulse_conta
     lsdem_impulse_point_velocity(a, c->point, r->vx);
     for (int i = 0; i < 3; i++) r->vx[i] = -r->vx[i];
   }
-  r->target = lsdem_resting_target(p, c->depth, lsdem_impulse_body_is_wall(a) ||
-                                                     lsdem_impulse_body_is_wall(b));
+}
+
+/* The row of contact c; a wall takes no impulse. */
+static void make_row(const lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
+                     const lsdem_resting_params *p, row *r)
+{
+  const lsdem_impulse_body *a = &bodies[c->a], *b = &bodies[c->b];
+  const int a_out = lsdem_impulse_body_is_wall(a), b_out = lsdem_impulse_body_is_wall(b);
+  memcpy(r->dir[DN], c->normal, sizeof r->dir[DN]);
+  tangents(c->normal, r->dir[DT1], r->dir[DT2]);
+  double ra[3], rb[3];
+  lsdem_sub3(c->point, a->x, ra);
+  lsdem_sub3(c->point, b->x, rb);
+  r->ma = a_out ? 0.0 : a->inv_mass;
+  r->mb = b_out ? 0.0 : b->inv_mass;
+  for (int d = 0; d < 3; d++) {
+    lsdem_cross3(ra, r->dir[d], r->ra[d]);
+    lsdem_cross3(rb, r->dir[d], r->rb[d]);
+    if (a_out) memset(r->ia[d], 0, sizeof r->ia[d]);
+    else lsdem_mat_vec(a->inv_inertia, r->ra[d], r->ia[d]);
+    if (b_out) memset(r->ib[d], 0, sizeof r->ib[d]);
+    else lsdem_mat_vec(b->inv_inertia, r->rb[d], r->ib[d]);
+  }
+  row_blocks(a, b, c, a_out, b_out, r);
+  r->target = lsdem_resting_target(p, c->depth, a_out || b_out);
+}
+
+/* The shock sweep's row of contact c (FROZEN_A or FROZEN_B): its sweeps' row `from` with
+ * the frozen side's impulse response taken out, its K and the frozen side's point
+ * velocity (as it is now) made again. */
+static void freeze_row(const lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
+                       const row *from, int frozen, row *r)
+{
+  const lsdem_impulse_body *a = &bodies[c->a], *b = &bodies[c->b];
+  *r = *from;
+  if (frozen == FROZEN_A) {
+    r->ma = 0.0;
+    memset(r->ia, 0, sizeof r->ia);
+  } else {
+    r->mb = 0.0;
+    memset(r->ib, 0, sizeof r->ib);
+  }
+  row_blocks(a, b, c, frozen == FROZEN_A || lsdem_impulse_body_is_wall(a),
+             frozen == FROZEN_B || lsdem_impulse_body_is_wall(b), r);
 }
 
 /* The threads that share n items (rows, or runs of a sweep's colours): p->threads (at most
@@ -184,41 +209,69 @@ static void make_rows(const lsdem_impulse_body *bodies, const lsdem_impulse_cont
   const int threads = team_for(p, n);
   if (threads == 1) { /* no team: one thread's loop as the compiler makes it */
     for (int k = 0; k < n; k++)
-      make_row(bodies, &contacts[which[seq[k]]], p, FROZEN_NONE, &rows[k]);
+      make_row(bodies, &contacts[which[seq[k]]], p, &rows[k]);
     return;
   }
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static) num_threads(threads)
 #endif
   for (int k = 0; k < n; k++)
-    make_row(bodies, &contacts[which[seq[k]]], p, FROZEN_NONE, &rows[k]);
+    make_row(bodies, &contacts[which[seq[k]]], p, &rows[k]);
+}
+
+/* The velocities of a contact's two bodies while it is updated, copied in and out once:
+ * the update's reads of its row then cannot alias its writes to the bodies, which the
+ * compiler would otherwise have to assume (and reload the row after every write). */
+typedef struct {
+  double va[3], wa[3], vb[3], wb[3]; /* v and omega of a, then of b */
+} pair_velocity;
+
+static void pair_velocity_load(const lsdem_impulse_body *a, const lsdem_impulse_body *b,
+                               pair_velocity *s)
+{
+  memcpy(s->va, a->v, sizeof s->va);
+  memcpy(s->wa, a->omega, sizeof s->wa);
+  memcpy(s->vb, b->v, sizeof s->vb);
+  memcpy(s->wb, b->omega, sizeof s->wb);
+}
+
+/* A side that does not move (a wall or frozen: inverse mass 0 in the row) is not written,
+ * so that threads sweeping contacts on one wall never share a write. */
+static void pair_velocity_store(const row *r, const pair_velocity *s, lsdem_impulse_body *a,
+                                lsdem_impulse_body *b)
+{
+  if (r->ma != 0.0) {
+    memcpy(a->v, s->va, sizeof s->va);
+    memcpy(a->omega, s->wa, sizeof s->wa);
+  }
+  if (r->mb != 0.0) {
+    memcpy(b->v, s->vb, sizeof s->vb);
+    memcpy(b->omega, s->wb, sizeof s->wb);
+  }
 }
 
 /* The relative velocity of the contact along the row's direction d. */
-static double row_velocity(const row *r, const lsdem_impulse_body *a,
-                           const lsdem_impulse_body *b, int d)
+static inline double row_velocity(const row *r, const pair_velocity *s, int d)
 {
   double dv[3];
-  lsdem_sub3(a->v, b->v, dv);
-  return lsdem_dot3(r->dir[d], dv) + lsdem_dot3(r->ra[d], a->omega) -
-         lsdem_dot3(r->rb[d], b->omega);
+  lsdem_sub3(s->va, s->vb, dv);
+  return lsdem_dot3(r->dir[d], dv) + lsdem_dot3(r->ra[d], s->wa) -
+         lsdem_dot3(r->rb[d], s->wb);
 }
 
 /* An impulse lambda along the row's direction d on a (and -lambda on b); a side that does
- * not move (a wall or frozen: inverse mass 0 in the row) is not written, so that threads
- * sweeping contacts on one wall never share a write. */
-static inline void row_apply(const row *r, lsdem_impulse_body *a, lsdem_impulse_body *b, int d,
-                             double lambda)
+ * not move takes none. */
+static inline void row_apply(const row *r, pair_velocity *s, int d, double lambda)
 {
   if (r->ma != 0.0)
     for (int i = 0; i < 3; i++) {
-      a->v[i] += r->ma * lambda * r->dir[d][i];
-      a->omega[i] += lambda * r->ia[d][i];
+      s->va[i] += r->ma * lambda * r->dir[d][i];
+      s->wa[i] += lambda * r->ia[d][i];
     }
   if (r->mb != 0.0)
     for (int i = 0; i < 3; i++) {
-      b->v[i] -= r->mb * lambda * r->dir[d][i];
-      b->omega[i] -= lambda * r->ib[d][i];
+      s->vb[i] -= r->mb * lambda * r->dir[d][i];
+      s->wb[i] -= lambda * r->ib[d][i];
     }
 }
 
@@ -244,18 +297,20 @@ static void project_cone(const double n[3], double mu, double P[3])
 static double apply_total(lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
                           const row *r, const double P[3])
 {
-  lsdem_impulse_body *a = &bodies[c->a], *b = &bodies[c->b];
+  pair_velocity s;
+  pair_velocity_load(&bodies[c->a], &bodies[c->b], &s);
   double p[3], u[3];
   for (int d = 0; d < 3; d++) {
     p[d] = lsdem_dot3(P, r->dir[d]);
-    u[d] = row_velocity(r, a, b, d);
+    u[d] = row_velocity(r, &s, d);
   }
   double w = lsdem_dot3(P, r->vx);
   for (int d = 0; d < 3; d++) {
-    row_apply(r, a, b, d, p[d]);
+    row_apply(r, &s, d, p[d]);
     w += p[d] * u[d];
     for (int e = 0; e < 3; e++) w += 0.5 * p[d] * p[e] * row_k(r, d, e);
   }
+  pair_velocity_store(r, &s, &bodies[c->a], &bodies[c->b]);
   return w;
 }
 
@@ -290,9 +345,10 @@ static int friction_update(const row *r, const double p[2], const double u[2], d
 static double update_contact(lsdem_impulse_body *bodies, const lsdem_impulse_contact *c,
                              const row *r, double P[3], double *work)
 {
-  lsdem_impulse_body *a = &bodies[c->a], *b = &bodies[c->b];
-  const double un = row_velocity(r, a, b, DN);
-  const double ut[2] = {row_velocity(r, a, b, DT1), row_velocity(r, a, b, DT2)};
+  pair_velocity s;
+  pair_velocity_load(&bodies[c->a], &bodies[c->b], &s);
+  const double un = row_velocity(r, &s, DN);
+  const double ut[2] = {row_velocity(r, &s, DT1), row_velocity(r, &s, DT2)};
   const double pn = lsdem_dot3(P, r->dir[DN]);
   const double pt[2] = {lsdem_dot3(P, r->dir[DT1]), lsdem_dot3(P, r->dir[DT2])};
   double q[2];
@@ -304,22 +360,23 @@ static double update_contact(lsdem_impulse_body *bodies, const lsdem_impulse_con
     const double d1 = q[0] - pt[0], d2 = q[1] - pt[1];
     double dP[3];
     for (int i = 0; i < 3; i++) dP[i] = d1 * r->dir[DT1][i] + d2 * r->dir[DT2][i];
-    row_apply(r, a, b, DT1, d1);
-    row_apply(r, a, b, DT2, d2);
+    row_apply(r, &s, DT1, d1);
+    row_apply(r, &s, DT2, d2);
     const double dPKdP = r->ktt[0] * d1 * d1 + 2.0 * r->ktt[1] * d1 * d2 + r->ktt[2] * d2 * d2;
     *work += d1 * ut[0] + d2 * ut[1] + 0.5 * dPKdP + lsdem_dot3(dP, r->vx);
     for (int i = 0; i < 3; i++) P[i] += dP[i];
-    un1 = row_velocity(r, a, b, DN);
+    un1 = row_velocity(r, &s, DN);
   }
 
   /* normal: u_n to the target, the total kept >= 0 */
   const double pn1 = lsdem_max(pn + (r->target - un1) * r->inv_knn, 0.0);
   if (pn1 != pn) {
     const double dpn = pn1 - pn;
-    row_apply(r, a, b, DN, dpn);
+    row_apply(r, &s, DN, dpn);
     *work += dpn * un1 + 0.5 * dpn * dpn * r->knn + dpn * lsdem_dot3(r->dir[DN], r->vx);
     for (int i = 0; i < 3; i++) P[i] += dpn * r->dir[DN][i];
   }
+  pair_velocity_store(r, &s, &bodies[c->a], &bodies[c->b]);
   return residual;
 }
 
@@ -391,7 +448,7 @@ static void shock_order(const lsdem_impulse_body *bodies, int nbodies,
 static void shock_sweep(lsdem_impulse_body *bodies, const lsdem_impulse_contact *contacts,
                         const int32_t *which, const row *rows, const int32_t *row_of,
                         const int32_t *order, int nwhich, const int32_t *level,
-                        const lsdem_resting_params *p, double (*impulse)[3], double *work)
+                        double (*impulse)[3], double *work)
 {
   for (int n = 0; n < nwhich; n++) {
     const int k = order[n];
@@ -403,7 +460,7 @@ static void shock_sweep(lsdem_impulse_body *bodies, const lsdem_impulse_contact 
       continue;
     }
     row r;
-    make_row(bodies, c, p, frozen, &r);
+    freeze_row(bodies, c, &rows[row_of[k]], frozen, &r);
     update_contact(bodies, c, &r, impulse[which[k]], work);
   }
 }
@@ -640,7 +697,7 @@ static void sweep_island(lsdem_impulse_body *bodies, int nbodies,
   }
   if (shock) {
     shock_order(bodies, nbodies, contacts, which, nwhich, sw);
-    shock_sweep(bodies, contacts, which, rows, cl->pos, sw->order, nwhich, sw->level, p, impulse,
+    shock_sweep(bodies, contacts, which, rows, cl->pos, sw->order, nwhich, sw->level, impulse,
                 &res->work);
   }
 }
