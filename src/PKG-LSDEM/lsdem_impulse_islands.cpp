@@ -77,7 +77,7 @@ void LsdemImpulseIslands::grow(int n)
 double LsdemImpulseIslands::memory_usage() const
 {
   double bytes = (double) nmax * (2 * sizeof(int32_t) + 3 * sizeof(int64_t) + 2);
-  bytes += (double) (items.capacity() + sorted.capacity() + sent.capacity() + got.capacity()) *
+  bytes += (double) (items.capacity() + sent.capacity() + got.capacity()) *
       sizeof(Item);
   bytes += (double) order.capacity() * sizeof(Order);
   bytes += (double) ws.capacity();
@@ -417,7 +417,8 @@ std::string LsdemImpulseIslands::solve_items(const lsdem_island_params &prm, int
                                              LsdemIslandStats &st)
 {
   // sorted by (label, kind, ta, tb, key), unique to each record: the keys with the record's
-  // place are sorted (a fifth of a record's bytes to move), then the records gathered
+  // place are sorted (a fifth of a record's bytes to move) and the islands read the records
+  // through them
   order.resize(items.size());
   for (size_t k = 0; k < items.size(); k++) {
     const Item &it = items[k];
@@ -427,42 +428,41 @@ std::string LsdemImpulseIslands::solve_items(const lsdem_island_params &prm, int
     return std::tie(a.label, a.kind, a.ta, a.tb, a.key) <
         std::tie(b.label, b.kind, b.ta, b.tb, b.key);
   });
-  sorted.resize(items.size());
-  for (size_t k = 0; k < items.size(); k++) sorted[k] = items[order[k].at];
-  items.swap(sorted);
   results.clear();
   std::string first;
-  for (size_t k = 0; k < items.size();) {
+  for (size_t k = 0; k < order.size();) {
     size_t e = k;
-    while (e < items.size() && items[e].label == items[k].label) e++;
-    std::string mesg = solve_island(&items[k], (int) (e - k), prm, warm, st);
+    while (e < order.size() && order[e].label == order[k].label) e++;
+    std::string mesg = solve_island(&order[k], (int) (e - k), prm, warm, st);
     if (first.empty()) first = mesg;
     k = e;
   }
   return first;
 }
 
-/* one island: its grains (tag order), then its contacts (id order) with their bodies found
-   by tag, or a prescribed body made from the record; ETM; the grains' new velocities */
+/* one island (its records' keys o[0..n), in solve order): its grains (tag order), then its
+   contacts (id order) with their bodies found by tag, or a prescribed body made from the
+   record; ETM; the grains' new velocities */
 
-std::string LsdemImpulseIslands::solve_island(const Item *it, int n,
+std::string LsdemImpulseIslands::solve_island(const Order *o, int n,
                                               const lsdem_island_params &prm, int warm,
                                               LsdemIslandStats &st)
 {
   lsdem_error err;
+  auto it = [&](int k) -> const Item & { return items[o[k].at]; };
   int nb = 0;
-  while (nb < n && it[nb].kind == BODY) nb++;
+  while (nb < n && o[nb].kind == BODY) nb++;
   bool approaching = false;
-  for (int k = nb; k < n; k++) approaching |= (it[k].flags & APPROACHING) != 0;
+  for (int k = nb; k < n; k++) approaching |= (it(k).flags & APPROACHING) != 0;
   if (!approaching) return std::string();  // nothing to resolve; velocities unchanged
   bodies.resize(nb);
   for (int k = 0; k < nb; k++)
-    if (grain_body(it[k], bodies[k], &err) != LSDEM_OK)
-      return fmt::format("grain {}: {}", it[k].ta, err.msg);
+    if (grain_body(it(k), bodies[k], &err) != LSDEM_OK)
+      return fmt::format("grain {}: {}", o[k].ta, err.msg);
   auto grain_index = [&](int64_t tag) {
-    const Item *p = std::lower_bound(it, it + nb, tag,
-                                     [](const Item &a, int64_t t) { return a.ta < t; });
-    return (p < it + nb && p->ta == tag) ? (int) (p - it) : -1;
+    const Order *p = std::lower_bound(o, o + nb, tag,
+                                      [](const Order &a, int64_t t) { return a.ta < t; });
+    return (p < o + nb && p->ta == tag) ? (int) (p - o) : -1;
   };
   auto prescribed = [&](const Item &c, int64_t tag) {
     lsdem_impulse_body w;
@@ -476,7 +476,7 @@ std::string LsdemImpulseIslands::solve_island(const Item *it, int n,
   collision.resize(3 * (size_t) (n - nb));
   int nrest = 0;
   for (int k = nb; k < n; k++) {
-    const Item &c = it[k];
+    const Item &c = it(k);
     lsdem_impulse_contact &ct = contacts[k - nb];
     for (int d = 0; d < 3; d++) {
       ct.point[d] = c.d[d];
@@ -492,7 +492,7 @@ std::string LsdemImpulseIslands::solve_island(const Item *it, int n,
     nrest += resting[k - nb];
     if (ct.a < 0 || ct.b < 0)
       return fmt::format("island {}: contact of grains {} and {} without its grain record "
-                         "(internal error)", it[0].label, c.ta, c.tb);
+                         "(internal error)", o[0].label, c.ta, c.tb);
   }
   const int nc = n - nb, nbodies = (int) bodies.size();
   const size_t need = lsdem_island_workspace_size(nbodies, nc);
@@ -525,8 +525,8 @@ std::string LsdemImpulseIslands::solve_island(const Item *it, int n,
   }
   for (int k = 0; k < nb; k++) {
     Result r;
-    r.owner = it[k].owner;
-    r.index = it[k].index;
+    r.owner = it(k).owner;
+    r.index = it(k).index;
     for (int d = 0; d < 3; d++) {
       r.v[d] = bodies[k].v[d];
       r.omega[d] = bodies[k].omega[d];
@@ -535,8 +535,8 @@ std::string LsdemImpulseIslands::solve_island(const Item *it, int n,
   }
   for (int k = 0; k < nc; k++) {
     Result r;
-    r.owner = it[nb + k].owner;
-    r.index = -1 - it[nb + k].index;
+    r.owner = it(nb + k).owner;
+    r.index = -1 - it(nb + k).index;
     for (int d = 0; d < 3; d++) {
       r.v[d] = resting[k] ? P[k][d] : 0.0;
       r.omega[d] = J[k][d];

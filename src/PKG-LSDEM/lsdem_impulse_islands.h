@@ -135,8 +135,8 @@ class LsdemImpulseIslands : protected Pointers {
   char *involved, *crossed;      // in a collision; (root:) its island spans ranks
   std::vector<int32_t> pairs, mbody;
   std::vector<int64_t> mlabel;
-  std::vector<Item> items, sorted, sent, got;
-  std::vector<Order> order;
+  std::vector<Item> items, sent, got;
+  std::vector<Order> order;  // items' keys in solve order: by island, then global ids
   std::vector<Result> results, back;
   std::vector<Query> queries, answers;
   std::vector<int> proclist;
@@ -157,7 +157,7 @@ class LsdemImpulseIslands : protected Pointers {
   void find_hosts(LsdemIslandStats &);
   void gather_cross(LsdemIslandStats &);
   std::string solve_items(const lsdem_island_params &, int warm, LsdemIslandStats &);
-  std::string solve_island(const Item *, int, const lsdem_island_params &, int warm,
+  std::string solve_island(const Order *, int, const lsdem_island_params &, int warm,
                            LsdemIslandStats &);
   void scatter_results(bool remote, LsdemImpulseContact *, lsdem_impulse_body *,
                        LsdemIslandStats &);
