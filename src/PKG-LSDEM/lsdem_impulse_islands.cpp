@@ -464,6 +464,11 @@ std::string LsdemImpulseIslands::solve_island(const Order *o, int n,
                                       [](const Order &a, int64_t t) { return a.ta < t; });
     return (p < o + nb && p->ta == tag) ? (int) (p - o) : -1;
   };
+  int cursor = 0;  // the contacts come in increasing ta: side a's grain by a forward walk
+  auto grain_a = [&](int64_t tag) {
+    while (cursor < nb && o[cursor].ta < tag) cursor++;
+    return (cursor < nb && o[cursor].ta == tag) ? cursor : -1;
+  };
   auto prescribed = [&](const Item &c, int64_t tag) {
     lsdem_impulse_body w;
     lsdem_impulse_body_wall(&w, tag, c.d + 9, c.d + 12, c.d + 15, nullptr);
@@ -486,7 +491,7 @@ std::string LsdemImpulseIslands::solve_island(const Order *o, int n,
     ct.depth = c.d[6];
     ct.mu = c.d[7];
     ct.restitution = c.d[8];
-    ct.a = (c.flags & A_FIXED) ? prescribed(c, c.ta) : grain_index(c.ta);
+    ct.a = (c.flags & A_FIXED) ? prescribed(c, c.ta) : grain_a(c.ta);
     ct.b = (c.flags & B_FIXED) ? prescribed(c, c.tb) : grain_index(c.tb);
     resting[k - nb] = (c.flags & RESTING) ? 1 : 0;
     nrest += resting[k - nb];
