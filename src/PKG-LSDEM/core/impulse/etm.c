@@ -38,8 +38,8 @@
 
 /* What the solver keeps per contact. */
 typedef struct {
-  double K[9];   /* collision matrix (eq 4.13) */
-  double knn;    /* n . K n */
+  double K[9];   /* collision matrix (eq 4.13), made when first needed (contact_K) */
+  double knn;    /* n . K n; < 0 until K is made */
   double weight; /* compression key = weight u_n */
   double W;      /* stored elastic energy (eq 4.24) */
   double fastest; /* the fastest approach (-u_n) it had at a compression increment */
@@ -161,19 +161,32 @@ static double relative_velocity(const lsdem_etm *s, int32_t k, double u[3])
   return lsdem_impulse_relative_velocity(s->bodies, &s->contacts[k], u);
 }
 
-/* K (eq 4.13), n . K n and the key's weight of contact k. */
+/* Contact k before the solve: its key's weight, no energy stored, K not made yet. */
 static void prepare_contact(lsdem_etm *s, int32_t k)
 {
   const lsdem_impulse_contact *ct = &s->contacts[k];
   const lsdem_impulse_body *a = &s->bodies[ct->a], *b = &s->bodies[ct->b];
   etm_contact *c = &s->c[k];
-  double Kn[3];
-  lsdem_impulse_collision_matrix(a, b, ct->point, c->K);
-  lsdem_mat_vec(c->K, ct->normal, Kn);
-  c->knn = lsdem_dot3(ct->normal, Kn);
+  c->knn = -1.0;
   c->weight = s->p.mass_weighted ? 1.0 / (a->inv_mass + b->inv_mass) : 1.0; /* §4.4.3 */
   c->W = 0.0;
   c->fastest = 0.0;
+}
+
+/* Contact k's K (eq 4.13) and n . K n, made the first time an impulse needs them: most of
+ * a settled island's contacts never take one in ETM (the bodies do not move in a solve,
+ * so K is the same whenever it is made). */
+static const etm_contact *contact_K(lsdem_etm *s, int32_t k)
+{
+  etm_contact *c = &s->c[k];
+  if (c->knn < 0.0) {
+    const lsdem_impulse_contact *ct = &s->contacts[k];
+    double Kn[3];
+    lsdem_impulse_collision_matrix(&s->bodies[ct->a], &s->bodies[ct->b], ct->point, c->K);
+    lsdem_mat_vec(c->K, ct->normal, Kn);
+    c->knn = lsdem_dot3(ct->normal, Kn);
+  }
+  return c;
 }
 
 /* The group's increments du[g] (0: none), each the Coulomb-limited impulse of its
@@ -186,10 +199,9 @@ static void apply_group(lsdem_etm *s, int32_t ng)
 {
   for (int32_t g = 0; g < ng; g++) {
     const int32_t k = s->group[g];
-    const etm_contact *c = &s->c[k];
     double *P = &s->P[3 * g];
     if (s->du[g] > 0.0)
-      lsdem_coulomb_impulse(c->K, s->contacts[k].normal, &s->ub[3 * g], s->du[g],
+      lsdem_coulomb_impulse(contact_K(s, k)->K, s->contacts[k].normal, &s->ub[3 * g], s->du[g],
                             s->contacts[k].mu, s->p.alpha * s->share[g], P);
     else
       P[0] = P[1] = P[2] = 0.0;
@@ -521,7 +533,7 @@ lsdem_status lsdem_etm_separate(lsdem_etm *s, lsdem_error *err)
     const int32_t ng = next_group(s, "separation", &kmin, &st, err);
     if (ng == 0) return st;
     for (int32_t g = 0; g < ng; g++) {
-      const etm_contact *c = &s->c[s->group[g]];
+      const etm_contact *c = contact_K(s, s->group[g]);
       double give = lsdem_min(-kmin * s->share[g], c->W); /* a share of the largest energy */
       if (c->W - give <= wtol) give = c->W;          /* no tiny remainder */
       /* eq 4.30 (for eq 4.29) from u_n >= 0: a contact still approaching would take the
