@@ -179,6 +179,7 @@ std::string LsdemImpulseIslands::resolve(LsdemImpulseContact *coll, int n,
     gather_cross(st);
   }
   t0 = MPI_Wtime();
+  step_bodies = body;
   std::string mesg = solve_items(prm, warm_start, st);
   st.t_etm += MPI_Wtime() - t0;
   scatter_results(ncross > 0, coll, body, st);
@@ -456,9 +457,13 @@ std::string LsdemImpulseIslands::solve_island(const Order *o, int n,
   for (int k = nb; k < n; k++) approaching |= (it(k).flags & APPROACHING) != 0;
   if (!approaching) return std::string();  // nothing to resolve; velocities unchanged
   bodies.resize(nb);
-  for (int k = 0; k < nb; k++)
-    if (grain_body(it(k), bodies[k], &err) != LSDEM_OK)
+  for (int k = 0; k < nb; k++) {
+    const Item &g = it(k);
+    if (g.owner == comm->me)  // an owned grain: the step's body, made from the same record
+      bodies[k] = step_bodies[g.index];
+    else if (grain_body(g, bodies[k], &err) != LSDEM_OK)
       return fmt::format("grain {}: {}", o[k].ta, err.msg);
+  }
   auto grain_index = [&](int64_t tag) {
     const Order *p = std::lower_bound(o, o + nb, tag,
                                       [](const Order &a, int64_t t) { return a.ta < t; });

@@ -142,6 +142,7 @@ class LsdemImpulseIslands : protected Pointers {
   std::vector<int> proclist;
   std::vector<char> ws;                  // ETM workspace
   std::vector<lsdem_impulse_body> bodies;
+  const lsdem_impulse_body *step_bodies = nullptr;  // resolve's body: owned grains' bodies
   std::vector<lsdem_impulse_contact> contacts;
   std::vector<uint8_t> resting;
   std::vector<double> impulse, collision;  // 3 per contact
