@@ -1068,15 +1068,13 @@ lsdem_impulse_guard_wall FixWallLsdem::guard_wall(double s, const lsdem_wall_par
 void FixWallLsdem::apply_contact(Lane &lane, int i, const lsdem_contact_result &res,
                                  const lsdem_pose &w, bool began, bool through_band)
 {
-  double fk[3], ta[3], tb[3];
-  lsdem_quantize3(res.force, force_q, fk);
-  lsdem_quantize3(res.torque_a, torque_q, ta);
-  lsdem_quantize3(res.torque_b, torque_q, tb);
+  lsdem_contact_terms t;
+  lsdem_contact_terms_of(&res, 1.0, force_q, torque_q, &t);
   double *fi = atom->f[i], *ti = atom->torque[i];
-  for (int d = 0; d < 3; d++) fi[d] += fk[d];  // row by row: short loops the compiler pairs up
-  for (int d = 0; d < 3; d++) ti[d] += ta[d];
-  for (int d = 0; d < 3; d++) lane.f[d] -= fk[d];
-  for (int d = 0; d < 3; d++) lane.t[d] += tb[d];
+  for (int d = 0; d < 3; d++) fi[d] += t.force[d];  // row by row: short loops the compiler pairs up
+  for (int d = 0; d < 3; d++) ti[d] += t.torque_a[d];
+  for (int d = 0; d < 3; d++) lane.f[d] -= t.force[d];
+  for (int d = 0; d < 3; d++) lane.t[d] += t.torque_b[d];
   add_contact(lane, i, res, w, began);
   if (through_band && lane.crossing.empty() && lsdem_boundary_tunnelled(&bnd, res.max_depth))
     lane.crossing = tunnelled(i, res.max_depth);

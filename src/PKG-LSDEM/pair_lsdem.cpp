@@ -515,19 +515,16 @@ void PairLsdem::apply_contacts(Lane &lane, double **f, double **torque) const
       double busiest = std::max(ncount[k.i], ncount[k.j]);
       if (busiest > zcap) k.scale *= zcap / busiest;
     }
-    const double scale = k.scale;
     // each grain's force and torque is a sum of these terms, over local contacts and
     // the ghosts' share LAMMPS sums back: rounded to the quanta, every order gives the
     // same sum (the same on any rank count, lsdem_quantum_for)
-    double fk[3], ta[3], tb[3];
-    lsdem_quantize3_scaled(scale, k.res.force, force_q, fk);
-    lsdem_quantize3_scaled(scale, k.res.torque_a, torque_q, ta);
-    lsdem_quantize3_scaled(scale, k.res.torque_b, torque_q, tb);
+    lsdem_contact_terms t;
+    lsdem_contact_terms_of(&k.res, k.scale, force_q, torque_q, &t);
     // row by row (each a short loop the compiler pairs up): the rows are distinct
-    for (int d = 0; d < 3; d++) f[k.i][d] += fk[d];
-    for (int d = 0; d < 3; d++) torque[k.i][d] += ta[d];
-    for (int d = 0; d < 3; d++) f[k.j][d] -= fk[d];
-    for (int d = 0; d < 3; d++) torque[k.j][d] += tb[d];
+    for (int d = 0; d < 3; d++) f[k.i][d] += t.force[d];
+    for (int d = 0; d < 3; d++) torque[k.i][d] += t.torque_a[d];
+    for (int d = 0; d < 3; d++) f[k.j][d] -= t.force[d];
+    for (int d = 0; d < 3; d++) torque[k.j][d] += t.torque_b[d];
   }
 }
 

@@ -303,6 +303,22 @@ typedef struct {
   int ntested;         /* nodes looked up (the manifold's ntested) */
 } lsdem_contact_result;
 
+/* A contact's terms as the styles add them to the grains' f and torque (and a wall's
+ * totals): scale times force, torque_a and torque_b, each rounded to its quantum
+ * (lsdem_quantize3_scaled), so that every order of summation, on any rank count, gives
+ * the same sums. scale 1 leaves them unscaled, exactly. */
+typedef struct {
+  double force[3], torque_a[3], torque_b[3];
+} lsdem_contact_terms;
+static inline void lsdem_contact_terms_of(const lsdem_contact_result *r, double scale,
+                                          lsdem_quantum force_q, lsdem_quantum torque_q,
+                                          lsdem_contact_terms *t)
+{
+  lsdem_quantize3_scaled(scale, r->force, force_q, t->force);
+  lsdem_quantize3_scaled(scale, r->torque_a, torque_q, t->torque_a);
+  lsdem_quantize3_scaled(scale, r->torque_b, torque_q, t->torque_b);
+}
+
 /* The penalty law on a manifold (report eqs 2.2-2.16), per point k with weight
  * w = stride (per node) or stride * area (traction):
  *   normal   fn = kn w d - cn stride (vrel . n), clamped at >= 0 (never attractive);
